@@ -1,0 +1,111 @@
+"""The rigid-body world: random gravity from the seed, and a bake that steps frame by frame."""
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from typing import Callable
+
+import bpy
+import numpy as np
+
+from .. import params as P
+from .scene import WORLD_OWNED, is_ours
+
+
+class SceneConflict(RuntimeError):
+    """The scene holds something of the user's that the model would have to change."""
+
+
+def check_world_free(scene: bpy.types.Scene) -> None:
+    rbw = scene.rigidbody_world
+    if rbw is None:
+        return
+    for attr in ("collection", "constraints"):
+        coll = getattr(rbw, attr)
+        if coll is not None and not is_ours(coll) and len(coll.all_objects):
+            raise SceneConflict(
+                f"scene '{scene.name}' already simulates your own rigid bodies "
+                f"('{coll.name}'); build FibrilFit in a new scene so they are left untouched")
+
+
+def ensure_world(scene: bpy.types.Scene) -> bpy.types.RigidBodyWorld:
+    if scene.rigidbody_world is None:
+        # No data-API path creates a rigid-body world: one operator call, not one per object.
+        with bpy.context.temp_override(scene=scene):
+            bpy.ops.rigidbody.world_add()
+        scene[WORLD_OWNED] = True
+    return scene.rigidbody_world
+
+
+def draw_gravity(p: P.Params) -> tuple[float, float, float]:
+    """Gravity for this seed: each axis uniform in [-g, g], drawn x, y, z."""
+    rng = random.Random(p.seed)
+    return tuple(rng.uniform(-p.gravity, p.gravity) for _ in range(3))
+
+
+def setup_world(scene: bpy.types.Scene, p: P.Params) -> tuple[float, float, float]:
+    """Set gravity, speed, quality and the cache range; free the old cache. Returns gravity."""
+    rbw = scene.rigidbody_world
+    gravity = draw_gravity(p)
+    scene.use_gravity = True
+    scene.gravity = gravity
+    rbw.enabled = True
+    rbw.time_scale = p.time_scale
+    rbw.substeps_per_frame = p.substeps
+    rbw.solver_iterations = p.solver_iterations
+    rbw.point_cache.frame_start = 1
+    rbw.point_cache.frame_end = p.frames
+    scene.frame_start, scene.frame_end = 1, p.frames
+    _free_cache(scene)
+    return gravity
+
+
+def _free_cache(scene):
+    cache = scene.rigidbody_world.point_cache
+    if cache.is_baked:
+        with bpy.context.temp_override(scene=scene, point_cache=cache):
+            bpy.ops.ptcache.free_bake()
+    # Changing a world setting invalidates the memory cache; going to frame 1 resets the sim.
+    scene.frame_set(1)
+
+
+@dataclass
+class BakeStats:
+    frames_simulated: int = 0
+    settled_at: int | None = None
+    cancelled: bool = False
+
+
+def world_positions(objects) -> np.ndarray:
+    """World-space centres of `objects`, read in one pass, shape (n, 3)."""
+    return np.array([ob.matrix_world.translation for ob in objects], dtype=float).reshape(-1, 3)
+
+
+def bake(scene: bpy.types.Scene, model, *, on_frame: Callable[[int, np.ndarray], bool] | None = None
+         ) -> BakeStats:
+    """Simulate frames 1..p.frames by stepping the scene; the rigid-body cache keeps every frame.
+
+    With `p.settle`, stops once every active body moved less than `settle_speed` per frame for
+    `settle_frames` frames. `on_frame(frame, chain_positions)` may return True to cancel.
+    """
+    p = model.params
+    setup_world(scene, p)
+    chain_objects = [ob for members in model.chain for ob in members]
+    shape = (len(model.chain), p.linker + 1, 3)
+    stats = BakeStats()
+    prev, quiet = None, 0
+    for frame in range(1, p.frames + 1):
+        scene.frame_set(frame)
+        pos = world_positions(chain_objects).reshape(shape)
+        stats.frames_simulated = frame
+        if on_frame is not None and on_frame(frame, pos):
+            stats.cancelled = True
+            break
+        if p.settle and prev is not None:
+            speed = np.linalg.norm(pos - prev, axis=-1).max()
+            quiet = quiet + 1 if speed < p.settle_speed else 0
+            if quiet >= p.settle_frames:
+                stats.settled_at = frame
+                break
+        prev = pos
+    return stats

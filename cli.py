@@ -1,0 +1,103 @@
+"""Arguments, the run command and its printed summary. headless.py calls main()."""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+
+from . import output, params as P
+
+EXIT_OK, EXIT_INTERSECTION, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+
+class UsageError(Exception):
+    """Bad command-line input: printed as one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, no usage block, no traceback
+        raise UsageError(message)
+
+
+def option(name: str) -> str:
+    return "--" + name.replace("_", "-")
+
+
+def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False) -> None:
+    """One option per parameter, from the parameter definition. Values stay strings here:
+    params.make_params (or the sweep's grid) validates them, so every message names the range."""
+    group = parser.add_argument_group("model parameters (units: Å, rad, frames)")
+    for f in dataclasses.fields(P.Params):
+        meta = f.metadata
+        if not meta["cli"]:
+            continue
+        default = " ".join(f"{v:g}" for v in f.default) if f.name == "slab" else f.default
+        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}default {default}]"
+        if meta["kind"] is bool:
+            group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
+                               default=None, help=help_)
+        elif f.name == "slab":
+            group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
+        else:
+            group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
+    parser.add_argument("--force", action="store_true",
+                        help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
+
+
+def params_from(args) -> dict:
+    return {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
+            if getattr(args, f.name, None) is not None}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
+                                                     "on an amyloid fibril, headless.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    run = sub.add_parser("run", help="build, bake and check one model")
+    add_param_options(run)
+    run.add_argument("--json", metavar="PATH", help="write the result as JSON")
+    run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
+    run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
+    run.add_argument("--fail-on-intersection", action="store_true",
+                     help="exit 1 when the verdict is intersection")
+    run.add_argument("--quiet", action="store_true", help="print only the verdict line")
+    return parser
+
+
+OUTPUTS = {"json": (".json",), "blend": (".blend",)}
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    try:
+        args = build_parser().parse_args(argv)
+        return COMMANDS[args.command](args)
+    except (UsageError, P.ParamError, output.OutputError) as exc:
+        print(f"fibrilfit: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("fibrilfit: interrupted; no result written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def command_run(args) -> int:
+    from . import pipeline, report
+    p = P.make_params(force=args.force, **params_from(args))
+    paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
+             for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    import bpy
+    if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+    result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force)
+    if "blend" in paths:
+        pipeline.save_blend(paths["blend"])
+        result["blend"] = str(paths["blend"])
+    if "json" in paths:
+        output.write_json(paths["json"], result)
+    print(report.summary(result, quiet=args.quiet))
+    if args.fail_on_intersection and result.get("verdict") == "intersection":
+        return EXIT_INTERSECTION
+    return EXIT_OK
+
+
+COMMANDS = {"run": command_run}

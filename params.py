@@ -1,0 +1,223 @@
+"""The model's parameters: one definition of their defaults, units, ranges and validation.
+
+Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this module.
+1 Blender unit = 1 Å. Plain Python: importable without bpy.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+# Above this many objects a build is refused unless forced: past it a bake takes hours and
+# the scene needs gigabytes (measured ~1.4 KiB of Blender data per object, see BENCHMARKS.md).
+MAX_OBJECTS_UNFORCED = 60_000
+GLOBULE_SEGMENTS, GLOBULE_RINGS = 32, 16
+RESIDUE_SEGMENTS, RESIDUE_RINGS = 8, 4
+
+
+class ParamError(ValueError):
+    """A parameter value outside what the model accepts. `param` names the parameter."""
+
+    def __init__(self, param: str, message: str):
+        super().__init__(f"{param}: {message}")
+        self.param = param
+
+
+def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation"):
+    meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
+            "section": section}
+    return field(default=default, metadata=meta)
+
+
+@dataclass(frozen=True)
+class Params:
+    """One run of the model. Lengths in Å, angles in rad, time in Blender frames."""
+
+    slab: tuple = _spec((40.0, 22.0, 4.8), 0.1, 1000.0, "Å",
+                        "Size of the cross-β core slab of one layer: width × depth × height",
+                        section="Slab")
+    residue_radius: float = _spec(1.75, 0.1, 20.0, "Å",
+                                  "Radius of one linker residue (and of the anchor residue)",
+                                  section="Anchor")
+    residue_spacing: float = _spec(3.5, 0.1, 50.0, "Å",
+                                   "Distance between consecutive linker residues at rest, "
+                                   "3.5 Å for a stretched-out chain of 1.75 Å beads",
+                                   section="Linker")
+    linker: int = _spec(6, 1, 200, "residues",
+                        "Linker length in residues, counting the passive anchor",
+                        kind=int, section="Linker")
+    globule_diameter: float = _spec(30.0, 0.5, 500.0, "Å",
+                                    "Diameter of the tethered globular domain", section="Globule")
+    layers: int = _spec(20, 1, 100_000, "layers",
+                        "Number of stacked β-strand layers in the fibril", kind=int, section="Layers")
+    rise: float = _spec(4.8, 0.1, 100.0, "Å",
+                        "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
+                        section="Layers")
+    twist: float = _spec(0.034, -math.pi, math.pi, "rad",
+                         "Helical twist between consecutive layers about the fibril axis",
+                         section="Layers")
+    gravity: float = _spec(0.5, 0.0, 100.0, "Å/s²",
+                           "Bound of the random gravity: each axis is drawn uniform in [-g, g]")
+    seed: int = _spec(0, 0, 2**31 - 1, "", "Random seed fixing the gravity", kind=int)
+    time_scale: float = _spec(2.0, 0.01, 100.0, "×", "Rigid-body world speed (tutorial: 2)")
+    frames: int = _spec(250, 1, 100_000, "frames",
+                        "Frames to bake from frame 1 (the cap when settling is on)", kind=int)
+    substeps: int = _spec(10, 1, 1000, "per frame",
+                          "Physics substeps per frame: more keeps stiff chains from stretching",
+                          kind=int)
+    solver_iterations: int = _spec(10, 1, 1000, "",
+                                   "Constraint solver iterations per substep", kind=int)
+    stretch_tolerance: float = _spec(0.05, 0.0, 10.0, "fraction",
+                                     "Largest bond stretch for which the linker counts as intact",
+                                     section="Check")
+    settle: bool = _spec(False, None, None, "", "Stop the bake once every body has come to rest",
+                         kind=bool)
+    settle_speed: float = _spec(0.01, 0.0, 100.0, "Å/frame",
+                                "A body is at rest when it moves less than this per frame")
+    settle_frames: int = _spec(10, 1, 100_000, "frames",
+                               "Frames every body must stay at rest to stop the bake", kind=int)
+    score_exclude: int = _spec(0, 0, 50_000, "layers",
+                               "Layers left out of the verdict at each end of the fibril",
+                               kind=int, section="Check")
+
+    # ---- derived geometry ---------------------------------------------------------------
+    @property
+    def globule_radius(self) -> float:
+        return self.globule_diameter / 2.0
+
+    @property
+    def anchor_x(self) -> float:
+        """Distance of the anchor's centre from the fibril axis (21.75 Å by default)."""
+        return self.slab[0] / 2.0 + self.residue_radius
+
+    def chain_x(self) -> list[float]:
+        """Distance from the axis of each chain member: anchor, residues, globule."""
+        xs = [self.anchor_x + self.residue_spacing * i for i in range(self.linker)]
+        return xs + [xs[-1] + self.residue_radius + self.globule_radius]
+
+    def chain_radii(self) -> list[float]:
+        return [self.residue_radius] * self.linker + [self.globule_radius]
+
+    def rest_lengths(self) -> list[float]:
+        """Rest length of each bond along the chain (`linker` bonds)."""
+        xs = self.chain_x()
+        return [b - a for a, b in zip(xs, xs[1:])]
+
+    def estimated_objects(self) -> int:
+        # slab + anchor + (linker-1) residues + globule + linker constraint empties
+        return self.layers * (2 * self.linker + 2)
+
+    # ---- conversion ---------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        d = dataclasses.asdict(self)
+        d["slab"] = list(self.slab)
+        return d
+
+    def replace(self, **changes) -> "Params":
+        return make_params(**{**self.to_dict(), **changes})
+
+
+def fields() -> tuple[dataclasses.Field, ...]:
+    return dataclasses.fields(Params)
+
+
+def field_spec(name: str) -> dict:
+    return Params.__dataclass_fields__[name].metadata
+
+
+def _describe_range(meta: dict) -> str:
+    kind, lo, hi, unit = meta["kind"], meta["min"], meta["max"], meta["unit"]
+    what = "an integer" if kind is int else "a number"
+    suffix = f" {unit}" if unit and unit not in ("×", "fraction") else ""
+    return f"must be {what} from {lo:g} to {hi:g}{suffix}"
+
+
+def _coerce(name: str, value: Any, meta: dict):
+    kind = meta["kind"]
+    if kind is bool:
+        if isinstance(value, bool):
+            return value
+        if isinstance(value, str) and value.lower() in ("1", "true", "yes", "on", "0", "false", "no", "off"):
+            return value.lower() in ("1", "true", "yes", "on")
+        if isinstance(value, (int, float)) and value in (0, 1):
+            return bool(value)
+        raise ParamError(name, f"must be true or false (got {value!r})")
+    try:
+        if isinstance(value, bool):
+            raise TypeError
+        if isinstance(value, str):
+            number = float(value.strip())
+        else:
+            number = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})") from None
+    if not math.isfinite(number):
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+    if kind is int:
+        if number != int(number):
+            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+        number = int(number)
+    if not meta["min"] <= number <= meta["max"]:
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+    return number
+
+
+def make_params(*, force: bool = False, **values) -> Params:
+    """Validate `values` (missing ones take their defaults) and return a Params.
+
+    Raises ParamError, naming the parameter and its allowed range, for any bad value,
+    an unknown name, or a combination the model cannot build.
+    """
+    known = {f.name for f in fields()}
+    for name in values:
+        if name not in known:
+            raise ParamError(name, f"unknown parameter; known: {', '.join(sorted(known))}")
+    clean = {}
+    for f in fields():
+        if f.name not in values:
+            continue
+        value, meta = values[f.name], f.metadata
+        if f.name == "slab":
+            if isinstance(value, str):
+                value = value.replace(",", " ").split()
+            try:
+                items = list(value)
+            except TypeError:
+                raise ParamError("slab", f"must be three sizes X Y Z, each from {meta['min']:g} "
+                                         f"to {meta['max']:g} Å (got {value!r})") from None
+            if len(items) != 3:
+                raise ParamError("slab", f"must be three sizes X Y Z, each from {meta['min']:g} "
+                                         f"to {meta['max']:g} Å (got {value!r})")
+            clean[f.name] = tuple(float(_coerce("slab", v, meta)) for v in items)
+        else:
+            clean[f.name] = _coerce(f.name, value, meta)
+    p = Params(**clean)
+    _check_combination(p, force)
+    return p
+
+
+def _check_combination(p: Params, force: bool) -> None:
+    if p.residue_spacing < p.residue_radius:
+        raise ParamError("residue_spacing", f"must be at least the residue radius "
+                                            f"({p.residue_radius:g} Å) so that beads cannot pass "
+                                            f"through each other (got {p.residue_spacing:g})")
+    if 2 * p.score_exclude >= p.layers:
+        raise ParamError("score_exclude", f"must leave at least one layer: from 0 to "
+                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
+                                          f"(got {p.score_exclude})")
+    n = p.estimated_objects()
+    if n > MAX_OBJECTS_UNFORCED and not force:
+        most = MAX_OBJECTS_UNFORCED // (2 * p.linker + 2)
+        raise ParamError("layers", f"{p.layers} layers × linker {p.linker} would make {n} objects "
+                                   f"(~{n * 1.4 / 1024:.0f} MiB); at most {most} layers without "
+                                   f"--force")
+
+
+def validate(p: Params, *, force: bool = False) -> Params:
+    """Validate an existing Params (e.g. one built directly) and return it."""
+    return make_params(force=force, **p.to_dict())
+
+
+DEFAULTS = Params()

@@ -1,0 +1,72 @@
+"""The one parameter definition: defaults, derived geometry, and refusals that name the range."""
+import math
+
+import pytest
+
+from fibrilfit import params as P
+
+
+def test_defaults_are_the_tutorials():
+    p = P.DEFAULTS
+    assert p.slab == (40.0, 22.0, 4.8)
+    assert (p.residue_radius, p.residue_spacing, p.linker) == (1.75, 3.5, 6)
+    assert (p.globule_diameter, p.layers, p.rise, p.twist) == (30.0, 20, 4.8, 0.034)
+    assert (p.gravity, p.seed, p.time_scale, p.frames) == (0.5, 0, 2.0, 250)
+
+
+def test_chain_geometry_matches_the_tutorial():
+    p = P.DEFAULTS
+    assert p.anchor_x == pytest.approx(21.75)
+    assert p.chain_x() == pytest.approx([21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0])
+    assert p.rest_lengths() == pytest.approx([3.5] * 5 + [16.75])
+    assert p.estimated_objects() == 280
+
+
+BAD = [
+    ({"slab": (0, 22, 4.8)}, "slab"),
+    ({"slab": (40, -1, 4.8)}, "slab"),
+    ({"slab": (40, 22)}, "slab"),
+    ({"slab": ("nan", 22, 4.8)}, "slab"),
+    ({"globule_diameter": 0}, "globule_diameter"),
+    ({"globule_diameter": -30}, "globule_diameter"),
+    ({"globule_diameter": math.nan}, "globule_diameter"),
+    ({"globule_diameter": math.inf}, "globule_diameter"),
+    ({"residue_radius": 0}, "residue_radius"),
+    ({"linker": 0}, "linker"),
+    ({"linker": 2.5}, "linker"),
+    ({"layers": 0}, "layers"),
+    ({"layers": "abc"}, "layers"),
+    ({"frames": 0}, "frames"),
+    ({"gravity": -0.1}, "gravity"),
+    ({"rise": "x"}, "rise"),
+    ({"seed": -1}, "seed"),
+    ({"residue_spacing": 1.0}, "residue_spacing"),
+    ({"score_exclude": 10}, "score_exclude"),
+    ({"layers": 10_000}, "layers"),
+    ({"colour": 1}, "colour"),
+]
+
+
+@pytest.mark.parametrize("values,name", BAD)
+def test_bad_values_are_refused_naming_the_parameter(values, name):
+    with pytest.raises(P.ParamError) as err:
+        P.make_params(**values)
+    assert err.value.param == name
+    message = str(err.value)
+    assert message.startswith(f"{name}: ") and "\n" not in message
+    if name not in ("colour", "residue_spacing", "score_exclude", "layers"):
+        assert "from" in message and "to" in message  # the allowed range
+
+
+def test_force_allows_large_models():
+    assert P.make_params(layers=10_000, force=True).layers == 10_000
+
+
+def test_strings_from_the_command_line_are_accepted():
+    p = P.make_params(layers="8", twist="0.05", slab="40 22 4.8")
+    assert (p.layers, p.twist, p.slab) == (8, 0.05, (40.0, 22.0, 4.8))
+
+
+def test_validate_catches_params_made_directly():
+    with pytest.raises(P.ParamError):
+        P.validate(P.Params(linker=0))

@@ -51,28 +51,51 @@ def bvh_clashes(mesh, matrices: np.ndarray) -> tuple[int, set[tuple[int, int]]]:
     return int(faces.size), pairs
 
 
+# The 13 forward neighbours of a grid cell (with the cell itself, every neighbouring pair of cells
+# is visited once).
+_FORWARD = np.array([(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
+                     if (dx, dy, dz) > (0, 0, 0)], dtype=np.int64)
+
+
 def sphere_clashes(centres: np.ndarray, radius: float, tolerance: float = 1e-3
                    ) -> list[tuple[int, int, float]]:
-    """Pairs of equal spheres closer than 2·radius − tolerance, with their overlap depth (Å).
+    """Pairs (i < j) of equal spheres closer than 2·radius − tolerance, with overlap depth (Å).
 
-    Sort and sweep along the axis of widest spread: O(n log n + candidates), not all pairs.
+    A uniform grid of cells one reach wide: only spheres in the same or neighbouring cells are
+    compared, so the cost is O(n log n + close pairs) however the centres are spread, not O(n²).
     """
     centres = np.asarray(centres, dtype=float).reshape(-1, 3)
     n = len(centres)
-    if n < 2:
-        return []
     reach = 2.0 * radius - tolerance
-    axis = int(np.argmax(np.ptp(centres, axis=0)))
-    order = np.argsort(centres[:, axis], kind="stable")
-    key = centres[order, axis]
-    stop = np.searchsorted(key, key + reach, side="right")
-    counts = stop - np.arange(n) - 1
-    first = np.repeat(np.arange(n), counts)
-    second = first + 1 + (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts))
-    a, b = order[first], order[second]
+    if n < 2 or reach <= 0:
+        return []
+    cell = np.floor((centres - centres.min(axis=0)) / reach).astype(np.int64) + 1
+    dims = cell.max(axis=0) + 2  # a margin of one empty cell on each side: no wrap-around
+    strides = np.array([dims[1] * dims[2], dims[2], 1], dtype=np.int64)
+    key = cell @ strides
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    firsts, seconds = [], []
+    for offset in [np.zeros(3, dtype=np.int64), *_FORWARD]:
+        target = skey + offset @ strides
+        lo = np.searchsorted(skey, target, side="left")
+        hi = np.searchsorted(skey, target, side="right")
+        if not offset.any():
+            lo = np.arange(n) + 1  # same cell: only later members, each pair once
+        counts = np.maximum(hi - lo, 0)
+        total = int(counts.sum())
+        if total == 0:
+            continue
+        first = np.repeat(np.arange(n), counts)
+        within = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+        firsts.append(first)
+        seconds.append(np.repeat(lo, counts) + within)
+    if not firsts:
+        return []
+    a, b = order[np.concatenate(firsts)], order[np.concatenate(seconds)]
     dist = np.linalg.norm(centres[a] - centres[b], axis=1)
     hit = dist < reach
     a, b, depth = a[hit], b[hit], 2.0 * radius - dist[hit]
     lo, hi = np.minimum(a, b), np.maximum(a, b)
-    out = sorted(zip(lo.tolist(), hi.tolist(), depth.tolist()))
-    return [(i, j, float(d)) for i, j, d in out]
+    by = np.lexsort((hi, lo))
+    return list(zip(lo[by].tolist(), hi[by].tolist(), depth[by].tolist()))

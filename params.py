@@ -78,9 +78,10 @@ class Params:
                                 "A body is at rest when it moves less than this per frame")
     settle_frames: int = _spec(10, 1, 100_000, "frames",
                                "Frames every body must stay at rest to stop the bake", kind=int)
-    score_exclude: int = _spec(0, 0, 50_000, "layers",
-                               "Layers left out of the verdict at each end of the fibril",
-                               kind=int, section="Check")
+    score_layers: int = _spec(0, 0, 50_000, "layers",
+                              "Score interior layers only: leave out this many layers at each end "
+                              "of the fibril ('all' or 0 scores every layer)",
+                              kind=int, section="Check")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
@@ -179,6 +180,8 @@ def make_params(*, force: bool = False, **values) -> Params:
         if f.name not in values:
             continue
         value, meta = values[f.name], f.metadata
+        if f.name == "score_layers" and isinstance(value, str) and value.strip().lower() == "all":
+            value = 0
         if f.name == "slab":
             if isinstance(value, str):
                 value = value.replace(",", " ").split()
@@ -203,10 +206,10 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("residue_spacing", f"must be at least the residue radius "
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
-    if 2 * p.score_exclude >= p.layers:
-        raise ParamError("score_exclude", f"must leave at least one layer: from 0 to "
-                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
-                                          f"(got {p.score_exclude})")
+    if 2 * p.score_layers >= p.layers:
+        raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
+                                         f"{(p.layers - 1) // 2} for {p.layers} layers "
+                                         f"(got {p.score_layers})")
     n = p.estimated_objects()
     if n > MAX_OBJECTS_UNFORCED and not force:
         most = MAX_OBJECTS_UNFORCED // (2 * p.linker + 2)

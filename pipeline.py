@@ -14,7 +14,7 @@ import bpy
 import numpy as np
 
 from . import params as P
-from .analysis import bond_stretch, check_model
+from .analysis import StretchLog, check_model, scored_range
 from .builders import bake as bake_frames, build_model, draw_gravity, find_model
 
 STAGES = ("build", "bake", "check")
@@ -34,14 +34,10 @@ def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
     """Bake the model from a freed cache; track the worst bond stretch over every frame."""
     scene = scene or bpy.context.scene
     p = model.params
-    lo, hi = p.score_exclude, p.layers - p.score_exclude
-    rest = p.rest_lengths()
-    worst = {"stretch": -np.inf, "frame": 0}
+    stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_range(p)))
 
     def per_frame(frame, positions):
-        s = float(bond_stretch(positions[lo:hi], rest).max())
-        if s > worst["stretch"]:
-            worst.update(stretch=s, frame=frame)
+        stretch.add(positions)
         return bool(on_frame and on_frame(frame, positions))
 
     stats = bake_frames(scene, model, on_frame=per_frame)
@@ -50,8 +46,7 @@ def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
         "frames_simulated": stats.frames_simulated,
         "settled_at": stats.settled_at,
         "cancelled": stats.cancelled,
-        "max_bond_stretch_bake": round(worst["stretch"], 6),
-        "max_bond_stretch_bake_frame": worst["frame"],
+        **stretch.summary(),
     }
 
 

@@ -23,22 +23,39 @@ def summary(r: dict, quiet: bool = False) -> str:
         head,
         f"gravity ({g}); baked {r['frames_simulated']} frames{settled}; "
         f"build {t['build']:.2f} s, bake {t['bake']:.2f} s, check {t['check']:.2f} s",
-        f"{verdict}: {r['intersecting_faces']} intersecting faces, "
+        f"{verdict} at frame {r['frames_simulated']}: {r['intersecting_faces']} intersecting faces, "
         f"{len(r['clashing_pairs'])} clashing globule pairs"
+        + (f" (deepest overlap {r['max_overlap']:.2f} Å)" if r.get("clashing_pairs") else "")
         + (f" in layers {r['scored_layers'][0]}-{r['scored_layers'][1]}"
-           if p.get("score_exclude") else ""),
+           if p.get("score_layers") else ""),
+    ]
+    if r.get("grazing_pairs"):
+        lines.append(f"  {len(r['grazing_pairs'])} of them only graze (overlap at most "
+                     f"{r['sphere_check']['tolerance']:.2f} Å, the globule mesh's resolution)")
+    lines.append(
         f"linker: worst bond stretch {_pct(r['max_bond_stretch'])} at the end "
         f"({'intact' if r['linker_intact'] else 'STRETCHED'}, tolerance "
-        f"{_pct(p['stretch_tolerance'])}); {_pct(r['max_bond_stretch_bake'])} at worst during the bake",
-    ]
+        f"{_pct(p['stretch_tolerance'])})")
+    if r.get("max_bond_stretch_bake") is not None:
+        after = r.get("max_bond_stretch_after_push")
+        lines.append(
+            f"  during the bake: {_pct(r['max_bond_stretch_bake'])} at worst (frame "
+            f"{r['max_bond_stretch_bake_frame']}, the push-apart of the overlapping start); "
+            + (f"{_pct(after)} at worst once back within tolerance (frame "
+               f"{r['push_apart_end_frame']}); " if after is not None else
+               "never back within tolerance; ")
+            + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
     if r["accommodated"]:
         lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "
-                     "linkers, so one exists for this model.")
+                     "linkers, which proves that one exists for this model.")
     elif r["verdict"] == "successful":
         lines.append("accommodated: no. No globules intersect, but only because the linkers "
                      "stretched beyond tolerance: the domains do not fit at this length.")
     else:
-        lines.append("accommodated: no. This relaxation ended with clashes. One random draw "
-                     "cannot prove that no clash-free layout exists; sweep seeds for a fraction.")
+        lines.append("accommodated: no. This relaxation ended with clashes"
+                     + ("" if r["linker_intact"] else ", even with linkers stretched")
+                     + ". That does not prove "
+                     "that no clash-free layout exists: one bake is one random search, not an "
+                     "exhaustive one. Sweep seeds to see how often one is found.")
     return "\n".join(lines)

@@ -41,7 +41,7 @@ BAD = [
     ({"rise": "x"}, "rise"),
     ({"seed": -1}, "seed"),
     ({"residue_spacing": 1.0}, "residue_spacing"),
-    ({"score_exclude": 10}, "score_exclude"),
+    ({"score_layers": 10}, "score_layers"),
     ({"layers": 10_000}, "layers"),
     ({"colour": 1}, "colour"),
 ]
@@ -54,7 +54,7 @@ def test_bad_values_are_refused_naming_the_parameter(values, name):
     assert err.value.param == name
     message = str(err.value)
     assert message.startswith(f"{name}: ") and "\n" not in message
-    if name not in ("colour", "residue_spacing", "score_exclude", "layers"):
+    if name not in ("colour", "residue_spacing", "score_layers", "layers"):
         assert "from" in message and "to" in message  # the allowed range
 
 

@@ -17,6 +17,7 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "residue": (0.95, 0.75, 0.2, 1.0),
     "globule": (0.7, 0.72, 0.7, 1.0),
 }
+CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
 
 
 @dataclass
@@ -242,6 +243,18 @@ class _LayerBuilder:
 
     def _globule(self, k):
         self._member(k, self.p.linker)
+
+
+def colour_globules(model: Model, clashing_layers) -> None:
+    """Globules of `clashing_layers` red, the others neutral, through ob.color.
+
+    ob.color is what the viewport shows with Color: Object, and what materials read through
+    an Object Info node, so one call recolours both after each check.
+    """
+    clashing = set(clashing_layers)
+    for k, members in enumerate(model.chain):
+        if members and members[-1].get(TAG) == "globule":
+            members[-1].color = CLASH_COLOR if k in clashing else COLORS["globule"]
 
 
 def _body(name, mesh, role, k, parts, bodies, rb_type, shape):

@@ -74,7 +74,7 @@ class Baking:
     def _finish(self):
         self.done = True
         keep_bake(self.scene)
-        set_stage(self.model, "baked")
+        set_stage(self.model, "baked", last_frame=self.stats.frames_simulated)
 
     def result(self) -> dict:
         return {

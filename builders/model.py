@@ -88,6 +88,7 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
 PARTS = ("slab", "anchor", "linker", "globule")  # one layer's parts, in the tutorial's order
 STEPS = (*PARTS, "layers")  # the build steps; "layers" replicates layer 0 to every layer
 STAGE = "fibrilfit_stage"   # on the root collection: the last step done, then "baked", "checked"
+LAST_FRAME = "fibrilfit_last_frame"  # on the root collection: the last frame the bake reached
 STAGES = (*STEPS, "baked", "checked")
 PART_COLLECTIONS = {"slab": "slabs", "anchor": "anchors", "residue": "linkers",
                     "globule": "globules", "bond": "bonds"}  # role: title; tagged role + "s"
@@ -142,10 +143,24 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     return Model(root, p, [], [], [])
 
 
-def set_stage(model: Model, stage: str) -> None:
+def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:
+    """Record how far the model got (see STAGES); a bake also records its last frame."""
     if stage not in STAGES:
         raise ValueError(f"stage must be one of {STAGES}")
     model.root[STAGE] = stage
+    if last_frame is not None:
+        model.root[LAST_FRAME] = int(last_frame)
+
+
+def last_frame(model: Model) -> int:
+    """The frame the bake ended on (the tutorial's "last frame")."""
+    return int(model.root.get(LAST_FRAME, model.params.frames))
+
+
+def update_params(model: Model, p: P.Params) -> None:
+    """Give a built model new parameters that do not change what was built (bake, check)."""
+    model.params = p
+    model.root["params"] = p.to_dict()
 
 
 def model_stage(scene: bpy.types.Scene) -> str:

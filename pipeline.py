@@ -117,6 +117,17 @@ def check(model, scene=None) -> dict:
     return check_model(model)
 
 
+def describe(p: P.Params) -> dict:
+    """The head of every result: versions, every parameter, the seed and its gravity."""
+    return {
+        "fibrilfit_version": version(),
+        "blender_version": bpy.app.version_string,
+        "params": p.to_dict(),
+        "seed": p.seed,
+        "gravity": list(draw_gravity(p)),
+    }
+
+
 def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", force: bool = False,
         on_frame: Callable | None = None) -> dict:
     """Build, bake and check; return the JSON-ready result (see README, "The result")."""
@@ -124,15 +135,7 @@ def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", for
         raise ValueError(f"stop_after must be one of {STAGES}")
     p = P.validate(p or P.DEFAULTS, force=force)
     scene = scene or bpy.context.scene
-    result = {
-        "fibrilfit_version": version(),
-        "blender_version": bpy.app.version_string,
-        "params": p.to_dict(),
-        "seed": p.seed,
-        "gravity": list(draw_gravity(p)),
-        "stage": stop_after,
-        "timings_s": {},
-    }
+    result = {**describe(p), "stage": stop_after, "timings_s": {}}
     t = time.perf_counter()
     model = build(p, scene, force=force)
     result["timings_s"]["build"] = time.perf_counter() - t

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import traceback
 
-from .. import params as P, properties
+from .. import params as P, pipeline, properties
 from ..builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
                               update_params)
 from ..builders.physics import SceneConflict
@@ -93,14 +93,14 @@ def record_bake(context, model, bake: dict) -> None:
     """After a bake: the old verdict and colours no longer apply."""
     clear_results(context)
     colour_globules(model, ())
-    model.root[RESULT] = json.dumps(bake)
+    model.root[RESULT] = json.dumps({**pipeline.describe(model.params), "stage": "bake", **bake})
 
 
 def record_check(context, model, result: dict) -> None:
     """After a check: the verdict in scene.fibrilfit, clashing globules red, the JSON kept."""
     properties.store_result(settings(context), result)
     colour_globules(model, {k for pair in result["clashing_pairs"] for k in pair[:2]})
-    merged = {**json.loads(model.root.get(RESULT, "{}")), **result}
+    merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
     model.root[RESULT] = json.dumps(merged)
     set_stage(model, "checked")
 

@@ -161,7 +161,8 @@ def test_steps_in_order_match_the_api(ui, scene):
     bpy.ops.wm.read_factory_settings(use_empty=True)  # frees `scene` and `ui`
     api = pipeline.run(P.make_params(**SMALL), bpy.context.scene)
     for key in ("verdict", "gravity", "intersecting_faces", "clashing_pairs", "max_bond_stretch",
-                "max_bond_stretch_bake", "frames_simulated", "globule_centres", "accommodated"):
+                "max_bond_stretch_bake", "frames_simulated", "globule_centres", "accommodated",
+                "params", "seed"):
         assert mine[key] == api[key], key
     assert bpy.context.scene.fibrilfit.verdict == ""  # a new scene: nothing recorded in it
     assert shown["verdict"] == api["verdict"] == "intersection"

@@ -72,8 +72,10 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
         return None
     p = P.make_params(force=True, **{k: v for k, v in root["params"].to_dict().items()})
     slabs, chain, cons = {}, {}, {}
-    for ob in root.all_objects:
-        role, k = ob.get("fibrilfit"), ob.get(LAYER)
+    # Not root.all_objects: Blender rebuilds that cache in O(n²) after any change (4.5 s for
+    # 14,000 objects, measured on 5.0.1); each collection's own objects are a plain list.
+    for ob in (ob for coll in (root, *root.children_recursive) for ob in coll.objects):
+        role, k = ob.get(TAG), ob.get(LAYER)
         if role == "slab":
             slabs[k] = ob
         elif role in ("anchor", "residue", "globule"):

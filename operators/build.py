@@ -25,7 +25,8 @@ class _BuildStep:
     def _build(self, context):
         model = build_steps(common.panel_params(context), context.scene, upto=self.step)
         common.clear_results(context)
-        self.report({"INFO"}, f"{self.bl_label}: the model has {len(model.root.all_objects)} objects")
+        count = sum(len(c.objects) for c in (model.root, *model.root.children))
+        self.report({"INFO"}, f"{self.bl_label}: the model has {count} objects")
         return {"FINISHED"}
 
 

@@ -220,6 +220,33 @@ def test_bad_values_are_reported_and_cancel(ui, scene):
     assert sorted(o.name for o in scene.objects) == names
 
 
+def test_a_scene_simulating_the_users_bodies_is_refused(ui, scene, user_objects):
+    with bpy.context.temp_override(scene=scene):
+        bpy.ops.rigidbody.world_add()
+    mine = bpy.data.collections.new("my bodies")
+    mine.objects.link(user_objects["Cube"])
+    scene.rigidbody_world.collection = mine
+    for op in ("build_slab", "run_all"):
+        with pytest.raises(RuntimeError, match="already simulates your own rigid bodies"):
+            run(op)
+    assert set(scene.objects) == set(user_objects.values())
+    assert scene.rigidbody_world.collection == mine
+
+
+def test_an_unexpected_error_is_one_line_and_cancels(ui, scene, monkeypatch, capsys):
+    run_steps(STEPS[:6])
+
+    def broken(model, scene=None):
+        raise ZeroDivisionError("boom")
+    monkeypatch.setattr(pipeline, "check", broken)
+    with pytest.raises(RuntimeError) as err:
+        run("check_intersections")
+    message = str(err.value).strip()
+    assert "\n" not in message and "FibrilFit failed: ZeroDivisionError('boom')" in message
+    assert "Traceback" in capsys.readouterr().err  # for a bug report, in the system console
+    assert model_stage(scene) == "baked" and ui.verdict == ""
+
+
 def test_a_changed_build_value_must_be_rebuilt_before_baking(ui, scene):
     run_steps(STEPS[:5])
     ui.linker = 4

@@ -25,7 +25,7 @@ _FLOAT_UNITS = {
     "fraction": {"subtype": "FACTOR"},
 }
 _UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "Å/s²": "Å/s²",
-               "rad": "shown in degrees"}
+               "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %"}
 
 
 def section_of(field) -> str:

@@ -32,5 +32,13 @@ test-latest: $(VENV)/.installed
 test-lts: $(VENV_LTS)/.installed
 	$(VENV_LTS)/bin/python -m pytest $(PYTEST_ARGS)
 
+# Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
+BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
+
+extension: $(VENV)/.installed
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate .
+	mkdir -p dist
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir . --output-dir dist
+
 clean:
 	rm -rf out dist .pytest_cache

@@ -81,31 +81,42 @@ def world_positions(objects) -> np.ndarray:
     return np.array([ob.matrix_world.translation for ob in objects], dtype=float).reshape(-1, 3)
 
 
-def bake(scene: bpy.types.Scene, model, *, on_frame: Callable[[int, np.ndarray], bool] | None = None
-         ) -> BakeStats:
-    """Simulate frames 1..p.frames by stepping the scene; the rigid-body cache keeps every frame.
+def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
+    """Simulate frames 1..p.frames one at a time, yielding (frame, chain positions) after each.
 
+    The generator form lets the sidebar's modal operator advance a few frames per timer tick.
     With `p.settle`, stops once every active body moved less than `settle_speed` per frame for
-    `settle_frames` frames. `on_frame(frame, chain_positions)` may return True to cancel.
+    `settle_frames` frames. `stats` (updated in place) says how far it got.
     """
     p = model.params
+    stats = stats if stats is not None else BakeStats()
     setup_world(scene, p)
     chain_objects = [ob for members in model.chain for ob in members]
     shape = (len(model.chain), p.linker + 1, 3)
-    stats = BakeStats()
     prev, quiet = None, 0
     for frame in range(1, p.frames + 1):
         scene.frame_set(frame)
         pos = world_positions(chain_objects).reshape(shape)
         stats.frames_simulated = frame
-        if on_frame is not None and on_frame(frame, pos):
-            stats.cancelled = True
-            break
+        yield frame, pos
         if p.settle and prev is not None:
             speed = np.linalg.norm(pos - prev, axis=-1).max()
             quiet = quiet + 1 if speed < p.settle_speed else 0
             if quiet >= p.settle_frames:
                 stats.settled_at = frame
-                break
+                return
         prev = pos
+
+
+def bake(scene: bpy.types.Scene, model, *, on_frame: Callable[[int, np.ndarray], bool] | None = None
+         ) -> BakeStats:
+    """Simulate frames 1..p.frames by stepping the scene; the rigid-body cache keeps every frame.
+
+    See bake_steps. `on_frame(frame, chain_positions)` may return True to cancel.
+    """
+    stats = BakeStats()
+    for frame, pos in bake_steps(scene, model, stats):
+        if on_frame is not None and on_frame(frame, pos):
+            stats.cancelled = True
+            break
     return stats

@@ -17,7 +17,7 @@ from ..builders.model import COLORS
 from ..builders.scene import new_collection, tag, is_ours
 from .cache import keep_bake
 
-CLASH_RED = (0.9, 0.05, 0.03, 1.0)
+CLASH_RED = (0.8, 0.02, 0.015, 1.0)
 BACKGROUND = (0.62, 0.64, 0.68)  # linear; a light grey that slides and prints well
 VIEW_ROLE = "view"               # collection holding the camera and light
 LENS_MM, SENSOR_MM = 50.0, 36.0
@@ -180,12 +180,34 @@ def view_basis(forward, *, axis_across: bool) -> tuple[np.ndarray, np.ndarray]:
     return (up, -right) if axis_across else (right, up)
 
 
-def fit_distance(points, target, forward, right, up, tan_x: float, tan_y: float) -> float:
-    """Distance from `target` along -forward at which every point is inside the frustum."""
+def fit_view(points, target, forward, right, up, tan_x: float, tan_y: float
+             ) -> tuple[float, float, float]:
+    """The closest distance from `target` (along -forward) at which the points fit the frame
+    once centred by lens shift; returns (distance, centre u, centre v), where u, v in [-1, 1]
+    span the frame's width and height."""
     q = np.asarray(points, dtype=float) - target
     x, y, z = q @ right, q @ up, q @ forward
-    need = np.maximum(np.abs(x) * MARGIN / tan_x, np.abs(y) * MARGIN / tan_y) - z
-    return float(need.max())
+    size = float(np.ptp(q, axis=0).max()) or 1.0
+
+    def spread(d):
+        depth = d + z
+        u, v = x / (depth * tan_x), y / (depth * tan_y)
+        return u.min(), u.max(), v.min(), v.max()
+
+    def fits(d):
+        u0, u1, v0, v1 = spread(d)
+        return (u1 - u0) / 2 * MARGIN <= 1.0 and (v1 - v0) / 2 * MARGIN <= 1.0
+
+    # Centred on target with no shift, this distance fits (see the symmetric bound); search
+    # down from it to the closest one that still fits with the best shift.
+    hi = float((np.maximum(np.abs(x) * MARGIN / tan_x, np.abs(y) * MARGIN / tan_y) - z).max())
+    lo = float(-z.min() + 0.05 * size)
+    hi = max(hi, lo)
+    for _ in range(50):
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if fits(mid) else (mid, hi)
+    u0, u1, v0, v1 = spread(hi)
+    return hi, (u0 + u1) / 2, (v0 + v1) / 2
 
 
 def view_azimuth(model) -> float:
@@ -198,10 +220,9 @@ def view_azimuth(model) -> float:
 
 
 def frame_camera(camera: bpy.types.Object, points, aspect: float, azimuth: float) -> float:
-    """Aim and place `camera` at `azimuth` so every point is in view at this aspect (w/h).
-
-    Tries the fibril axis vertical and across, keeps the closer (larger) view. Returns the
-    camera's distance from the model's centre.
+    """Aim and place `camera` at `azimuth` so every point is in view at this aspect (w/h),
+    centred by lens shift. Tries the fibril axis vertical and across, keeps the closer (larger)
+    view. Returns the camera's distance from the model's centre.
     """
     points = np.asarray(points, dtype=float)
     lo, hi = points.min(axis=0), points.max(axis=0)
@@ -213,18 +234,19 @@ def frame_camera(camera: bpy.types.Object, points, aspect: float, azimuth: float
     best = None
     for across in (False, True):
         right, up = view_basis(forward, axis_across=across)
-        d = fit_distance(points, target, forward, right, up, tan_x, tan_y)
-        if best is None or d < best[0] - 1e-9:
-            best = (d, right, up)
-    distance, right, up = best
-    distance = max(distance, 1.0)
+        fit = fit_view(points, target, forward, right, up, tan_x, tan_y)
+        if best is None or fit[0] < best[0][0] - 1e-9:
+            best = (fit, right, up)
+    (distance, cu, cv), right, up = best
     cam = camera.data
     cam.type = "PERSP"
     cam.lens, cam.sensor_width, cam.sensor_fit = LENS_MM, SENSOR_MM, "HORIZONTAL"
-    size = float(np.linalg.norm(hi - lo))
-    cam.clip_start = max(0.01, (distance - size) * 0.5) if distance > size else 0.1
-    cam.clip_end = distance + 2 * size + 10.0
-    basis = Matrix((tuple(right), tuple(up), tuple(-forward))).transposed()  # columns: camera X, Y, Z in world
+    # Blender's shift is in units of the frame's width (the fitted side) both ways.
+    cam.shift_x, cam.shift_y = cu / 2, cv / (2 * aspect)
+    depth = (points - target) @ forward + distance
+    cam.clip_start = max(1e-3, float(depth.min()) * 0.5)
+    cam.clip_end = float(depth.max()) * 1.5 + 1.0
+    basis = Matrix((tuple(right), tuple(up), tuple(-forward))).transposed()  # camera X, Y, Z
     camera.matrix_world = Matrix.Translation(Vector(target - distance * forward)) @ basis.to_4x4()
     return distance
 

@@ -11,7 +11,7 @@ import re
 SUFFIXES = {"pdb": (".pdb",), "render": (".png",)}
 ENGINES = ("cycles", "workbench")     # exports.render.ENGINES, without importing bpy
 SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
-DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 16
+DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8
 PDB_STEP = 50                        # exports.pdb.KEYFRAME_STEP
 
 

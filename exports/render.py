@@ -22,7 +22,7 @@ from .dressing import dress
 ENGINES = {"cycles": "CYCLES", "workbench": "BLENDER_WORKBENCH"}
 MIN_SIZE, MAX_SIZE = 16, 8192
 DEFAULT_SIZE = (640, 360)
-DEFAULT_SAMPLES = 16
+DEFAULT_SAMPLES = 8
 
 
 class RenderError(RuntimeError):

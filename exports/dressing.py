@@ -14,17 +14,17 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from ..builders.model import COLORS
-from ..builders.scene import new_collection, tag, is_ours
+from ..builders.scene import is_ours, new_collection, tag
 from .cache import keep_bake
 
 CLASH_RED = (0.8, 0.02, 0.015, 1.0)
-BACKGROUND = (0.62, 0.64, 0.68)  # linear; a light grey that slides and prints well
-VIEW_ROLE = "view"               # collection holding the camera and light
+BACKGROUND = (0.3, 0.32, 0.36)     # linear; a mid grey that light globules stand out on
+VIEW_ROLE = "view"                # collection holding the camera and light
 LENS_MM, SENSOR_MM = 50.0, 36.0
 ELEVATION = math.radians(20.0)    # the camera looks a little down on the model
 TURN = math.radians(15.0)         # from side-on towards the globules, for depth
-AMBIENT = 0.35                    # world light on the model; the backdrop itself shows BACKGROUND
-MARGIN = 1.08                    # the model fills at most 1/MARGIN of the frame
+AMBIENT = 0.6                     # world light on the model; the backdrop itself shows BACKGROUND
+MARGIN = 1.08                     # the model fills at most 1/MARGIN of the frame
 
 
 @dataclass
@@ -48,7 +48,7 @@ def colour_globules(model, clashing, scene: bpy.types.Scene | None = None) -> li
     red = {int(k) for k in clashing}
     for k, ob in enumerate(model.globules):
         colour = CLASH_RED if k in red else COLORS["globule"]
-        if tuple(ob.color) != colour:  # an unchanged colour needs no depsgraph update
+        if not np.allclose(ob.color, colour, atol=1e-6):  # unchanged: no depsgraph update
             ob.color = colour
     return sorted(red)
 
@@ -259,6 +259,6 @@ def aim_light(light: bpy.types.Object, camera: bpy.types.Object) -> None:
     light.matrix_world = (Matrix.Translation(camera.matrix_world.translation)
                           @ Vector(travel).to_track_quat("-Z", "Y").to_matrix().to_4x4())
     sun = light.data
-    sun.energy = 2.5
+    sun.energy = 2.0
     sun.angle = math.radians(8.0)
     sun.color = (1.0, 0.98, 0.95)

@@ -4,9 +4,9 @@ One pseudo-atom (name CA, element C) per sphere: residue ANC (the anchor, resSeq
 residues, 2 .. linker) and GLB (the globule, linker + 1). The B-factor column holds the sphere's
 radius in Å (PyMOL: `alter all, vdw=b`; ChimeraX: `size byattribute bfactor 0:0 1000:1000`).
 One chain per layer, layer 0 first: chain IDs A-Z, a-z, 0-9; past 62 layers the IDs repeat and
-the segment ID (columns 73-76) tells the copies apart: layer = 62 * segment + position of the chain ID, and
-residue numbers continue (segment 1 of a linker-3 model numbers its residues 5-8), so a viewer
-that merges chains by ID still sees distinct residues (gemmi: Model.split_chains_by_segments).
+the segment ID (columns 73-76) tells the copies apart: layer = 62 * segment + index of the chain
+ID, and residue numbers continue (segment 1 of a linker-3 model numbers its residues 5-8), so a
+viewer that merges chains by ID still sees distinct residues (gemmi: split_chains_by_segments).
 CONECT records join each chain in order; REMARK 250 lines carry the parameters, seed and verdict.
 
 Several frames make a multi-model file (MODEL/ENDMDL), one model per frame, same atoms in each.

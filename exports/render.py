@@ -120,7 +120,8 @@ def _render_settings(scene, camera, engine, width, height, samples, denoise) -> 
     s = [(scene, "camera", camera), (r, "engine", ENGINES[engine]),
          (r, "resolution_x", width), (r, "resolution_y", height),
          (r, "resolution_percentage", 100), (r, "pixel_aspect_x", 1.0), (r, "pixel_aspect_y", 1.0),
-         (r, "use_border", False), (r, "filepath", ""), (r, "film_transparent", False), (r, "use_file_extension", True),
+         (r, "use_border", False), (r, "filepath", ""), (r, "film_transparent", False),
+         (r, "use_file_extension", True),
          (r.image_settings, "file_format", "PNG"), (r.image_settings, "color_mode", "RGB"),
          (r.image_settings, "color_depth", "8"),
          # Standard, not AgX/Filmic: "red" must stay red for the reader (and the pixel tests).

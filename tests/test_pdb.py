@@ -39,8 +39,8 @@ def test_layout_names_chains_radii_and_bonds(tmp_path):
     assert dict(st.conect_map) == {1: [2], 2: [1, 3], 3: [2, 4], 4: [3], 6: [7], 7: [6, 8],
                                    8: [7, 9], 9: [8], 11: [12], 12: [11, 13], 13: [12, 14],
                                    14: [13]}
-    remarks = [line for line in st.raw_remarks]
-    assert any("seed = 5" in r for r in remarks) and any("verdict = successful" in r for r in remarks)
+    remarks = "\n".join(st.raw_remarks)
+    assert "seed = 5" in remarks and "verdict = successful" in remarks
     text = pdb.pdb_text(p, [(1, pos)])
     assert all(len(line) <= 80 for line in text.splitlines())
 

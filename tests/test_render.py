@@ -108,7 +108,8 @@ def test_camera_frames_every_object(scene, layers, aspect):
     points = dressing.model_points(model)
     from mathutils import Vector
     uv = np.array([world_to_camera_view(scene, d.camera, Vector(p)) for p in points])
-    assert (uv[:, 2] > d.camera.data.clip_start).all() and (uv[:, 2] < d.camera.data.clip_end).all()
+    cam = d.camera.data
+    assert (uv[:, 2] > cam.clip_start).all() and (uv[:, 2] < cam.clip_end).all()
     assert uv[:, :2].min() >= 0.0 and uv[:, :2].max() <= 1.0  # all inside the frame
     span = uv[:, :2].max(axis=0) - uv[:, :2].min(axis=0)
     assert span.max() > 0.8  # and the model fills it along one side

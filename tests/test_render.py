@@ -42,7 +42,7 @@ def ours(kind) -> list:
 
 
 def test_colour_globules_reds_only_the_clashing_and_keeps_the_bake(scene):
-    r = pipeline.run(P.make_params(layers=4, linker=3, seed=1, frames=60), scene)
+    pipeline.run(P.make_params(layers=4, linker=3, seed=1, frames=60), scene)
     model = pipeline.current_model(scene)
     final = chain_positions(model)
     assert dressing.colour_globules(model, [2, 0], scene) == [0, 2]
@@ -55,9 +55,12 @@ def test_colour_globules_reds_only_the_clashing_and_keeps_the_bake(scene):
     scene.frame_set(1)
     scene.frame_set(60)
     assert np.abs(chain_positions(model) - final).max() < 1e-6
-    assert dressing.clashing_layers({"clashing_pairs": [[1, 3, 0.2], [0, 3, 1.0]]}) == [0, 1, 3]
-    assert dressing.clashing_layers(r) == sorted({k for i, j, _ in r["clashing_pairs"]
-                                                  for k in (i, j)})
+    pairs = [[1, 3, 0.2], [0, 3, 1.0]]
+    assert dressing.clashing_layers({"verdict": "intersection", "clashing_pairs": pairs}) == [
+        0, 1, 3]
+    # Grazing sphere-only contacts under a successful verdict are not painted red.
+    assert dressing.clashing_layers({"verdict": "successful", "clashing_pairs": pairs}) == []
+    assert dressing.clashing_layers({}) == []
 
 
 def test_dressing_is_tagged_reused_and_cleared_without_touching_the_user(scene, user_objects):

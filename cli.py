@@ -98,19 +98,19 @@ def command_run(args) -> int:
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
-        problems.append(writers.export(result, "dressing", writers.prepare, scene, result,
-                                       aspect=look["size"][0] / look["size"][1]))
+        problems.append(writers.export(result, "dressing", "materials, camera and light",
+                                       writers.prepare, scene, result, aspect=look["aspect"]))
     if "pdb" in paths:
-        problems.append(writers.export(result, "pdb", writers.write_pdb, scene, result,
-                                       paths["pdb"], args.pdb_frames))
+        problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
+                                       result, paths["pdb"], args.pdb_frames))
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])
     if "json" in paths:
         output.write_json(paths["json"], result)
     if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
-        problems.append(writers.export(result, "render", writers.write_render, scene, result,
-                                       paths["render"], look))
+        problems.append(writers.export(result, "render", "--render", writers.write_render,
+                                       scene, result, paths["render"], look))
         if "json" in paths:
             output.write_json(paths["json"], result)
     print(report.summary(result, quiet=args.quiet))

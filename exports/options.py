@@ -54,7 +54,8 @@ def render_options(args) -> dict:
     if samples is None or not lo <= samples <= hi:
         raise OptionError(f"--render-samples: must be an integer from {lo} to {hi} "
                           f"(got {args.render_samples!r})")
-    return {"size": (int(m.group(1)), int(m.group(2))), "samples": samples,
+    width, height = int(m.group(1)), int(m.group(2))
+    return {"size": (width, height), "aspect": width / height, "samples": samples,
             "engine": args.render_engine}
 
 

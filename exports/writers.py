@@ -33,9 +33,9 @@ def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> d
                              engine=options["engine"])
 
 
-def export(result: dict, key: str, write, *args, **kwargs) -> str | None:
+def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | None:
     """Run `write(*args)` and store what it returns (if anything) as result[key]. On any
-    failure store {"error": message} instead and return the one-line message."""
+    failure store {"error": message} instead and return "<label> failed: <message>"."""
     try:
         info = write(*args, **kwargs)
         if info is not None:
@@ -44,4 +44,4 @@ def export(result: dict, key: str, write, *args, **kwargs) -> str | None:
     except Exception as exc:  # noqa: BLE001 - reported; the run's other outputs still follow
         message = " ".join(str(exc).split()) or type(exc).__name__
         result[key] = {"error": message}
-        return f"--{key} failed: {message}"
+        return f"{label} failed: {message}"

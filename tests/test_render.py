@@ -90,7 +90,8 @@ def test_dressing_is_tagged_reused_and_cleared_without_touching_the_user(scene, 
                  bpy.data.worlds, bpy.data.meshes, bpy.data.collections):
         assert ours(kind) == [], kind
     assert "user material" in bpy.data.materials and scene.world == user_world
-    assert scene.camera == user_cam and all(ob.name in scene.objects for ob in user_objects.values())
+    assert scene.camera == user_cam
+    assert all(ob.name in scene.objects for ob in user_objects.values())
 
 
 def test_an_empty_scene_gets_the_camera_and_a_world_that_clear_model_removes(scene):
@@ -169,7 +170,7 @@ def test_a_failed_render_keeps_the_other_outputs(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(render, "_render", broken)
     code = cli.main(["run", "--layers", "2", "--linker", "2", "--frames", "5",
                      "--json", str(tmp_path / "r.json"), "--pdb", str(tmp_path / "m.pdb"),
-                     "--blend", str(tmp_path / "m.blend"), "--render", str(tmp_path / "m.png")])
+                     "--pdb-frames", "all", "--blend", str(tmp_path / "m.blend"), "--render", str(tmp_path / "m.png")])
     err = capsys.readouterr().err
     bpy.ops.wm.read_factory_settings(use_empty=True)
     assert code == cli.EXIT_OUTPUT_FAILED == 3
@@ -178,7 +179,9 @@ def test_a_failed_render_keeps_the_other_outputs(tmp_path, monkeypatch, capsys):
     r = json.loads((tmp_path / "r.json").read_text())
     assert r["render"] == {"error": "no memory for tiles"} and r["verdict"]
     assert (tmp_path / "m.blend").stat().st_size > 0
-    assert gemmi.read_structure(str(tmp_path / "m.pdb"))[0].count_atom_sites() == 6
+    st = gemmi.read_structure(str(tmp_path / "m.pdb"))  # frames 1 and 5
+    assert len(st) == 2 and [m.count_atom_sites() for m in st] == [6, 6]
+    assert r["pdb"]["frames"] == [1, 5]
 
 
 @pytest.mark.parametrize("args,needle", [

@@ -25,7 +25,7 @@ $(VENV_LTS)/.installed: requirements-dev.txt Makefile
 
 run: $(VENV)/.installed
 	mkdir -p out
-	$(VENV)/bin/python headless.py run --json out/result.json
+	$(VENV)/bin/python headless.py run --json out/result.json --render out/final.png
 
 test: test-latest test-lts
 

@@ -15,7 +15,8 @@ import numpy as np
 
 from . import params as P
 from .analysis import bond_stretch, check_model
-from .builders import BakeStats, bake_steps, build_model, draw_gravity, find_model, set_stage
+from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
+                       set_stage)
 
 STAGES = ("build", "bake", "check")
 
@@ -99,19 +100,6 @@ def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
     return baking.result()
 
 
-def keep_bake(scene=None) -> None:
-    """Mark the stepped memory cache as baked, as the tutorial's bake does.
-
-    A baked cache survives scrubbing and later edits (recolouring, the joined globules), which
-    mark a memory cache outdated, and a saved file keeps it.
-    """
-    scene = scene or bpy.context.scene
-    rbw = scene.rigidbody_world
-    if rbw is not None and not rbw.point_cache.is_baked:
-        with bpy.context.temp_override(scene=scene, point_cache=rbw.point_cache):
-            bpy.ops.ptcache.bake_from_cache()
-
-
 def check(model, scene=None) -> dict:
     """Judge the model at the scene's current frame (the bake leaves it on its last frame)."""
     return check_model(model)
@@ -160,6 +148,6 @@ def current_model(scene=None):
 def save_blend(path, scene=None) -> None:
     """Save the whole file with the bake kept, so it reopens ready to scrub."""
     from .output import atomic_write
-    keep_bake(scene)  # a bake cancelled part-way is kept too: its frames can still be scrubbed
+    keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too: its frames can still be scrubbed
     atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
         filepath=str(tmp), copy=True, compress=True, check_existing=False))

@@ -8,7 +8,7 @@ import numpy as np
 
 from .. import params as P
 from . import meshes
-from .physics import check_world_free, ensure_world
+from .physics import check_world_free, ensure_world, keep_bake
 from .scene import INDEX, LAYER, ROOT, TAG, clear_model, find_root, new_collection, tag
 
 COLORS = {  # viewport/object colours; analysis recolours clashing globules
@@ -262,16 +262,21 @@ class _LayerBuilder:
         self._member(k, self.p.linker)
 
 
-def colour_globules(model: Model, clashing_layers) -> None:
-    """Globules of `clashing_layers` red, the others neutral, through ob.color.
+def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
+    """Globules of `clashing_layers` red, the others neutral, through ob.color. Returns the red.
 
     ob.color is what the viewport shows with Color: Object, and what materials read through
-    an Object Info node, so one call recolours both after each check.
+    an Object Info node, so one call recolours both after each check. Colouring edits simulated
+    objects, so the bake is kept first (physics.keep_bake).
     """
-    clashing = set(clashing_layers)
+    keep_bake(scene or bpy.context.scene)
+    red = {int(k) for k in clashing_layers}
     for k, members in enumerate(model.chain):
         if members and members[-1].get(TAG) == "globule":
-            members[-1].color = CLASH_COLOR if k in clashing else COLORS["globule"]
+            colour = CLASH_COLOR if k in red else COLORS["globule"]
+            if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
+                members[-1].color = colour
+    return sorted(red)
 
 
 def _body(name, mesh, role, k, parts, bodies, rb_type, shape):

@@ -13,11 +13,10 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
-from ..builders.model import COLORS
+from ..builders.model import COLORS, colour_globules
+from ..builders.physics import keep_bake
 from ..builders.scene import is_ours, new_collection, tag
-from .cache import keep_bake
 
-CLASH_RED = (0.8, 0.02, 0.015, 1.0)
 BACKGROUND = (0.3, 0.32, 0.36)     # linear; a mid grey that light globules stand out on
 VIEW_ROLE = "view"                # collection holding the camera and light
 LENS_MM, SENSOR_MM = 50.0, 36.0
@@ -32,32 +31,6 @@ class Dressing:
     camera: bpy.types.Object
     light: bpy.types.Object
     materials: dict
-
-
-def clashing_layers(result: dict) -> list[int]:
-    """Layers to show red: those in `clashing_pairs` when the verdict is intersection.
-
-    A successful verdict shows none: its `clashing_pairs` can still list grazing contacts that
-    only the analytic sphere check sees (measured: depths up to 0.06 Å, where the inscribed
-    globule meshes do not meet), and a red globule in a "successful" picture would mislead.
-    """
-    if result.get("verdict") != "intersection":
-        return []
-    return sorted({k for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})
-
-
-def colour_globules(model, clashing, scene: bpy.types.Scene | None = None) -> list[int]:
-    """Clashing globules red, the others their neutral colour. Returns the red layers.
-
-    Colouring edits the simulated objects, so the bake is kept first (see cache.keep_bake).
-    """
-    keep_bake(scene or bpy.context.scene)
-    red = {int(k) for k in clashing}
-    for k, ob in enumerate(model.globules):
-        colour = CLASH_RED if k in red else COLORS["globule"]
-        if not np.allclose(ob.color, colour, atol=1e-6):  # unchanged: no depsgraph update
-            ob.color = colour
-    return sorted(red)
 
 
 def dress(scene: bpy.types.Scene, model, clashing=None, *, aspect: float = 16 / 9) -> Dressing:

@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import output
 from ..analysis.verdict import chain_positions
-from .cache import keep_bake
+from ..builders.physics import keep_bake
 
 CHAIN_IDS = string.ascii_uppercase + string.ascii_lowercase + string.digits
 KEYFRAME_STEP = 50   # the tutorial's bake_to_keyframes(frame_start=1, frame_end=251, step=50)

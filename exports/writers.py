@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import bpy
 
+from ..analysis import clashing_layers
 from ..builders import find_model
 from . import dressing, pdb, render
 
@@ -13,7 +14,7 @@ def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> 
     --render)."""
     model = find_model(scene)
     if model is not None:
-        dressing.dress(scene, model, dressing.clashing_layers(result), aspect=aspect)
+        dressing.dress(scene, model, clashing_layers(result), aspect=aspect)
 
 
 def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last") -> dict:
@@ -28,7 +29,7 @@ def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last") 
 
 def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> dict:
     """--render: the final frame as a PNG, clashing globules red."""
-    return render.render_png(scene, path, clashing=dressing.clashing_layers(result),
+    return render.render_png(scene, path, clashing=clashing_layers(result),
                              size=options["size"], samples=options["samples"],
                              engine=options["engine"])
 

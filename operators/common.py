@@ -6,6 +6,7 @@ import json
 import traceback
 
 from .. import params as P, pipeline, properties
+from ..analysis import clashing_layers
 from ..builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
                               update_params)
 from ..builders.physics import SceneConflict
@@ -99,7 +100,7 @@ def record_bake(context, model, bake: dict) -> None:
 def record_check(context, model, result: dict) -> None:
     """After a check: the verdict in scene.fibrilfit, clashing globules red, the JSON kept."""
     properties.store_result(settings(context), result)
-    colour_globules(model, {k for pair in result["clashing_pairs"] for k in pair[:2]})
+    colour_globules(model, clashing_layers(result))
     merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
     model.root[RESULT] = json.dumps(merged)
     set_stage(model, "checked")

@@ -9,9 +9,10 @@ from bpy_extras.object_utils import world_to_camera_view
 from helpers import run_cli
 
 from fibrilfit import cli, params as P, pipeline
+from fibrilfit.analysis import clashing_layers
 from fibrilfit.analysis.verdict import chain_positions
 from fibrilfit.builders import clear_model
-from fibrilfit.builders.model import COLORS
+from fibrilfit.builders.model import CLASH_COLOR, COLORS, colour_globules
 from fibrilfit.exports import dressing, render
 
 
@@ -45,9 +46,9 @@ def test_colour_globules_reds_only_the_clashing_and_keeps_the_bake(scene):
     pipeline.run(P.make_params(layers=4, linker=3, seed=1, frames=60), scene)
     model = pipeline.current_model(scene)
     final = chain_positions(model)
-    assert dressing.colour_globules(model, [2, 0], scene) == [0, 2]
+    assert colour_globules(model, [2, 0], scene) == [0, 2]
     colours = [tuple(round(c, 3) for c in ob.color) for ob in model.globules]
-    red_, grey = tuple(round(c, 3) for c in dressing.CLASH_RED), tuple(
+    red_, grey = tuple(round(c, 3) for c in CLASH_COLOR), tuple(
         round(c, 3) for c in COLORS["globule"])
     assert colours == [red_, grey, red_, grey]
     assert tuple(model.chain[0][1].color) == pytest.approx(COLORS["residue"])  # linker untouched
@@ -56,11 +57,11 @@ def test_colour_globules_reds_only_the_clashing_and_keeps_the_bake(scene):
     scene.frame_set(60)
     assert np.abs(chain_positions(model) - final).max() < 1e-6
     pairs = [[1, 3, 0.2], [0, 3, 1.0]]
-    assert dressing.clashing_layers({"verdict": "intersection", "clashing_pairs": pairs}) == [
+    assert clashing_layers({"verdict": "intersection", "clashing_pairs": pairs}) == [
         0, 1, 3]
     # Grazing sphere-only contacts under a successful verdict are not painted red.
-    assert dressing.clashing_layers({"verdict": "successful", "clashing_pairs": pairs}) == []
-    assert dressing.clashing_layers({}) == []
+    assert clashing_layers({"verdict": "successful", "clashing_pairs": pairs}) == []
+    assert clashing_layers({}) == []
 
 
 def test_dressing_is_tagged_reused_and_cleared_without_touching_the_user(scene, user_objects):
@@ -216,9 +217,9 @@ def test_blend_opens_dressed_and_scrubbable(tmp_path):
         globules = sorted((ob for ob in scene.objects if ob.get("fibrilfit") == "globule"),
                           key=lambda ob: ob["fibrilfit_layer"])
         assert all(ob.data.materials[0].get("fibrilfit") == "material" for ob in globules)
-        clashing = dressing.clashing_layers(r)
+        clashing = clashing_layers(r)
         for k, ob in enumerate(globules):
-            want = dressing.CLASH_RED if k in clashing else COLORS["globule"]
+            want = CLASH_COLOR if k in clashing else COLORS["globule"]
             assert tuple(ob.color) == pytest.approx(want)
         scene.frame_set(1)
         scene.frame_set(40)

@@ -1,4 +1,4 @@
 """The sidebar's operators: thin wrappers over the functions headless runs call."""
-from . import build, check, simulate
+from . import build, check, export, simulate
 
-CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES)
+CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES)

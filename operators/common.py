@@ -10,6 +10,9 @@ from ..analysis import clashing_layers
 from ..builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
                               update_params)
 from ..builders.physics import SceneConflict
+from ..exports.pdb import PdbError
+from ..exports.render import RenderError
+from ..output import OutputError
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
 
@@ -18,7 +21,7 @@ class StaleModel(ValueError):
     """The panel's values differ from those the model was built or baked with."""
 
 
-EXPECTED_ERRORS = (P.ParamError, SceneConflict, StaleModel)
+EXPECTED_ERRORS = (P.ParamError, SceneConflict, StaleModel, OutputError, PdbError, RenderError)
 
 
 def settings(context):

@@ -26,7 +26,8 @@ BUTTONS = {
     "Globule": (("fibrilfit.build_globule", "globule"),),
     "Layers": (("fibrilfit.replicate_layers", "layers"),),
     "Simulation": (("fibrilfit.bake", "baked"),),
-    "Check": (("fibrilfit.check_intersections", "checked"), ("fibrilfit.join_globules", None)),
+    "Check": (("fibrilfit.check_intersections", "checked"), ("fibrilfit.join_globules", None),
+              ("fibrilfit.render", None), ("fibrilfit.export_pdb", None)),
 }
 
 

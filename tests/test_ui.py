@@ -467,7 +467,8 @@ def test_panels_draw_in_every_state(ui, scene):
         props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
         assert sorted(props) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
-        assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "run_all", "clear")}
+        assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "run_all", "clear")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

@@ -46,6 +46,7 @@ def summary(r: dict, quiet: bool = False) -> str:
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
+    lines += _export_lines(r)
     if r["accommodated"]:
         lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "
                      "linkers, which proves that one exists for this model.")
@@ -59,3 +60,20 @@ def summary(r: dict, quiet: bool = False) -> str:
                      "that no clash-free layout exists: one bake is one random search, not an "
                      "exhaustive one. Sweep seeds to see how often one is found.")
     return "\n".join(lines)
+
+
+def _export_lines(r: dict) -> list[str]:
+    """One line per picture or structure written (exports/)."""
+    out = []
+    pdb, png = r.get("pdb"), r.get("render")
+    if pdb and "error" not in pdb:
+        n = len(pdb["frames"])
+        out.append(f"pdb: {pdb['path']} ({pdb['atoms_per_model']} atoms"
+                   + (f" x {n} models, frames {pdb['frames'][0]}-{pdb['frames'][-1]})" if n > 1
+                      else f", frame {pdb['frames'][0]})"))
+    if png and "error" not in png:
+        how = (f"cycles, {png['samples']} samples" + (", denoised" if png["denoiser"] else "")
+               if png["engine"] == "cycles" else png["engine"])
+        out.append(f"render: {png['path']} ({png['width']}x{png['height']}, {how}, "
+                   f"{png['seconds']:.1f} s)")
+    return out

@@ -107,3 +107,12 @@ def check_model(model) -> dict:
         "layer_clashes": layer_clash,
         "globule_centres": np.round(centres, 4).tolist(),
     }
+
+
+def clashing_layers(result: dict) -> list[int]:
+    """Layers to show red: both globules of every pair in `clashing_pairs` (the BVH's pairs,
+    so none under a successful verdict), including an end layer that clashes with a scored one.
+    """
+    if result.get("verdict") != "intersection":
+        return []
+    return sorted({k for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})

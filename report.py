@@ -18,7 +18,8 @@ def summary(r: dict, quiet: bool = False) -> str:
         return verdict + ("  (accommodated)" if r["accommodated"] else "  (not accommodated)")
     g = ", ".join(f"{v:+.3f}" for v in r["gravity"])
     t = r["timings_s"]
-    settled = f", at rest from frame {r['settled_at']}" if r.get("settled_at") else ""
+    settled = (f" (settled: every body under {p['settle_speed']:g} Å/frame for "
+               f"{p['settle_frames']} frames)" if r.get("settled_at") else "")
     lines = [
         head,
         f"gravity ({g}); baked {r['frames_simulated']} frames{settled}; "

@@ -99,7 +99,7 @@ def test_keyframes_follow_the_tutorial_and_end_on_the_last_frame():
 
 def test_pdb_frames_are_the_baked_positions_and_the_bake_survives(scene, tmp_path):
     seen = {}
-    p = P.make_params(layers=5, linker=3, seed=1, frames=110)
+    p = P.make_params(layers=5, linker=3, seed=1, frames=110, settle=False)  # all 110 frames
     r = pipeline.run(p, scene, on_frame=lambda f, pos: seen.__setitem__(f, pos.copy()) and False)
     model = pipeline.current_model(scene)
     final = current_positions(model)

@@ -31,8 +31,13 @@ def summary(r: dict, quiet: bool = False) -> str:
            if p.get("score_layers") else ""),
     ]
     if r.get("grazing_pairs"):
-        lines.append(f"  {len(r['grazing_pairs'])} of them only graze (overlap at most "
-                     f"{r['sphere_check']['tolerance']:.2f} Å, the globule mesh's resolution)")
+        n, band = len(r["grazing_pairs"]), r["sphere_check"]["tolerance"]
+        if n == len(r["clashing_pairs"]):
+            lines.append(f"  all of them only graze (overlap at most {band:.2f} Å, the globule "
+                         f"mesh's resolution): this verdict can flip from frame to frame")
+        else:
+            lines.append(f"  {n} of them only graze (overlap at most {band:.2f} Å, the globule "
+                         f"mesh's resolution)")
     lines.append(
         f"linker: worst bond stretch {_pct(r['max_bond_stretch'])} at the end "
         f"({'intact' if r['linker_intact'] else 'STRETCHED'}, tolerance "

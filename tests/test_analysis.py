@@ -198,3 +198,17 @@ def test_stretch_log_of_a_linker_that_never_recovers():
     assert got["max_bond_stretch_bake"] == pytest.approx(3.0)
     assert got["push_apart_end_frame"] is None and got["max_bond_stretch_after_push"] is None
     assert got["frames_over_tolerance"] == 3 and got["intact_from_frame"] is None
+
+
+# Short linkers leave many shallow contacts: the hardest case for matching the two checks.
+@pytest.mark.parametrize("linker,seed", [(3, 0), (4, 1), (4, 3), (5, 1)])
+def test_both_checks_name_the_same_pairs_on_baked_models(scene, linker, seed):
+    r = pipeline.run(P.make_params(layers=12, linker=linker, seed=seed, settle=False), scene)
+    band = r["sphere_check"]["tolerance"]
+    assert r["checks_agree"] and r["warnings"] == []
+    bvh = {(i, j): d for i, j, d in r["clashing_pairs"]}
+    deep = {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+    assert deep <= set(bvh)  # every pair deeper than the band, the BVH names too
+    assert {(i, j) for i, j, _ in r["grazing_pairs"]} == set(bvh) - deep
+    assert all(-1e-4 < d <= band for i, j, d in r["grazing_pairs"])
+    assert (r["intersecting_faces"] > 0) == bool(bvh) == (r["verdict"] == "intersection")

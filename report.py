@@ -3,7 +3,8 @@ from __future__ import annotations
 
 
 def _pct(x: float) -> str:
-    return f"{100 * x:.1f} %"
+    text = f"{100 * x:.1f} %"
+    return "0.0 %" if text == "-0.0 %" else text  # a bond compressed by 0.001 % is not "-0.0"
 
 
 def summary(r: dict, quiet: bool = False) -> str:

@@ -36,6 +36,8 @@ def _check_options(args) -> None:
                              f"(got {args.timeout:g})")
     if args.scheduler and args.executor != "dask":
         raise cli.UsageError("--scheduler: only with --executor dask")
+    if args.retry_failed and not args.resume:
+        raise cli.UsageError("--retry-failed: only with --resume")
     if args.seed is not None and args.seed_list is not None:
         raise cli.UsageError("give the seeds once: --seed and --seed-list are the same option")
 
@@ -68,17 +70,20 @@ def run(args) -> int:
     requirements = [gate.parse(text) for text in args.require]
     out = _out_dir(args)
     results = out / RESULTS
-    records, bad = runner.read_lines(results)
+    records, _ = runner.read_lines(results)
+    known = [p.params for p in points] + [r["params"] for r in records]
     for req in requirements:  # a typo in a selector should not cost hours of runs
-        if not any(req.matches(v) for v in [p.params for p in points] + [r["params"]
-                                                                         for r in records]):
+        if not any(req.matches(params) for params in known):
             raise cli.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
     _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
           *(["distributed"] if args.executor == "dask" else []))
 
-    out.mkdir(parents=True, exist_ok=True)
+    out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
     if runner.repair_tail(results):
         print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
+    if args.retry_failed:
+        runner.drop_failed(results)
+    records, bad = runner.read_lines(results)
     if bad:
         print(f"fibrilfit: ignoring {bad} unreadable lines in {results}", file=sys.stderr)
     done = runner.done_keys(records)

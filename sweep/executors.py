@@ -118,11 +118,9 @@ class DaskExecutor:
         self.futures: dict = {}
 
     def __enter__(self):
-        import cloudpickle
         import distributed
-        from . import dask_task
-        cloudpickle.register_pickle_by_value(dask_task)
-        self._task = dask_task.run
+        from .dask_task import make_task
+        self._task = make_task()
         try:
             if self.scheduler:
                 self.client = distributed.Client(self.scheduler, timeout="30s")

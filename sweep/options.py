@@ -24,6 +24,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "[default out/sweep]")
     g.add_argument("--resume", action="store_true",
                    help="continue the sweep in --out: skip points already in results.jsonl")
+    g.add_argument("--retry-failed", action="store_true",
+                   help="with --resume: run the points recorded as failed again")
     g.add_argument("--target", type=float, default=0.95, metavar="F",
                    help="accommodated fraction for the minimal-linker table [default 0.95]")
     g.add_argument("--require", action="append", default=[], metavar="SPEC",

@@ -45,6 +45,25 @@ def repair_tail(path) -> bool:
     return True
 
 
+def drop_failed(path) -> int:
+    """Remove the records of failed runs (so --retry-failed runs them again, without duplicates)."""
+    path = pathlib.Path(path)
+    if not path.exists():
+        return 0
+    kept, dropped = [], 0
+    for line in path.read_text(encoding="utf-8").splitlines(keepends=True):
+        try:
+            failed = json.loads(line).get("status") == "failed"
+        except (json.JSONDecodeError, AttributeError):
+            failed = False
+        dropped += failed
+        if not failed:
+            kept.append(line)
+    if dropped:
+        output.write_text(path, "".join(kept))
+    return dropped
+
+
 def done_keys(records: list[dict]) -> set[str]:
     return {point_key(r["params"]) for r in records}
 

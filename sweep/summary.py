@@ -112,7 +112,7 @@ def fmt_value(value) -> str:
 
 
 def _num(x, digits: int) -> str:
-    return "" if x is None else f"{x:.{digits}f}"
+    return "" if x is None else f"{round(x, digits) + 0.0:.{digits}f}"  # + 0.0: no "-0.000"
 
 
 CSV_FIELDS = ("n", "failed", "accommodated", "accommodated_fraction", "wilson95_low",

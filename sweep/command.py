@@ -52,6 +52,22 @@ def _out_dir(args) -> pathlib.Path:
     return results.parent
 
 
+def _lock(out: pathlib.Path):
+    """Hold DIR/.lock while the sweep runs: two sweeps appending to one results.jsonl would run
+    points twice. Returns the open lock file (or None where there is no fcntl, e.g. Windows)."""
+    try:
+        import fcntl
+    except ImportError:
+        return None
+    fh = open(out / ".lock", "w")
+    try:
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        fh.close()
+        raise cli.UsageError(f"--out: another sweep is writing to '{out}'") from None
+    return fh
+
+
 def _executor(args, out: pathlib.Path):
     workers = args.workers or cpu_count()
     if args.executor == "dask":
@@ -79,6 +95,7 @@ def run(args) -> int:
           *(["distributed"] if args.executor == "dask" else []))
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
+    lock = _lock(out)  # noqa: F841 (held until this function returns)
     if runner.repair_tail(results):
         print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
     if args.retry_failed:

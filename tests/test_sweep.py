@@ -219,6 +219,27 @@ def test_existing_results_need_resume(done_when):
     assert len(cp.stderr.strip().splitlines()) == 1 and "Traceback" not in cp.stderr
 
 
+def test_one_sweep_at_a_time_per_folder(done_when, tmp_path):
+    fcntl = pytest.importorskip("fcntl")
+    out = tmp_path / "s"
+    shutil.copytree(done_when[0], out)
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        cp = run_cli("sweep", *DONE_WHEN, "--out", str(out), "--resume")
+    assert cp.returncode == 2 and "another sweep is writing to" in cp.stderr
+
+
+def test_workers_that_cannot_start_stop_the_sweep_with_one_line():
+    from fibrilfit.sweep.executors import ProcessExecutor, SweepError
+    ex = ProcessExecutor(2)
+    ex.command = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
+                                        "sys.exit(3)"]
+    with ex, pytest.raises(SweepError, match="cannot start: worker pid .* exited with code 3: "
+                                             "no bpy here"):
+        ex.submit({"id": 0, "attempt": 1, "params": {}, "force": False})
+        ex.wait()
+
+
 def test_gate_exit_codes(done_when, tmp_path):
     out = tmp_path / "s"
     shutil.copytree(done_when[0], out)

@@ -80,12 +80,12 @@ class ProcessExecutor:
 
     def wait(self) -> tuple[dict, dict]:
         while True:
+            for w in self.workers:  # checked every turn: a busy event queue must not hide a hang
+                if w.overdue(self.timeout):
+                    w.kill(self.timeout)
             try:
                 w, message = self.events.get(timeout=0.5)
             except queue.Empty:
-                for w in self.workers:
-                    if w.overdue(self.timeout):
-                        w.kill(self.timeout)
                 continue
             if message.get("ready"):
                 w.ready, self.start_failures = True, 0

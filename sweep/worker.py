@@ -12,6 +12,7 @@ import pathlib
 import signal
 import socket
 import sys
+import threading
 import time
 import traceback
 
@@ -19,6 +20,16 @@ import traceback
 def _root(here: pathlib.Path) -> pathlib.Path:
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
     return pathlib.Path(argv[0]).resolve() if argv else here.parent
+
+
+def _exit_with_parent() -> None:
+    """End this worker, even mid-run, once whoever started it is gone (killed sweep, closed Dask
+    worker): its runs would be recorded by no one."""
+    parent = os.getppid()
+    while True:
+        time.sleep(1.0)
+        if os.getppid() != parent:
+            os._exit(1)
 
 
 def main() -> int:
@@ -31,6 +42,7 @@ def main() -> int:
     sys.path.insert(0, str(root))
     # Ctrl-C reaches the whole process group: the parent decides, the worker just finishes.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_exit_with_parent, daemon=True).start()
 
     import bpy
     import _load

@@ -325,6 +325,31 @@ def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path
     assert "4 with a verdict, 0 failed" in stdout
 
 
+def test_a_killed_sweep_takes_its_workers_along_and_resumes(tmp_path):
+    import psutil
+    out = tmp_path / "s"
+    args = ("sweep", "--linker", "2,6", "--layers", "8", "--seeds", "3", "--workers", "2",
+            "--out", str(out), "--quiet")
+    proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), *args],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (
+            (out / "results.jsonl").exists() and (out / "results.jsonl").read_text()):
+        time.sleep(0.05)
+    workers = [psutil.Process(pid) for pid in _worker_pids(proc.pid)]
+    proc.kill()
+    proc.wait()
+    gone, alive = psutil.wait_procs(workers, timeout=10)
+    assert workers and not alive  # orphaned workers notice and stop, even mid-run
+    kept = lines(out / "results.jsonl")
+    assert 1 <= len(kept) < 6
+    cp = run_cli(*args, "--resume")
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert records[:len(kept)] == kept
+    assert len(records) == 6 and len(set(keys(records))) == 6
+
+
 def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     out = tmp_path / "s"
     cp = run_cli("sweep", "--linker", "6", "--workers", "1", "--timeout", "0.2", "--out",

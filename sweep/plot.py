@@ -76,25 +76,34 @@ def _heatmap(fig, ax, rows, x: str, y: str) -> None:
     fig.colorbar(image, ax=ax, label="accommodated fraction of seeds")
 
 
-def write(path, rows, target: float):
-    """Draw the sweep's rows (summary.rows) into a PNG at `path`."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
+def layout(rows) -> tuple[str, str, list[str]]:
+    """("lines" or "heatmap", the x parameter, the other varied parameters)."""
     names = varied(rows)
-    fig = Figure(figsize=(7.5, 4.8), dpi=120)
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot()
     if "linker" in names or not names:
         x = "linker"
     else:  # keep one line per globule diameter where there can be
         x = next((n for n in names if n != "globule_diameter"), names[0])
     others = [n for n in names if n != x]
-    if len(names) == 2 and "globule_diameter" not in names:
+    kind = "heatmap" if len(names) == 2 and "globule_diameter" not in names else "lines"
+    return kind, x, others
+
+
+def write(path, rows, target: float):
+    """Draw the sweep's rows (summary.rows) into a PNG at `path`."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    kind, x, others = layout(rows)
+    fig = Figure(figsize=(7.5, 4.8), dpi=120)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    if kind == "heatmap":
         _heatmap(fig, ax, rows, x, others[0])
+        how = "cells: accommodated / seeds"
     else:
         _lines(ax, rows, x, others, target)
+        how = "bands: 95 % Wilson interval"
     fig.suptitle("FibrilFit sweep: fraction of seeds that found a clash-free layout "
-                 "with intact linkers (95 % Wilson band)", fontsize=9)
+                 f"with intact linkers ({how})", fontsize=9)
     fig.tight_layout()
     return output.atomic_write(path, lambda tmp: fig.savefig(tmp, format="png"))

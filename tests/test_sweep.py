@@ -156,6 +156,23 @@ def test_gate_requirements():
             gate.parse(text)
 
 
+def test_phase_plot_layouts(tmp_path):
+    from fibrilfit.sweep import plot
+    rows = summary.rows(SYNTHETIC)
+    assert plot.layout(rows) == ("lines", "linker", ["globule_diameter"])
+    two = summary.rows([
+        {**r, "params": {**r["params"], "twist": tw}} for r in SYNTHETIC[:6]
+        for tw in (0.02, 0.04)])
+    assert plot.layout(two) == ("heatmap", "linker", ["twist"])
+    assert plot.layout(summary.rows([
+        {**r, "params": {**r["params"], "twist": 0.01 * r["seed"]}} for r in SYNTHETIC
+        if r["params"]["linker"] == 6])) == ("lines", "twist", ["globule_diameter"])
+    for name, rs in (("lines.png", rows), ("heatmap.png", two)):
+        plot.write(tmp_path / name, rs, 0.95)
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["heatmap.png", "lines.png"]
+
+
 # ---- real sweeps ---------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def done_when(tmp_path_factory):

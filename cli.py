@@ -64,6 +64,11 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--fail-on-intersection", action="store_true",
                      help="exit 1 when the verdict is intersection")
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
+    sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
+                                         "processes or a Dask cluster and summarise it")
+    add_param_options(sweep, as_lists=True)
+    from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
+    sweep_options.add_arguments(sweep)
     return parser
 
 
@@ -124,4 +129,9 @@ def command_run(args) -> int:
     return EXIT_OK
 
 
-COMMANDS = {"run": command_run}
+def command_sweep(args) -> int:
+    from .sweep import command
+    return command.run(args)
+
+
+COMMANDS = {"run": command_run, "sweep": command_sweep}

@@ -119,7 +119,7 @@ class FIBRILFIT_OT_bake(ModalBake, bpy.types.Operator):
     bl_label = "Bake"
     bl_description = ("Simulate the model under the seed's random gravity from a freed cache "
                       "(tutorial step 7); Esc cancels")
-    bl_options = {"REGISTER"}
+    bl_options = {"REGISTER", "UNDO"}
 
     @classmethod
     def poll(cls, context):
@@ -147,7 +147,7 @@ class FIBRILFIT_OT_run_all(ModalBake, bpy.types.Operator):
     bl_label = "Run all"
     bl_description = ("Build, bake and check the model from the panel's values, as the command "
                       "line does, replacing any FibrilFit model in the scene")
-    bl_options = {"REGISTER"}
+    bl_options = {"REGISTER", "UNDO"}
 
     @classmethod
     def poll(cls, context):

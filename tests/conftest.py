@@ -12,9 +12,6 @@ import bpy  # noqa: E402  (first: it makes mathutils and bmesh importable)
 import _load  # noqa: E402
 
 fibrilfit = _load.load(ROOT)
-# pytest imports the root __init__.py itself; when the clone's folder name is no identifier
-# (fibrilfit-main, wt-analysis) it names that module "__init__": give it the loaded package.
-sys.modules.setdefault("__init__", fibrilfit)
 
 
 @pytest.fixture

@@ -60,8 +60,8 @@ def test_every_grid_point_goes_through_make_params():
     assert len(grid.build({"linker": ["6", "6.0"]}, ["0"])) == 1
     with pytest.raises(P.ParamError, match=r"^linker: must be an integer from 1 to 200"):
         grid.build({"linker": ["0", "5"]}, ["0"])
-    with pytest.raises(P.ParamError, match=r"^score_exclude: .* for 2 layers"):
-        grid.build({"layers": ["2", "8"], "score_exclude": ["1"]}, ["0"])
+    with pytest.raises(P.ParamError, match=r"^score_layers: .* for 2 layers"):
+        grid.build({"layers": ["2", "8"], "score_layers": ["1"]}, ["0"])
 
 
 def test_seeds():

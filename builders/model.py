@@ -113,31 +113,24 @@ def build_model(p: P.Params, scene: bpy.types.Scene | None = None, *, force: boo
     }
     mesh["residue"] = mesh["anchor"]
 
-    angle, height = layer_transforms(p)
-    pos = chain_positions(p)
-    pivots = bond_pivots(p)
     slabs, chain, constraints = [], [], []
     for k in range(p.layers):
-        slab = _body(f"FF{k:04d} slab", mesh["slab"], "slab", k, parts, bodies, "PASSIVE", "BOX")
-        slab.location = (0.0, 0.0, height[k])
-        slab.rotation_euler = (0.0, 0.0, angle[k])
-        slabs.append(slab)
+        # Objects are linked in the same order as ever (the rigid-body world's order is Bullet's
+        # order, so it fixes the result for a seed); transforms and colours come after, in bulk.
+        slabs.append(_body(f"FF{k:04d} slab", mesh["slab"], "slab", k, parts, bodies,
+                           "PASSIVE", "BOX"))
         members = []
         for i in range(p.linker + 1):
             role = "anchor" if i == 0 else ("globule" if i == p.linker else "residue")
             ob = _body(f"FF{k:04d} {role} {i}", mesh[role], role, k, parts, bodies,
                        "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
             ob[INDEX] = i
-            ob.location = pos[k, i]
-            ob.rotation_euler = (0.0, 0.0, angle[k])
             members.append(ob)
         chain.append(members)
         bonds_k = []
         for i in range(p.linker):
             empty = tag(bpy.data.objects.new(f"FF{k:04d} bond {i}", None), "bond")
             empty[LAYER], empty[INDEX] = k, i
-            empty.empty_display_size = p.residue_radius
-            empty.location = pivots[k, i]
             parts["bond"].objects.link(empty)
             bonds.objects.link(empty)
             rbc = empty.rigid_body_constraint
@@ -146,15 +139,54 @@ def build_model(p: P.Params, scene: bpy.types.Scene | None = None, *, force: boo
             rbc.disable_collisions = True
             bonds_k.append(empty)
         constraints.append(bonds_k)
-    view_layer = bpy.context.view_layer if scene == bpy.context.scene else scene.view_layers[0]
-    view_layer.update()  # once, so world matrices are valid before the first frame
+    place(p, parts)
+    # No view_layer.update() here: place() sets valid world matrices, and the depsgraph is
+    # built once, on first use (the bake's first frame, or the viewport's next redraw).
     return Model(root, p, slabs, chain, constraints)
+
+
+def layer_placements(p: P.Params) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Location and Z rotation of every object of each part, in the order they are linked."""
+    angle, height = layer_transforms(p)
+    pos, pivots = chain_positions(p), bond_pivots(p)
+    slab_loc = np.zeros((p.layers, 3))
+    slab_loc[:, 2] = height
+    members_angle = np.repeat(angle, p.linker - 1)
+    return {
+        "slab": (slab_loc, angle),
+        "anchor": (pos[:, 0], angle),
+        "residue": (pos[:, 1:-1].reshape(-1, 3), members_angle),
+        "globule": (pos[:, -1], angle),
+        "bond": (pivots.reshape(-1, 3), np.zeros(pivots.shape[0] * pivots.shape[1])),
+    }
+
+
+def place(p: P.Params, parts: dict) -> None:
+    """Set location, rotation, world matrix and colour of every object, one foreach_set each."""
+    for role, (loc, rot_z) in layer_placements(p).items():
+        objects = parts[role].objects
+        n = len(objects)
+        rot = np.zeros((n, 3))
+        rot[:, 2] = rot_z
+        objects.foreach_set("location", loc.astype(np.float32).ravel())
+        objects.foreach_set("rotation_euler", rot.astype(np.float32).ravel())
+        # The world matrix too, so it is valid before any depsgraph evaluation. foreach_set
+        # writes Blender's float[4][4] as stored: column-major, translation in the last row.
+        mat = np.zeros((n, 4, 4))
+        c, s = np.cos(rot_z), np.sin(rot_z)
+        mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
+        mat[:, 2, 2] = mat[:, 3, 3] = 1.0
+        mat[:, 3, :3] = loc
+        objects.foreach_set("matrix_world", mat.astype(np.float32).ravel())
+        if role == "bond":
+            objects.foreach_set("empty_display_size", np.full(n, p.residue_radius, np.float32))
+        else:
+            objects.foreach_set("color", np.tile(np.float32(COLORS[role]), n))
 
 
 def _body(name, mesh, role, k, parts, bodies, rb_type, shape):
     ob = tag(bpy.data.objects.new(name, mesh), role)
     ob[LAYER] = k
-    ob.color = COLORS[role]
     parts[role].objects.link(ob)
     bodies.objects.link(ob)
     rb = ob.rigid_body

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..builders.readback import MatrixReader
 from .clashes import bvh_clashes, sphere_clashes
 from .stretch import bond_stretch
 
@@ -12,12 +13,12 @@ SPHERE_TOLERANCE = 1e-3  # Å: touching spheres are not a clash
 def chain_positions(model) -> np.ndarray:
     """World centres of every chain member now, shape (layers, linker + 1, 3)."""
     obs = [ob for members in model.chain for ob in members]
-    flat = np.array([ob.matrix_world.translation for ob in obs], dtype=float)
-    return flat.reshape(len(model.chain), -1, 3)
+    return MatrixReader(obs).positions().reshape(len(model.chain), -1, 3)
 
 
 def world_matrices(objects) -> np.ndarray:
-    return np.array([np.array(ob.matrix_world) for ob in objects], dtype=float).reshape(-1, 4, 4)
+    """(n, 4, 4) world matrices, read with one foreach_get where a collection holds them all."""
+    return MatrixReader(objects).matrices()
 
 
 def scored_range(p) -> tuple[int, int]:

@@ -5,6 +5,7 @@ BPY_LTS ?= 4.2.0
 VENV ?= .venv
 VENV_LTS ?= .venv42
 PYTEST_ARGS ?=
+BENCH_ARGS ?=
 
 .PHONY: run test test-latest test-lts extension bench clean
 
@@ -31,6 +32,14 @@ test-latest: $(VENV)/.installed
 
 test-lts: $(VENV_LTS)/.installed
 	$(VENV_LTS)/bin/python -m pytest $(PYTEST_ARGS)
+
+$(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
+	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt
+	touch $@
+
+# Speed and memory side by side with ../shared/bench's baselines; see BENCHMARKS.md.
+bench: $(VENV)/.bench-installed
+	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
 
 clean:
 	rm -rf out dist .pytest_cache

@@ -12,14 +12,18 @@ import numpy as np
 class MatrixReader:
     """World matrices of a fixed list of objects, (n, 4, 4) row-major, as float64.
 
-    The values equal `ob.matrix_world` read one by one (the same float32 numbers).
+    The values equal `ob.matrix_world` read one by one (the same float32 numbers). Objects are
+    matched to the collection's members by `session_uid`, checked again on every read, so a
+    collection that changes (objects added, removed or reordered) is indexed again.
     """
 
     def __init__(self, objects, collections=()):
         self.objects = list(objects)
-        self._source = self._index = None
+        self._uids = np.fromiter((ob.session_uid for ob in self.objects), dtype=np.int64,
+                                 count=len(self.objects))
+        self._source = None
         for coll in (*collections, *self._collections_of_first()):
-            if coll is not None and self._use(coll):
+            if coll is not None and self._index_in(coll):
                 break
 
     def _collections_of_first(self):
@@ -27,19 +31,23 @@ class MatrixReader:
             return []
         return sorted(self.objects[0].users_collection, key=lambda c: len(c.objects))
 
-    def _use(self, coll) -> bool:
-        members = coll.objects
-        if len(members) < len(self.objects):
+    @staticmethod
+    def _member_uids(coll) -> np.ndarray:
+        uids = np.empty(len(coll.objects), dtype=np.int64)
+        coll.objects.foreach_get("session_uid", uids)
+        return uids
+
+    def _index_in(self, coll) -> bool:
+        members = self._member_uids(coll)
+        if len(self._uids) > len(members):
             return False
-        where = {ob: i for i, ob in enumerate(members)}
-        try:
-            index = np.fromiter((where[ob] for ob in self.objects), dtype=np.intp,
-                                count=len(self.objects))
-        except KeyError:
+        order = np.argsort(members, kind="stable")
+        where = np.minimum(np.searchsorted(members, self._uids, sorter=order), len(members) - 1)
+        index = order[where] if len(members) else where
+        if not np.array_equal(members[index], self._uids):
             return False
-        self._source, self._index = coll, index
-        self._size = len(members)
-        self._buffer = np.empty(self._size * 16, dtype=np.float32)
+        self._source, self._members, self._index = coll, members, index
+        self._buffer = np.empty(len(members) * 16, dtype=np.float32)
         return True
 
     @property
@@ -49,9 +57,10 @@ class MatrixReader:
 
     def _raw(self) -> np.ndarray:
         """(n, 4, 4) as stored: Blender's column-major float[4][4], translation in row 3."""
-        if self._source is not None and len(self._source.objects) != self._size:
-            coll, self._source = self._source, None  # the collection changed: index it again
-            self._use(coll)
+        if self._source is not None:
+            if not np.array_equal(self._member_uids(self._source), self._members):
+                coll, self._source = self._source, None
+                self._index_in(coll)
         if self._source is None:
             return np.array([np.array(ob.matrix_world).T for ob in self.objects],
                             dtype=np.float32).reshape(-1, 4, 4)

@@ -38,8 +38,16 @@ def bounding_radius(mesh, matrices: np.ndarray) -> float:
     """A radius about each object's origin that holds every globule's vertices, in world units."""
     verts = mesh_arrays(mesh)[0]
     local = float(np.linalg.norm(verts, axis=1).max()) if len(verts) else 0.0
-    scale = np.linalg.norm(matrices[:, :3, :3], ord=2, axis=(1, 2)).max() if len(matrices) else 0.0
-    return local * float(scale)
+    return local * _largest_scale(matrices)
+
+
+def _largest_scale(matrices: np.ndarray) -> float:
+    return float(np.linalg.norm(matrices[:, :3, :3], ord=2, axis=(1, 2)).max()) if len(matrices) else 0.0
+
+
+def _margin(centres: np.ndarray) -> float:
+    """Slack for float32 rounding of world coordinates (and the tree's epsilon)."""
+    return 1e-3 + 1e-6 * float(np.abs(centres).max(initial=0.0)) + BVH_EPSILON
 
 
 def candidate_pairs(mesh, matrices: np.ndarray) -> np.ndarray:
@@ -50,9 +58,46 @@ def candidate_pairs(mesh, matrices: np.ndarray) -> np.ndarray:
     centres = matrices[:, :3, 3]
     if len(centres) < 2:
         return np.empty((0, 2), dtype=np.intp)
-    margin = 1e-3 + 1e-6 * float(np.abs(centres).max()) + BVH_EPSILON
-    a, b, _ = close_pairs(centres, 2.0 * bounding_radius(mesh, matrices) + margin)
+    reach = 2.0 * bounding_radius(mesh, matrices) + _margin(centres)
+    a, b, _ = close_pairs(centres, reach)
     return np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+
+
+def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 4096) -> np.ndarray:
+    """Which faces of each globule can reach the other globule of one of its `pairs`: (n, faces).
+
+    A face can only cross a face of globule j where it enters j's bounding sphere, so a face
+    whose own bounding sphere (about its centroid) stays outside every partner's is left out.
+    Distances are taken in each globule's own frame (its partner's centre mapped back), and
+    divided by the matrix's smallest stretch, so scaled globules stay on the safe side.
+    """
+    verts, starts, loops = mesh_arrays(mesh)
+    sizes = np.diff(np.append(starts, len(loops)))
+    owner = np.repeat(np.arange(len(starts)), sizes)
+    centroid = np.zeros((len(starts), 3))
+    np.add.at(centroid, owner, verts[loops])
+    centroid /= sizes[:, None]
+    face_radius = np.zeros(len(starts))
+    np.maximum.at(face_radius, owner, np.linalg.norm(verts[loops] - centroid[owner], axis=1))
+    linear, centres = matrices[:, :3, :3], matrices[:, :3, 3]
+    stretch = np.linalg.svd(linear, compute_uv=False)  # (n, 3), largest first
+    singular = stretch[:, -1] < 1e-9
+    inverse = np.linalg.inv(np.where(singular[:, None, None], np.eye(3), linear))
+    reach = bounding_radius(mesh, matrices) + stretch[:, 0].max() * face_radius + _margin(centres)
+    keep = np.zeros((len(matrices), len(starts)), dtype=bool)
+    keep[singular] = True
+    for lo in range(0, len(pairs), chunk):
+        part = pairs[lo:lo + chunk]
+        rows = np.concatenate([part[:, 0], part[:, 1]])
+        other = np.concatenate([part[:, 1], part[:, 0]])
+        q = np.einsum("nij,nj->ni", inverse[rows], centres[other] - centres[rows])
+        dist2 = (q * q).sum(1)[:, None] - 2.0 * q @ centroid.T + (centroid * centroid).sum(1)
+        near = dist2 <= (reach[None, :] / stretch[rows, -1:]) ** 2
+        order = np.argsort(rows, kind="stable")
+        rows, near = rows[order], near[order]
+        first = np.flatnonzero(np.r_[True, rows[1:] != rows[:-1]])
+        keep[rows[first]] |= np.logical_or.reduceat(near, first, axis=0)
+    return keep
 
 
 def bvh_clashes(mesh, matrices: np.ndarray) -> tuple[int, set[tuple[int, int]]]:
@@ -61,28 +106,37 @@ def bvh_clashes(mesh, matrices: np.ndarray) -> tuple[int, set[tuple[int, int]]]:
     Returns the number of faces in any overlapping pair and the set of globule pairs (i < j)
     whose faces overlap. Faces of one globule never count against each other.
 
-    The tutorial joins every globule into one tree and overlaps it with itself. Here each
-    globule that can touch another gets its own tree (same world coordinates, same polygons,
-    same epsilon), and only pairs whose bounding spheres meet are overlapped: the same faces
-    and pairs, without testing each globule against itself or against far-away globules.
+    The tutorial joins every globule into one tree and overlaps it with itself. Here only
+    pairs whose bounding spheres meet are overlapped, each globule in its own tree holding the
+    faces that can reach one of its partners (same world coordinates, same polygons, same
+    epsilon): the same faces and pairs, without testing each globule against itself, against
+    far-away globules, or with its far side.
     """
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
     candidates = candidate_pairs(mesh, matrices)
     if not len(candidates):
         return 0, set()
-    involved = np.unique(candidates)
-    world, polys = joined_globules(mesh, matrices[involved])
+    involved, local = np.unique(candidates, return_inverse=True)
+    local = local.reshape(-1, 2)  # the pairs, numbering only the globules involved
+    sub = matrices[involved]
+    keep = facing_faces(mesh, sub, local)
+    world, polys = joined_globules(mesh, sub)
     per = len(polys)
-    faces, pairs = [], set()
+    faces, pairs, trees, kept = [], set(), {}, {}
     with _gc_paused():  # thousands of small lists: the cyclic GC would rescan them again and again
-        trees = {g: BVHTree.FromPolygons(w.tolist(), polys, epsilon=BVH_EPSILON)
-                 for g, w in zip(involved.tolist(), world)}
-        for i, j in candidates.tolist():
+        for g in np.flatnonzero(keep.any(axis=1)).tolist():
+            kept[g] = np.flatnonzero(keep[g])
+            trees[g] = BVHTree.FromPolygons(world[g].tolist(), [polys[f] for f in kept[g]],
+                                            epsilon=BVH_EPSILON)
+        for i, j in local.tolist():
+            if i not in trees or j not in trees:
+                continue
             hits = trees[i].overlap(trees[j])
             if hits:
-                pairs.add((i, j))
+                gi, gj = int(involved[i]), int(involved[j])
+                pairs.add((gi, gj))
                 hits = np.array(hits, dtype=np.int64)
-                faces += [i * per + hits[:, 0], j * per + hits[:, 1]]
+                faces += [gi * per + kept[i][hits[:, 0]], gj * per + kept[j][hits[:, 1]]]
     return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
 
 

@@ -13,12 +13,12 @@ SPHERE_TOLERANCE = 1e-3  # Å: touching spheres are not a clash
 def chain_positions(model) -> np.ndarray:
     """World centres of every chain member now, shape (layers, linker + 1, 3)."""
     obs = [ob for members in model.chain for ob in members]
-    return MatrixReader(obs).positions().reshape(len(model.chain), -1, 3)
+    return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
 
 
-def world_matrices(objects) -> np.ndarray:
-    """(n, 4, 4) world matrices, read with one foreach_get where a collection holds them all."""
-    return MatrixReader(objects).matrices()
+def world_matrices(objects, collections=()) -> np.ndarray:
+    """(n, 4, 4) world matrices, read with foreach_get from `collections` if they hold them all."""
+    return MatrixReader(objects, collections).matrices()
 
 
 def scored_range(p) -> tuple[int, int]:
@@ -34,7 +34,8 @@ def check_model(model) -> dict:
     globules = model.globules[lo:hi]
     centres = positions[lo:hi, -1]
 
-    faces, bvh_pairs = bvh_clashes(globules[0].data, world_matrices(globules)) if globules else (0, set())
+    faces, bvh_pairs = (bvh_clashes(globules[0].data, world_matrices(globules, model.root.children))
+                        if globules else (0, set()))
     spheres = [(i + lo, j + lo, d) for i, j, d in sphere_clashes(centres, p.globule_radius,
                                                                   SPHERE_TOLERANCE)]
     bvh_pairs = {(i + lo, j + lo) for i, j in bvh_pairs}
@@ -48,10 +49,10 @@ def check_model(model) -> dict:
                         f"(the 32x16 mesh is inscribed in the sphere, so grazing contacts "
                         f"can differ by up to {p.globule_radius * (1 - np.cos(np.pi / 16)):.2f} Å)")
 
-    clashing = []
-    for i, j in sorted(bvh_pairs | sphere_pairs):
-        a, b = positions[i, -1], positions[j, -1]
-        clashing.append([i, j, round(float(2 * p.globule_radius - np.linalg.norm(a - b)), 4)])
+    both = np.array(sorted(bvh_pairs | sphere_pairs), dtype=np.intp).reshape(-1, 2)
+    gap = np.linalg.norm(positions[both[:, 0], -1] - positions[both[:, 1], -1], axis=1)
+    clashing = [[i, j, round(float(d), 4)]
+                for (i, j), d in zip(both.tolist(), 2 * p.globule_radius - gap)]
 
     stretch = bond_stretch(positions[lo:hi], p.rest_lengths())
     max_stretch = float(stretch.max()) if stretch.size else 0.0

@@ -10,7 +10,7 @@ from mathutils.bvhtree import BVHTree
 
 from fibrilfit import params as P
 from fibrilfit.analysis import bvh_clashes
-from fibrilfit.analysis.clashes import candidate_pairs, mesh_arrays
+from fibrilfit.analysis.clashes import candidate_pairs, facing_faces, mesh_arrays
 from fibrilfit.builders import meshes
 from fibrilfit.builders.model import chain_positions, layer_transforms
 
@@ -93,3 +93,18 @@ def test_broad_phase_keeps_every_overlapping_pair(globule_mesh):
     assert reference(globule_mesh, mats)[1] <= candidates
     far = np.linalg.norm(mats[:, None, :3, 3] - mats[None, :, :3, 3], axis=-1) > 30.01
     assert not any(far[i, j] for i, j in candidates)
+
+
+def test_stretched_and_sheared_globules_match(globule_mesh):
+    rng = np.random.default_rng(23)
+    mats = placed(rng.uniform(0, 80, size=(12, 3)), rng)
+    for m in mats:
+        m[:3, :3] = m[:3, :3] @ np.array([[1.3, 0.2, 0.0], [0.0, 0.8, 0.0], [0.1, 0.0, 1.1]])
+    assert bvh_clashes(globule_mesh, mats) == reference(globule_mesh, mats)
+
+
+def test_only_faces_facing_a_partner_go_into_the_trees(globule_mesh):
+    mats = np.array([np.array(Matrix.Translation((28.0 * k, 0, 0))) for k in range(3)])
+    keep = facing_faces(globule_mesh, mats, np.array([[0, 1], [1, 2]]))
+    assert 0 < keep[0].sum() < keep[1].sum() < len(globule_mesh.polygons) / 2
+    assert bvh_clashes(globule_mesh, mats) == reference(globule_mesh, mats)

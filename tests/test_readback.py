@@ -76,3 +76,12 @@ def test_reader_falls_back_when_no_collection_holds_them_all(scene):
     assert not reader.bulk
     assert np.array_equal(reader.matrices(), one_by_one([b, a]))
     assert MatrixReader([]).positions().shape == (0, 3)
+
+
+def test_reader_reads_several_collections_together(scene):
+    model = build_model(P.make_params(layers=3, linker=3), scene)
+    chain = [ob for members in model.chain for ob in members]
+    reader = MatrixReader(chain, model.root.children)  # anchors, linkers, globules: no one holds all
+    assert reader.bulk
+    chain[4].matrix_world = Matrix.Translation((3, 2, 1))
+    assert np.array_equal(reader.matrices(), one_by_one(chain))

@@ -252,7 +252,7 @@ def table(rounds: list[dict]) -> list[tuple]:
     rows = []
 
     def row(what, mine, base, ratio, target, ok):
-        if mine is not None:
+        if mine:
             rows.append((what, mine, base or "", ratio or "", target, ok))
 
     b_ours, b_seed = m(lambda g: g["ours100"]["build"]), m(lambda g: g["seed100"]["build"])
@@ -266,17 +266,18 @@ def table(rounds: list[dict]) -> list[tuple]:
 
     s200, s2000 = m(lambda g: g["b200"]["build"]), m(lambda g: g["b2000"]["build"])
     scale = m(lambda g: g["b2000"]["build"] / g["b200"]["build"])
-    row("Build scaling, 200 -> 2000 layers", f"{_s(s200)} -> {_s(s2000)}", "",
-        _x(scale), "<= 12x", _ok(scale, "<=", 12))
+    cpu_scale = m(lambda g: g["b2000"]["build_cpu"] / g["b200"]["build_cpu"])
+    row("Build scaling, 200 -> 2000 layers", _span(s200, s2000), "",
+        f"{_x(scale)} (CPU {_x(cpu_scale)})", "<= 12x", _ok(scale, "<=", 12))
     e200 = m(lambda g: g["b200"]["build"] + g["b200"]["evaluate"])
     e2000 = m(lambda g: g["b2000"]["build"] + g["b2000"]["evaluate"])
     escale = m(lambda g: (g["b2000"]["build"] + g["b2000"]["evaluate"])
                / (g["b200"]["build"] + g["b200"]["evaluate"]))
-    row("  same, plus the first depsgraph evaluation", f"{_s(e200)} -> {_s(e2000)}", "",
+    row("  same, plus the first depsgraph evaluation", _span(e200, e2000), "",
         _x(escale), "(info)", "")
     f200, f2000 = m(lambda g: g["b200"]["frame"]), m(lambda g: g["b2000"]["frame"])
     fscale = m(lambda g: g["b2000"]["frame"] / g["b200"]["frame"])
-    row("  one simulated frame, 200 -> 2000 layers", f"{_s(f200)} -> {_s(f2000)}", "",
+    row("  one simulated frame, 200 -> 2000 layers", _span(f200, f2000), "",
         _x(fscale), "(info)", "")
     peak = m(lambda g: g["b2000"]["rss_sim_mib"])
     per_obj = m(lambda g: 1024 * (g["b2000"]["rss_sim_mib"] - g["b200"]["rss_sim_mib"])
@@ -307,7 +308,9 @@ def table(rounds: list[dict]) -> list[tuple]:
     rel = m(lambda g: g["analysis"]["relaxed"])
     if rel is not None:
         a = rounds[0]["analysis"]
-        row("Analysis, 2000 layers, relaxed (baked 100-layer model stacked x20)", _s(rel),
+        cpu = m(lambda g: g["analysis"]["relaxed_cpu"])
+        row("Analysis, 2000 layers, relaxed (baked 100-layer model stacked x20)",
+            f"{_s(rel)} (CPU {_s(cpu)})",
             f"{a['relaxed_pairs']} clashing pairs, {a['relaxed_faces']} faces", "", "< 1 s",
             _ok(rel, "<", 1.0))
     worst = m(lambda g: g["analysis"]["as_built"])
@@ -316,6 +319,10 @@ def table(rounds: list[dict]) -> list[tuple]:
         row("Analysis, 2000 layers, as built (every globule overlaps ~12 others)", _s(worst),
             f"{a['as_built_pairs']} clashing pairs, {a['as_built_faces']} faces", "", "(info)", "")
     return rows
+
+
+def _span(a, b):
+    return None if a is None or b is None else f"{_s(a)} -> {_s(b)}"
 
 
 def _s(v):
@@ -327,7 +334,7 @@ def _ms(v):
 
 
 def _x(v):
-    return "" if v is None else f"{v:.2f}x"
+    return "" if v is None else (f"{v:.2f}x" if v >= 1 else f"{v:.3f}x")
 
 
 def _ok(v, op, target):

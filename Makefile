@@ -6,6 +6,9 @@ VENV ?= .venv
 VENV_LTS ?= .venv42
 PYTEST_ARGS ?=
 BENCH_ARGS ?=
+# rootdir=tests: the repository root is itself a package (the extension); without it pytest 8
+# imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
+PYTEST := -m pytest --rootdir=tests tests
 
 .PHONY: run test test-latest test-lts extension bench clean
 
@@ -23,15 +26,23 @@ $(VENV_LTS)/.installed: requirements-dev.txt Makefile
 
 run: $(VENV)/.installed
 	mkdir -p out
-	$(VENV)/bin/python headless.py run --json out/result.json
+	$(VENV)/bin/python headless.py run --json out/result.json --render out/final.png
 
 test: test-latest test-lts
 
 test-latest: $(VENV)/.installed
-	$(VENV)/bin/python -m pytest $(PYTEST_ARGS)
+	$(VENV)/bin/python $(PYTEST) $(PYTEST_ARGS)
 
 test-lts: $(VENV_LTS)/.installed
-	$(VENV_LTS)/bin/python -m pytest $(PYTEST_ARGS)
+	$(VENV_LTS)/bin/python $(PYTEST) $(PYTEST_ARGS)
+
+# Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
+BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
+
+extension: $(VENV)/.installed
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate .
+	mkdir -p dist
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir . --output-dir dist
 
 $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt

@@ -6,8 +6,10 @@ import dataclasses
 import sys
 
 from . import output, params as P
+from .exports import options as export_options
 
 EXIT_OK, EXIT_INTERSECTION, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+EXIT_OUTPUT_FAILED = 3  # the run completed but a --pdb/--render output could not be written
 
 
 class UsageError(Exception):
@@ -57,14 +59,20 @@ def build_parser() -> argparse.ArgumentParser:
     add_param_options(run)
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
+    export_options.add_arguments(run)
     run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
     run.add_argument("--fail-on-intersection", action="store_true",
                      help="exit 1 when the verdict is intersection")
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
+    sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
+                                         "processes or a Dask cluster and summarise it")
+    add_param_options(sweep, as_lists=True)
+    from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
+    sweep_options.add_arguments(sweep)
     return parser
 
 
-OUTPUTS = {"json": (".json",), "blend": (".blend",)}
+OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -72,7 +80,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return COMMANDS[args.command](args)
-    except (UsageError, P.ParamError, output.OutputError) as exc:
+    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
@@ -83,21 +91,47 @@ def main(argv: list[str] | None = None) -> int:
 def command_run(args) -> int:
     from . import pipeline, report
     p = P.make_params(force=args.force, **params_from(args))
+    look = export_options.render_options(args)
+    if args.pdb:
+        export_options.pdb_fits(p)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
     import bpy
     if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force)
+    from .exports import writers
+    scene, problems = bpy.context.scene, []
+    if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
+        problems.append(writers.export(result, "dressing", "materials, camera and light",
+                                       writers.prepare, scene, result, aspect=look["aspect"]))
+    if "pdb" in paths:
+        problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
+                                       result, paths["pdb"], args.pdb_frames))
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])
     if "json" in paths:
         output.write_json(paths["json"], result)
+    if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
+        problems.append(writers.export(result, "render", "--render", writers.write_render,
+                                       scene, result, paths["render"], look))
+        if "json" in paths:
+            output.write_json(paths["json"], result)
     print(report.summary(result, quiet=args.quiet))
+    problems = [msg for msg in problems if msg]
+    for problem in problems:
+        print(f"fibrilfit: error: {problem}", file=sys.stderr)
+    if problems:
+        return EXIT_OUTPUT_FAILED
     if args.fail_on_intersection and result.get("verdict") == "intersection":
         return EXIT_INTERSECTION
     return EXIT_OK
 
 
-COMMANDS = {"run": command_run}
+def command_sweep(args) -> int:
+    from .sweep import command
+    return command.run(args)
+
+
+COMMANDS = {"run": command_run, "sweep": command_sweep}

@@ -20,4 +20,8 @@ def _arguments() -> list[str]:
 
 
 if __name__ == "__main__":
-    sys.exit(_load.load().cli.main(_arguments()))
+    try:
+        sys.exit(_load.load().cli.main(_arguments()))
+    except KeyboardInterrupt:  # Ctrl-C while the package itself was still loading
+        print("fibrilfit: interrupted; no result written", file=sys.stderr)
+        sys.exit(130)

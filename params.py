@@ -177,7 +177,8 @@ def make_params(*, force: bool = False, **values) -> Params:
     known = {f.name for f in fields()}
     for name in values:
         if name not in known:
-            raise ParamError(name, f"unknown parameter; known: {', '.join(sorted(known))}")
+            shown = name if str(name).isidentifier() else repr(name)  # keep the message one line
+            raise ParamError(shown, f"unknown parameter; known: {', '.join(sorted(known))}")
     clean = {}
     for f in fields():
         if f.name not in values:

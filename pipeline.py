@@ -15,7 +15,8 @@ import numpy as np
 
 from . import params as P
 from .analysis import bond_stretch, check_model
-from .builders import bake as bake_frames, build_model, draw_gravity, find_model
+from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
+                       set_stage)
 
 STAGES = ("build", "bake", "check")
 
@@ -30,34 +31,89 @@ def build(p: P.Params, scene=None, *, force: bool = False):
     return build_model(p, scene or bpy.context.scene, force=force)
 
 
+class Baking:
+    """A bake advanced one frame at a time, tracking the worst bond stretch over every frame.
+
+    bake() runs it through; the sidebar's modal operator steps it from a timer, so both judge
+    the same frames the same way.
+    """
+
+    def __init__(self, model, scene=None):
+        self.model, self.scene = model, scene or bpy.context.scene
+        p = model.params
+        self._scored = slice(p.score_exclude, p.layers - p.score_exclude)
+        self._rest = p.rest_lengths()
+        self.worst = {"stretch": -np.inf, "frame": 0}
+        self.stats = BakeStats()
+        self._frames = bake_steps(self.scene, model, self.stats)
+        self.done = False
+
+    @property
+    def total(self) -> int:
+        return self.model.params.frames
+
+    def step(self):
+        """Simulate the next frame; return (frame, chain positions), or None once finished."""
+        if self.done:
+            return None
+        try:
+            frame, positions = next(self._frames)
+        except StopIteration:
+            self._finish()
+            return None
+        s = float(bond_stretch(positions[self._scored], self._rest).max())
+        if s > self.worst["stretch"]:
+            self.worst.update(stretch=s, frame=frame)
+        return frame, positions
+
+    def cancel(self) -> None:
+        """Stop here: the frames so far stay in the memory cache; the model is not marked baked."""
+        self._frames.close()
+        self.stats.cancelled = True
+        self.done = True
+
+    def _finish(self):
+        self.done = True
+        keep_bake(self.scene)
+        set_stage(self.model, "baked", last_frame=self.stats.frames_simulated)
+
+    def result(self) -> dict:
+        return {
+            "gravity": [round(g, 9) for g in self.scene.gravity],
+            "frames_simulated": self.stats.frames_simulated,
+            "settled_at": self.stats.settled_at,
+            "cancelled": self.stats.cancelled,
+            "max_bond_stretch_bake": round(self.worst["stretch"], 6),
+            "max_bond_stretch_bake_frame": self.worst["frame"],
+        }
+
+
 def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
-    """Bake the model from a freed cache; track the worst bond stretch over every frame."""
-    scene = scene or bpy.context.scene
-    p = model.params
-    lo, hi = p.score_exclude, p.layers - p.score_exclude
-    rest = p.rest_lengths()
-    worst = {"stretch": -np.inf, "frame": 0}
+    """Bake the model from a freed cache; track the worst bond stretch over every frame.
 
-    def per_frame(frame, positions):
-        s = float(bond_stretch(positions[lo:hi], rest).max())
-        if s > worst["stretch"]:
-            worst.update(stretch=s, frame=frame)
-        return bool(on_frame and on_frame(frame, positions))
-
-    stats = bake_frames(scene, model, on_frame=per_frame)
-    return {
-        "gravity": [round(g, 9) for g in scene.gravity],
-        "frames_simulated": stats.frames_simulated,
-        "settled_at": stats.settled_at,
-        "cancelled": stats.cancelled,
-        "max_bond_stretch_bake": round(worst["stretch"], 6),
-        "max_bond_stretch_bake_frame": worst["frame"],
-    }
+    `on_frame(frame, chain_positions)` may return True to cancel.
+    """
+    baking = Baking(model, scene)
+    while (stepped := baking.step()) is not None:
+        if on_frame is not None and on_frame(*stepped):
+            baking.cancel()
+    return baking.result()
 
 
 def check(model, scene=None) -> dict:
     """Judge the model at the scene's current frame (the bake leaves it on its last frame)."""
     return check_model(model)
+
+
+def describe(p: P.Params) -> dict:
+    """The head of every result: versions, every parameter, the seed and its gravity."""
+    return {
+        "fibrilfit_version": version(),
+        "blender_version": bpy.app.version_string,
+        "params": p.to_dict(),
+        "seed": p.seed,
+        "gravity": list(draw_gravity(p)),
+    }
 
 
 def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", force: bool = False,
@@ -67,15 +123,7 @@ def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", for
         raise ValueError(f"stop_after must be one of {STAGES}")
     p = P.validate(p or P.DEFAULTS, force=force)
     scene = scene or bpy.context.scene
-    result = {
-        "fibrilfit_version": version(),
-        "blender_version": bpy.app.version_string,
-        "params": p.to_dict(),
-        "seed": p.seed,
-        "gravity": list(draw_gravity(p)),
-        "stage": stop_after,
-        "timings_s": {},
-    }
+    result = {**describe(p), "stage": stop_after, "timings_s": {}}
     t = time.perf_counter()
     model = build(p, scene, force=force)
     result["timings_s"]["build"] = time.perf_counter() - t
@@ -100,11 +148,6 @@ def current_model(scene=None):
 def save_blend(path, scene=None) -> None:
     """Save the whole file with the bake kept, so it reopens ready to scrub."""
     from .output import atomic_write
-    scene = scene or bpy.context.scene
-    rbw = scene.rigidbody_world
-    if rbw is not None and not rbw.point_cache.is_baked and rbw.point_cache.is_baked is not None:
-        # The bake stepped frames into the memory cache; mark it baked so reopening keeps it.
-        with bpy.context.temp_override(scene=scene, point_cache=rbw.point_cache):
-            bpy.ops.ptcache.bake_from_cache()
+    keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too: its frames can still be scrubbed
     atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
         filepath=str(tmp), copy=True, compress=True, check_existing=False))

@@ -7,9 +7,17 @@ CLASSES = (*properties.CLASSES, *operators.CLASSES, *panels.CLASSES)
 
 
 def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-    properties.attach()
+    """Register every class, then scene.fibrilfit. On an error, undo what was done and re-raise."""
+    done = []
+    try:
+        for cls in CLASSES:
+            bpy.utils.register_class(cls)
+            done.append(cls)
+        properties.attach()
+    except BaseException:
+        for cls in reversed(done):
+            bpy.utils.unregister_class(cls)
+        raise
 
 
 def unregister():

@@ -32,6 +32,7 @@ def summary(r: dict, quiet: bool = False) -> str:
         f"{_pct(p['stretch_tolerance'])}); {_pct(r['max_bond_stretch_bake'])} at worst during the bake",
     ]
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
+    lines += _export_lines(r)
     if r["accommodated"]:
         lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "
                      "linkers, so one exists for this model.")
@@ -42,3 +43,20 @@ def summary(r: dict, quiet: bool = False) -> str:
         lines.append("accommodated: no. This relaxation ended with clashes. One random draw "
                      "cannot prove that no clash-free layout exists; sweep seeds for a fraction.")
     return "\n".join(lines)
+
+
+def _export_lines(r: dict) -> list[str]:
+    """One line per picture or structure written (exports/)."""
+    out = []
+    pdb, png = r.get("pdb"), r.get("render")
+    if pdb and "error" not in pdb:
+        n = len(pdb["frames"])
+        out.append(f"pdb: {pdb['path']} ({pdb['atoms_per_model']} atoms"
+                   + (f" x {n} models, frames {pdb['frames'][0]}-{pdb['frames'][-1]})" if n > 1
+                      else f", frame {pdb['frames'][0]})"))
+    if png and "error" not in png:
+        how = (f"cycles, {png['samples']} samples" + (", denoised" if png["denoiser"] else "")
+               if png["engine"] == "cycles" else png["engine"])
+        out.append(f"render: {png['path']} ({png['width']}x{png['height']}, {how}, "
+                   f"{png['seconds']:.1f} s)")
+    return out

@@ -54,6 +54,10 @@ def clear_model(scene: bpy.types.Scene) -> int:
                 setattr(rbw, attr, None)
                 if not coll.objects:
                     bpy.data.collections.remove(coll)
-    orphans = [d for d in (*bpy.data.meshes, *bpy.data.materials) if is_ours(d) and d.users == 0]
-    bpy.data.batch_remove(orphans)
+    if scene.world is not None and is_ours(scene.world):  # the render's backdrop (exports/)
+        scene.world = None
+    # Meshes first: a material is an orphan only once the meshes using it are gone.
+    for kinds in ((bpy.data.meshes, bpy.data.cameras, bpy.data.lights, bpy.data.worlds),
+                  (bpy.data.materials,)):
+        bpy.data.batch_remove([d for kind in kinds for d in kind if is_ours(d) and d.users == 0])
     return removed

@@ -1,1 +1,4 @@
-CLASSES = ()
+"""The sidebar's operators: thin wrappers over the functions headless runs call."""
+from . import build, check, export, simulate
+
+CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES)

@@ -1,1 +1,4 @@
-CLASSES = ()
+"""The sidebar's panels."""
+from .sidebar import CLASSES
+
+__all__ = ["CLASSES"]

@@ -1,0 +1,68 @@
+"""The run command's output options for pictures and structures (no bpy: the parser needs none).
+
+    --pdb PATH [--pdb-frames last|all]
+    --render PATH.png [--render-size WxH] [--render-samples N] [--render-engine cycles|workbench]
+"""
+from __future__ import annotations
+
+import argparse
+import re
+
+SUFFIXES = {"pdb": (".pdb",), "render": (".png",)}
+ENGINES = ("cycles", "workbench")     # exports.render.ENGINES, without importing bpy
+SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
+DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8
+PDB_STEP = 50                        # exports.pdb.KEYFRAME_STEP
+
+
+class OptionError(ValueError):
+    """A bad value for one of these options; the message starts with the option's name."""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("pictures and structures")
+    group.add_argument("--pdb", metavar="PATH",
+                       help="write a coarse-grained PDB: one pseudo-atom per sphere, one chain "
+                            "per layer, radius in the B-factor")
+    group.add_argument("--pdb-frames", choices=("last", "all"), default="last",
+                       help=f"'last': the final frame; 'all': a multi-model PDB with frames 1, "
+                            f"{1 + PDB_STEP}, {1 + 2 * PDB_STEP}, ... and the last baked frame "
+                            f"(default last)")
+    group.add_argument("--render", metavar="PATH.png",
+                       help="render the final frame to a PNG (clashing globules red)")
+    group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,
+                       help=f"picture size in pixels (default {DEFAULT_SIZE})")
+    group.add_argument("--render-samples", metavar="N", default=str(DEFAULT_SAMPLES),
+                       help=f"Cycles samples per pixel, denoised (default {DEFAULT_SAMPLES})")
+    group.add_argument("--render-engine", choices=ENGINES, default="cycles",
+                       help="cycles (CPU, any machine) or workbench (faster; needs a software "
+                            "or hardware OpenGL context) (default cycles)")
+
+
+def render_options(args) -> dict:
+    """Validated size, samples and engine. Raises OptionError naming the option."""
+    m = re.fullmatch(r"\s*(\d+)\s*[xX×]\s*(\d+)\s*", str(args.render_size))
+    lo, hi = SIZE_RANGE
+    if not m or not all(lo <= int(v) <= hi for v in m.groups()):
+        raise OptionError(f"--render-size: must be WIDTHxHEIGHT, each from {lo} to {hi} "
+                          f"pixels (got {args.render_size!r})")
+    lo, hi = SAMPLES_RANGE
+    try:
+        samples = int(str(args.render_samples))
+    except ValueError:
+        samples = None
+    if samples is None or not lo <= samples <= hi:
+        raise OptionError(f"--render-samples: must be an integer from {lo} to {hi} "
+                          f"(got {args.render_samples!r})")
+    width, height = int(m.group(1)), int(m.group(2))
+    return {"size": (width, height), "aspect": width / height, "samples": samples,
+            "engine": args.render_engine}
+
+
+def pdb_fits(p) -> None:
+    """Refuse, before any work, a fibril taller than PDB's coordinate columns (9999.999 Å)."""
+    top = (p.layers - 1) * p.rise + p.globule_diameter + p.residue_radius
+    if p.layers > 1 and top > 9999.999:
+        most = int((9999.999 - p.globule_diameter - p.residue_radius) // p.rise) + 1
+        raise OptionError(f"--pdb: a {p.layers}-layer fibril is {top:.0f} Å tall; PDB "
+                          f"coordinates stop at 9999.999 Å, so at most {most} layers")

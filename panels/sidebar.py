@@ -1,0 +1,127 @@
+"""The FibrilFit tab of the 3D View's sidebar: Run all and Clear, the model's state and verdict,
+then one section per tutorial step with its parameters and its button."""
+import bpy
+
+from .. import params as P, properties
+from ..builders import model_stage
+from ..builders.scene import find_root
+from ..operators.common import percent, reached
+
+STATUS = {
+    "": ("No model yet: run the steps below in order, or Run all", "INFO"),
+    "slab": ("Built: slab", "MESH_CUBE"),
+    "anchor": ("Built: slab and anchor", "MESH_UVSPHERE"),
+    "linker": ("Built: layer 0 up to the linker", "LINKED"),
+    "globule": ("Built: layer 0", "MESH_UVSPHERE"),
+    "layers": ("Built: every layer; not baked", "MOD_ARRAY"),
+    "baked": ("Baked; not checked", "PHYSICS"),
+    "checked": ("Checked", "CHECKMARK"),
+}
+
+# Section: (operator, the stage that shows it done), ...
+BUTTONS = {
+    "Slab": (("fibrilfit.build_slab", "slab"),),
+    "Anchor": (("fibrilfit.build_anchor", "anchor"),),
+    "Linker": (("fibrilfit.build_linker", "linker"),),
+    "Globule": (("fibrilfit.build_globule", "globule"),),
+    "Layers": (("fibrilfit.replicate_layers", "layers"),),
+    "Simulation": (("fibrilfit.bake", "baked"),),
+    "Check": (("fibrilfit.check_intersections", "checked"), ("fibrilfit.join_globules", None),
+              ("fibrilfit.render", None), ("fibrilfit.export_pdb", None)),
+}
+
+
+class _Sidebar:
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "FibrilFit"
+
+
+class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
+    bl_idname = "FIBRILFIT_PT_main"
+    bl_label = "FibrilFit"
+
+    def draw(self, context):
+        layout, scene = self.layout, context.scene
+        s = scene.fibrilfit
+        row = layout.row(align=True)
+        row.scale_y = 1.3
+        row.operator("fibrilfit.run_all", icon="PLAY")
+        row.operator("fibrilfit.clear", icon="TRASH")
+        stage = model_stage(scene)
+        text, icon = STATUS[stage]
+        layout.label(text=text, icon=icon)
+        if reached(stage, "layers"):
+            _draw_changes(layout, s, find_root(scene), stage)
+        if stage == "checked" and s.verdict:
+            _draw_result(layout.box(), s)
+        layout.label(text="Lengths in Å: 1 Blender unit = 1 Å")
+
+
+def _draw_changes(layout, s, root, stage):
+    """Warn when the panel no longer matches the model a bake or check would use."""
+    built = P.make_params(force=True, **root["params"].to_dict())
+    changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS)
+    if changed:
+        names = ", ".join(name for name, _, _ in changed)
+        layout.label(text=f"Changed since the build: {names}", icon="ERROR")
+        layout.label(text="Build again (Run all, or the steps) to apply")
+    elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",)):
+        layout.label(text="Simulation settings changed: Bake again to apply", icon="ERROR")
+
+
+def _draw_result(box, s):
+    ok = s.verdict == "successful"
+    box.label(text=f"Verdict: {s.verdict}", icon="CHECKMARK" if ok else "ERROR")
+    box.label(text=f"Clashing globule pairs: {s.clash_count}")
+    box.label(text=f"Worst bond stretch: {percent(s.max_bond_stretch)} "
+                   f"({'intact' if s.linker_intact else 'stretched'})")
+    box.label(text=f"Accommodated: {'yes' if s.accommodated else 'no'}",
+              icon="CHECKMARK" if s.accommodated else "CANCEL")
+
+
+class _Section(_Sidebar):
+    bl_parent_id = "FIBRILFIT_PT_main"
+    section = ""
+
+    def draw(self, context):
+        layout, s = self.layout, context.scene.fibrilfit
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column()
+        for field in properties.fields_in(self.section):
+            row = col.row()
+            # settle_speed, settle_frames... only matter when the bool field they extend is on
+            switch = field.name.split("_")[0]
+            if switch != field.name and isinstance(getattr(s, switch, None), bool):
+                row.active = getattr(s, switch)
+            row.prop(s, field.name)
+        stage = model_stage(context.scene)
+        for idname, done_at in BUTTONS[self.section]:
+            done = done_at is not None and reached(stage, done_at)
+            layout.operator(idname, icon="CHECKMARK" if done else "NONE")
+
+
+def _section_panel(section):
+    name = f"FIBRILFIT_PT_{section.lower()}"
+    return type(name, (_Section, bpy.types.Panel),
+                {"bl_idname": name, "bl_label": section, "section": section})
+
+
+class FIBRILFIT_PT_check(_Section, bpy.types.Panel):
+    bl_idname = "FIBRILFIT_PT_check"
+    bl_label = "Check"
+    section = "Check"
+
+    def draw(self, context):
+        _Section.draw(self, context)
+        space = context.space_data
+        shading = getattr(space, "shading", None)
+        if shading is not None and shading.type == "SOLID" and shading.color_type != "OBJECT":
+            row = self.layout.row()
+            row.label(text="Red clashes show with colour", icon="INFO")
+            row.prop(shading, "color_type", text="")
+
+
+SECTION_PANELS = tuple(_section_panel(sec) for sec in properties.SECTIONS if sec != "Check")
+CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check)

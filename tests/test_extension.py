@@ -1,0 +1,129 @@
+"""The extension as users get it: the zip that Blender's own CLI builds, installed into a clean
+bpy (a temporary user folder) with Blender's install operator, and driven through the installed copy.
+"""
+import json
+import pathlib
+import subprocess
+import sys
+import zipfile
+
+import bpy
+import pytest
+from helpers import ROOT
+
+SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
+VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
+# The repository's files that are not the extension (blender_manifest.toml excludes them).
+NOT_EXTENSION = {"tests", "bench", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
+                 "_load.py", "headless.py", "conftest.py", "Makefile", "pyproject.toml",
+                 "BENCHMARKS.md", ".gitignore"}
+
+
+def blender_ext() -> pathlib.Path:
+    """Blender's extension CLI, shipped inside the bpy wheel."""
+    path = pathlib.Path(bpy.utils.system_resource("SCRIPTS"), "addons_core", "bl_pkg", "cli",
+                        "blender_ext.py")
+    assert path.is_file(), path
+    return path
+
+
+def cli(*args) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(blender_ext()), *args], capture_output=True,
+                          text=True, timeout=300, cwd=ROOT)
+
+
+@pytest.fixture(scope="module")
+def built_zip(tmp_path_factory):
+    out = tmp_path_factory.mktemp("dist")
+    checked = cli("validate", str(ROOT))
+    assert checked.returncode == 0, checked.stdout + checked.stderr
+    built = cli("build", "--source-dir", str(ROOT), "--output-dir", str(out))
+    assert built.returncode == 0, built.stdout + built.stderr
+    (path,) = out.glob("fibrilfit-*.zip")
+    return path
+
+
+@pytest.fixture(scope="module")
+def installed(built_zip, tmp_path_factory):
+    """Run installed_scenario.py in a fresh interpreter with its own user folder."""
+    home = tmp_path_factory.mktemp("blender_user")
+    env = {"BLENDER_USER_RESOURCES": str(home), "PATH": "/usr/bin:/bin", "HOME": str(home)}
+    proc = subprocess.run([sys.executable, str(SCENARIO), str(built_zip), json.dumps(VALUES)],
+                          capture_output=True, text=True, timeout=600, cwd=home, env=env)
+    lines = [ln for ln in proc.stdout.splitlines() if ln.startswith("RESULT ")]
+    assert proc.returncode == 0 and lines, proc.stdout[-3000:] + proc.stderr[-3000:]
+    result = json.loads(lines[-1][len("RESULT "):])
+    result["home"] = home
+    result["stderr"] = proc.stderr
+    return result
+
+
+def extension_files() -> set:
+    """What the zip should hold: the repository's files minus NOT_EXTENSION and caches."""
+    files = set()
+    for path in ROOT.rglob("*"):
+        rel = path.relative_to(ROOT)
+        if (path.is_dir() or rel.parts[0] in NOT_EXTENSION or rel.parts[0].startswith(".venv")
+                or "__pycache__" in rel.parts or rel.name.startswith("requirements")
+                or rel.suffix in (".pyc", ".zip", ".blend", ".blend1")):
+            continue
+        files.add(rel.as_posix())
+    return files
+
+
+def test_the_zip_holds_only_the_extension(built_zip):
+    with zipfile.ZipFile(built_zip) as zf:
+        names = set(zf.namelist())
+        manifest = zf.read("blender_manifest.toml").decode()
+    assert {"blender_manifest.toml", "__init__.py", "registration.py", "panels/sidebar.py"} <= names
+    assert names == extension_files()
+    for name in names:
+        assert name.endswith(".py") or name in ("blender_manifest.toml", "README.md", "LICENSE")
+    assert manifest == (ROOT / "blender_manifest.toml").read_text(encoding="utf-8")
+
+
+def test_installed_and_enabled_it_shows_the_panel_in_the_fibrilfit_tab(installed):
+    assert installed["install"] == ["FINISHED"]
+    assert installed["enabled"] == ["bl_ext.user_default.fibrilfit"]
+    # installed into the temporary user folder, not the user's own
+    assert pathlib.Path(installed["module_file"]).is_relative_to(installed["home"])
+    assert installed["panel"] == ["bl_ext.user_default.fibrilfit.panels.sidebar", "VIEW_3D", "UI",
+                                  "FibrilFit"]
+    assert installed["clone_imported"] == []  # everything ran from the installed copy
+
+
+def test_the_installed_steps_give_a_verdict(installed):
+    steps = installed["steps"]
+    assert [state for state, _, _ in steps.values()] == [["FINISHED"]] * 7
+    users = len(installed["user_objects"])
+    assert [n - users for _, n, _ in steps.values()] == [1, 2, 6, 8, 64, 64, 64]
+    assert [stage for _, _, stage in steps.values()] == [
+        "slab", "anchor", "linker", "globule", "layers", "baked", "checked"]
+    props = installed["props"]
+    assert props["verdict"] in ("successful", "intersection")
+    assert props["verdict"] == installed["steps_result"]["verdict"]
+    assert props["clash_count"] == len(installed["steps_result"]["clashing_pairs"])
+
+
+def test_operators_and_the_api_agree_for_one_seed(installed):
+    mine, run_all, api = (installed[k] for k in ("steps_result", "run_all_result", "api_result"))
+    for key in ("verdict", "gravity", "intersecting_faces", "clashing_pairs", "max_bond_stretch",
+                "max_bond_stretch_bake", "globule_centres", "accommodated", "seed", "params"):
+        assert mine[key] == run_all[key] == api[key], key
+
+
+def test_run_all_keeps_one_model_and_clear_removes_exactly_it(installed):
+    whole = installed["steps"]["check_intersections"][1]
+    assert installed["join"] == [["FINISHED"], whole + 1]  # the joined copy
+    assert installed["run_all"][:2] == [["FINISHED"], whole]
+    assert installed["run_all"][2] == installed["props"]["verdict"]
+    assert installed["clear"] == [["FINISHED"], installed["user_objects"]]
+
+
+def test_disable_enable_three_times_without_error_or_leftover(installed):
+    assert installed["cycle_errors"] == []
+    registered = installed["types"]
+    assert registered and "FIBRILFIT_PT_main" in registered
+    for off, on in installed["cycles"]:
+        assert off == [[], False]
+        assert on == [registered, True]

@@ -1,0 +1,102 @@
+"""Property-based fuzzing of the parameter validation: any input either builds a valid model or
+is refused with ParamError, never anything else."""
+import dataclasses
+import math
+
+import numpy as np
+from hypothesis import HealthCheck, event, given, settings, strategies as st
+
+from fibrilfit import params as P
+from fibrilfit.builders import build_model
+
+FIELDS = {f.name: f.metadata for f in dataclasses.fields(P.Params)}
+
+junk = st.one_of(
+    st.none(), st.booleans(), st.text(max_size=6), st.binary(max_size=4),
+    st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**12, 10**12),
+    st.lists(st.floats(-1e3, 1e3), max_size=4), st.dictionaries(st.text(max_size=2), st.integers()),
+)
+
+
+def near_range(meta):
+    lo, hi = meta["min"], meta["max"]
+    if meta["kind"] is bool:
+        return st.booleans()
+    if meta["kind"] is int:
+        return st.integers(int(lo) - 3, min(int(hi) + 3, 10**7))
+    return st.floats(lo - 1.0, hi + 1.0, allow_nan=False) | st.sampled_from([lo, hi, 0.0, -0.0])
+
+
+SMALLER = {"layers": (1, 3000), "score_exclude": (0, 5)}  # keeps combination limits reachable
+
+
+def in_range(meta, name=None):
+    if name in SMALLER:
+        return st.integers(*SMALLER[name])
+    if meta["kind"] is bool:
+        return st.booleans()
+    if meta["kind"] is int:
+        return st.integers(int(meta["min"]), min(int(meta["max"]), 10**7))
+    return st.floats(meta["min"], meta["max"])
+
+
+def value_for(name):
+    meta = FIELDS[name]
+    good, edge = in_range(meta, name), near_range(meta)
+    if name == "slab":
+        good, edge = st.tuples(good, good, good), st.tuples(edge, edge, edge)
+    # mostly valid values, so that accepted sets are common too, with every kind of bad one
+    return st.one_of(*[good] * 24, edge, edge.map(str), junk)
+
+
+known_sets = st.fixed_dictionaries({}, optional={name: value_for(name) for name in FIELDS})
+unknown_sets = st.dictionaries(st.text(min_size=1, max_size=8), junk, min_size=1, max_size=2)
+param_sets = st.one_of(known_sets, known_sets, known_sets,
+                       st.builds(lambda a, b: {**a, **b}, known_sets, unknown_sets))
+
+
+@settings(max_examples=1500, deadline=None)
+@given(param_sets)
+def test_validation_accepts_or_refuses_with_paramerror_only(values):
+    try:
+        p = P.make_params(**values)
+    except P.ParamError as exc:
+        assert exc.param and "\n" not in str(exc)
+        event("refused")
+        return
+    event("accepted")
+    for f in dataclasses.fields(P.Params):
+        v = getattr(p, f.name)
+        for x in (v if f.name == "slab" else (v,)):
+            assert isinstance(x, (int, float)) and math.isfinite(x)
+            if f.metadata["kind"] is not bool:
+                assert f.metadata["min"] <= x <= f.metadata["max"]
+    assert P.validate(p) == p
+
+
+small_models = st.fixed_dictionaries({}, optional={
+    "layers": st.integers(-1, 6), "linker": st.integers(-1, 8), "seed": st.integers(0, 9),
+    "globule_diameter": st.floats(-5, 80, allow_nan=False) | st.just(math.nan),
+    "residue_radius": st.floats(-1, 5, allow_nan=False), "residue_spacing": st.floats(-1, 8),
+    "rise": st.floats(-1, 20, allow_nan=False), "twist": st.floats(-4, 4, allow_nan=False),
+    "slab": st.tuples(*[st.floats(-1, 60, allow_nan=False)] * 3),
+    "score_exclude": st.integers(-1, 4)})
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(small_models)
+def test_any_accepted_set_builds_a_valid_model(scene, values):
+    try:
+        p = P.make_params(**values)
+    except P.ParamError:
+        assert not scene.objects  # refused before anything was built
+        event("refused")
+        return
+    event("built")
+    model = build_model(p, scene)
+    assert len(scene.objects) == p.estimated_objects()
+    centres = np.array([ob.matrix_world.translation for c in model.chain for ob in c])
+    assert np.isfinite(centres).all()
+    assert len(model.chain) == p.layers and all(len(c) == p.linker + 1 for c in model.chain)
+    from fibrilfit.builders import clear_model
+    clear_model(scene)

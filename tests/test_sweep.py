@@ -1,0 +1,400 @@
+"""Sweeps: grid specs, the Wilson interval, summary and gate, and real sweeps on worker
+processes and a Dask LocalCluster (small models, so each run takes a fraction of a second)."""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+from helpers import ROOT, run_cli
+
+from fibrilfit import params as P, pipeline
+from fibrilfit.sweep import gate, grid, runner, summary
+from fibrilfit.sweep.stats import wilson
+
+# The issue's done-when sweep.
+DONE_WHEN = ("--linker", "1,12", "--layers", "8", "--seeds", "3", "--workers", "2")
+VERDICT_KEYS = ("verdict", "gravity", "clashing_pairs", "max_bond_stretch", "accommodated",
+                "frames_simulated")
+
+
+def lines(path):
+    return [json.loads(line) for line in path.read_text().splitlines()]
+
+
+def keys(records):
+    return [grid.point_key(r["params"]) for r in records]
+
+
+# ---- grid specs ---------------------------------------------------------------------------
+def test_lists_and_inclusive_ranges():
+    assert grid.parse_spec("linker", "2,4,6") == ["2", "4", "6"]
+    assert grid.parse_spec("linker", "1:12") == [str(i) for i in range(1, 13)]
+    # Decimal steps: exactly four values, each as typed (no 0.030000000000000002)
+    assert grid.parse_spec("twist", "0.02:0.05:0.01") == ["0.02", "0.03", "0.04", "0.05"]
+    assert grid.parse_spec("linker", "1:3, 8,2") == ["1", "2", "3", "8"]
+    assert grid.parse_spec("twist", "-0.05:-0.03:0.01") == ["-0.05", "-0.04", "-0.03"]
+    assert grid.parse_spec("layers", "10:20:4") == ["10", "14", "18"]
+
+
+@pytest.mark.parametrize("spec, says", [
+    ("2,,4", "empty item"), ("", "empty value"), ("12:1", "grid would be empty"),
+    ("1:3:0", "positive step"), ("1:3:-1", "positive step"), ("1:2:3:4", "is not a list"),
+    ("a:3", "is not a list"), ("1:nan", "is not a list"), ("0:1:0.000001", "at most"),
+])
+def test_malformed_specs_name_the_parameter(spec, says):
+    with pytest.raises(P.ParamError) as e:
+        grid.parse_spec("linker", spec)
+    assert e.value.param == "linker" and says in str(e.value) and "\n" not in str(e.value)
+
+
+def test_every_grid_point_goes_through_make_params():
+    pts = grid.build({"linker": ["1", "12"], "globule_diameter": ["30", "45"]}, ["0", "1"])
+    assert len(pts) == 8
+    assert [p.point["seed"] for p in pts] == [0] * 4 + [1] * 4  # seed-major: even coverage
+    assert {(p.params["linker"], p.params["globule_diameter"]) for p in pts} == {
+        (1, 30.0), (1, 45.0), (12, 30.0), (12, 45.0)}
+    assert pts[0].params == P.make_params(linker=1, globule_diameter=30, seed=0).to_dict()
+    # "6" and "6.0" are one point
+    assert len(grid.build({"linker": ["6", "6.0"]}, ["0"])) == 1
+    with pytest.raises(P.ParamError, match=r"^linker: must be an integer from 1 to 200"):
+        grid.build({"linker": ["0", "5"]}, ["0"])
+    with pytest.raises(P.ParamError, match=r"^score_exclude: .* for 2 layers"):
+        grid.build({"layers": ["2", "8"], "score_exclude": ["1"]}, ["0"])
+
+
+def test_seeds():
+    assert grid.seed_values(None, None) == ["0"]
+    assert grid.seed_values(3, None) == ["0", "1", "2"]
+    assert grid.seed_values(None, "5:7,11") == ["5", "6", "7", "11"]
+    with pytest.raises(P.ParamError, match="grid would be empty"):
+        grid.seed_values(0, None)
+    with pytest.raises(P.ParamError, match="not both"):
+        grid.seed_values(2, "1,2")
+
+
+# ---- statistics, summary and gate -----------------------------------------------------------
+@pytest.mark.parametrize("k, n, low, high", [
+    # Newcombe RG (1998) Stat Med 17:857-872, Table I, method 3 (Wilson score, no continuity
+    # correction); the same values as statsmodels' proportion_confint(k, n, method="wilson").
+    (81, 263, 0.2553, 0.3662), (15, 148, 0.0624, 0.1605), (0, 20, 0.0, 0.1611),
+    (1, 29, 0.0061, 0.1718),
+])
+def test_wilson_interval_matches_published_values(k, n, low, high):
+    lo, hi = wilson(k, n)
+    assert lo == pytest.approx(low, abs=5e-5) and hi == pytest.approx(high, abs=5e-5)
+
+
+def test_wilson_interval_edges():
+    assert wilson(0, 3)[0] == 0.0 and wilson(3, 3)[1] == 1.0
+    lo, hi = wilson(3, 3)
+    assert lo == pytest.approx(3 / (3 + 1.959963984540054 ** 2))  # k = n: n / (n + z²)
+    with pytest.raises(ValueError):
+        wilson(1, 0)
+
+
+def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, status="ok"):
+    p = P.make_params(linker=linker, globule_diameter=diameter, seed=seed).to_dict()
+    if status != "ok":
+        return {"params": p, "seed": seed, "status": status, "error": "boom"}
+    return {"params": p, "seed": seed, "status": "ok", "accommodated": accommodated,
+            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames}
+
+
+SYNTHETIC = [
+    _record(2, 30, 0, False, "intersection", 1.5), _record(2, 30, 1, False, "successful", 0.9),
+    _record(4, 30, 0, True, "successful", 0.01), _record(4, 30, 1, False, "intersection", 0.02),
+    _record(6, 30, 0, True, "successful", 0.0, 200), _record(6, 30, 1, True, "successful", 0.02),
+    _record(6, 30, 2, None, None, None, status="failed"),
+    _record(6, 45, 0, False, "intersection", 0.03), _record(6, 45, 1, True, "successful", 0.01),
+]
+
+
+def test_summary_pools_seeds_per_grid_point():
+    rows = summary.rows(SYNTHETIC)
+    assert [(r.values["globule_diameter"], r.values["linker"]) for r in rows] == [
+        (30.0, 2), (30.0, 4), (30.0, 6), (45.0, 6)]
+    r2, r4, r6, r6b = rows
+    assert (r2.n, r2.accommodated, r2.clash_fraction, r2.median_stretch) == (2, 0, 0.5, 1.2)
+    assert (r4.fraction, r4.interval) == (0.5, wilson(1, 2))
+    assert (r6.n, r6.failed, r6.fraction, r6.median_frames) == (2, 1, 1.0, 225)
+    assert summary.varied(rows) == ["linker", "globule_diameter"]
+    csv = summary.csv_text(rows).splitlines()
+    assert csv[0].startswith("linker,globule_diameter,n,failed,accommodated,accommodated_fraction,"
+                             "wilson95_low,wilson95_high,clash_fraction,median_stretch")
+    assert csv[3] == f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225"
+    minimal = {m.group["globule_diameter"]: m for m in summary.minimal_linkers(rows, 0.95)}
+    assert minimal[30.0].row is r6 and minimal[45.0].row is None and minimal[45.0].best is r6b
+    text = summary.table(rows, 0.95)
+    assert "globule_diameter 30: linker 6 (2/2" in text
+    assert "globule_diameter 45: none in this sweep (best: linker 6, 1/2" in text
+    assert "fraction of seeds whose relaxation found a clash-free layout" in text
+
+
+def test_gate_requirements():
+    rows = summary.rows(SYNTHETIC)
+    ok = gate.parse("linker=6,globule_diameter=30:accommodated>=0.9")
+    assert ok.selector == {"linker": 6.0, "globule_diameter": 30.0}
+    bad = gate.parse("globule-diameter=45 : accommodated >= 0.9")
+    everywhere = gate.parse("failed==0")
+    met, failed = gate.check([ok, bad, everywhere], rows)
+    assert met == ["requirement met: linker=6,globule_diameter=30:accommodated>=0.9: "
+                   "accommodated 1 (2/2)"]
+    assert failed[0] == ("requirement failed: globule-diameter=45 : accommodated >= 0.9: "
+                         "globule_diameter=45: accommodated 0.5 (1/2), needs >= 0.9")
+    assert failed[1:] == ["requirement failed: failed==0: linker=6, globule_diameter=30: "
+                          "failed 1, needs == 0"]
+    assert gate.check([gate.parse("linker=8:n>=1")], rows)[1] == [
+        "requirement failed: linker=8:n>=1: no grid point has linker=8"]
+    for text, says in [("linker=6", "METRIC OP NUMBER"), ("x>=1", "unknown metric"),
+                       ("seed=1:n>=1", "pooled"), ("linker=a:n>=1", "not a number"),
+                       ("colour=1:n>=1", "not a parameter"), ("n>=lots", "not a number")]:
+        with pytest.raises(P.ParamError, match=says):
+            gate.parse(text)
+
+
+def test_phase_plot_layouts(tmp_path):
+    from fibrilfit.sweep import plot
+    rows = summary.rows(SYNTHETIC)
+    assert plot.layout(rows) == ("lines", "linker", ["globule_diameter"])
+    two = summary.rows([
+        {**r, "params": {**r["params"], "twist": tw}} for r in SYNTHETIC[:6]
+        for tw in (0.02, 0.04)])
+    assert plot.layout(two) == ("heatmap", "linker", ["twist"])
+    assert plot.layout(summary.rows([
+        {**r, "params": {**r["params"], "twist": 0.01 * r["seed"]}} for r in SYNTHETIC
+        if r["params"]["linker"] == 6])) == ("lines", "twist", ["globule_diameter"])
+    for name, rs in (("lines.png", rows), ("heatmap.png", two)):
+        plot.write(tmp_path / name, rs, 0.95)
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["heatmap.png", "lines.png"]
+
+
+# ---- real sweeps ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def done_when(tmp_path_factory):
+    """The issue's done-when sweep on 2 worker processes, run once for several tests."""
+    out = tmp_path_factory.mktemp("sweep") / "s"
+    cp = run_cli("sweep", *DONE_WHEN, "--out", str(out))
+    assert cp.returncode == 0, cp.stderr
+    return out, cp
+
+
+def test_done_when_sweep_on_two_processes(done_when):
+    out, cp = done_when
+    records = lines(out / "results.jsonl")
+    assert len(records) == 6 and len(set(keys(records))) == 6
+    assert {(r["point"]["linker"], r["point"]["seed"]) for r in records} == {
+        (linker, seed) for linker in (1, 12) for seed in range(3)}
+    assert all(r["status"] == "ok" and r["params"]["layers"] == 8 and r["attempts"] == 1
+               for r in records)
+    assert len({r["worker"]["pid"] for r in records}) == 2  # two processes shared the work
+    assert os.getpid() not in {r["worker"]["pid"] for r in records}
+    csv = (out / "summary.csv").read_text().splitlines()
+    assert len(csv) == 3 and csv[1].startswith("1,30,3,0,") and csv[2].startswith("12,30,3,0,")
+    assert (out / "phase.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "minimal linker reaching 95 % accommodated:" in cp.stdout
+    assert "clash-free layout" in cp.stdout
+    assert "sweep: 100%" in cp.stderr  # the progress bar
+
+
+def test_workers_give_the_same_result_as_a_run_in_this_process(done_when, scene):
+    out, _ = done_when
+    for r in lines(out / "results.jsonl")[:2]:
+        here = pipeline.run(P.make_params(**r["params"]), scene)
+        assert {k: here[k] for k in VERDICT_KEYS} == {k: r[k] for k in VERDICT_KEYS}
+
+
+def test_resume_does_no_work_twice(done_when, tmp_path):
+    out = tmp_path / "s"
+    shutil.copytree(done_when[0], out)
+    before = (out / "results.jsonl").read_bytes()
+    cp = run_cli("sweep", *DONE_WHEN, "--out", str(out), "--resume")
+    assert cp.returncode == 0, cp.stderr
+    assert "6 already in" in cp.stdout and "0 to run" in cp.stdout
+    assert (out / "results.jsonl").read_bytes() == before
+
+    # more seeds: only the new ones run; a line cut short by a crash is dropped first
+    with open(out / "results.jsonl", "a") as fh:
+        fh.write('{"fibrilfit_version": "0.1.0", "params": {"linker"')
+    cp = run_cli("sweep", "--linker", "1,12", "--layers", "8", "--seeds", "4", "--workers", "2",
+                 "--out", str(out), "--resume", "--quiet")
+    assert cp.returncode == 0, cp.stderr
+    assert "dropped an unfinished last line" in cp.stderr
+    records = lines(out / "results.jsonl")
+    assert (out / "results.jsonl").read_bytes().startswith(before)
+    assert len(records) == 8 and len(set(keys(records))) == 8
+    assert sorted(r["point"]["seed"] for r in records[6:]) == [3, 3]
+
+
+def test_existing_results_need_resume(done_when):
+    cp = run_cli("sweep", *DONE_WHEN, "--out", str(done_when[0]))
+    assert cp.returncode == 2 and "pass --resume" in cp.stderr
+    assert len(cp.stderr.strip().splitlines()) == 1 and "Traceback" not in cp.stderr
+
+
+def test_one_sweep_at_a_time_per_folder(done_when, tmp_path):
+    fcntl = pytest.importorskip("fcntl")
+    out = tmp_path / "s"
+    shutil.copytree(done_when[0], out)
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        cp = run_cli("sweep", *DONE_WHEN, "--out", str(out), "--resume")
+    assert cp.returncode == 2 and "another sweep is writing to" in cp.stderr
+
+
+def test_workers_that_cannot_start_stop_the_sweep_with_one_line():
+    from fibrilfit.sweep.executors import ProcessExecutor, SweepError
+    ex = ProcessExecutor(2)
+    ex.command = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
+                                        "sys.exit(3)"]
+    with ex, pytest.raises(SweepError, match="cannot start: worker pid .* exited with code 3: "
+                                             "no bpy here"):
+        ex.submit({"id": 0, "attempt": 1, "params": {}, "force": False})
+        ex.wait()
+
+
+def test_gate_exit_codes(done_when, tmp_path):
+    out = tmp_path / "s"
+    shutil.copytree(done_when[0], out)
+    common = (*DONE_WHEN, "--out", str(out), "--resume", "--quiet", "--no-plot")
+    r12 = summary.rows(lines(out / "results.jsonl"))[1]
+    assert r12.values["linker"] == 12
+    cp = run_cli("sweep", *common, "--require", f"linker=12:accommodated>={r12.fraction}",
+                 "--require", "n>=3")
+    assert cp.returncode == 0, cp.stdout + cp.stderr
+    assert cp.stdout.count("requirement met:") == 2
+    cp = run_cli("sweep", *common, "--require", "linker=12:n>=3",
+                 "--require", "linker=1,globule_diameter=30:accommodated>1",
+                 "--require", "n>=4")
+    assert cp.returncode == 1
+    failed = [line for line in cp.stdout.splitlines() if line.startswith("requirement failed:")]
+    assert len(failed) == 3  # one per failing grid point: linker 1 (>1), linkers 1 and 12 (n)
+    assert "linker=1,globule_diameter=30:accommodated>1: linker=1, globule_diameter=30: " \
+           "accommodated" in failed[0]
+    for bad in ("linker=7:accommodated>=0.9", "linker=12:accommodated=>0.9"):
+        cp = run_cli("sweep", *common, "--require", bad)
+        assert cp.returncode == 2 and len(cp.stderr.strip().splitlines()) == 1, cp.stderr
+
+
+@pytest.mark.parametrize("args, says", [
+    (("--linker", "2,,4"), "linker: '2,,4' has an empty item"),
+    (("--twist=0.05:0.02:0.01",), "twist: range '0.05:0.02:0.01' is empty"),
+    (("--linker", "1:300"), "linker: must be an integer from 1 to 200"),
+    (("--seeds", "0"), "seeds: must be at least 1"),
+])
+def test_bad_sweeps_exit_2_with_one_line_and_write_nothing(tmp_path, args, says):
+    cp = run_cli("sweep", *args, "--out", str(tmp_path / "s"))
+    assert cp.returncode == 2 and says in cp.stderr
+    assert len(cp.stderr.strip().splitlines()) == 1 and not (tmp_path / "s").exists()
+
+
+def test_dask_local_cluster_gives_the_same_verdicts(done_when, tmp_path):
+    cp = run_cli("sweep", *DONE_WHEN, "--executor", "dask", "--out", str(tmp_path / "d"),
+                 "--quiet")
+    assert cp.returncode == 0, cp.stderr
+    ours = {grid.point_key(r["params"]): r for r in lines(done_when[0] / "results.jsonl")}
+    dask = lines(tmp_path / "d" / "results.jsonl")
+    assert len(dask) == 6 and set(keys(dask)) == set(ours)
+    for r in dask:
+        assert {k: r[k] for k in VERDICT_KEYS} == {k: ours[grid.point_key(r["params"])][k]
+                                                   for k in VERDICT_KEYS}
+    assert (tmp_path / "d" / "summary.csv").read_text() == (done_when[0] / "summary.csv").read_text()
+
+
+def _worker_pids(parent: int) -> list[int]:
+    import psutil
+    try:
+        children = psutil.Process(parent).children()
+    except psutil.NoSuchProcess:
+        return []
+    return [c.pid for c in children if any("worker.py" in a for a in c.cmdline())]
+
+
+def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path):
+    out = tmp_path / "s"
+    # six runs on two workers: after the first result both are busy (a worker is idle only for
+    # the microseconds between sending a reply and receiving its next job)
+    proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "sweep", "--linker",
+                             "2,6", "--layers", "8", "--seeds", "3", "--workers", "2", "--out",
+                             str(out), "--quiet"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, cwd=ROOT)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and not (
+                (out / "results.jsonl").exists() and (out / "results.jsonl").read_text()):
+            time.sleep(0.05)
+        victim = _worker_pids(proc.pid)[0]
+        os.kill(victim, signal.SIGKILL)
+        stdout, stderr = proc.communicate(timeout=300)
+    finally:
+        proc.kill()
+    assert proc.returncode == 0, stderr
+    records = lines(out / "results.jsonl")
+    assert len(records) == 6 and len(set(keys(records))) == 6
+    assert all(r["status"] == "ok" for r in records)
+    hit = [r for r in records if r.get("errors")]
+    assert len(hit) == 1, "the killed worker was between runs; nothing to recover"
+    assert hit[0]["errors"] == [f"worker pid {victim} killed by SIGKILL"]
+    assert hit[0]["attempts"] == 2 and hit[0]["worker"]["pid"] != victim
+    assert "6 with a verdict, 0 failed" in stdout
+
+
+def test_a_killed_sweep_takes_its_workers_along_and_resumes(tmp_path):
+    import psutil
+    out = tmp_path / "s"
+    args = ("sweep", "--linker", "2,6", "--layers", "8", "--seeds", "3", "--workers", "2",
+            "--out", str(out), "--quiet")
+    proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), *args],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (
+            (out / "results.jsonl").exists() and (out / "results.jsonl").read_text()):
+        time.sleep(0.05)
+    workers = [psutil.Process(pid) for pid in _worker_pids(proc.pid)]
+    proc.kill()
+    proc.wait()
+    gone, alive = psutil.wait_procs(workers, timeout=10)
+    assert workers and not alive  # orphaned workers notice and stop, even mid-run
+    kept = lines(out / "results.jsonl")
+    assert 1 <= len(kept) < 6
+    cp = run_cli(*args, "--resume")
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert records[:len(kept)] == kept
+    assert len(records) == 6 and len(set(keys(records))) == 6
+
+
+def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
+    out = tmp_path / "s"
+    cp = run_cli("sweep", "--linker", "6", "--workers", "1", "--timeout", "0.2", "--out",
+                 str(out), "--quiet", "--require", "failed==0")
+    assert cp.returncode == 1, cp.stderr  # the sweep completed; only the gate failed
+    (record,) = lines(out / "results.jsonl")
+    assert record["status"] == "failed" and record["attempts"] == 2
+    assert record["error"].startswith("timed out after 0.2 s") and len(record["errors"]) == 2
+    assert "requirement failed: failed==0" in cp.stdout
+    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,"
+    # --retry-failed runs it again, replacing the failed line
+    cp = run_cli("sweep", "--linker", "6", "--layers", "4", "--frames", "40", "--workers", "1",
+                 "--out", str(out), "--resume", "--retry-failed", "--quiet")
+    assert cp.returncode == 0, cp.stderr
+    (record,) = [r for r in lines(out / "results.jsonl")]
+    assert record["status"] == "ok"
+
+
+def test_register_and_run_leave_the_sweep_dependencies_alone():
+    code = "\n".join([
+        "import sys, bpy", "sys.path.insert(0, sys.argv[1])", "import _load", "ff = _load.load()",
+        "ff.register()", "ff.unregister()",
+        "assert ff.cli.main(['run', '--layers', '2', '--frames', '5', '--quiet']) == 0",
+        "ff.cli.build_parser()",
+        "print('HEAVY', [m for m in ('tqdm', 'matplotlib', 'distributed', 'dask') "
+        "if m in sys.modules])"])
+    cp = subprocess.run([sys.executable, "-c", code, str(ROOT)], capture_output=True, text=True,
+                        timeout=300, cwd=ROOT)
+    assert cp.returncode == 0, cp.stderr
+    assert "HEAVY []" in cp.stdout

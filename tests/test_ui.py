@@ -1,0 +1,495 @@
+"""The sidebar: scene.fibrilfit, the operators (through bpy.ops), the modal bake, the panels' draw().
+
+The repository is loaded as `fibrilfit` and registered here; tests/test_extension.py runs the same
+operators through the installed zip.
+"""
+import ast
+import json
+import math
+import types
+
+import bpy
+import numpy as np
+import pytest
+from helpers import ROOT, snapshot_user
+from mathutils.bvhtree import BVHTree
+
+from fibrilfit import params as P, pipeline, properties, registration
+from fibrilfit.analysis import bvh_clashes
+from fibrilfit.analysis.verdict import world_matrices
+from fibrilfit.builders import find_model, model_stage
+from fibrilfit.builders.model import CLASH_COLOR, COLORS
+from fibrilfit.operators import common, simulate
+from fibrilfit.panels import sidebar
+
+STEPS = ("build_slab", "build_anchor", "build_linker", "build_globule", "replicate_layers",
+         "bake", "check_intersections")
+# Small, and with clashes on both bpy versions: the colouring has something to show.
+SMALL = dict(layers=8, linker=3, frames=80, seed=5)
+
+
+@pytest.fixture
+def ui(scene, ff):
+    """The add-on registered on an empty scene; scene.fibrilfit holds SMALL."""
+    ff.register()
+    properties.write_params(scene.fibrilfit, P.make_params(**SMALL))
+    yield scene.fibrilfit
+    ff.unregister()
+
+
+def run(op: str, *args, **kw):
+    return getattr(bpy.ops.fibrilfit, op)(*args, **kw)
+
+
+def run_steps(steps=STEPS):
+    for op in steps:
+        assert run(op) == {"FINISHED"}, op
+
+
+def stored_result(scene) -> dict:
+    return json.loads(find_model(scene).root[common.RESULT])
+
+
+# ---- scene.fibrilfit -------------------------------------------------------------------------
+
+def test_one_property_per_parameter_with_its_metadata(ui):
+    rna = ui.bl_rna.properties
+    for f in P.fields():
+        meta, prop = f.metadata, rna[f.name]
+        assert meta["doc"] in prop.description, f.name
+        if meta["kind"] is bool:
+            assert prop.type == "BOOLEAN" and prop.default == f.default
+            continue
+        assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
+        assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"], meta["max"])), f.name
+        default = tuple(prop.default_array) if f.name == "slab" else prop.default
+        assert default == pytest.approx(f.default), f.name
+        if meta["unit"] == "Å":
+            assert prop.unit == "LENGTH", f.name
+    assert (rna["twist"].subtype, rna["twist"].unit) == ("ANGLE", "ROTATION")
+    assert "4.8 Å in cross-β amyloid" in rna["rise"].description
+    for name in properties.RESULTS:
+        assert name in rna
+    assert ui.verdict == ""
+
+
+def test_panel_values_read_back_as_the_decimals_typed(ui):
+    for p in (P.DEFAULTS, P.make_params(slab=(39.5, 21, 4.75), twist=-0.0349, rise=4.7,
+                                        globule_diameter=27.3, settle=True, seed=123456)):
+        properties.write_params(ui, p)
+        assert properties.read_params(ui) == p
+        assert properties.changed_fields(ui, p) == []
+    ui.linker = 4
+    assert properties.changed_fields(ui, p) == [("linker", 6, 4)]
+
+
+def test_every_field_has_one_section():
+    shown = [f.name for sec in properties.SECTIONS for f in properties.fields_in(sec)]
+    assert sorted(shown) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))
+
+
+# ---- registration ----------------------------------------------------------------------------
+
+def registered_names():
+    return {name for name in dir(bpy.types) if name.startswith("FIBRILFIT_")}
+
+
+def test_register_unregister_three_times(scene, ff):
+    classes = registration.CLASSES
+    assert not registered_names() and not hasattr(bpy.types.Scene, "fibrilfit")
+    for _ in range(3):
+        ff.register()
+        assert all(cls.is_registered for cls in classes)
+        # bpy.types names operators and panels (a PropertyGroup only says is_registered)
+        assert registered_names() == {c.__name__ for c in classes
+                                      if not issubclass(c, bpy.types.PropertyGroup)}
+        assert _op_exists("fibrilfit.bake")
+        assert scene.fibrilfit.layers == 20
+        ff.unregister()
+        assert not any(cls.is_registered for cls in classes)
+        assert not registered_names(), registered_names()
+        assert not hasattr(bpy.types.Scene, "fibrilfit")
+        assert not _op_exists("fibrilfit.bake")
+
+
+def _op_exists(idname: str) -> bool:
+    mod, name = idname.split(".")
+    try:
+        getattr(getattr(bpy.ops, mod), name).get_rna_type()
+        return True
+    except (KeyError, AttributeError):
+        return False
+
+
+def test_a_failing_registration_raises_and_leaves_nothing(scene, ff, monkeypatch):
+    def broken():
+        raise RuntimeError("attach failed")
+    monkeypatch.setattr(properties, "attach", broken)
+    with pytest.raises(RuntimeError, match="attach failed"):
+        ff.register()
+    assert not registered_names()
+    assert not any(cls.is_registered for cls in registration.CLASSES)
+
+
+def test_no_module_name_is_hard_coded():
+    """Installed, the package is bl_ext.user_default.fibrilfit; the tests load it as fibrilfit."""
+    skip = {"tests", "bench", ".venv", ".venv42", "dist", "out", ".git"}
+    for path in ROOT.rglob("*.py"):
+        rel = path.relative_to(ROOT)
+        if rel.parts[0] in skip or rel.name in ("_load.py", "headless.py"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and node.level == 0:
+                names = [node.module or ""]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            else:
+                continue
+            for name in names:
+                assert name.split(".")[0] not in ("fibrilfit", "bl_ext"), f"{rel}: import {name}"
+
+
+# ---- operators --------------------------------------------------------------------------------
+
+def test_steps_in_order_match_the_api(ui, scene):
+    """The seven steps through bpy.ops give the verdict that pipeline.run gives for that seed."""
+    run_steps()
+    mine = stored_result(scene)
+    shown = {name: getattr(ui, name) for name in properties.RESULTS}
+    colours = [tuple(round(c, 4) for c in ob.color) for ob in find_model(scene).globules]
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)  # frees `scene` and `ui`
+    api = pipeline.run(P.make_params(**SMALL), bpy.context.scene)
+    for key in ("verdict", "gravity", "intersecting_faces", "clashing_pairs", "max_bond_stretch",
+                "max_bond_stretch_bake", "frames_simulated", "globule_centres", "accommodated",
+                "params", "seed"):
+        assert mine[key] == api[key], key
+    assert bpy.context.scene.fibrilfit.verdict == ""  # a new scene: nothing recorded in it
+    assert shown["verdict"] == api["verdict"] == "intersection"
+    assert shown["clash_count"] == len(api["clashing_pairs"]) > 0
+    assert shown["max_bond_stretch"] == pytest.approx(api["max_bond_stretch"], abs=1e-6)
+    assert (shown["linker_intact"], shown["accommodated"]) == (api["linker_intact"],
+                                                               api["accommodated"])
+    red = {k for pair in api["clashing_pairs"] for k in pair[:2]}
+    expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in red else COLORS["globule"]))
+                for k in range(SMALL["layers"])]
+    assert colours == expected
+
+
+def test_a_step_run_again_replaces_its_work_and_run_all_leaves_one_model(ui, scene, user_objects):
+    before = snapshot_user(user_objects)
+    users = len(user_objects)
+    for op, objects in (("build_slab", 1), ("build_slab", 1), ("build_anchor", 2),
+                        ("build_linker", 2 + 2 + 2), ("build_globule", 8), ("build_globule", 8)):
+        run(op)
+        assert len(scene.objects) == users + objects, op
+    run("replicate_layers")
+    whole = len(scene.objects)
+    assert whole == users + SMALL["layers"] * 8
+    run("build_anchor")  # back to layer 0's slab and anchor: the later steps' work is gone
+    assert len(scene.objects) == users + 2 and model_stage(scene) == "anchor"
+    run_steps(STEPS[2:])
+    assert len(scene.objects) == whole
+    run("run_all")
+    assert len(scene.objects) == whole and ui.verdict
+    assert run("clear") == {"FINISHED"}
+    assert set(scene.objects) == set(user_objects.values())
+    assert snapshot_user(user_objects) == before
+    assert ui.verdict == "" and model_stage(scene) == ""
+
+
+def test_poll_greys_out_a_step_whose_prerequisite_is_missing(ui):
+    needs = {"build_anchor": "slab", "build_linker": "anchor", "build_globule": "linker",
+             "replicate_layers": "globule", "bake": "Replicate layers",
+             "check_intersections": "Bake", "join_globules": "Bake", "clear": "no FibrilFit model"}
+    for op, words in needs.items():
+        assert not getattr(bpy.ops.fibrilfit, op).poll(), op
+        with pytest.raises(RuntimeError, match=words):
+            run(op)
+    assert bpy.ops.fibrilfit.build_slab.poll() and bpy.ops.fibrilfit.run_all.poll()
+
+
+def test_bad_values_are_reported_and_cancel(ui, scene):
+    run_steps(STEPS[:5])
+    names = sorted(o.name for o in scene.objects)
+    ui.residue_spacing = 1.0  # below the residue radius 1.75
+    with pytest.raises(RuntimeError, match=r"residue_spacing: must be at least"):
+        run("build_slab")
+    with pytest.raises(RuntimeError, match=r"residue_spacing: must be at least"):
+        run("run_all")
+    assert sorted(o.name for o in scene.objects) == names
+
+
+def test_a_scene_simulating_the_users_bodies_is_refused(ui, scene, user_objects):
+    with bpy.context.temp_override(scene=scene):
+        bpy.ops.rigidbody.world_add()
+    mine = bpy.data.collections.new("my bodies")
+    mine.objects.link(user_objects["Cube"])
+    scene.rigidbody_world.collection = mine
+    for op in ("build_slab", "run_all"):
+        with pytest.raises(RuntimeError, match="already simulates your own rigid bodies"):
+            run(op)
+    assert set(scene.objects) == set(user_objects.values())
+    assert scene.rigidbody_world.collection == mine
+
+
+def test_an_unexpected_error_is_one_line_and_cancels(ui, scene, monkeypatch, capsys):
+    run_steps(STEPS[:6])
+
+    def broken(model, scene=None):
+        raise ZeroDivisionError("boom")
+    monkeypatch.setattr(pipeline, "check", broken)
+    with pytest.raises(RuntimeError) as err:
+        run("check_intersections")
+    message = str(err.value).strip()
+    assert "\n" not in message and "FibrilFit failed: ZeroDivisionError('boom')" in message
+    assert "Traceback" in capsys.readouterr().err  # for a bug report, in the system console
+    assert model_stage(scene) == "baked" and ui.verdict == ""
+
+
+def test_a_changed_build_value_must_be_rebuilt_before_baking(ui, scene):
+    run_steps(STEPS[:5])
+    ui.linker = 4
+    with pytest.raises(RuntimeError, match="linker changed from 3 to 4 .*build the model again"):
+        run("bake")
+    assert model_stage(scene) == "layers"
+    ui.linker = 3
+    run("bake")
+    ui.gravity = 0.2
+    with pytest.raises(RuntimeError, match="gravity changed .* Bake again"):
+        run("check_intersections")
+    ui.gravity = 0.5
+    ui.stretch_tolerance = 10.0  # a check setting: applies without a new bake
+    run("check_intersections")
+    assert ui.linker_intact
+    ui.stretch_tolerance = 0.0
+    run("check_intersections")
+    assert not ui.linker_intact and not ui.accommodated
+
+
+def test_colours_follow_each_check(ui, scene):
+    run_steps()
+    for exclude in (0, 2, 0):
+        ui.score_exclude = exclude
+        run("check_intersections")
+        result = stored_result(scene)
+        red = {k for pair in result["clashing_pairs"] for k in pair[:2]}
+        assert all(exclude <= k < SMALL["layers"] - exclude for k in red)
+        for k, ob in enumerate(find_model(scene).globules):
+            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in red else COLORS["globule"])
+    run("bake")  # the old verdict and colours no longer apply
+    assert ui.verdict == "" and model_stage(scene) == "baked"
+    assert all(tuple(ob.color) == pytest.approx(COLORS["globule"])
+               for ob in find_model(scene).globules)
+
+
+def test_join_globules_adds_a_mesh_and_leaves_the_simulation_intact(ui, scene):
+    run_steps()
+    model = find_model(scene)
+    last = scene.frame_current
+    frames = (1, 10, last)
+
+    def positions():
+        out = []
+        for f in frames:
+            scene.frame_set(f)
+            out.append(np.array([ob.matrix_world.translation for ob in model.globules]))
+        return out
+
+    before = positions()
+    for _ in range(2):  # run again: still one joined copy
+        assert run("join_globules") == {"FINISHED"}
+    joined = [ob for ob in scene.objects if ob.get("fibrilfit") == "joined"]
+    assert len(joined) == 1
+    mesh = joined[0].data
+    assert len(mesh.polygons) == SMALL["layers"] * P.GLOBULE_SEGMENTS * P.GLOBULE_RINGS
+    assert joined[0].name not in scene.rigidbody_world.collection.objects
+    for a, b in zip(before, positions()):
+        np.testing.assert_array_equal(a, b)
+    # Mesh Analysis on the joined copy sees the check's clashes (faces of one globule excluded).
+    layer = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.attributes["fibrilfit_layer"].data.foreach_get("value", layer)
+    tree = BVHTree.FromPolygons([v.co for v in mesh.vertices], [p.vertices for p in mesh.polygons],
+                                epsilon=1e-5)
+    between = [(a, b) for a, b in tree.overlap(tree) if layer[a] != layer[b]]
+    result = stored_result(scene)
+    assert len({f for pair in between for f in pair}) == result["intersecting_faces"] > 0
+    pairs = {tuple(sorted((int(layer[a]), int(layer[b])))) for a, b in between}
+    assert pairs == bvh_clashes(model.globules[0].data, world_matrices(model.globules))[1]
+    assert pairs <= {tuple(p[:2]) for p in result["clashing_pairs"]}
+    run("replicate_layers")  # a rebuild removes the joined copy with the model
+    assert not [ob for ob in scene.objects if ob.get("fibrilfit") == "joined"]
+    assert not [m for m in bpy.data.meshes if m.get("fibrilfit") == "joined"]
+
+
+def test_invoke_in_the_background_bakes_at_once(ui, scene):
+    run_steps(STEPS[:5])
+    assert bpy.app.background
+    assert run("bake", "INVOKE_DEFAULT") == {"FINISHED"}
+    assert model_stage(scene) == "baked"
+    assert run("run_all", "INVOKE_DEFAULT") == {"FINISHED"} and ui.verdict
+
+
+# ---- the modal bake, driven as Blender's event loop would --------------------------------
+
+def detached(op_class):
+    """The operator's own methods on a plain object: bpy-as-module has no event loop to call
+    modal(), and an Operator cannot be instantiated from Python."""
+    ns = {}
+    for klass in reversed(op_class.__mro__):
+        if klass.__module__.startswith(registration.__package__):
+            ns.update({k: v for k, v in vars(klass).items() if not k.startswith("__")})
+    op = type("Detached" + op_class.__name__, (), ns)()
+    op.reports = []
+    op.report = lambda kind, text: op.reports.append((set(kind), text))
+    op.TICK_SECONDS = 0.0  # one frame per timer tick
+    return op
+
+
+def event(kind):
+    return types.SimpleNamespace(type=kind, value="PRESS")
+
+
+def test_esc_cancels_a_modal_bake_and_leaves_a_usable_scene(ui, scene):
+    run_steps(STEPS[:5])
+    names = sorted(o.name for o in scene.objects)
+    op = detached(simulate.FIBRILFIT_OT_bake)
+    op.start(bpy.context)
+    for _ in range(3):
+        assert op.modal(bpy.context, event("TIMER")) == {"RUNNING_MODAL"}
+    assert op.modal(bpy.context, event("MIDDLEMOUSE")) == {"PASS_THROUGH"}
+    assert op.modal(bpy.context, event("A")) == {"RUNNING_MODAL"}  # no edits mid-bake
+    assert op.modal(bpy.context, event("ESC")) == {"CANCELLED"}
+    assert op.reports and "cancelled at frame 3 of 80" in op.reports[-1][1]
+    assert model_stage(scene) == "layers" and ui.verdict == ""
+    assert sorted(o.name for o in scene.objects) == names
+    assert bpy.ops.fibrilfit.bake.poll()
+    run_steps(("bake", "check_intersections"))  # and it bakes again to the end
+    assert ui.verdict
+
+
+def test_a_modal_run_all_judges_like_the_api(ui, scene):
+    op = detached(simulate.FIBRILFIT_OT_run_all)
+    op.start(bpy.context)
+    ticks = 0
+    while (state := op.modal(bpy.context, event("TIMER"))) == {"RUNNING_MODAL"}:
+        ticks += 1
+    assert state == {"FINISHED"} and ticks == SMALL["frames"]
+    mine = stored_result(scene)
+    bpy.ops.wm.read_factory_settings(use_empty=True)  # frees `scene` and `ui`
+    api = pipeline.run(P.make_params(**SMALL), bpy.context.scene)
+    for key in ("verdict", "clashing_pairs", "max_bond_stretch", "max_bond_stretch_bake",
+                "globule_centres"):
+        assert mine[key] == api[key], key
+
+
+# ---- the panels -------------------------------------------------------------------------------
+
+UI_RNA = bpy.types.UILayout.bl_rna
+
+
+class FakeLayout:
+    """Stands in for UILayout, which only exists while Blender draws a region (never in
+    bpy-as-module). Strict: it checks every argument and attribute against UILayout's RNA."""
+
+    def __init__(self, log):
+        object.__setattr__(self, "log", log)
+
+    def __setattr__(self, name, value):
+        assert name in UI_RNA.properties, f"UILayout has no attribute {name}"
+
+    def _check(self, function, kw):
+        params = UI_RNA.functions[function].parameters
+        for key, value in kw.items():
+            assert key in params, f"{function}() has no argument {key}"
+            if key == "icon":
+                assert value in params["icon"].enum_items, f"no icon {value}"
+
+    def _sub(self, function, kw):
+        self._check(function, kw)
+        return FakeLayout(self.log)
+
+    def row(self, **kw):
+        return self._sub("row", kw)
+
+    def column(self, **kw):
+        return self._sub("column", kw)
+
+    def box(self):
+        return FakeLayout(self.log)
+
+    def separator(self, **kw):
+        self._check("separator", kw)
+
+    def label(self, **kw):
+        self._check("label", kw)
+        self.log.append(("label", kw.get("text", "")))
+
+    def prop(self, data, name, **kw):
+        self._check("prop", kw)
+        assert name in data.bl_rna.properties, f"{data} has no property {name}"
+        self.log.append(("prop", name))
+
+    def operator(self, idname, **kw):
+        self._check("operator", kw)
+        assert _op_exists(idname), idname
+        self.log.append(("operator", idname))
+        return types.SimpleNamespace()
+
+
+def draw_all(context):
+    """Every panel's draw(); returns what each drew."""
+    drawn = {}
+    for cls in sidebar.CLASSES:
+        log = []
+        panel = types.SimpleNamespace(layout=FakeLayout(log), section=getattr(cls, "section", ""))
+        cls.draw(panel, context)
+        drawn[cls.__name__] = log
+    return drawn
+
+
+def test_panels_are_in_the_fibrilfit_tab_in_the_tutorials_order(ui):
+    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS]
+    for cls in sidebar.CLASSES:
+        assert cls.is_registered
+        assert (cls.bl_space_type, cls.bl_region_type, cls.bl_category) == ("VIEW_3D", "UI",
+                                                                             "FibrilFit")
+
+
+def test_panels_draw_in_every_state(ui, scene):
+    states = {}
+    for state, steps in (("", ()), ("slab", STEPS[:1]), ("layers", STEPS[1:5]),
+                         ("baked", STEPS[5:6]), ("checked", STEPS[6:])):
+        run_steps(steps)
+        assert model_stage(scene) == state
+        states[state] = draw_all(bpy.context)
+    for drawn in states.values():  # every parameter and every step shows, once
+        props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
+        assert sorted(props) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))
+        ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
+        assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "run_all", "clear")}
+    main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
+            for state, drawn in states.items()}
+    assert any("No model yet" in t for t in main[""])
+    assert any("Baked" in t for t in main["baked"])
+    assert f"Verdict: {ui.verdict}" in main["checked"]
+    assert not any(t.startswith("Verdict") for t in main["baked"])
+    ui.layers = 9  # the panel now says the model is out of date
+    labels = [t for kind, t in draw_all(bpy.context)["FIBRILFIT_PT_main"] if kind == "label"]
+    assert any("Changed since the build: layers" in t for t in labels)
+
+
+def test_check_panel_offers_object_colours_in_solid_view(ui, scene):
+    shading = scene.display.shading  # a real View3DShading, as a 3D View's space has
+    shading.type, shading.color_type = "SOLID", "MATERIAL"
+    context = types.SimpleNamespace(scene=scene, space_data=types.SimpleNamespace(shading=shading))
+    assert ("prop", "color_type") in draw_all(context)["FIBRILFIT_PT_check"]
+    shading.color_type = "OBJECT"
+    assert ("prop", "color_type") not in draw_all(context)["FIBRILFIT_PT_check"]
+
+
+def test_twist_shows_in_degrees(ui):
+    ui.twist = math.radians(2.0)
+    assert properties.read_params(ui).twist == pytest.approx(math.radians(2.0), rel=1e-6)
+    assert bpy.utils.units.to_string("METRIC", "ROTATION", ui.twist).startswith("2")

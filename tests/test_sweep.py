@@ -17,8 +17,6 @@ from fibrilfit.sweep.stats import wilson
 
 # The issue's done-when sweep.
 DONE_WHEN = ("--linker", "1,12", "--layers", "8", "--seeds", "3", "--workers", "2")
-VERDICT_KEYS = ("verdict", "gravity", "clashing_pairs", "max_bond_stretch", "accommodated",
-                "frames_simulated")
 
 
 def lines(path):
@@ -201,11 +199,16 @@ def test_done_when_sweep_on_two_processes(done_when):
     assert "sweep: 100%" in cp.stderr  # the progress bar
 
 
+def same_run(record: dict) -> dict:
+    """A result without what legitimately differs between two runs of one point."""
+    return {k: v for k, v in record.items() if k not in ("timings_s", "worker")}
+
+
 def test_workers_give_the_same_result_as_a_run_in_this_process(done_when, scene):
     out, _ = done_when
     for r in lines(out / "results.jsonl")[:2]:
-        here = pipeline.run(P.make_params(**r["params"]), scene)
-        assert {k: here[k] for k in VERDICT_KEYS} == {k: r[k] for k in VERDICT_KEYS}
+        here = json.loads(json.dumps(pipeline.run(P.make_params(**r["params"]), scene)))
+        assert same_run(here) == {k: v for k, v in same_run(r).items() if k in here}
 
 
 def test_resume_does_no_work_twice(done_when, tmp_path):
@@ -299,9 +302,8 @@ def test_dask_local_cluster_gives_the_same_verdicts(done_when, tmp_path):
     ours = {grid.point_key(r["params"]): r for r in lines(done_when[0] / "results.jsonl")}
     dask = lines(tmp_path / "d" / "results.jsonl")
     assert len(dask) == 6 and set(keys(dask)) == set(ours)
-    for r in dask:
-        assert {k: r[k] for k in VERDICT_KEYS} == {k: ours[grid.point_key(r["params"])][k]
-                                                   for k in VERDICT_KEYS}
+    for r in dask:  # the whole result, not just the verdict: only timings and the worker differ
+        assert same_run(r) == same_run(ours[grid.point_key(r["params"])])
     assert (tmp_path / "d" / "summary.csv").read_text() == (done_when[0] / "summary.csv").read_text()
 
 

@@ -81,7 +81,8 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
     np.maximum.at(face_radius, owner, np.linalg.norm(verts[loops] - centroid[owner], axis=1))
     linear, centres = matrices[:, :3, :3], matrices[:, :3, 3]
     stretch = np.linalg.svd(linear, compute_uv=False)  # (n, 3), largest first
-    singular = stretch[:, -1] < 1e-9
+    singular = stretch[:, -1] < 1e-9  # flat globules: keep all their faces
+    smallest = np.where(singular, 1.0, stretch[:, -1])
     inverse = np.linalg.inv(np.where(singular[:, None, None], np.eye(3), linear))
     reach = bounding_radius(mesh, matrices) + stretch[:, 0].max() * face_radius + _margin(centres)
     keep = np.zeros((len(matrices), len(starts)), dtype=bool)
@@ -92,7 +93,7 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
         other = np.concatenate([part[:, 1], part[:, 0]])
         q = np.einsum("nij,nj->ni", inverse[rows], centres[other] - centres[rows])
         dist2 = (q * q).sum(1)[:, None] - 2.0 * q @ centroid.T + (centroid * centroid).sum(1)
-        near = dist2 <= (reach[None, :] / stretch[rows, -1:]) ** 2
+        near = dist2 <= (reach[None, :] / smallest[rows, None]) ** 2
         order = np.argsort(rows, kind="stable")
         rows, near = rows[order], near[order]
         first = np.flatnonzero(np.r_[True, rows[1:] != rows[:-1]])

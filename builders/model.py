@@ -196,8 +196,8 @@ class _LayerBuilder:
         self.angle, self.height = layer_transforms(p)
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
         self.mesh = {}
-        # (layer, index) of each object, per part, in the order they were linked: place() sets
-        # transforms and colours in bulk afterwards (one foreach_set each, not per object).
+        # Each object with its (layer, index), per part, in the order they were linked: place()
+        # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
         self.placed = {role: [] for role in PART_COLLECTIONS}
 
     def add(self, part: str, k: int) -> None:
@@ -219,7 +219,7 @@ class _LayerBuilder:
     def _slab(self, k):
         slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
                      self.bodies, "PASSIVE", "BOX")
-        self.placed["slab"].append((k, 0))
+        self.placed["slab"].append((slab, k, 0))
         self.model.slabs.append(slab)
 
     def _member(self, k, i):
@@ -229,7 +229,7 @@ class _LayerBuilder:
         ob = _body(f"FF{k:04d} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
         ob[INDEX] = i
-        self.placed[role].append((k, i))
+        self.placed[role].append((ob, k, i))
         chain = self.model.chain
         if i == 0:
             chain.append([])
@@ -243,7 +243,7 @@ class _LayerBuilder:
         members = self.model.chain[k]
         empty = tag(bpy.data.objects.new(f"FF{k:04d} bond {i}", None), "bond")
         empty[LAYER], empty[INDEX] = k, i
-        self.placed["bond"].append((k, i))
+        self.placed["bond"].append((empty, k, i))
         self.parts["bond"].objects.link(empty)
         self.bonds.objects.link(empty)
         rbc = empty.rigid_body_constraint
@@ -269,8 +269,8 @@ class _LayerBuilder:
         a seed); only their transforms come later, with the same float32 values as one by one.
         """
         for role, placed in self.placed.items():
-            objects = self.parts[role].objects
-            k, i = np.array(placed, dtype=np.intp).reshape(-1, 2).T
+            objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
+            k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
             if role == "slab":
                 loc = np.zeros((len(k), 3))
                 loc[:, 2] = self.height[k]
@@ -300,6 +300,15 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
             if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
                 members[-1].color = colour
     return sorted(red)
+
+
+def _in_order(coll, objects):
+    """`coll.objects`, checked (one foreach_get) to hold exactly `objects`, in that order."""
+    uids = np.empty(len(coll.objects), dtype=np.int64)
+    coll.objects.foreach_get("session_uid", uids)
+    if not np.array_equal(uids, [ob.session_uid for ob in objects]):
+        raise RuntimeError(f"collection '{coll.name}' changed while the model was being built")
+    return coll.objects
 
 
 def _place(objects, loc: np.ndarray, rot_z: np.ndarray) -> None:

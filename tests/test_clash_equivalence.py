@@ -108,3 +108,11 @@ def test_only_faces_facing_a_partner_go_into_the_trees(globule_mesh):
     keep = facing_faces(globule_mesh, mats, np.array([[0, 1], [1, 2]]))
     assert 0 < keep[0].sum() < keep[1].sum() < len(globule_mesh.polygons) / 2
     assert bvh_clashes(globule_mesh, mats) == reference(globule_mesh, mats)
+
+
+def test_a_flattened_globule_matches(globule_mesh):
+    """A matrix with no inverse (scale 0 on one axis): all its faces are kept."""
+    mats = np.array([np.eye(4), np.eye(4), np.eye(4)])
+    mats[0, 2, 2] = 0.0
+    mats[1, 0, 3], mats[2, 0, 3] = 20.0, 45.0
+    assert bvh_clashes(globule_mesh, mats) == reference(globule_mesh, mats)

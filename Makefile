@@ -5,6 +5,7 @@ BPY_LTS ?= 4.2.0
 VENV ?= .venv
 VENV_LTS ?= .venv42
 PYTEST_ARGS ?=
+BENCH_ARGS ?=
 # rootdir=tests: the repository root is itself a package (the extension); without it pytest 8
 # imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
 PYTEST := -m pytest --rootdir=tests tests
@@ -42,6 +43,14 @@ extension: $(VENV)/.installed
 	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate .
 	mkdir -p dist
 	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir . --output-dir dist
+
+$(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
+	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt
+	touch $@
+
+# Speed and memory side by side with ../shared/bench's baselines; see BENCHMARKS.md.
+bench: $(VENV)/.bench-installed
+	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
 
 clean:
 	rm -rf out dist .pytest_cache

@@ -11,8 +11,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 # Above this many objects a build is refused unless forced: past it a bake takes hours and
-# the scene needs gigabytes (measured ~1.4 KiB of Blender data per object, see BENCHMARKS.md).
+# the scene needs gigabytes.
 MAX_OBJECTS_UNFORCED = 60_000
+# Resident memory per object once built, evaluated and simulated for a frame: measured 31.6 KiB
+# (bpy 5.0.1, 200 -> 2000 layers; only 3.8 KiB right after the build, before the depsgraph
+# copies every object). `make bench`, see BENCHMARKS.md.
+MEMORY_PER_OBJECT_KIB = 32
 GLOBULE_SEGMENTS, GLOBULE_RINGS = 32, 16
 RESIDUE_SEGMENTS, RESIDUE_RINGS = 8, 4
 
@@ -223,7 +227,7 @@ def _check_combination(p: Params, force: bool) -> None:
     if n > MAX_OBJECTS_UNFORCED and not force:
         most = MAX_OBJECTS_UNFORCED // (2 * p.linker + 2)
         raise ParamError("layers", f"{p.layers} layers × linker {p.linker} would make {n} objects "
-                                   f"(~{n * 1.4 / 1024:.0f} MiB); at most {most} layers without "
+                                   f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
 
 

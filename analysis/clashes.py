@@ -1,6 +1,10 @@
 """Which globules intersect: the tutorial's BVH self-overlap, and an analytic sphere test."""
 from __future__ import annotations
 
+import contextlib
+import gc
+import itertools
+
 import numpy as np
 from mathutils.bvhtree import BVHTree
 
@@ -21,39 +25,136 @@ def mesh_arrays(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def joined_globules(mesh, matrices: np.ndarray) -> tuple[np.ndarray, list]:
     """All globules joined in world space: the tutorial's join, without touching the objects.
 
-    `matrices`: (n, 4, 4) world matrices of globules sharing `mesh`.
+    `matrices`: (n, 4, 4) world matrices of globules sharing `mesh`. Returns the vertices
+    (n, v, 3) and the mesh's polygons as vertex-index lists (the same for every globule).
     """
     verts, starts, loops = mesh_arrays(mesh)
     world = np.einsum("nij,vj->nvi", matrices[:, :3, :3], verts) + matrices[:, None, :3, 3]
-    bounds = np.append(starts, len(loops))
-    polys = [loops[a:b] for a, b in zip(bounds[:-1], bounds[1:])]
-    offsets = np.arange(len(matrices))[:, None] * len(verts)
-    all_polys = [(poly + off).tolist() for off in offsets[:, 0] for poly in polys]
-    return world.reshape(-1, 3), all_polys
+    polys = [p.tolist() for p in np.split(loops, starts[1:])] if len(starts) else []
+    return world, polys
+
+
+def bounding_radius(mesh, matrices: np.ndarray) -> float:
+    """A radius about each object's origin that holds every globule's vertices, in world units."""
+    verts = mesh_arrays(mesh)[0]
+    local = float(np.linalg.norm(verts, axis=1).max()) if len(verts) else 0.0
+    return local * _largest_scale(matrices)
+
+
+def _largest_scale(matrices: np.ndarray) -> float:
+    return float(np.linalg.norm(matrices[:, :3, :3], ord=2, axis=(1, 2)).max()) if len(matrices) else 0.0
+
+
+def _margin(centres: np.ndarray) -> float:
+    """Slack for float32 rounding of world coordinates (and the tree's epsilon)."""
+    return 1e-3 + 1e-6 * float(np.abs(centres).max(initial=0.0)) + BVH_EPSILON
+
+
+def candidate_pairs(mesh, matrices: np.ndarray) -> np.ndarray:
+    """Globule pairs (i < j) whose bounding spheres meet: the only ones whose faces can overlap.
+
+    A margin covers float32 rounding of world coordinates, so no overlapping pair is missed.
+    """
+    centres = matrices[:, :3, 3]
+    if len(centres) < 2:
+        return np.empty((0, 2), dtype=np.intp)
+    reach = 2.0 * bounding_radius(mesh, matrices) + _margin(centres)
+    a, b, _ = close_pairs(centres, reach)
+    return np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+
+
+def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 4096) -> np.ndarray:
+    """Which faces of each globule can reach the other globule of one of its `pairs`: (n, faces).
+
+    A face can only cross a face of globule j where it enters j's bounding sphere, so a face
+    whose own bounding sphere (about its centroid) stays outside every partner's is left out.
+    Distances are taken in each globule's own frame (its partner's centre mapped back), and
+    divided by the matrix's smallest stretch, so scaled globules stay on the safe side.
+    """
+    verts, starts, loops = mesh_arrays(mesh)
+    sizes = np.diff(np.append(starts, len(loops)))
+    owner = np.repeat(np.arange(len(starts)), sizes)
+    centroid = np.zeros((len(starts), 3))
+    np.add.at(centroid, owner, verts[loops])
+    centroid /= sizes[:, None]
+    face_radius = np.zeros(len(starts))
+    np.maximum.at(face_radius, owner, np.linalg.norm(verts[loops] - centroid[owner], axis=1))
+    linear, centres = matrices[:, :3, :3], matrices[:, :3, 3]
+    stretch = np.linalg.svd(linear, compute_uv=False)  # (n, 3), largest first
+    singular = stretch[:, -1] < 1e-9  # flat globules: keep all their faces
+    smallest = np.where(singular, 1.0, stretch[:, -1])
+    inverse = np.linalg.inv(np.where(singular[:, None, None], np.eye(3), linear))
+    reach = bounding_radius(mesh, matrices) + stretch[:, 0].max() * face_radius + _margin(centres)
+    keep = np.zeros((len(matrices), len(starts)), dtype=bool)
+    keep[singular] = True
+    for lo in range(0, len(pairs), chunk):
+        part = pairs[lo:lo + chunk]
+        rows = np.concatenate([part[:, 0], part[:, 1]])
+        other = np.concatenate([part[:, 1], part[:, 0]])
+        q = np.einsum("nij,nj->ni", inverse[rows], centres[other] - centres[rows])
+        dist2 = (q * q).sum(1)[:, None] - 2.0 * q @ centroid.T + (centroid * centroid).sum(1)
+        near = dist2 <= (reach[None, :] / smallest[rows, None]) ** 2
+        order = np.argsort(rows, kind="stable")
+        rows, near = rows[order], near[order]
+        first = np.flatnonzero(np.r_[True, rows[1:] != rows[:-1]])
+        keep[rows[first]] |= np.logical_or.reduceat(near, first, axis=0)
+    return keep
 
 
 def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None
                 ) -> tuple[int, set[tuple[int, int]]]:
-    """BVH self-overlap of the joined globules (epsilon 1e-5), as in the tutorial's step 8.
+    """BVH overlap of the globules in world space (epsilon 1e-5), as in the tutorial's step 8.
 
     Returns the number of faces in any overlapping pair and the set of globule pairs (i < j)
     whose faces overlap. Faces of one globule never count against each other. With `keep`
     (a boolean per globule), only pairs with at least one kept globule count.
+
+    The tutorial joins every globule into one tree and overlaps it with itself. Here only
+    pairs whose bounding spheres meet are overlapped, each globule in its own tree holding the
+    faces that can reach one of its partners (same world coordinates, same polygons, same
+    epsilon): the same faces and pairs, without testing each globule against itself, against
+    far-away globules, or with its far side.
     """
-    if len(matrices) == 0:
-        return 0, set()
-    verts, polys = joined_globules(mesh, matrices)
-    tree = BVHTree.FromPolygons(verts.tolist(), polys, epsilon=BVH_EPSILON)
-    overlap = np.array(tree.overlap(tree), dtype=np.int64).reshape(-1, 2)
-    per = len(mesh.polygons)
-    owner = overlap // per
-    between = owner[:, 0] != owner[:, 1]
+    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    candidates = candidate_pairs(mesh, matrices)
     if keep is not None:
         keep = np.asarray(keep, dtype=bool)
-        between &= keep[owner[:, 0]] | keep[owner[:, 1]]
-    faces = np.unique(overlap[between])
-    pairs = {(int(min(a, b)), int(max(a, b))) for a, b in owner[between]}
-    return int(faces.size), pairs
+        candidates = candidates[keep[candidates[:, 0]] | keep[candidates[:, 1]]]
+    if not len(candidates):
+        return 0, set()
+    involved, local = np.unique(candidates, return_inverse=True)
+    local = local.reshape(-1, 2)  # the pairs, numbering only the globules involved
+    sub = matrices[involved]
+    keep = facing_faces(mesh, sub, local)
+    world, polys = joined_globules(mesh, sub)
+    per = len(polys)
+    faces, pairs, trees, kept = [], set(), {}, {}
+    with _gc_paused():  # thousands of small lists: the cyclic GC would rescan them again and again
+        for g in np.flatnonzero(keep.any(axis=1)).tolist():
+            kept[g] = np.flatnonzero(keep[g])
+            trees[g] = BVHTree.FromPolygons(world[g].tolist(), [polys[f] for f in kept[g]],
+                                            epsilon=BVH_EPSILON)
+        for i, j in local.tolist():
+            if i not in trees or j not in trees:
+                continue
+            hits = trees[i].overlap(trees[j])
+            if hits:
+                gi, gj = int(involved[i]), int(involved[j])
+                pairs.add((gi, gj))
+                hits = np.array(hits, dtype=np.int64)
+                faces += [gi * per + kept[i][hits[:, 0]], gj * per + kept[j][hits[:, 1]]]
+    return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
+
+
+@contextlib.contextmanager
+def _gc_paused():
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def grazing_depth(mesh) -> float:
@@ -84,18 +185,17 @@ _FORWARD = np.array([(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for 
                      if (dx, dy, dz) > (0, 0, 0)], dtype=np.int64)
 
 
-def sphere_clashes(centres: np.ndarray, radius: float, tolerance: float = 1e-3
-                   ) -> list[tuple[int, int, float]]:
-    """Pairs (i < j) of equal spheres closer than 2·radius − tolerance, with overlap depth (Å).
+def close_pairs(centres: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Index pairs (a, b) of points closer than `reach`, and their distances.
 
-    A uniform grid of cells one reach wide: only spheres in the same or neighbouring cells are
-    compared, so the cost is O(n log n + close pairs) however the centres are spread, not O(n²).
+    A uniform grid of cells one reach wide: only points in the same or neighbouring cells are
+    compared, so the cost is O(n log n + close pairs) however the points are spread, not O(n²).
     """
     centres = np.asarray(centres, dtype=float).reshape(-1, 3)
     n = len(centres)
-    reach = 2.0 * radius - tolerance
     if n < 2 or reach <= 0:
-        return []
+        empty = np.empty(0, dtype=np.intp)
+        return empty, empty, np.empty(0)
     cell = np.floor((centres - centres.min(axis=0)) / reach).astype(np.int64) + 1
     dims = cell.max(axis=0) + 2  # a margin of one empty cell on each side: no wrap-around
     strides = np.array([dims[1] * dims[2], dims[2], 1], dtype=np.int64)
@@ -118,11 +218,23 @@ def sphere_clashes(centres: np.ndarray, radius: float, tolerance: float = 1e-3
         firsts.append(first)
         seconds.append(np.repeat(lo, counts) + within)
     if not firsts:
-        return []
+        empty = np.empty(0, dtype=np.intp)
+        return empty, empty, np.empty(0)
     a, b = order[np.concatenate(firsts)], order[np.concatenate(seconds)]
     dist = np.linalg.norm(centres[a] - centres[b], axis=1)
     hit = dist < reach
-    a, b, depth = a[hit], b[hit], 2.0 * radius - dist[hit]
+    return a[hit], b[hit], dist[hit]
+
+
+def sphere_clashes(centres: np.ndarray, radius: float, tolerance: float = 1e-3
+                   ) -> list[tuple[int, int, float]]:
+    """Pairs of equal spheres closer than 2·radius − tolerance, with their overlap depth (Å).
+
+    Found through the grid of close_pairs, not all pairs.
+    """
+    reach = 2.0 * radius - tolerance
+    a, b, dist = close_pairs(centres, reach)
+    depth = 2.0 * radius - dist
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     by = np.lexsort((hi, lo))
     return list(zip(lo[by].tolist(), hi[by].tolist(), depth[by].tolist()))

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..builders.readback import MatrixReader
 from .clashes import bvh_clashes, grazing_depth, sphere_clashes
 from .stretch import bond_stretch
 
@@ -14,12 +15,12 @@ TOUCH_SLACK = 1e-4
 def chain_positions(model) -> np.ndarray:
     """World centres of every chain member now, shape (layers, linker + 1, 3)."""
     obs = [ob for members in model.chain for ob in members]
-    flat = np.array([ob.matrix_world.translation for ob in obs], dtype=float)
-    return flat.reshape(len(model.chain), -1, 3)
+    return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
 
 
-def world_matrices(objects) -> np.ndarray:
-    return np.array([np.array(ob.matrix_world) for ob in objects], dtype=float).reshape(-1, 4, 4)
+def world_matrices(objects, collections=()) -> np.ndarray:
+    """(n, 4, 4) world matrices, read with foreach_get from `collections` if they hold them all."""
+    return MatrixReader(objects, collections).matrices()
 
 
 def scored_range(p) -> tuple[int, int]:
@@ -64,7 +65,8 @@ def check_model(model) -> dict:
     def depth(i, j):
         return 2 * p.globule_radius - float(np.linalg.norm(centres[i] - centres[j]))
 
-    faces, bvh_pairs = bvh_clashes(mesh, world_matrices(globules), keep=scored)
+    faces, bvh_pairs = bvh_clashes(mesh, world_matrices(globules, model.root.children),
+                                   keep=scored)
     spheres = [(i, j, d) for i, j, d in sphere_clashes(centres, p.globule_radius, band)
                if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}

@@ -124,9 +124,10 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
         for k in range(1, model.params.layers):
             for part in PARTS:
                 builder.add(part, k)
+    builder.place()
+    # No view_layer.update() here: place() sets valid world matrices, and the depsgraph is
+    # built once, on first use (the bake's first frame, or the viewport's next redraw).
     set_stage(model, upto)
-    view_layer = bpy.context.view_layer if scene == bpy.context.scene else scene.view_layers[0]
-    view_layer.update()  # once, so world matrices are valid before the first frame
     return model
 
 
@@ -195,6 +196,9 @@ class _LayerBuilder:
         self.angle, self.height = layer_transforms(p)
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
         self.mesh = {}
+        # Each object with its (layer, index), per part, in the order they were linked: place()
+        # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
+        self.placed = {role: [] for role in PART_COLLECTIONS}
 
     def add(self, part: str, k: int) -> None:
         getattr(self, "_" + part)(k)
@@ -215,8 +219,7 @@ class _LayerBuilder:
     def _slab(self, k):
         slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
                      self.bodies, "PASSIVE", "BOX")
-        slab.location = (0.0, 0.0, self.height[k])
-        slab.rotation_euler = (0.0, 0.0, self.angle[k])
+        self.placed["slab"].append((slab, k, 0))
         self.model.slabs.append(slab)
 
     def _member(self, k, i):
@@ -226,8 +229,7 @@ class _LayerBuilder:
         ob = _body(f"FF{k:04d} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
         ob[INDEX] = i
-        ob.location = self.pos[k, i]
-        ob.rotation_euler = (0.0, 0.0, self.angle[k])
+        self.placed[role].append((ob, k, i))
         chain = self.model.chain
         if i == 0:
             chain.append([])
@@ -241,8 +243,7 @@ class _LayerBuilder:
         members = self.model.chain[k]
         empty = tag(bpy.data.objects.new(f"FF{k:04d} bond {i}", None), "bond")
         empty[LAYER], empty[INDEX] = k, i
-        empty.empty_display_size = self.p.residue_radius
-        empty.location = self.pivots[k, i]
+        self.placed["bond"].append((empty, k, i))
         self.parts["bond"].objects.link(empty)
         self.bonds.objects.link(empty)
         rbc = empty.rigid_body_constraint
@@ -260,6 +261,28 @@ class _LayerBuilder:
 
     def _globule(self, k):
         self._member(k, self.p.linker)
+
+    def place(self) -> None:
+        """Location, rotation, world matrix and colour of every object, one foreach_set each.
+
+        The objects were linked in the order Bullet sees them (that order fixes the result for
+        a seed); only their transforms come later, with the same float32 values as one by one.
+        """
+        for role, placed in self.placed.items():
+            objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
+            k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
+            if role == "slab":
+                loc = np.zeros((len(k), 3))
+                loc[:, 2] = self.height[k]
+            else:
+                loc = (self.pivots if role == "bond" else self.pos)[k, i]
+            rot_z = np.zeros(len(k)) if role == "bond" else self.angle[k]
+            _place(objects, loc, rot_z)
+            if role == "bond":
+                objects.foreach_set("empty_display_size",
+                                    np.full(len(k), self.p.residue_radius, np.float32))
+            else:
+                objects.foreach_set("color", np.tile(np.float32(COLORS[role]), len(k)))
 
 
 def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
@@ -279,10 +302,37 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
     return sorted(red)
 
 
+def _in_order(coll, objects):
+    """`coll.objects`, checked (one foreach_get) to hold exactly `objects`, in that order."""
+    uids = np.empty(len(coll.objects), dtype=np.int64)
+    coll.objects.foreach_get("session_uid", uids)
+    if not np.array_equal(uids, [ob.session_uid for ob in objects]):
+        raise RuntimeError(f"collection '{coll.name}' changed while the model was being built")
+    return coll.objects
+
+
+def _place(objects, loc: np.ndarray, rot_z: np.ndarray) -> None:
+    """Set location and Z rotation of a collection's objects, and a world matrix to match.
+
+    The world matrix makes the objects' matrix_world right before any depsgraph evaluation.
+    foreach_set writes Blender's float[4][4] as stored: column-major, translation in row 3.
+    """
+    n = len(loc)
+    rot = np.zeros((n, 3))
+    rot[:, 2] = rot_z
+    objects.foreach_set("location", loc.astype(np.float32).ravel())
+    objects.foreach_set("rotation_euler", rot.astype(np.float32).ravel())
+    mat = np.zeros((n, 4, 4))
+    c, s = np.cos(rot_z), np.sin(rot_z)
+    mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
+    mat[:, 2, 2] = mat[:, 3, 3] = 1.0
+    mat[:, 3, :3] = loc
+    objects.foreach_set("matrix_world", mat.astype(np.float32).ravel())
+
+
 def _body(name, mesh, role, k, parts, bodies, rb_type, shape):
     ob = tag(bpy.data.objects.new(name, mesh), role)
     ob[LAYER] = k
-    ob.color = COLORS[role]
     parts[role].objects.link(ob)
     bodies.objects.link(ob)
     rb = ob.rigid_body

@@ -9,6 +9,7 @@ import bpy
 import numpy as np
 
 from .. import params as P
+from .readback import MatrixReader
 from .scene import WORLD_OWNED, is_ours
 
 
@@ -96,7 +97,7 @@ class BakeStats:
 
 def world_positions(objects) -> np.ndarray:
     """World-space centres of `objects`, read in one pass, shape (n, 3)."""
-    return np.array([ob.matrix_world.translation for ob in objects], dtype=float).reshape(-1, 3)
+    return MatrixReader(objects).positions()
 
 
 def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
@@ -111,10 +112,12 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
     setup_world(scene, p)
     chain_objects = [ob for members in model.chain for ob in members]
     shape = (len(model.chain), p.linker + 1, 3)
+    # One foreach_get over the rigid-body world's objects per frame, not one read per object.
+    reader = MatrixReader(chain_objects, (scene.rigidbody_world.collection,))
     prev, quiet = None, 0
     for frame in range(1, p.frames + 1):
         scene.frame_set(frame)
-        pos = world_positions(chain_objects).reshape(shape)
+        pos = reader.positions().reshape(shape)
         stats.frames_simulated = frame
         yield frame, pos
         if p.settle and prev is not None:

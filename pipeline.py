@@ -11,7 +11,6 @@ import tomllib
 from typing import Callable
 
 import bpy
-import numpy as np
 
 from . import params as P
 from .analysis import StretchLog, check_model, scored_range

@@ -118,20 +118,20 @@ def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", for
     p = P.validate(p or P.DEFAULTS, force=force)
     scene = scene or bpy.context.scene
     result = {**describe(p), "stage": stop_after, "timings_s": {}}
-    t = time.perf_counter()
-    model = build(p, scene, force=force)
-    result["timings_s"]["build"] = time.perf_counter() - t
+
+    def timed(stage, work):
+        t = time.perf_counter()
+        out = work()
+        result["timings_s"][stage] = round(time.perf_counter() - t, 4)
+        return out
+
+    model = timed("build", lambda: build(p, scene, force=force))
     if stop_after == "build":
         return result
-    t = time.perf_counter()
-    result.update(bake(model, scene, on_frame=on_frame))
-    result["timings_s"]["bake"] = time.perf_counter() - t
+    result.update(timed("bake", lambda: bake(model, scene, on_frame=on_frame)))
     if stop_after == "bake" or result["cancelled"]:
         return result
-    t = time.perf_counter()
-    result.update(check(model, scene))
-    result["timings_s"]["check"] = time.perf_counter() - t
-    result["timings_s"] = {k: round(v, 4) for k, v in result["timings_s"].items()}
+    result.update(timed("check", lambda: check(model, scene)))
     return result
 
 

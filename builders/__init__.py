@@ -2,8 +2,8 @@
 from .model import (STEPS, Model, build_model, build_steps, colour_globules, find_model,
                     last_frame, model_stage, set_stage, update_params)
 from .scene import clear_model
-from .physics import BakeStats, bake, bake_steps, draw_gravity, keep_bake, setup_world
+from .physics import BakeStats, bake_steps, draw_gravity, keep_bake, setup_world
 
 __all__ = ["STEPS", "Model", "build_model", "build_steps", "colour_globules", "find_model",
            "last_frame", "model_stage", "set_stage", "update_params", "clear_model", "BakeStats",
-           "bake", "bake_steps", "draw_gravity", "setup_world"]
+           "bake_steps", "draw_gravity", "keep_bake", "setup_world"]

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
-from typing import Callable
 
 import bpy
 import numpy as np
@@ -95,11 +94,6 @@ class BakeStats:
     cancelled: bool = False
 
 
-def world_positions(objects) -> np.ndarray:
-    """World-space centres of `objects`, read in one pass, shape (n, 3)."""
-    return MatrixReader(objects).positions()
-
-
 def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
     """Simulate frames 1..p.frames one at a time, yielding (frame, chain positions) after each.
 
@@ -127,17 +121,3 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
                 stats.settled_at = frame
                 return
         prev = pos
-
-
-def bake(scene: bpy.types.Scene, model, *, on_frame: Callable[[int, np.ndarray], bool] | None = None
-         ) -> BakeStats:
-    """Simulate frames 1..p.frames by stepping the scene; the rigid-body cache keeps every frame.
-
-    See bake_steps. `on_frame(frame, chain_positions)` may return True to cancel.
-    """
-    stats = BakeStats()
-    for frame, pos in bake_steps(scene, model, stats):
-        if on_frame is not None and on_frame(frame, pos):
-            stats.cancelled = True
-            break
-    return stats

@@ -5,7 +5,8 @@ import pytest
 from mathutils import Matrix
 
 from fibrilfit import params as P
-from fibrilfit.builders import bake, build_model
+from fibrilfit.builders import build_model
+from fibrilfit.pipeline import bake
 from fibrilfit.builders.readback import MatrixReader
 
 
@@ -40,7 +41,7 @@ def test_reader_equals_matrix_world_during_a_bake(scene):
         assert np.array_equal(positions.reshape(-1, 3), one_by_one(chain)[:, :3, 3])
         seen.append(frame)
 
-    bake(scene, model, on_frame=on_frame)
+    bake(model, scene, on_frame=on_frame)
     assert seen == list(range(1, 9))
     assert not np.allclose(reader.positions()[-1], model.params.chain_x()[-1])  # they moved
 

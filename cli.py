@@ -64,6 +64,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--fail-on-intersection", action="store_true",
                      help="exit 1 when the verdict is intersection")
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
+    run.add_argument("--progress", action="store_true",
+                     help="print the bake's frame to stderr every 25 frames (for long runs' logs)")
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
@@ -88,6 +90,17 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERRUPTED
 
 
+def progress_printer(frames: int, every: int = 25):
+    """An on_frame callback that prints `fibrilfit: bake frame N/M` to stderr, flushed."""
+    first = []
+
+    def on_frame(frame, _positions):
+        if not first or frame % every == 0:
+            first.append(frame)
+            print(f"fibrilfit: bake frame {frame}/{frames}", file=sys.stderr, flush=True)
+    return on_frame
+
+
 def command_run(args) -> int:
     from . import pipeline, report
     p = P.make_params(force=args.force, **params_from(args))
@@ -99,7 +112,8 @@ def command_run(args) -> int:
     import bpy
     if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
         bpy.ops.wm.read_factory_settings(use_empty=True)
-    result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force)
+    result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
+                          on_frame=progress_printer(p.frames) if args.progress else None)
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red

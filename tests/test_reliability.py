@@ -5,7 +5,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import bpy
 import pytest
@@ -50,19 +49,36 @@ def test_unknown_option_and_command():
 
 
 def _start(args, tmp_path):
-    return subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "run", *args,
+    return subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "run", *args, "--progress",
                              "--json", str(tmp_path / "r.json"), "--blend", str(tmp_path / "m.blend")],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
 
 
-def _wait_for_bake(proc, seconds):
-    time.sleep(seconds)  # long enough to be inside the bake of a 100-layer model
-    assert proc.poll() is None, proc.communicate()
+def _wait_for_bake(proc):
+    """Block until the run reports its first baked frame: inside the bake, whatever the speed."""
+    seen = []
+    for line in proc.stderr:
+        seen.append(line)
+        if line.startswith("fibrilfit: bake frame "):
+            return
+    raise AssertionError(f"the run ended before its bake began: {proc.wait()} {seen}")
+
+
+# 100 layers, 1000 frames, no settling: the bake lasts seconds, so the signal lands inside it
+LONG_RUN = ["--layers", "100", "--frames", "1000", "--no-settle"]
+
+
+def test_progress_lines_count_the_frames(tmp_path):
+    out = run_cli("run", "--layers", "2", "--frames", "60", "--no-settle", "--progress")
+    assert out.returncode == 0, out.stderr
+    lines = out.stderr.splitlines()
+    assert lines[1:] == ["fibrilfit: bake frame 25/60", "fibrilfit: bake frame 50/60"]
+    assert lines[0].startswith("fibrilfit: bake frame ")
 
 
 def test_ctrl_c_exits_130_and_writes_nothing(tmp_path):
-    proc = _start(["--layers", "100"], tmp_path)
-    _wait_for_bake(proc, 4)
+    proc = _start(LONG_RUN, tmp_path)
+    _wait_for_bake(proc)
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
@@ -71,8 +87,8 @@ def test_ctrl_c_exits_130_and_writes_nothing(tmp_path):
 
 
 def test_killed_run_leaves_no_file_that_looks_complete(tmp_path):
-    proc = _start(["--layers", "100"], tmp_path)
-    _wait_for_bake(proc, 4)
+    proc = _start(LONG_RUN, tmp_path)
+    _wait_for_bake(proc)
     proc.kill()
     proc.wait(timeout=60)
     assert not (tmp_path / "r.json").exists() and not (tmp_path / "m.blend").exists()

@@ -65,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="exit 1 when the verdict is intersection")
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
     run.add_argument("--progress", action="store_true",
-                     help="print the bake's frame to stderr every 25 frames (for long runs' logs)")
+                     help="print the bake's frame to stderr at its start and every 25 frames")
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
@@ -92,11 +92,12 @@ def main(argv: list[str] | None = None) -> int:
 
 def progress_printer(frames: int, every: int = 25):
     """An on_frame callback that prints `fibrilfit: bake frame N/M` to stderr, flushed."""
-    first = []
+    started = False
 
     def on_frame(frame, _positions):
-        if not first or frame % every == 0:
-            first.append(frame)
+        nonlocal started
+        if not started or frame % every == 0:
+            started = True
             print(f"fibrilfit: bake frame {frame}/{frames}", file=sys.stderr, flush=True)
     return on_frame
 

@@ -167,9 +167,60 @@ def test_every_operator_spares_the_users_data_and_clear_removes_exactly_the_mode
 
 
 def test_operators_that_change_the_scene_can_be_undone(registered):
-    """Undo itself needs Blender's UI (bpy-as-module has no undo stack: ed.undo.poll() fails);
-    what can be checked here is that every scene-changing operator registers an undo step."""
     from fibrilfit.operators import CLASSES
     for cls in CLASSES:
         if cls.bl_idname.split(".")[1] not in ("render", "export_pdb"):
             assert "UNDO" in cls.bl_options, cls.bl_idname
+
+
+def _as_the_ui(module, op, **kw):
+    """Call an operator as a button does: in a window, with its undo step pushed."""
+    window = bpy.context.window_manager.windows[0]
+    with bpy.context.temp_override(window=window):
+        return getattr(getattr(bpy.ops, module), op)("EXEC_DEFAULT", True, **kw)
+
+
+def _state():
+    """Everything undo must restore, read afresh (undo reloads the data; old handles go stale)."""
+    scene = bpy.context.scene
+    scene.frame_set(scene.frame_current)
+    ours = sorted((ob.name, ob.get("fibrilfit"), tuple(round(v, 4) for v in ob.matrix_world.translation))
+                  for ob in scene.objects if ob.get("fibrilfit"))
+    users = sorted((ob.name, tuple(ob.location), ob.data.name if ob.data else None,
+                    tuple(c.name for c in ob.users_collection))
+                   for ob in scene.objects if not ob.get("fibrilfit"))
+    rbw = scene.rigidbody_world
+    baked = bool(rbw and rbw.point_cache and rbw.point_cache.is_baked)
+    return {"ours": ours, "users": users, "baked": baked, "frame": scene.frame_current,
+            "verdict": scene.fibrilfit.verdict}
+
+
+def test_undo_and_redo_of_run_all_clear_and_a_step(registered, user_objects):
+    """Undo works in the bpy module once a window is in the context: each operator's own undo
+    step takes the scene back exactly, the user's objects included, and redo brings it back."""
+    settings = registered
+    settings.layers, settings.linker, settings.frames, settings.seed = 4, 3, 40, 2
+    assert _as_the_ui("ed", "undo_push", message="start") == {"FINISHED"}
+    empty = _state()
+    assert empty["ours"] == [] and len(empty["users"]) == 4
+
+    assert _as_the_ui("fibrilfit", "run_all") == {"FINISHED"}
+    done = _state()
+    globules = [o for o in done["ours"] if o[1] == "globule"]
+    assert len(globules) == 4 and done["baked"] and done["verdict"] in ("successful", "intersection")
+    assert done["users"] == empty["users"]
+
+    assert _as_the_ui("ed", "undo") == {"FINISHED"}
+    assert _state() == empty
+    assert _as_the_ui("ed", "redo") == {"FINISHED"}
+    assert _state() == done  # the baked positions at the last frame too
+
+    assert _as_the_ui("fibrilfit", "clear") == {"FINISHED"}
+    assert _state()["ours"] == [] and _state()["users"] == empty["users"]
+    assert _as_the_ui("ed", "undo") == {"FINISHED"}
+    assert _state() == done
+
+    assert _as_the_ui("fibrilfit", "build_slab") == {"FINISHED"}  # a step replaces the model
+    assert {o[1] for o in _state()["ours"]} == {"slab"}
+    assert _as_the_ui("ed", "undo") == {"FINISHED"}
+    assert _state() == done

@@ -2,7 +2,9 @@
 results of the last check.
 
 One property per field of params.Params, with the same name, its default, min/max and doc.
-1 Blender unit = 1 Å, so lengths use Blender's length unit and the twist shows in degrees.
+1 Blender unit = 1 Å. Blender has no Ångström unit: its length unit would show "30 m" under the
+default Metric system, so lengths are plain numbers with the unit in the label, and the twist
+shows in degrees.
 """
 import bpy
 import numpy as np
@@ -16,14 +18,12 @@ from . import params as P
 SECTIONS = ("Slab", "Anchor", "Linker", "Globule", "Layers", "Simulation", "Check")
 BUILD_SECTIONS = SECTIONS[:5]  # what the build steps read; the bake and the check read the rest
 
-# How a unit of the parameter definition shows in Blender.
+# How a unit of the parameter definition shows in Blender; the ones named in labels have none.
 _FLOAT_UNITS = {
-    "Å": {"subtype": "DISTANCE", "unit": "LENGTH"},
-    "Å/frame": {"subtype": "DISTANCE", "unit": "LENGTH"},
-    "Å/s²": {"unit": "ACCELERATION"},
     "rad": {"subtype": "ANGLE", "unit": "ROTATION"},
     "fraction": {"subtype": "FACTOR"},
 }
+_LABEL_UNITS = ("Å", "Å/frame", "Å/s²")
 _UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "Å/s²": "Å/s²",
                "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %"}
 
@@ -39,7 +39,9 @@ def fields_in(section: str) -> list:
 
 
 def label(field) -> str:
-    return field.name.replace("_", " ").capitalize()
+    name = field.name.replace("_", " ").capitalize()
+    unit = field.metadata["unit"]
+    return f"{name} ({unit})" if unit in _LABEL_UNITS else name
 
 
 def _description(field) -> str:
@@ -58,8 +60,7 @@ def _param_property(field):
     units = _FLOAT_UNITS.get(meta["unit"], {})
     limits = {"min": meta["min"], "max": meta["max"], "precision": 3}
     if isinstance(default, tuple):
-        subtype = "XYZ_LENGTH" if meta["unit"] == "Å" else "XYZ"
-        return FloatVectorProperty(default=default, size=len(default), subtype=subtype,
+        return FloatVectorProperty(default=default, size=len(default), subtype="XYZ",
                                    unit=units.get("unit", "NONE"), **limits, **common)
     return FloatProperty(default=default, **units, **limits, **common)
 

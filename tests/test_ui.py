@@ -64,8 +64,8 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"], meta["max"])), f.name
         default = tuple(prop.default_array) if f.name == "slab" else prop.default
         assert default == pytest.approx(f.default), f.name
-        if meta["unit"] == "Å":
-            assert prop.unit == "LENGTH", f.name
+        if meta["unit"].startswith("Å"):  # no Blender unit: Metric would show "30 m"
+            assert prop.unit == "NONE" and prop.name.endswith(f"({meta['unit']})"), f.name
     assert (rna["twist"].subtype, rna["twist"].unit) == ("ANGLE", "ROTATION")
     assert "4.8 Å in cross-β amyloid" in rna["rise"].description
     for name in properties.RESULTS:

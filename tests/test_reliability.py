@@ -166,7 +166,7 @@ def test_every_operator_spares_the_users_data_and_clear_removes_exactly_the_mode
     assert snapshot_user(user_objects) == before_user
 
 
-def test_operators_that_change_the_scene_can_be_undone(registered):
+def test_every_scene_changing_operator_declares_undo(registered):
     from fibrilfit.operators import CLASSES
     for cls in CLASSES:
         if cls.bl_idname.split(".")[1] not in ("render", "export_pdb"):

@@ -9,7 +9,8 @@ trust, not absolute seconds):
     build at 100 layers           >= 10x faster than seed_port.py
     build 2000 vs 200 layers      <= 12x (linear), with peak memory at 2000 layers
     the whole 20-layer job        <= 0.5x seed_port.py (build + bake + check)
-    bake per simulated step       within 1.2x of raw Bullet (bullet_peer.py), 20 and 100 layers
+    bake per simulated step       within 1.2x of raw Bullet (bullet_peer.py), 20 and 100 layers;
+                                  also against bullet_rigid_peer.py, its rigid-body twin
     analysis at 2000 layers       < 1 s (BVH + analytic check)
 
 Every measurement is a fresh subprocess of this interpreter (`run.py --worker NAME ...`); the
@@ -201,8 +202,10 @@ def seed_port(layers: int) -> dict:
             "wall": wall}
 
 
-def bullet_peer(layers: int) -> dict:
-    out, wall = _run([sys.executable, BASELINES / "bullet_peer.py", str(layers), "6", "0"])
+def bullet_peer(layers: int, rigid: bool = False) -> dict:
+    """bullet_peer.py as shipped (multibodies), or through bullet_rigid_peer.py (rigid bodies)."""
+    wrap = [ROOT / "bench" / "bullet_rigid_peer.py"] if rigid else []
+    out, wall = _run([sys.executable, *wrap, BASELINES / "bullet_peer.py", str(layers), "6", "0"])
     bake = float(re.search(r"bake=([\d.]+)", out).group(1))
     return {"bake": bake, "per_step_ms": 1000 * bake / BULLET_STEPS, "wall": wall}
 
@@ -228,8 +231,10 @@ def _round(r: int, only: set, tmp: pathlib.Path, log) -> dict:
         for n in (20, 100):
             got[f"bake{n}"], got[f"bullet{n}"] = first(
                 lambda: ours("bake", n, dump if n == 100 else ""), lambda: bullet_peer(n))
+            got[f"rigid{n}"] = bullet_peer(n, rigid=True)
             log(f"bake {n}: ours {got[f'bake{n}']['per_step_ms']:.3f} ms/step, "
-                f"bullet {got[f'bullet{n}']['per_step_ms']:.3f} ms/step")
+                f"bullet {got[f'bullet{n}']['per_step_ms']:.3f} ms/step, "
+                f"rigid bodies {got[f'rigid{n}']['per_step_ms']:.3f} ms/step")
     if "analysis" in only:
         if not dump.exists():
             ours("bake", 100, dump)
@@ -307,6 +312,10 @@ def table(rounds: list[dict]) -> list[tuple]:
         ratio = m(lambda g: g[f"bake{n}"]["per_step_ms"] / g[f"bullet{n}"]["per_step_ms"])
         row(f"Bake per simulated step, {n} layers (vs raw Bullet)", _ms(mine),
             _ms(peer) + " bullet_peer", _x(ratio), "<= 1.2x", _ok(ratio, "<=", 1.2))
+        rigid = m(lambda g: g[f"rigid{n}"]["per_step_ms"])
+        ratio = m(lambda g: g[f"bake{n}"]["per_step_ms"] / g[f"rigid{n}"]["per_step_ms"])
+        row("  same, vs raw Bullet with rigid bodies (the tighter floor)", _ms(mine),
+            _ms(rigid) + " bullet_rigid_peer", _x(ratio), "<= 1.2x", _ok(ratio, "<=", 1.2))
 
     rel = m(lambda g: g["analysis"]["relaxed"])
     if rel is not None:

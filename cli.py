@@ -6,14 +6,9 @@ import dataclasses
 import sys
 
 from . import output, params as P
+from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
+                    EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
-
-EXIT_OK, EXIT_INTERSECTION, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
-EXIT_OUTPUT_FAILED = 3  # the run completed but a --pdb/--render output could not be written
-
-
-class UsageError(Exception):
-    """Bad command-line input: printed as one line, exit code 2."""
 
 
 class _Parser(argparse.ArgumentParser):

@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 
 from .. import params as P
+from .hooks import frame_hooks, run_after, run_before
 from .readback import MatrixReader
 from .scene import WORLD_OWNED, is_ours
 
@@ -94,24 +95,28 @@ class BakeStats:
     cancelled: bool = False
 
 
-def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None):
+def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, hooks=None):
     """Simulate frames 1..p.frames one at a time, yielding (frame, chain positions) after each.
 
     The generator form lets the sidebar's modal operator advance a few frames per timer tick.
     With `p.settle`, stops once every active body moved less than `settle_speed` per frame for
-    `settle_frames` frames. `stats` (updated in place) says how far it got.
+    `settle_frames` frames. `stats` (updated in place) says how far it got. `hooks` (default:
+    hooks.frame_hooks for the model) run before and after every frame.
     """
     p = model.params
     stats = stats if stats is not None else BakeStats()
     setup_world(scene, p)
+    hooks = frame_hooks(model, scene) if hooks is None else list(hooks)
     chain_objects = [ob for members in model.chain for ob in members]
     shape = (len(model.chain), p.linker + 1, 3)
     # One foreach_get over the rigid-body world's objects per frame, not one read per object.
     reader = MatrixReader(chain_objects, (scene.rigidbody_world.collection,))
     prev, quiet = None, 0
     for frame in range(1, p.frames + 1):
+        run_before(hooks, scene, frame)
         scene.frame_set(frame)
         pos = reader.positions().reshape(shape)
+        run_after(hooks, scene, frame, pos)
         stats.frames_simulated = frame
         yield frame, pos
         if p.settle and prev is not None:

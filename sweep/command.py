@@ -9,7 +9,7 @@ import importlib
 import pathlib
 import sys
 
-from .. import cli, output
+from .. import exits, output
 from . import gate, grid, runner, summary
 from .executors import DaskExecutor, ProcessExecutor, SweepError, cpu_count
 
@@ -21,25 +21,25 @@ def _need(*modules: str) -> None:
         try:
             importlib.import_module(name)
         except ImportError:
-            raise cli.UsageError(f"the sweep needs the Python package {name!r}: "
+            raise exits.UsageError(f"the sweep needs the Python package {name!r}: "
                                  f"pip install -r requirements-dev.txt") from None
 
 
 def _check_options(args) -> None:
     if args.workers is not None and args.workers < 1:
-        raise cli.UsageError(f"--workers: must be at least 1 (got {args.workers})")
+        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
     if not 0 < args.target <= 1:
-        raise cli.UsageError(f"--target: must be a fraction above 0 and at most 1 "
+        raise exits.UsageError(f"--target: must be a fraction above 0 and at most 1 "
                              f"(got {args.target:g})")
     if args.timeout is not None and not args.timeout > 0:
-        raise cli.UsageError(f"--timeout: must be a positive number of seconds "
+        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
                              f"(got {args.timeout:g})")
     if args.scheduler and args.executor != "dask":
-        raise cli.UsageError("--scheduler: only with --executor dask")
+        raise exits.UsageError("--scheduler: only with --executor dask")
     if args.retry_failed and not args.resume:
-        raise cli.UsageError("--retry-failed: only with --resume")
+        raise exits.UsageError("--retry-failed: only with --resume")
     if args.seed is not None and args.seed_list is not None:
-        raise cli.UsageError("give the seeds once: --seed and --seed-list are the same option")
+        raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
 
 
 def _out_dir(args) -> pathlib.Path:
@@ -47,7 +47,7 @@ def _out_dir(args) -> pathlib.Path:
     if results.parent.exists() and not results.parent.is_dir():
         raise output.OutputError("--out", f"must be a directory (got '{results.parent}')")
     if results.exists() and not args.resume:
-        raise cli.UsageError(f"--out: '{results.parent}' already holds {RESULTS}; pass --resume "
+        raise exits.UsageError(f"--out: '{results.parent}' already holds {RESULTS}; pass --resume "
                              f"to continue that sweep, or choose another directory")
     return results.parent
 
@@ -64,7 +64,7 @@ def _lock(out: pathlib.Path):
         fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except OSError:
         fh.close()
-        raise cli.UsageError(f"--out: another sweep is writing to '{out}'") from None
+        raise exits.UsageError(f"--out: another sweep is writing to '{out}'") from None
     return fh
 
 
@@ -90,7 +90,7 @@ def run(args) -> int:
     known = [p.params for p in points] + [r["params"] for r in records]
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
-            raise cli.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
+            raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
     _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
           *(["distributed"] if args.executor == "dask" else []))
 
@@ -120,12 +120,12 @@ def run(args) -> int:
                                     progress=not args.quiet, version=pipeline.version())
         except SweepError as exc:
             print(f"fibrilfit: error: {exc}", file=sys.stderr)
-            return cli.EXIT_USAGE
+            return exits.EXIT_USAGE
         except KeyboardInterrupt:
             kept, _ = runner.read_lines(results)
             print(f"fibrilfit: interrupted; {len(kept)} results kept in {results}; "
                   f"continue with --resume", file=sys.stderr)
-            return cli.EXIT_INTERRUPTED
+            return exits.EXIT_INTERRUPTED
 
     records, _ = runner.read_lines(results)
     rows = summary.rows(records)
@@ -150,4 +150,4 @@ def run(args) -> int:
         print(f"warning: {n_failed} runs failed twice; their errors are in {results}")
     for line in met + failed:
         print(line)
-    return cli.EXIT_INTERSECTION if failed else cli.EXIT_OK
+    return exits.EXIT_INTERSECTION if failed else exits.EXIT_OK

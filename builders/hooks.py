@@ -1,0 +1,28 @@
+"""Work done around every simulated frame of a bake, chosen from the model's parameters.
+
+A hook has `before_frame(scene, frame)` (called before the frame is simulated: e.g. growing
+globules) and/or `after_frame(scene, frame, positions)` (called once its chain positions are
+read: e.g. images that follow their originals). `frame_hooks` is the one place that decides which
+a model gets, so the CLI, the sidebar's modal bake and sweeps bake the same way.
+"""
+from __future__ import annotations
+
+
+def frame_hooks(model, scene) -> list:
+    """The hooks a bake of `model` in `scene` runs, in order (none for the tutorial's model)."""
+    hooks: list = []
+    return hooks
+
+
+def run_before(hooks, scene, frame: int) -> None:
+    for hook in hooks:
+        before = getattr(hook, "before_frame", None)
+        if before is not None:
+            before(scene, frame)
+
+
+def run_after(hooks, scene, frame: int, positions) -> None:
+    for hook in hooks:
+        after = getattr(hook, "after_frame", None)
+        if after is not None:
+            after(scene, frame, positions)

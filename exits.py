@@ -1,0 +1,12 @@
+"""Exit codes and the usage error, shared by every command (cli.py, sweep/, search/, ...).
+
+Plain Python with no package imports, so any command module can import it without importing
+cli.py (which imports the commands).
+"""
+
+EXIT_OK, EXIT_INTERSECTION, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+EXIT_OUTPUT_FAILED = 3  # the run completed but a --pdb/--render output could not be written
+
+
+class UsageError(Exception):
+    """Bad command-line input: printed as one line, exit code 2."""

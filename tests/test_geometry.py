@@ -1,10 +1,11 @@
 """Real fibril geometry (issue #14): protofilaments, a core outline, anchors anywhere."""
+import importlib.util
 import json
 import math
 
 import numpy as np
 import pytest
-from helpers import run_cli
+from helpers import ROOT, run_cli
 
 from fibrilfit import geometry, params as P, pipeline
 from fibrilfit.builders import build_model, find_model
@@ -206,3 +207,27 @@ def test_cli_reads_an_outline_file_into_the_result(tmp_path):
     assert r["params"]["core_outline"] == [[float(x), float(y)] for x, y in U_CORE]
     assert r["params"]["anchor"] == [0.0, -1.0]
     assert P.make_params(**r["params"]).core_outline == tuple(map(tuple, r["params"]["core_outline"]))
+
+
+def _bench(name):
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", ROOT / "bench" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.parametrize("case", ["notch floor", "notch corner", "floor at a layer seam",
+                                  "falls into the notch from outside"])
+def test_a_bead_rests_in_the_notch_of_a_concave_mesh_core(scene, case):
+    """Bullet's MESH shape (what an outline's core uses) holds a bead pushed into a concave notch:
+    it neither sinks in nor falls through (bench/concave_core.py measures CONVEX_HULL too)."""
+    probe = _bench("concave_core").probe
+    r = probe("MESH", case, frames=60)
+    assert not r["ever_inside"] and r["worst_gap"] > -0.05, r
+    assert r["end"] == "resting on the core", r
+    assert r["end_xyz"][1] == pytest.approx(-3 + 1.75, abs=0.05)  # on the notch's floor
+
+
+def test_a_convex_hull_would_fill_the_notch(scene):
+    r = _bench("concave_core").probe("CONVEX_HULL", "falls into the notch from outside", frames=60)
+    assert r["end_xyz"][1] > 11  # held on the hull's lid over the notch: why cores use MESH

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import hashlib
 import io
 import json
 import statistics
@@ -83,9 +84,20 @@ def rows(records: list[dict]) -> list[Row]:
     return sorted(groups.values(), key=lambda row: _sort_key(row.values))
 
 
+def order_key(value):
+    """Sorts any parameter value: None (a derived default) first, then numbers, then lists
+    (sizes, anchors), then outlines (lists of points), so mixed axes never compare a list to None."""
+    if value is None:
+        return (0, 0)
+    if isinstance(value, list):
+        if value and isinstance(value[0], list):
+            return (3, json.dumps(value))
+        return (2, tuple(value))
+    return (1, value)
+
+
 def _sort_key(values: dict):
-    return tuple(tuple(v) if isinstance(v, list) else (v if v is not None else 0)
-                 for _, v in sorted(values.items()))
+    return tuple(order_key(v) for _, v in sorted(values.items()))
 
 
 def varied(rows_: list[Row]) -> list[str]:
@@ -104,6 +116,11 @@ def columns(rows_: list[Row]) -> list[str]:
 
 
 def fmt_value(value) -> str:
+    if value is None:
+        return "auto"  # a derived default: 2π/K, the slab's box, the tutorial's anchor
+    if isinstance(value, list) and value and isinstance(value[0], list):  # a core outline
+        digest = hashlib.sha1(json.dumps(value).encode()).hexdigest()[:6]
+        return f"{len(value)}-point outline {digest}"
     if isinstance(value, list):
         return "x".join(f"{v:g}" for v in value)
     if isinstance(value, float):

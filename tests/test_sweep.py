@@ -400,3 +400,57 @@ def test_register_and_run_leave_the_sweep_dependencies_alone():
                         timeout=300, cwd=ROOT)
     assert cp.returncode == 0, cp.stderr
     assert "HEAVY []" in cp.stdout
+
+
+# ---- geometry axes (issue #14) --------------------------------------------------------------
+U_CORE = [[-20, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11], [-20, 11]]
+
+
+def test_geometry_parameters_are_sweep_axes(tmp_path):
+    (tmp_path / "u.json").write_text(json.dumps(U_CORE))
+    from fibrilfit import cli
+    args = cli.build_parser().parse_args([
+        "sweep", "--protofilaments", "1,2", "--pf-rotation", "auto,3.1294", "--pf-rise", "0:2:2",
+        "--core-outline", f"box,{tmp_path / 'u.json'}", "--anchor", "0,21.75", "-12.75",
+        "--out", str(tmp_path / "s")])
+    specs = grid.specs_from(args)
+    assert specs["protofilaments"] == ["1", "2"] and specs["pf_rise"] == ["0", "2"]
+    assert specs["anchor"] == ["0 -12.75", "21.75 -12.75"]
+    points = grid.build(specs, ["0"])
+    # every point is validated before any run: an anchor inside the U's base is refused
+    with pytest.raises(P.ParamError, match="^anchor: .*inside the core"):
+        grid.build({**specs, "anchor": ["0 -5"]}, ["0"])
+    seen = {(p.params["protofilaments"], p.params["pf_rotation"], p.params["pf_rise"],
+             p.params["core_outline"] is None, tuple(p.params["anchor"])) for p in points}
+    assert len(seen) == len(points) == 32
+    assert all(p.point["core_outline"] in (None, [[float(x), float(y)] for x, y in U_CORE])
+               for p in points)
+
+
+def test_summary_names_outlines_and_derived_values():
+    rows = summary.rows([
+        {"params": P.make_params(linker=6).to_dict(), "accommodated": True, "verdict": "successful",
+         "max_bond_stretch": 0.0, "frames_simulated": 100},
+        {"params": P.make_params(linker=6, core_outline=U_CORE, anchor=(0, -1)).to_dict(),
+         "accommodated": False, "verdict": "intersection", "max_bond_stretch": 0.0,
+         "frames_simulated": 100}])
+    assert [r.values["core_outline"] is None for r in rows] == [True, False]  # None sorts first
+    text = summary.table(rows, 0.95)
+    assert "8-point outline" in text and "auto" in text
+    assert summary.csv_text(rows).splitlines()[0].startswith("linker,globule_diameter,core_outline,")
+
+
+def test_a_sweep_over_protofilaments_runs(tmp_path):
+    (tmp_path / "box.json").write_text(json.dumps([[-20, -11], [20, -11], [20, 11], [-20, 11]]))
+    out = tmp_path / "s"
+    cp = run_cli("sweep", "--protofilaments", "1,2", "--core-outline",
+                 f"box,{tmp_path / 'box.json'}", "--layers", "2", "--frames", "5",
+                 "--workers", "1", "--quiet", "--out", str(out))
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert len(records) == 4 and all(r["status"] == "ok" for r in records)
+    got = {(r["point"]["protofilaments"], r["point"]["core_outline"] is None,
+            len(r["globule_centres"])) for r in records}
+    assert got == {(1, True, 2), (1, False, 2), (2, True, 4), (2, False, 4)}
+    csv = (out / "summary.csv").read_text().splitlines()
+    assert csv[0].startswith("linker,globule_diameter,protofilaments,core_outline,") and len(csv) == 5

@@ -10,7 +10,10 @@ def _pct(x: float) -> str:
 def summary(r: dict, quiet: bool = False) -> str:
     p = r["params"]
     head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
-            f"{p['layers']} layers, linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
+            f"{p['layers']} layers"
+            + (f" × {p['protofilaments']} protofilaments" if p.get("protofilaments", 1) > 1
+               else "")
+            + f", linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
             f"seed {r['seed']}")
     if "verdict" not in r:
         return head + f"\nstopped after {r['stage']}; no verdict"

@@ -246,3 +246,15 @@ def test_protofilaments_have_their_own_colours_and_clashes_turn_red(scene):
     assert shown[1] == pytest.approx(CLASH_COLOR)
     assert [s == pytest.approx(part_colour("globule", c % 2)) for c, s in enumerate(shown)] == [
         True, False, True, True]
+
+
+def test_k2_scores_every_protofilament_of_the_scored_layers(scene):
+    p = P.make_params(layers=4, linker=2, frames=1, score_layers=1, **TWO_ONE)
+    r = pipeline.run(p, scene)
+    assert r["scored_layers"] == [1, 2]
+    assert [v is None for v in r["layer_clashes"]] == [True, False, False, True]
+    assert [v is None for v in r["chain_clashes"]] == [True, True, False, False, False, False,
+                                                       True, True]
+    layer, _ = P.chain_layers(p)
+    assert all(1 <= layer[i] <= 2 or 1 <= layer[j] <= 2 for i, j, _ in r["clashing_pairs"])
+    assert r["clashing_pairs"]  # frame 1: the overlapping start

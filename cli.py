@@ -9,6 +9,7 @@ from . import output, params as P
 from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
+from .structure.errors import StructureError
 
 
 class _Parser(argparse.ArgumentParser):
@@ -46,6 +47,45 @@ def params_from(args) -> dict:
             if getattr(args, f.name, None) is not None}
 
 
+def add_structure_options(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("structure files (PDB/mmCIF, optionally .gz)")
+    group.add_argument("--fibril", metavar="FILE", help="a fibril structure: fills rise, twist, "
+                                                          "protofilaments, core outline, anchor")
+    group.add_argument("--domain", metavar="FILE", help="a domain structure: fills "
+                                                          "globule_diameter from its Rg")
+    group.add_argument("--terminus", choices=("N", "C"), default="C",
+                       help="the core terminus that carries the linker [default C]")
+    group.add_argument("--anchor-residue", metavar="R", type=_residue_number,
+                       help="anchor on this residue instead of the core's terminus")
+    group.add_argument("--domain-chain", metavar="C", help="the domain's chain [default: first]")
+    group.add_argument("--domain-residues", metavar="A-B",
+                       help="the domain's residues [default: all]")
+
+
+def _residue_number(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a residue number (got {text!r})") from None
+
+
+def measure_structures(args):
+    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain."""
+    from . import structure
+    if args.anchor_residue is not None and not args.fibril:
+        raise UsageError("--anchor-residue: needs --fibril")
+    if (args.domain_chain or args.domain_residues) and not args.domain:
+        raise UsageError("--domain-chain/--domain-residues: need --domain")
+    fib = dom = None
+    if args.fibril:
+        fib = structure.measure_fibril(args.fibril, terminus=args.terminus,
+                                       anchor_residue=args.anchor_residue)
+    if args.domain:
+        dom = structure.measure_domain(args.domain, chain=args.domain_chain,
+                                       residues=args.domain_residues)
+    return fib, dom
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
@@ -61,6 +101,10 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
     run.add_argument("--progress", action="store_true",
                      help="print the bake's frame to stderr at its start and every 25 frames")
+    inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
+                                             "(PDB/mmCIF, .gz too) without building anything")
+    add_structure_options(inspect)
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
@@ -77,7 +121,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return COMMANDS[args.command](args)
-    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
+    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError,
+            StructureError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
@@ -139,9 +184,25 @@ def command_run(args) -> int:
     return EXIT_OK
 
 
+def command_inspect(args) -> int:
+    from . import structure
+    from .structure import summary
+    if not (args.fibril or args.domain):
+        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    path = output.check_writable("--json", args.json, (".json",)) if args.json else None
+    fib, dom = measure_structures(args)
+    values = structure.model_values(fib, dom)
+    if path:
+        import gemmi
+        output.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+                                 "model_values": values, "gemmi_version": gemmi.__version__})
+    print(summary.text(fib, dom, values))
+    return EXIT_OK
+
+
 def command_sweep(args) -> int:
     from .sweep import command
     return command.run(args)
 
 
-COMMANDS = {"run": command_run, "sweep": command_sweep}
+COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect}

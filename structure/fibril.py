@@ -21,6 +21,7 @@ CORE_GAP = 4  # unstacked residues (turns) allowed inside the core
 EXACT_COPIES_RMSD = 0.5  # Å: below it a one-protofilament stack defines a screw axis
 BURIED_DEPTH = 6.0  # Å: atoms this much farther out in the anchor's sector bury it
 SECTOR = math.radians(15.0)
+MAX_AXIS_SPREAD = (5.0, 5.0)  # °, Å: how far the axes of protofilament pairs may disagree
 
 
 @dataclass
@@ -140,7 +141,8 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     if max(len(p) for p in paths) < 2:
         if not reading.expand_symmetry(loaded) or len(loaded.chains) == n:
             raise StructureError(option, f"{name}: no two chains stack {STACK[0]}-{STACK[1]} Å "
-                                         "apart (fewer than 2 layers): give --rise and --twist")
+                                         "apart, the layers do not stack (fewer than 2 layers): "
+                                         "give --rise and --twist")
         return measure(path, terminus=terminus, anchor_residue=anchor_residue, option=option)
     paths = [p for p in paths if len(p) >= 1]
     stacked_all = np.logical_and.reduce([pairs[tuple(sorted((p[k], p[k + 1])))]
@@ -170,7 +172,14 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
         u = np.mean(dirs, axis=0)
         u /= np.linalg.norm(u)
         ref = cen.mean(axis=0)
-        p = np.mean([q + ((ref - q) @ d) * d for q, d in zip(points, dirs)], axis=0)
+        on_plane = [q + ((ref - q) @ d) * d for q, d in zip(points, dirs)]
+        p = np.mean(on_plane, axis=0)
+        spread = max(math.degrees(math.acos(min(1.0, d @ u))) for d in dirs)
+        off = max(np.linalg.norm(q - p) for q in on_plane)
+        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:
+            raise StructureError(option, f"{name}: the protofilaments share no common axis (the "
+                                         f"layer pairs' axes differ by up to {spread:.1f}° and "
+                                         f"{off:.1f} Å)")
     else:
         a = np.concatenate([cca[i] for i in first[:-1]])
         b = np.concatenate([cca[i] for i in first[1:]])
@@ -203,6 +212,9 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             rises.append((cen[j] - cen[i]) @ u)
             twists.append(G.turn_angle(planar(cca[i]), planar(cca[j])))
     rise, twist = float(np.mean(rises)), float(np.mean(twists))
+    if min(rises) <= 0.5 * rise or max(rises) >= 1.5 * rise:
+        raise StructureError(option, f"{name}: the layers do not stack on a common axis (steps "
+                                     f"along it from {min(rises):.2f} to {max(rises):.2f} Å)")
     sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
 
     # ---- protofilaments relative to protofilament 0 --------------------------------------

@@ -213,3 +213,137 @@ def test_to_dict_keys(measured):
     d = measured[("6cu7", "C")].to_dict()
     assert keys <= set(d)
     assert {"chain", "residue", "radius", "buried"} <= set(d["anchors"][0])
+
+
+# ---- every input form: mmCIF, .gz, chain IDs in any order, ensembles, symmetry --------------
+def _gemmi():
+    return pytest.importorskip("gemmi")
+
+
+def _compare(a, b):
+    assert (a.protofilaments, a.core_residues) == (b.protofilaments, b.core_residues)
+    assert a.rise == pytest.approx(b.rise, abs=1e-3) and a.twist == pytest.approx(b.twist, abs=1e-5)
+    assert [x["radius"] for x in a.anchors] == pytest.approx([x["radius"] for x in b.anchors],
+                                                             abs=0.01)
+    assert a.pf_rotation == pytest.approx(b.pf_rotation, abs=1e-4)
+
+
+@pytest.mark.parametrize("suffix", [".cif", ".cif.gz", ".mmcif", ".pdb"])
+def test_mmcif_and_plain_files_read_alike(measured, S, tmp_path, suffix):
+    gemmi = _gemmi()
+    st = gemmi.read_structure(str(path("6cu7")))
+    plain = tmp_path / ("6cu7" + suffix.replace(".gz", ""))
+    if ".cif" in suffix or "mmcif" in suffix:
+        st.setup_entities()
+        st.make_mmcif_document().write_file(str(plain))
+    else:
+        st.write_pdb(str(plain))
+    target = plain
+    if suffix.endswith(".gz"):
+        target = tmp_path / ("6cu7" + suffix)
+        target.write_bytes(__import__("gzip").compress(plain.read_bytes()))
+    _compare(S.measure_fibril(target), measured[("6cu7", "C")])
+
+
+def test_chain_ids_and_file_order_do_not_matter(measured, S, tmp_path):
+    """Layers are sorted along the axis, never by chain ID or by file order."""
+    gemmi = _gemmi()
+    st = gemmi.read_structure(str(path("7ymn")))
+    rng = np.random.default_rng(7)
+    names = [ch.name for ch in st[0]]
+    new_names = dict(zip(names, rng.permutation(list("PQRSTU"))))
+    order = rng.permutation(len(names))
+    shuffled = gemmi.Model("1")
+    for i in order:
+        ch = st[0][int(i)].clone()
+        ch.name = new_names[ch.name]
+        shuffled.add_chain(ch)
+    while len(st):
+        del st[0]
+    st.add_model(shuffled)
+    out = tmp_path / "7ymn_shuffled.pdb"
+    st.write_pdb(str(out))
+    g = S.measure_fibril(out)
+    ref = measured[("7ymn", "C")]
+    _compare(g, ref)
+    assert g.layer_chains == [[new_names[c] for c in q] for q in ref.layer_chains]
+
+
+def test_nmr_ensemble_uses_model_1_and_says_so(measured, S, tmp_path):
+    gemmi = _gemmi()
+    st = gemmi.read_structure(str(path("2beg_model1")))
+    other = st[0].clone()
+    for ch in other:
+        for res in ch:
+            for atom in res:
+                atom.pos = gemmi.Position(atom.pos.x + 3.0, atom.pos.y * 1.1, atom.pos.z)
+    other.num = 2
+    st.add_model(other)
+    out = tmp_path / "2beg_two_models.pdb"
+    st.write_pdb(str(out))
+    g = S.measure_fibril(out)
+    _compare(g, measured[("2beg_model1", "C")])
+    assert any("model 1 used" in n for n in g.notes)
+
+
+def _synthetic(gemmi, tmp_path, *, rise, twist, k, pf_rotation=0.0, pf_rise=0.0, layers=4):
+    """Copies of 8A9L's chain A stacked on a tilted axis with known helical parameters."""
+    st = gemmi.read_structure(str(path("8a9l")))
+    st.remove_ligands_and_waters()
+    base = gemmi.Model("1")
+    base.add_chain(st[0]["A"].clone())
+    axis_dir = np.array([0.3, -0.2, 0.93])
+    axis_dir /= np.linalg.norm(axis_dir)
+    axis_pt = np.array([90.0, 95.0, 0.0])
+    model, names = gemmi.Model("1"), iter("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz")
+
+    def rot(angle):
+        u = axis_dir
+        K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+        return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+    flat = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    # 8A9L's own axis is ~ z through (93.05, 93.06): move it onto ours first
+    z = np.array([0, 0, 1.0])
+    v = np.cross(z, axis_dir)
+    Kv = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+    tilt = flat + Kv + Kv @ Kv / (1 + z @ axis_dir)
+    for j in range(k):
+        for layer in range(layers):
+            angle = layer * twist + j * pf_rotation
+            R = rot(angle) @ tilt
+            shift = axis_pt + (layer * rise + j * pf_rise) * axis_dir
+            t = shift - R @ np.array([93.05, 93.06, 0.0])
+            copy = base.clone()
+            copy.transform_pos_and_adp(gemmi.Transform(gemmi.Mat33(R.tolist()), gemmi.Vec3(*t)))
+            ch = copy[0].clone()
+            ch.name = next(names)
+            model.add_chain(ch)
+    out = gemmi.Structure()
+    out.add_model(model)
+    out.setup_entities()
+    f = tmp_path / f"synthetic_{k}.pdb"
+    out.write_pdb(str(f))
+    return f
+
+
+@pytest.mark.parametrize("twist", [0.025, -0.02])
+def test_synthetic_one_protofilament_any_handedness(S, tmp_path, twist):
+    gemmi = _gemmi()
+    g = S.measure_fibril(_synthetic(gemmi, tmp_path, rise=4.75, twist=twist, k=1, layers=5))
+    assert g.rise == pytest.approx(4.75, abs=1e-3) and g.twist == pytest.approx(twist, abs=1e-5)
+    assert g.protofilaments == 1 and g.layers == 5 and g.axis_exact
+
+
+def test_synthetic_three_protofilaments(S, tmp_path):
+    gemmi = _gemmi()
+    f = _synthetic(gemmi, tmp_path, rise=4.8, twist=-0.02, k=3, pf_rotation=2 * math.pi / 3,
+                   pf_rise=1.6)
+    g = S.measure_fibril(f)
+    assert g.protofilaments == 3 and g.layers == 4
+    assert g.rise == pytest.approx(4.8, abs=1e-3) and g.twist == pytest.approx(-0.02, abs=1e-5)
+    assert g.pf_rotation == pytest.approx(2 * math.pi / 3, abs=1e-4)
+    assert g.pf_rise == pytest.approx(1.6, abs=1e-3)
+    assert [o[1] for o in g.pf_offsets] == pytest.approx([0, 1.6, 3.2], abs=1e-3)
+    assert len({a["radius"] for a in g.anchors}) == 1 or \
+        np.ptp([a["radius"] for a in g.anchors]) < 0.01

@@ -179,7 +179,22 @@ def test_model_values_rebuild_the_stack(measured, name, S):
         rmsd = np.sqrt(((model - local[ref + k]) ** 2).sum(axis=1).mean())
         assert rmsd < 0.6, (k, rmsd)
     ca = (chains[order[ref]].ca_of([g.anchors[0]["residue"]])[0] - ax["point"]) @ frame.T
-    assert v["anchor"] == pytest.approx(list(ca[:2]), abs=0.01)
+    assert g.anchors[0]["position"] == pytest.approx(list(ca[:2]), abs=0.01)
+
+
+@pytest.mark.parametrize("name", FIBRILS)
+def test_model_anchor_touches_the_outline_from_outside(measured, name, S):
+    g = measured[(name, "C")]
+    v = S.model_values(g)
+    outline = np.array(v["core_outline"])
+    anchor = np.array(v["anchor"])
+    assert not S.outline.contains(outline, anchor)[0]
+    point, _ = S.outline.nearest_on_boundary(outline, anchor)
+    assert np.linalg.norm(anchor - point) == pytest.approx(1.75, abs=0.3)
+    # next to the anchor CA: no farther than the CA's own depth below the outline, plus the bead
+    ca = np.array(g.anchors[0]["position"])
+    depth, _ = S.outline.nearest_on_boundary(outline, ca)
+    assert np.linalg.norm(anchor - ca) <= np.linalg.norm(depth - ca) + 1.75 + 0.3
 
 
 def test_model_values(measured, S):
@@ -188,7 +203,8 @@ def test_model_values(measured, S):
     v = S.model_values(fib, dom)
     assert v["rise"] == fib.rise and v["twist"] == fib.twist > 0
     assert v["protofilaments"] == 1 and v["pf_rotation"] == 0 and v["pf_rise"] == 0
-    assert v["anchor"] == fib.anchors[0]["position"] and v["core_outline"] == fib.core_outline
+    assert v["core_outline"] == fib.core_outline
+    assert v["anchor"] == S.mapping.anchor_outside(fib.core_outline, fib.anchors[0]["position"])
     assert v["linker"] == 1 + 43  # the anchor and the modelled tail 98-140
     assert v["globule_diameter"] == dom.globule_diameter
     six = S.model_values(measured[("6cu7", "C")])

@@ -10,6 +10,8 @@ from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
 from .structure.errors import StructureError
+from .structure_inputs import (add_structure_options, measure_structures,
+                               params_and_structure)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -47,51 +49,13 @@ def params_from(args) -> dict:
             if getattr(args, f.name, None) is not None}
 
 
-def add_structure_options(parser: argparse.ArgumentParser) -> None:
-    group = parser.add_argument_group("structure files (PDB/mmCIF, optionally .gz)")
-    group.add_argument("--fibril", metavar="FILE", help="a fibril structure: fills rise, twist, "
-                                                          "protofilaments, core outline, anchor")
-    group.add_argument("--domain", metavar="FILE", help="a domain structure: fills "
-                                                          "globule_diameter from its Rg")
-    group.add_argument("--terminus", choices=("N", "C"), default="C",
-                       help="the core terminus that carries the linker [default C]")
-    group.add_argument("--anchor-residue", metavar="R", type=_residue_number,
-                       help="anchor on this residue instead of the core's terminus")
-    group.add_argument("--domain-chain", metavar="C", help="the domain's chain [default: first]")
-    group.add_argument("--domain-residues", metavar="A-B",
-                       help="the domain's residues [default: all]")
-
-
-def _residue_number(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a residue number (got {text!r})") from None
-
-
-def measure_structures(args):
-    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain."""
-    from . import structure
-    if args.anchor_residue is not None and not args.fibril:
-        raise UsageError("--anchor-residue: needs --fibril")
-    if (args.domain_chain or args.domain_residues) and not args.domain:
-        raise UsageError("--domain-chain/--domain-residues: need --domain")
-    fib = dom = None
-    if args.fibril:
-        fib = structure.measure_fibril(args.fibril, terminus=args.terminus,
-                                       anchor_residue=args.anchor_residue)
-    if args.domain:
-        dom = structure.measure_domain(args.domain, chain=args.domain_chain,
-                                       residues=args.domain_residues)
-    return fib, dom
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)
+    add_structure_options(run)
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
@@ -108,6 +72,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
+    add_structure_options(sweep)
     from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
     return parser
@@ -144,7 +109,8 @@ def progress_printer(frames: int, every: int = 25):
 
 def command_run(args) -> int:
     from . import pipeline, report
-    p = P.make_params(force=args.force, **params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    p = P.make_params(force=args.force, **values)
     look = export_options.render_options(args)
     if args.pdb:
         export_options.pdb_fits(p)
@@ -155,6 +121,8 @@ def command_run(args) -> int:
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                           on_frame=progress_printer(p.frames) if args.progress else None)
+    if structure_block:
+        result["structure"] = structure_block
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red

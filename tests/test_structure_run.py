@@ -46,6 +46,12 @@ def test_an_explicit_option_wins_and_no_file_means_no_block(ff, scene, tmp_path)
     r = json.loads(out.read_text())
     assert r["params"]["twist"] == 0.02 and "twist" in r["structure"]["overridden"]
     assert r["params"]["rise"] == pytest.approx(4.825, abs=0.1)
+    # the protofilament model (issue "Real fibril geometry") takes the rest
+    assert r["structure"]["not_in_model"] == []
+    assert r["params"]["protofilaments"] == 2
+    assert r["params"]["pf_rotation"] == pytest.approx(3.1325, abs=0.002)
+    assert r["params"]["pf_rise"] == pytest.approx(2.41, abs=0.1)
+    assert len(r["params"]["core_outline"]) > 50 and len(r["params"]["anchor"]) == 2
     assert "domain" not in r["structure"]
     assert ff.cli.main(["run", *FAST, "--stop-after", "build", "--json", str(out)]) == 0
     assert "structure" not in json.loads(out.read_text())

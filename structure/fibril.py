@@ -117,6 +117,23 @@ def _core_range(stacked_numbers):
     return [int(best[0]), int(best[-1])]
 
 
+def _stacking(chains, name, option):
+    """Common residues, their CA (chains, residues, 3), the stacked residues of each stacking
+    pair of chains, and the protofilaments as paths of chain indices."""
+    common = reduce(np.intersect1d, [c.residues for c in chains])
+    if len(common) < MIN_STACKED:
+        raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
+                                     "residues: the layers do not stack")
+    ca = np.array([c.ca_of(common) for c in chains])
+    pairs = {}
+    for i in range(len(chains)):
+        for j in range(i + 1, len(chains)):
+            s = _stacked(ca[i], ca[j])
+            if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
+                pairs[(i, j)] = s
+    return chains, common, ca, pairs, _paths(len(chains), pairs, option)
+
+
 def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             option: str = "--fibril") -> FibrilGeometry:
     loaded = reading.load(path, option)
@@ -124,27 +141,16 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
         raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
                                      "give --rise and --twist instead")
-    chains = loaded.chains
-    common = reduce(np.intersect1d, [c.residues for c in chains])
-    if len(common) < MIN_STACKED:
-        raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
-                                     "residues: the layers do not stack")
-    ca = np.array([c.ca_of(common) for c in chains])  # (chains, residues, 3)
-    n = len(chains)
-    pairs = {}
-    for i in range(n):
-        for j in range(i + 1, n):
-            s = _stacked(ca[i], ca[j])
-            if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
-                pairs[(i, j)] = s
-    paths = _paths(n, pairs, option)
-    if max(len(p) for p in paths) < 2:
-        if not reading.expand_symmetry(loaded) or len(loaded.chains) == n:
+    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+    if max(len(q) for q in paths) < 2:  # no two chains stack: a symmetry may build the layers
+        if not reading.expand_symmetry(loaded):
             raise StructureError(option, f"{name}: no two chains stack {STACK[0]}-{STACK[1]} Å "
                                          "apart, the layers do not stack (fewer than 2 layers): "
                                          "give --rise and --twist")
-        return measure(path, terminus=terminus, anchor_residue=anchor_residue, option=option)
-    paths = [p for p in paths if len(p) >= 1]
+        chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+        if max(len(q) for q in paths) < 2:
+            raise StructureError(option, f"{name}: even with its symmetry operators no two "
+                                         "chains stack: the layers do not stack")
     stacked_all = np.logical_and.reduce([pairs[tuple(sorted((p[k], p[k + 1])))]
                                          for p in paths for k in range(len(p) - 1)])
     if stacked_all.sum() < MIN_STACKED:

@@ -175,8 +175,8 @@ def structure_lines(measured: dict) -> list:
     f = measured.get("fibril")
     if f:
         hand = "right" if f["twist"] > 0 else "left"
-        lines.append(f"{f['file']}: rise {f['rise']:.3f} Å, twist {math.degrees(f['twist']):+.3f}° "
-                     f"({hand}-handed)")
+        twist = math.degrees(f["twist"])
+        lines.append(f"{f['file']}: rise {f['rise']:.3f} Å, twist {twist:+.3f}° ({hand}-handed)")
         lines.append(f"{f['protofilaments']} protofilament(s), core {f['core_residues'][0]}-"
                      f"{f['core_residues'][1]}, {f['layers']} layers in the file")
         for a in f["anchors"]:

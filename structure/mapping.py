@@ -40,8 +40,9 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
 
     The layer frame is the fibril's: Z = the helical axis through the origin, layer 0 of the model
     = the structure's reference layer, X along the long axis of its section. `anchor` is the bead
-    touching the outline nearest protofilament 0's anchor CA (anchor_outside); `linker` (anchor + tail) only when the file models residues
-    beyond the anchor (e.g. 2N0A's 98-140), since they are linker too.
+    touching the outline nearest protofilament 0's anchor CA (anchor_outside); `linker` (anchor +
+    tail) only when the file models residues beyond the anchor (e.g. 2N0A's 98-140), since they
+    are linker too.
     """
     values = {}
     if fibril is not None:

@@ -16,8 +16,8 @@ def fibril_lines(g) -> list:
     lines.append(f"  axis: through ({', '.join(f'{v:.2f}' for v in ax['point'])}) along "
                  f"({', '.join(f'{v:.4f}' for v in ax['direction'])})"
                  + ("" if g.axis_exact else " (approximate)"))
-    lines.append(f"  rise {g.rise:.3f} ± {g.rise_sd:.3f} Å, twist {g.twist:+.5f} ± {g.twist_sd:.5f}"
-                 f" rad ({_deg(g.twist)} per layer, {hand})")
+    lines.append(f"  rise {g.rise:.3f} ± {g.rise_sd:.3f} Å, twist {g.twist:+.5f} ± "
+                 f"{g.twist_sd:.5f} rad ({_deg(g.twist)} per layer, {hand})")
     pf = (f", pf_rotation {g.pf_rotation:+.4f} rad ({_deg(g.pf_rotation)}), pf_rise "
           f"{g.pf_rise:.3f} Å" if g.protofilaments > 1 else "")
     lines.append(f"  protofilaments {g.protofilaments}{pf}; layers {g.layers} "

@@ -48,8 +48,8 @@ def _bad_files(tmp_path):
     junk = tmp_path / "junk.cif"
     junk.write_bytes(bytes(range(256)) * 4)
     water = tmp_path / "water.pdb"
-    water.write_text("HETATM    1  O   HOH A   1      10.000  10.000  10.000  1.00 20.00           O\n"
-                     "END\n")
+    water.write_text("HETATM    1  O   HOH A   1      10.000  10.000  10.000  1.00 20.00"
+                     "           O\nEND\n")
     folder = tmp_path / "folder.pdb"
     folder.mkdir()
     gz = tmp_path / "broken.pdb.gz"

@@ -12,7 +12,8 @@ DEG = math.radians(1.0)
 
 # file: rise Å, twist °, K, (pf rotation °, pf rise Å), core, layer order per protofilament by
 # increasing z along the axis, C-terminal anchor (residue, r range Å), N-terminal anchor
-# (residue, r range Å) and which of N / C are buried (README "depth" 7.2-22.7 Å; free ones ≤ 4.6 Å).
+# (residue, r range Å) and which of N / C are buried (README "depth" 7.2-22.7 Å; free ones
+# ≤ 4.6 Å).
 FIBRILS = {
     "2beg_model1": dict(rise=4.61, twist=-0.54, K=1, pf=None, core=[18, 42], chains=["EDCBA"],
                         C=(42, 21.7, 22.8), N=(17, 15.7, 17.3), buried=set()),

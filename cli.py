@@ -35,6 +35,8 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                                default=None, help=help_)
         elif f.name == "slab":
             group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
+        elif "choices" in meta and not as_lists:
+            group.add_argument(option(f.name), choices=meta["choices"], help=help_)
         else:
             group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
     parser.add_argument("--force", action="store_true",
@@ -109,7 +111,7 @@ def command_run(args) -> int:
     if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.frames) if args.progress else None)
+                          on_frame=progress_printer(p.bake_frames()) if args.progress else None)
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red

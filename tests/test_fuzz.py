@@ -20,6 +20,8 @@ junk = st.one_of(
 
 def near_range(meta):
     lo, hi = meta["min"], meta["max"]
+    if "choices" in meta:
+        return st.sampled_from([*meta["choices"], "", "Tutorial ", "other"])
     if meta["kind"] is bool:
         return st.booleans()
     if meta["kind"] is int:
@@ -33,6 +35,8 @@ SMALLER = {"layers": (1, 3000), "score_layers": (0, 5)}  # keeps combination lim
 def in_range(meta, name=None):
     if name in SMALLER:
         return st.integers(*SMALLER[name])
+    if "choices" in meta:
+        return st.sampled_from(meta["choices"])
     if meta["kind"] is bool:
         return st.booleans()
     if meta["kind"] is int:
@@ -67,6 +71,9 @@ def test_validation_accepts_or_refuses_with_paramerror_only(values):
     event("accepted")
     for f in dataclasses.fields(P.Params):
         v = getattr(p, f.name)
+        if "choices" in f.metadata:
+            assert v in f.metadata["choices"]
+            continue
         for x in (v if f.name == "slab" else (v,)):
             assert isinstance(x, (int, float)) and math.isfinite(x)
             if f.metadata["kind"] is not bool:
@@ -80,7 +87,7 @@ small_models = st.fixed_dictionaries({}, optional={
     "residue_radius": st.floats(-1, 5, allow_nan=False), "residue_spacing": st.floats(-1, 8),
     "rise": st.floats(-1, 20, allow_nan=False), "twist": st.floats(-4, 4, allow_nan=False),
     "slab": st.tuples(*[st.floats(-1, 60, allow_nan=False)] * 3),
-    "score_layers": st.integers(-1, 4)})
+    "score_layers": st.integers(-1, 4), "protocol": st.sampled_from(P.PROTOCOLS)})
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

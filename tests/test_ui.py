@@ -60,6 +60,10 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["kind"] is bool:
             assert prop.type == "BOOLEAN" and prop.default == f.default
             continue
+        if "choices" in meta:
+            assert prop.type == "ENUM" and prop.default == f.default, f.name
+            assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
+            continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
         assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"], meta["max"])), f.name
         default = tuple(prop.default_array) if f.name == "slab" else prop.default

@@ -155,7 +155,9 @@ class Params:
     def bake_frames(self) -> int:
         """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
         if self.protocol == "inflate":
-            return (1 + self.regrow_cycles) * (self.grow_frames + self.hold_frames)
+            # each cycle: grow_frames + 1 frames from the start scale to full size inclusive,
+            # then at most hold_frames
+            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + self.hold_frames)
         return self.frames
 
     def estimated_objects(self) -> int:

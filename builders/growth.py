@@ -93,12 +93,19 @@ class Inflate:
         self.scored = slice(self.p.score_layers, n - self.p.score_layers)
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
         self.holding, self.hold_start, self.quiet, self.prev = False, 0, 0, None
-        self.finished, self.gravity = False, None
+        self.finished, self.gravity, self.scale = False, None, None
         self.cycles: list[dict] = []
 
     def _set_scale(self, s: float) -> None:
-        self.globules.objects.foreach_set(
-            "scale", np.full(3 * len(self.globules.objects), s, dtype=np.float32))
+        if s == self.scale:
+            return
+        objects = self.globules.objects
+        objects.foreach_set("scale", np.full(3 * len(objects), s, dtype=np.float32))
+        # foreach_set tags nothing: without this the depsgraph keeps the old scale (measured:
+        # matrix_world and Bullet's shape stay at full size)
+        for ob in objects:
+            ob.update_tag(refresh={"OBJECT"})
+        self.scale = s
 
     def before_frame(self, scene, frame: int) -> None:
         p = self.p
@@ -108,14 +115,14 @@ class Inflate:
             self.gravity = cycle_gravity(p, 0, scene.gravity)
         if self.holding:
             return
-        t = min(1.0, (frame - self.grow_start + 1) / p.grow_frames)
+        t = min(1.0, (frame - self.grow_start) / p.grow_frames)
         self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
         scene.gravity = tuple(self.gravity * (1.0 - t))
 
     def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:
         p = self.p
         if not self.holding:
-            if frame - self.grow_start + 1 >= p.grow_frames:
+            if frame - self.grow_start >= p.grow_frames:
                 self.holding, self.hold_start, self.quiet, self.prev = True, frame + 1, 0, positions.copy()
             return
         speed = float(np.linalg.norm(positions - self.prev, axis=-1).max())

@@ -89,8 +89,8 @@ class Inflate:
     def __init__(self, model, scene, judge: Callable | None = None):
         self.model, self.p, self.judge = model, model.params, judge
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
-        n = len(model.chain)
-        self.scored = slice(self.p.score_layers, n - self.p.score_layers)
+        n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
+        self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
         self.holding, self.hold_start, self.quiet, self.prev = False, 0, 0, None
         self.finished, self.gravity, self.scale = False, None, None

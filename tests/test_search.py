@@ -53,6 +53,24 @@ def test_inflate_layout_keeps_bonds_anchors_and_pivots(chains_per_layer):
     assert (np.linalg.norm(pos[:, 1:, :2], axis=-1) > np.linalg.norm(rest[:, :1, :2], axis=-1)).all()
 
 
+def test_inflate_layout_over_protofilaments_and_an_anchor_off_the_x_axis():
+    p = P.make_params(linker=5, layers=8, protofilaments=2, anchor=(-5.0, 12.75),
+                      protocol="inflate")
+    rest = chain_positions(p)
+    pos, piv = inflate_layout(p, rest, seed=1)
+    assert pos.shape == rest.shape == (16, 6, 3)
+    np.testing.assert_allclose(pos[:, 0], rest[:, 0])
+    u = fan_frames(rest)[0]
+    assert ((np.diff(pos, axis=1) * u[:, None]).sum(-1) > 0).all()
+
+
+def test_inflate_bakes_several_protofilaments(scene, ff):
+    p = P.make_params(layers=3, linker=6, protofilaments=2, **FAST)
+    r = ff.pipeline.run(p, scene)
+    assert len(r["globule_centres"]) == 6 and r["inflate"]["cycles"]
+    assert r["frames_simulated"] == r["inflate"]["cycles"][-1]["judged_at"]
+
+
 def test_inflate_layout_is_fixed_by_the_seed_and_fans_the_globules():
     p = P.make_params(linker=5, layers=20, protocol="inflate")
     rest = chain_positions(p)

@@ -110,6 +110,14 @@ def test_protocol_is_a_choice_named_in_its_error():
     assert p.bake_frames() == 3 * 16
 
 
+def test_sweeps_take_the_protocol_as_an_axis():
+    from fibrilfit.sweep import grid
+    points = grid.build({"protocol": grid.parse_spec("protocol", "tutorial,inflate")}, ["0"])
+    assert [pt.point["protocol"] for pt in points] == ["tutorial", "inflate"]
+    with pytest.raises(P.ParamError, match="protocol"):
+        grid.build({"protocol": grid.parse_spec("protocol", "tutorial,grow")}, ["0"])
+
+
 def test_cli_refuses_a_bad_protocol_in_one_line(tmp_path):
     proc = subprocess.run([PY, str(ROOT / "headless.py"), "run", "--protocol", "anneal"],
                           capture_output=True, text=True, timeout=120)
@@ -191,6 +199,36 @@ def test_restarts_summary_has_p_fit_its_wilson_interval_and_the_best_seed():
     assert 0 < lo < 1 / 3 < hi < 1
     none = restarts.summarise([_record(0, False, 1), _record(1, False, 3)])
     assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
+
+
+class FakeExecutor:
+    """The executor interface (submit, pending, wait) answering from a table, no Blender."""
+
+    def __init__(self, fits):
+        self.fits, self.queue, self.ran = fits, [], []
+
+    def submit(self, job):
+        self.queue.append(job)
+
+    def pending(self):
+        return len(self.queue)
+
+    def wait(self):
+        job = self.queue.pop(0)
+        seed = job["params"]["seed"]
+        self.ran.append(seed)
+        return job, {"id": job["id"], "ok": True, "result": {
+            **_record(seed, seed in self.fits), "params": job["params"]}}
+
+
+@pytest.mark.parametrize("stop, window, ran", [(False, 1, [0, 1, 2, 3, 4]), (True, 1, [0, 1, 2]),
+                                               (True, 2, [0, 1, 2, 3])])
+def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
+    base = P.make_params(linker=5).to_dict()
+    ex = FakeExecutor(fits={2, 4})
+    recs = restarts.run(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop, window=window)
+    assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
+    assert restarts.summarise(recs)["best_seed"] == 2
 
 
 @pytest.mark.parametrize("start", [1, 3, 5, 9])

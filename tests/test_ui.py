@@ -60,6 +60,10 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["kind"] is bool:
             assert prop.type == "BOOLEAN" and prop.default == f.default
             continue
+        if "choices" in meta:
+            assert prop.type == "ENUM" and prop.default == f.default, f.name
+            assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
+            continue
         if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue

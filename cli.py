@@ -10,6 +10,9 @@ from . import output, params as P
 from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
+from .structure.errors import StructureError
+from .structure_inputs import (add_structure_options, measure_structures,
+                               params_and_structure)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -80,6 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)
+    add_structure_options(run)
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
@@ -89,11 +93,16 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
     run.add_argument("--progress", action="store_true",
                      help="print the bake's frame to stderr at its start and every 25 frames")
+    inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
+                                             "(PDB/mmCIF, .gz too) without building anything")
+    add_structure_options(inspect)
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
     from .search import command as search_command  # argparse only: nothing runs at import
     search_command.add_restart_options(run)
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
+    add_structure_options(sweep)
     from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
     minimal = sub.add_parser(
@@ -101,6 +110,7 @@ def build_parser() -> argparse.ArgumentParser:
                                "accommodated layout, searched with restarts (protocol inflate "
                                "unless --protocol says otherwise)")
     add_param_options(minimal)
+    add_structure_options(minimal)
     for action in minimal._actions:
         if action.dest == "globule_diameter":
             action.metavar, action.help = "LIST", (
@@ -117,7 +127,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return COMMANDS[args.command](args)
-    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
+    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError,
+            StructureError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
@@ -141,7 +152,8 @@ def command_run(args) -> int:
     from . import pipeline, report
     from .search import command as search_command
     search_command.check_restart_options(args)
-    p = P.make_params(force=args.force, **params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    p = P.make_params(force=args.force, **values)
     look = export_options.render_options(args)
     if args.pdb:
         export_options.pdb_fits(p)
@@ -156,6 +168,8 @@ def command_run(args) -> int:
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                           on_frame=progress_printer(p.bake_frames()) if args.progress else None)
+    if structure_block:
+        result["structure"] = structure_block
     if restarts is not None:
         best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
         restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
@@ -195,6 +209,22 @@ def command_run(args) -> int:
     return EXIT_OK
 
 
+def command_inspect(args) -> int:
+    from . import structure
+    from .structure import summary
+    if not (args.fibril or args.domain):
+        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    path = output.check_writable("--json", args.json, (".json",)) if args.json else None
+    fib, dom = measure_structures(args)
+    values = structure.model_values(fib, dom)
+    if path:
+        import gemmi
+        output.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+                                 "model_values": values, "gemmi_version": gemmi.__version__})
+    print(summary.text(fib, dom, values))
+    return EXIT_OK
+
+
 def command_sweep(args) -> int:
     from .sweep import command
     return command.run(args)
@@ -202,7 +232,9 @@ def command_sweep(args) -> int:
 
 def command_minimal_linker(args) -> int:
     from .search import command
-    return command.run_minimal(args, params_from(args))
+    values, _ = params_and_structure(args, params_from(args))
+    return command.run_minimal(args, values)
 
 
-COMMANDS = {"run": command_run, "sweep": command_sweep, "minimal-linker": command_minimal_linker}
+COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
+            "minimal-linker": command_minimal_linker}

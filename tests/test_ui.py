@@ -467,7 +467,8 @@ def draw_all(context):
 
 
 def test_panels_are_in_the_fibrilfit_tab_in_the_tutorials_order(ui):
-    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS]
+    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS,
+                                                                 "Structures"]
     for cls in sidebar.CLASSES:
         assert cls.is_registered
         assert (cls.bl_space_type, cls.bl_region_type, cls.bl_category) == ("VIEW_3D", "UI",
@@ -489,7 +490,8 @@ def test_panels_draw_in_every_state(ui, scene):
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
                                                     "run_all", "clear", "load_outline",
-                                                    "clear_outline")}
+                                                    "clear_outline", "import_fibril",
+                                                    "import_domain")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

@@ -5,7 +5,7 @@ import argparse
 import dataclasses
 import sys
 
-from . import output, params as P
+from . import cases, output, params as P
 from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
@@ -41,6 +41,33 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                         help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
 
 
+def add_case_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--case", metavar="FILE.toml",
+                        help="start from this case file (README, Case files); options given "
+                             "beside it win")
+
+
+def apply_case(args):
+    """Load args.case and fill every option the command line left unset from it (model
+    parameters; for a sweep also its seeds). Returns the Case, or None without --case."""
+    if not getattr(args, "case", None):
+        return None
+    case = cases.load(args.case)
+    sweep = hasattr(args, "seed_list")  # a command that runs a list of seeds
+    seeds_given = sweep and any(getattr(args, o, None) is not None
+                                for o in ("seeds", "seed_list", "seed"))
+    overridden = []
+    for name, value in case.params.items():
+        if getattr(args, name, None) is not None:
+            overridden.append(name)
+        elif not (name == "seed" and sweep and (seeds_given or case.seeds is not None)):
+            setattr(args, name, value)
+    if sweep and case.seeds is not None and not seeds_given:
+        args.seed_list = ",".join(str(s) for s in case.seeds)
+    case.overridden = sorted(overridden)
+    return case
+
+
 def params_from(args) -> dict:
     return {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
             if getattr(args, f.name, None) is not None}
@@ -52,6 +79,11 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)
+    add_case_option(run)
+    run.add_argument("--save-case", metavar="FILE.toml",
+                     help="write this run's case (every parameter, and the --case metadata)")
+    run.add_argument("--envelope-plot", metavar="PATH.png",
+                     help="draw the radial density of the domain centres (needs matplotlib)")
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
@@ -64,18 +96,21 @@ def build_parser() -> argparse.ArgumentParser:
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
+    add_case_option(sweep)
     from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
     return parser
 
 
-OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES}
+OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES,
+           "save_case": cases.SUFFIXES, "envelope_plot": (".png",)}
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     try:
         args = build_parser().parse_args(argv)
+        args.loaded_case = apply_case(args)
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
@@ -100,6 +135,9 @@ def progress_printer(frames: int, every: int = 25):
 def command_run(args) -> int:
     from . import pipeline, report
     p = P.make_params(force=args.force, **params_from(args))
+    if args.envelope_plot:
+        from .exports import envelope_plot
+        envelope_plot.available(args.stop_after)
     look = export_options.render_options(args)
     if args.pdb:
         export_options.pdb_fits(p)
@@ -110,6 +148,8 @@ def command_run(args) -> int:
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                           on_frame=progress_printer(p.frames) if args.progress else None)
+    if args.loaded_case is not None:
+        result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden)
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
@@ -121,6 +161,11 @@ def command_run(args) -> int:
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])
+    if "save_case" in paths:
+        cases.save(paths["save_case"], result.get("case") or cases.Case({}, {}).resolved(p))
+    if "envelope_plot" in paths and "envelope" in result:
+        problems.append(writers.export(result, "envelope_plot", "--envelope-plot",
+                                       envelope_plot.write, result, paths["envelope_plot"]))
     if "json" in paths:
         output.write_json(paths["json"], result)
     if "render" in paths:  # last: the slowest, and the JSON is already safe on disk

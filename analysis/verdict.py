@@ -5,6 +5,7 @@ import numpy as np
 
 from ..builders.readback import MatrixReader
 from .clashes import bvh_clashes, grazing_depth, sphere_clashes
+from .envelope import envelope
 from .stretch import bond_stretch
 
 # A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
@@ -108,6 +109,7 @@ def check_model(model) -> dict:
         "scored_layers": [lo, hi - 1],
         "layer_clashes": layer_clash,
         "globule_centres": np.round(centres, 4).tolist(),
+        "envelope": envelope(centres[scored], p.globule_radius),
     }
 
 

@@ -89,6 +89,10 @@ RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
 _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
+# The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
+# Not a result: a bake or check leaves it alone.
+FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
+    name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
 
 CLASSES = (FIBRILFIT_PG_settings,)
 

@@ -1,4 +1,5 @@
 """The sidebar's operators: thin wrappers over the functions headless runs call."""
-from . import build, check, export, simulate
+from . import build, cases, check, export, simulate
 
-CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES)
+CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES,
+           *cases.CLASSES)

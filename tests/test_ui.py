@@ -469,6 +469,7 @@ def test_panels_draw_in_every_state(ui, scene):
         assert sorted(props) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "load_case", "save_case",
                                                     "run_all", "clear")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}

@@ -127,16 +127,25 @@ def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
+def _is_array(f) -> bool:
+    meta = f.metadata
+    return isinstance(f.default, tuple) or bool(meta.get("size")) or meta["kind"] == "points"
+
+
 def _check_param(path, name: str, value):
-    """One [params] value: the TOML type must fit the parameter, then params validates it."""
+    """One [params] value: its TOML type must fit the parameter (params validates the rest).
+    A parameter whose default is derived from others may also say so in words ("auto")."""
     f = P.Params.__dataclass_fields__[name]
     meta, key = f.metadata, f"{PARAMS}.{name}"
+    if meta.get("derived") and isinstance(value, str):
+        return value
     if meta["kind"] is bool:
         if not isinstance(value, bool):
             raise _error(path, key, f"must be true or false (got {value!r})")
-    elif isinstance(f.default, tuple):
+    elif _is_array(f):
         if not isinstance(value, list):
-            raise _error(path, key, f"must be an array like {list(f.default)} (got {value!r})")
+            example = list(f.default) if isinstance(f.default, tuple) else "[...]"
+            raise _error(path, key, f"must be an array like {example} (got {value!r})")
     elif meta["kind"] in (int, float):
         special = name == "score_layers" and value == "all"
         if not _is_number(value) and not special:
@@ -218,7 +227,8 @@ def dumps(case: dict) -> str:
         if key in case:
             lines.append(f"{key} = {_value(case[key])}")
     lines += ["", f"[{PARAMS}]"]
-    params = case.get(PARAMS, {})
+    # None: a parameter derived from others (TOML has no null); leaving it out means the same
+    params = {k: v for k, v in case.get(PARAMS, {}).items() if v is not None}
     for f in P.fields():
         if f.name in params:
             lines.append(f"{f.name} = {_value(params[f.name])}")

@@ -105,10 +105,9 @@ def test_every_parameter_is_a_case_key():
     text = cases.dumps(cases.Case({}, {}).resolved(P.DEFAULTS))
     assert set(tomllib.loads(text)["params"]) == {f.name for f in P.fields()
                                                   if getattr(P.DEFAULTS, f.name) is not None}
-    for f in P.fields():
-        case = cases.from_dict({"params": {f.name: getattr(P.DEFAULTS, f.name)}}
-                               if getattr(P.DEFAULTS, f.name) is not None else {})
-        assert case.make_params() == P.DEFAULTS, f.name
+    for name, value in P.DEFAULTS.to_dict().items():
+        case = cases.from_dict({"params": {name: value}} if value is not None else {})
+        assert case.make_params() == P.DEFAULTS, name
 
 
 def test_sweep_takes_the_case_and_its_seeds(tmp_path):

@@ -53,6 +53,11 @@ def summary(r: dict, quiet: bool = False) -> str:
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
+    env = r.get("envelope") or {}
+    if env.get("n"):
+        lines.append(f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; "
+                     f"95 % within {env['r95']:.1f} Å), outer diameter "
+                     f"{env['outer_diameter']:.0f} Å")
     lines += _export_lines(r)
     if r["accommodated"]:
         lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "

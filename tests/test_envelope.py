@@ -63,7 +63,9 @@ def test_envelope_plot_written(tmp_path):
                  str(png), "--json", str(out))
     assert cp.returncode == 0, cp.stderr
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert json.loads(out.read_text())["envelope_plot"] == {"path": str(png)}
+    r = json.loads(out.read_text())
+    assert r["envelope_plot"] == {"path": str(png)}
+    assert f"outer diameter {r['envelope']['outer_diameter']:.0f} Å" in cp.stdout
 
 
 def test_envelope_plot_refused_without_matplotlib_or_a_check(monkeypatch, tmp_path):

@@ -19,6 +19,7 @@ import dataclasses
 import hashlib
 import json
 import math
+import os
 import pathlib
 import tomllib
 from typing import Any
@@ -73,11 +74,21 @@ class Case:
         if self.seeds is not None:
             out[SEEDS] = list(self.seeds)
         out[PARAMS] = p.to_dict()
+        files = {name: file_record(name, v, self.path) for name, v in self.params.items()
+                 if _names_file(name, v)}
+        if files:
+            out["files"] = files  # the files the case named, relative to it, with sha256
         if self.path is not None:
             out["file"] = str(self.path)
             out["sha256"] = self.sha256
         out["overridden"] = sorted(overridden)
         return out
+
+
+def _names_file(name: str, value) -> bool:
+    f = P.Params.__dataclass_fields__.get(name)
+    return (f is not None and f.metadata["kind"] == "points" and isinstance(value, str)
+            and pathlib.Path(value).is_absolute())
 
 
 def _where(path) -> str:
@@ -127,6 +138,24 @@ def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
+def _file(path, key: str, value: str) -> str:
+    """A file named in a case: relative to the case file's folder; it must exist."""
+    where = pathlib.Path(path).resolve().parent if path else pathlib.Path.cwd()
+    target = (where / pathlib.Path(value).expanduser()).resolve()
+    if not target.is_file():
+        raise _error(path, key, f"no file '{value}' (looked for {target})")
+    return str(target)
+
+
+def file_record(name: str, target, case_path=None) -> dict:
+    """{path relative to the case file (absolute without one), sha256} of a file a case uses."""
+    target = pathlib.Path(target)
+    rel = str(target)
+    if case_path is not None:
+        rel = os.path.relpath(target, pathlib.Path(case_path).resolve().parent)
+    return {"path": rel, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
+
+
 def _is_array(f) -> bool:
     meta = f.metadata
     return isinstance(f.default, tuple) or bool(meta.get("size")) or meta["kind"] == "points"
@@ -137,6 +166,9 @@ def _check_param(path, name: str, value):
     A parameter whose default is derived from others may also say so in words ("auto")."""
     f = P.Params.__dataclass_fields__[name]
     meta, key = f.metadata, f"{PARAMS}.{name}"
+    if meta["kind"] == "points" and isinstance(value, str) and not (
+            value.strip().lower() in P.DERIVED_WORDS or value.strip().startswith("[")):
+        return _file(path, key, value)  # a file of points, relative to the case file
     if meta.get("derived") and isinstance(value, str):
         return value
     if meta["kind"] is bool:

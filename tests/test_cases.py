@@ -148,3 +148,39 @@ def test_examples_load(tmp_path):
         except cases.CaseError as exc:
             name = exc.param.split(".", 1)[-1]
             assert name in pending and name not in known, f"{path.name}: {exc}"
+
+
+def test_outline_and_protofilaments_from_a_case(tmp_path):
+    """A core outline as a file next to the case (recorded with its sha256) or inline; an
+    anchor and two protofilaments; the saved case holds the points inline."""
+    (tmp_path / "data").mkdir()
+    square = [[-20, -12], [20, -12], [20, 12], [-20, 12]]
+    (tmp_path / "data" / "core.json").write_text(json.dumps(square))
+    case = write(tmp_path / "c.toml", '[params]\ncore_outline = "data/core.json"\n'
+                                      "anchor = [24.0, 3.0]\nprotofilaments = 2\nlayers = 3\n"
+                                      "linker = 3\n")
+    out = tmp_path / "r.json"
+    cp = run_cli("run", "--case", str(case), "--stop-after", "build", "--json", str(out),
+                 "--save-case", str(tmp_path / "s.toml"))
+    assert cp.returncode == 0, cp.stderr
+    r = json.loads(out.read_text())
+    assert r["params"]["core_outline"] == square and r["params"]["protofilaments"] == 2
+    assert r["params"]["anchor"] == [24.0, 3.0]
+    record = r["case"]["files"]["core_outline"]
+    assert record["path"] == "data/core.json" and len(record["sha256"]) == 64
+    inline = cases.load(tmp_path / "s.toml")
+    assert inline.params["core_outline"] == square
+    assert inline.make_params() == P.make_params(**r["params"])
+    bad = write(tmp_path / "b.toml", '[params]\ncore_outline = "missing.json"\n')
+    cp = run_cli("run", "--case", str(bad))
+    assert cp.returncode == 2 and "b.toml: params.core_outline: no file 'missing.json'" in cp.stderr
+
+
+def test_sweep_grid_takes_inline_points():
+    from argparse import Namespace
+    from fibrilfit.sweep import grid
+    square = [[-20, -12], [20, -12], [20, 12], [-20, 12]]
+    args = Namespace(**{f.name: None for f in P.fields() if f.name != "core_outline"},
+                     core_outline=square)
+    (point,) = grid.build(grid.specs_from(args), ["0"])
+    assert point.params["core_outline"] == square

@@ -13,6 +13,7 @@ saying why. Nothing is filled in by hand.
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import pathlib
 import subprocess
@@ -23,9 +24,9 @@ sys.path.insert(0, str(ROOT))
 import _load  # noqa: E402
 
 ff = _load.load(ROOT)
-from fibrilfit import cases, params as P  # noqa: E402
-from fibrilfit.sweep import runner, summary  # noqa: E402
-from fibrilfit.sweep.stats import wilson  # noqa: E402
+cases, runner, summary, stats = (importlib.import_module(f"{ff.__name__}.{m}") for m in
+                                 ("cases", "sweep.runner", "sweep.summary", "sweep.stats"))
+wilson = stats.wilson
 
 LADDER = (2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 40)
 START, END = "<!-- validation table: written by make validate -->", "<!-- end of validation table -->"

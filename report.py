@@ -12,6 +12,7 @@ def summary(r: dict, quiet: bool = False) -> str:
     head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
             f"{p['layers']} layers, linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
             f"seed {r['seed']}")
+    head = "\n".join([head, *_case_lines(r.get("case"))])
     if "verdict" not in r:
         return head + f"\nstopped after {r['stage']}; no verdict"
     verdict = f"verdict: {r['verdict']}"
@@ -72,6 +73,20 @@ def summary(r: dict, quiet: bool = False) -> str:
                      "that no clash-free layout exists: one bake is one random search, not an "
                      "exhaustive one. Sweep seeds to see how often one is found.")
     return "\n".join(lines)
+
+
+def _case_lines(case: dict | None) -> list[str]:
+    """With --case: which case, and which of its numbers are estimates or were overridden."""
+    if not case:
+        return []
+    name = case.get("name") or case.get("file", "")
+    ref = case.get("doi") or case.get("pdb")
+    line = f"case: {name}" + (f" ({ref})" if ref else "")
+    if case.get("estimates"):
+        line += f"; estimates: {', '.join(case['estimates'])}"
+    if case.get("overridden"):
+        line += f"; set on the command line: {', '.join(case['overridden'])}"
+    return [line]
 
 
 def _export_lines(r: dict) -> list[str]:

@@ -56,6 +56,7 @@ def test_cli_options_beside_the_case_win(tmp_path):
     assert (r["params"]["linker"], r["params"]["layers"], r["params"]["twist"]) == (7, 6, -0.03)
     assert r["case"]["name"] == "c" and r["case"]["overridden"] == ["linker"]
     assert r["case"]["params"] == r["params"] and r["case"]["file"] == str(case)
+    assert "case: c; set on the command line: linker" in cp.stdout
     saved = cases.load(tmp_path / "s.toml")
     assert saved.make_params() == P.make_params(**r["params"]) and saved.meta == {"name": "c"}
 

@@ -45,6 +45,11 @@ METADATA = {
     "notes": (str, "anything else: how numbers were estimated, caveats"),
 }
 SEEDS = "seeds"
+STRUCTURE = "structure"
+# [structure]: the options of --fibril/--domain (structure_inputs.py); files are relative to
+# the case file. Measured values fill the parameters the case and the command line leave unset.
+STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "terminus": ("N", "C"),
+                  "anchor_residue": int, "domain_chain": str, "domain_residues": str}
 ORDER = ("name", "description", "citation", "doi", "pdb", "source", "observed", "expected",
          "envelope_width", "envelope_width_source", "estimates", "notes", SEEDS)
 
@@ -63,19 +68,26 @@ class Case:
     path: pathlib.Path | None = None
     sha256: str | None = None
     overridden: list = dataclasses.field(default_factory=list)  # names the command line set
+    structure: dict = dataclasses.field(default_factory=dict)  # [structure], files absolute
 
     def make_params(self, *, force: bool = False, **overrides) -> P.Params:
         """Every parameter: the case's, then `overrides` (the command line's) on top."""
         return P.make_params(force=force, **{**self.params, **overrides})
 
-    def resolved(self, p: P.Params, overridden=()) -> dict:
-        """The case as run with `p`: JSON-ready, embedded in every result (`case`)."""
+    def resolved(self, p: P.Params, overridden=(), structure: dict | None = None) -> dict:
+        """The case as run with `p` (and `structure`, the structure options as run, if not the
+        case's own): JSON-ready, embedded in every result (`case`)."""
         out = {k: self.meta[k] for k in ORDER if k in self.meta}
         if self.seeds is not None:
             out[SEEDS] = list(self.seeds)
         out[PARAMS] = p.to_dict()
+        structure = self.structure if structure is None else structure
+        if structure:
+            out[STRUCTURE] = {k: structure[k] for k in STRUCTURE_KEYS if k in structure}
         files = {name: file_record(name, v, self.path) for name, v in self.params.items()
                  if _names_file(name, v)}
+        files.update({k: file_record(k, v, self.path) for k, v in (structure or {}).items()
+                      if STRUCTURE_KEYS[k] == "file"})
         if files:
             out["files"] = files  # the files the case named, relative to it, with sha256
         if self.path is not None:
@@ -188,8 +200,8 @@ def _check_param(path, name: str, value):
 
 def from_dict(data: dict, path=None, sha256: str | None = None) -> Case:
     """Validate a parsed case (a dict as tomllib gives it); raise CaseError naming the key."""
-    known = set(METADATA) | {SEEDS, PARAMS}
-    meta, params, seeds = {}, {}, None
+    known = set(METADATA) | {SEEDS, PARAMS, STRUCTURE}
+    meta, params, seeds, structure = {}, {}, None, {}
     for key, value in data.items():
         if key not in known:
             raise _error(path, key, f"unknown key; known: {', '.join(sorted(known))}")
@@ -204,13 +216,44 @@ def from_dict(data: dict, path=None, sha256: str | None = None) -> Case:
                 params[name] = _check_param(path, name, v)
         elif key == SEEDS:
             seeds = _check_seeds(path, value)
+        elif key == STRUCTURE:
+            structure = _check_structure(path, value)
         else:
             meta[key] = _check_meta(path, key, value)
     try:  # the case's own values together; the object limit waits for the run's --force
         P.make_params(force=True, **params)
     except P.ParamError as exc:
         raise _error(path, f"{PARAMS}.{exc.param}", str(exc).split(": ", 1)[1]) from None
-    return Case(meta, params, seeds, pathlib.Path(path) if path else None, sha256)
+    return Case(meta, params, seeds, pathlib.Path(path) if path else None, sha256,
+                structure=structure)
+
+
+def _check_structure(path, table) -> dict:
+    if not isinstance(table, dict):
+        raise _error(path, STRUCTURE, "must be a table: [structure]")
+    out = {}
+    for key, value in table.items():
+        name = f"{STRUCTURE}.{key}"
+        kind = STRUCTURE_KEYS.get(key)
+        if kind is None:
+            raise _error(path, name, f"unknown key; known: {', '.join(STRUCTURE_KEYS)}")
+        if kind == "file":
+            if not isinstance(value, str):
+                raise _error(path, name, f"must be a file name (got {value!r})")
+            out[key] = _file(path, name, value)
+        elif isinstance(kind, tuple):
+            if value not in kind:
+                raise _error(path, name, f"must be one of {', '.join(kind)} (got {value!r})")
+            out[key] = value
+        elif kind is int:
+            if not isinstance(value, int) or isinstance(value, bool):
+                raise _error(path, name, f"must be a residue number (got {value!r})")
+            out[key] = value
+        else:
+            if not isinstance(value, str):
+                raise _error(path, name, f"must be a string (got {value!r})")
+            out[key] = value
+    return out
 
 
 def load(path) -> Case:
@@ -252,8 +295,9 @@ def _value(v) -> str:
     raise TypeError(f"cannot write {type(v).__name__} to a case")
 
 
-def dumps(case: dict) -> str:
-    """A case dict (as Case.resolved gives it) as TOML text, metadata first, then [params]."""
+def dumps(case: dict, where=None) -> str:
+    """A case dict (as Case.resolved gives it) as TOML text, metadata first, then [params] and
+    [structure], whose files are written relative to the folder `where` (the file's)."""
     lines = ["# FibrilFit case: headless.py run --case THIS.toml (see README, Case files)"]
     for key in ORDER:
         if key in case:
@@ -264,9 +308,20 @@ def dumps(case: dict) -> str:
     for f in P.fields():
         if f.name in params:
             lines.append(f"{f.name} = {_value(params[f.name])}")
+    structure = dict(case.get(STRUCTURE) or {})
+    for key, kind in STRUCTURE_KEYS.items():
+        if kind == "file" and key in structure:
+            target = pathlib.Path(structure[key])
+            structure[key] = (os.path.relpath(target.resolve(), pathlib.Path(where).resolve())
+                              if where is not None else str(target))
+    if structure:
+        lines += ["", f"[{STRUCTURE}]"]
+        lines += [f"{k} = {_value(structure[k])}" for k in STRUCTURE_KEYS if k in structure]
     text = "\n".join(lines) + "\n"
     back = tomllib.loads(text)
     want = {k: case[k] for k in ORDER if k in case} | {PARAMS: params}
+    if structure:
+        want[STRUCTURE] = structure
     if json.dumps(back, sort_keys=True) != json.dumps(_plain(want), sort_keys=True):
         raise ValueError("the case did not read back as written")  # a bug, never expected
     return text
@@ -283,7 +338,8 @@ def _plain(x):
 def save(path, case: dict) -> pathlib.Path:
     """Write `case` (Case.resolved) as a case file, whole or not at all."""
     from .output import write_text
-    return write_text(path, dumps(case))
+    path = pathlib.Path(path).expanduser()
+    return write_text(path, dumps(case, path.parent))
 
 
 def metadata_of(resolved: dict) -> dict:

@@ -73,6 +73,9 @@ def structure_options(args) -> dict:
     return out
 
 
+SEARCHED = {"minimal-linker": ("linker",)}  # what a command finds, so a case cannot set it
+
+
 def apply_case(args, argv=()):
     """Load args.case and fill every option the command line left unset from it (model
     parameters, the [structure] options; for a sweep also its seeds). Returns the Case, or None
@@ -92,7 +95,10 @@ def apply_case(args, argv=()):
     seeds_given = sweep and any(getattr(args, o, None) is not None
                                 for o in ("seeds", "seed_list", "seed"))
     overridden = []
+    searched = SEARCHED.get(args.command, ())
     for name, value in case.params.items():
+        if name in searched:  # the command's answer, e.g. minimal-linker's linker
+            continue
         if getattr(args, name, None) is not None:
             overridden.append(name)
         elif not (name == "seed" and sweep and (seeds_given or case.seeds is not None)):

@@ -1,14 +1,15 @@
 """`make validate`: run the gallery (examples/*.toml) and write the README's validation table.
 
 For every case: its seeds at the real linker (P(fit) = the accommodated fraction, with its 95 %
-Wilson interval, and the envelope's outer diameter over the seeds), then the minimal linker: the
-shortest linker of a coarse ladder at which every seed is accommodated (searched upwards, stopping
-at the first such linker; skipped when the real linker is not longer than the ladder's start).
+Wilson interval, and the envelope's outer diameter over the seeds), then the minimal linker from
+`headless.py minimal-linker --case` (issue #13's walk with R restarts per length, protocol
+inflate unless the case sets one), searched up to the real linker or MAX_LINKER.
 Runs go through `headless.py sweep` (results kept in out/validate/, so running again resumes).
 A case that cannot run in this build (e.g. a parameter from an issue not merged yet) gets a row
 saying why. Nothing is filled in by hand.
 
-    python tools/validate.py [--out out/validate] [--workers 2] [--no-readme] [CASE.toml ...]
+    python tools/validate.py [--out out/validate] [--workers 2] [--restarts 3] [--no-readme]
+                             [CASE.toml ...]
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ cases, runner, summary, stats = (importlib.import_module(f"{ff.__name__}.{m}") f
                                  ("cases", "sweep.runner", "sweep.summary", "sweep.stats"))
 wilson = stats.wilson
 
-LADDER = (2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 40)
+MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
 START, END = "<!-- validation table: written by make validate -->", "<!-- end of validation table -->"
 
 
@@ -46,20 +47,21 @@ def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
     return records
 
 
-def minimal_linker(case_path, case, p, out, workers) -> dict:
-    real = p.linker
-    if real <= LADDER[0]:
-        return {"status": f"not searched: the real linker ({real}) is at the ladder's start"}
-    tried = []
-    for linker in [n for n in LADDER if n < real] + [real]:
-        rows = summary.rows(sweep(case_path, out / f"linker{linker}", workers,
-                                  "--linker", str(linker)))
-        row = rows[0]
-        tried.append((linker, row.accommodated, row.n))
-        if row.n and row.accommodated == row.n:
-            return {"linker": linker, "tried": tried,
-                    "below": tried[-2][0] if len(tried) > 1 else None}
-    return {"status": f"none up to the real linker {real}", "tried": tried}
+def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int) -> dict:
+    """`headless.py minimal-linker --case` (issue #13's walk, protocol inflate unless the case
+    sets one), up to the real linker or MAX_LINKER."""
+    top = min(p.linker, MAX_LINKER)
+    cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
+           "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
+           "--workers", str(workers), "--quiet", "--no-plot"]
+    if (out / "results.jsonl").exists():
+        cmd.append("--resume")
+    cp = subprocess.run(cmd, capture_output=True, text=True)
+    if cp.returncode != 0:
+        last = cp.stderr.strip().splitlines()[-1] if cp.stderr.strip() else f"exit {cp.returncode}"
+        return {"status": f"minimal-linker failed: {last}"}
+    (row,) = json.loads((out / "minimal_linker.json").read_text(encoding="utf-8"))["rows"]
+    return {"row": row, "max": top, "restarts": restarts}
 
 
 def contour_radius(p) -> float:
@@ -67,7 +69,7 @@ def contour_radius(p) -> float:
     return p.chain_x()[-1]
 
 
-def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, restarts: int) -> dict:
     row = {"case": case_path.name}
     try:
         case = cases.load(case_path)
@@ -86,7 +88,8 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
     row["envelope_at_contour"] = bool(medians) and all(
         abs(m - contour_radius(p)) < 0.01 * contour_radius(p) for m in medians)
     row["frames"] = sorted({x["frames_simulated"] for x in records if "frames_simulated" in x})
-    row["minimal"] = minimal_linker(case_path, case, p, out / case_path.stem / "minimal", workers)
+    row["minimal"] = minimal_linker(case_path, p, out / case_path.stem / "minimal-linker",
+                                    workers, restarts)
     return row
 
 
@@ -100,10 +103,16 @@ def _fit_text(row) -> str:
 
 def _minimal_text(row) -> tuple[str, str]:
     m, real = row["minimal"], row["params"]["linker"]
-    if "linker" not in m:
+    if "row" not in m:
         return m["status"], "-"
-    below = f" ({m['below']} not)" if m.get("below") else ""
-    return f"{m['linker']}{below}", f"{real / m['linker']:.1f}"
+    r = m["row"]
+    if r.get("error"):
+        return f"not found: {r['error']}", "-"
+    if r["minimal_linker"] is None:
+        return f"none up to {m['max']} ({m['restarts']} restarts each)", "-"
+    below = (f"; {r['linker_below']}: 0/{m['restarts']}" if r.get("linker_below") else "")
+    return (f"{r['minimal_linker']} ({r['fits']}/{r['restarts']} fit{below})",
+            f"{real / r['minimal_linker']:.1f}")
 
 
 def _envelope_text(row) -> str:
@@ -173,6 +182,8 @@ def main(argv=None) -> int:
     ap.add_argument("cases", nargs="*", type=pathlib.Path)
     ap.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "validate")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--restarts", type=int, default=3,
+                    help="restarts per linker length in minimal-linker [default 3]")
     ap.add_argument("--no-readme", action="store_true")
     args = ap.parse_args(argv)
     paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
@@ -180,9 +191,10 @@ def main(argv=None) -> int:
     rows = []
     for path in paths:
         print(f"validate: {path.name}", file=sys.stderr, flush=True)
-        rows.append(validate(path, args.out, args.workers))
+        rows.append(validate(path, args.out, args.workers, args.restarts))
         (args.out / "validation.json").parent.mkdir(parents=True, exist_ok=True)
         (args.out / "validation.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
+        (args.out / "table.md").write_text(table(rows) + "\n", encoding="utf-8")
     text = table(rows)
     print(text)
     if not args.no_readme:

@@ -185,3 +185,39 @@ def test_sweep_grid_takes_inline_points():
                      core_outline=square)
     (point,) = grid.build(grid.specs_from(args), ["0"])
     assert point.params["core_outline"] == square
+
+
+def test_structure_files_from_a_case(tmp_path):
+    """[structure] files are relative to the case, recorded with their sha256; measured values
+    fill what the case leaves unset; an option beside the case wins; a saved case points to the
+    same files from wherever it is saved."""
+    import hashlib
+    import os
+    data = ROOT / "tests" / "data"
+    rel = os.path.relpath(data / "2beg_model1.pdb.gz", tmp_path)
+    case = write(tmp_path / "c.toml", f'[params]\nlinker = 3\nlayers = 4\n[structure]\n'
+                                      f'fibril = "{rel}"\nterminus = "C"\n')
+    out, saved = tmp_path / "r.json", tmp_path / "sub" / "s.toml"
+    cp = run_cli("run", "--case", str(case), "--terminus", "N", "--stop-after", "build",
+                 "--json", str(out), "--save-case", str(saved))
+    assert cp.returncode == 0, cp.stderr
+    r = json.loads(out.read_text())
+    record = r["case"]["files"]["fibril"]
+    assert record["path"] == rel
+    assert record["sha256"] == hashlib.sha256((data / "2beg_model1.pdb.gz").read_bytes()).hexdigest()
+    assert r["case"]["structure"]["terminus"] == "N" and "terminus" in r["case"]["overridden"]
+    assert r["params"]["rise"] != P.DEFAULTS.rise  # measured from the file
+    again = cases.load(saved)
+    assert again.structure["fibril"] == str((data / "2beg_model1.pdb.gz").resolve())
+    assert again.make_params() == P.make_params(**r["params"])
+
+
+@pytest.mark.parametrize("text, says", [
+    ("[structure]\nfibrl = 'x.pdb'\n", "c.toml: structure.fibrl: unknown key"),
+    ("[structure]\nfibril = 'nothere.pdb'\n", "c.toml: structure.fibril: no file 'nothere.pdb'"),
+    ("[structure]\nterminus = 'X'\n", "c.toml: structure.terminus: must be one of N, C"),
+])
+def test_bad_structure_tables(tmp_path, text, says):
+    case = write(tmp_path / "c.toml", text)
+    cp = run_cli("run", "--case", str(case))
+    assert cp.returncode == 2 and says in cp.stderr and cp.stderr.count("\n") == 1, cp.stderr

@@ -6,11 +6,12 @@ VENV ?= .venv
 VENV_LTS ?= .venv42
 PYTEST_ARGS ?=
 BENCH_ARGS ?=
+VALIDATE_ARGS ?=
 # rootdir=tests: the repository root is itself a package (the extension); without it pytest 8
 # imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
 PYTEST := -m pytest --rootdir=tests tests
 
-.PHONY: run test test-latest test-lts extension bench clean
+.PHONY: run test test-latest test-lts extension bench validate clean
 
 $(VENV)/.installed: requirements-dev.txt Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -54,6 +55,11 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 # Speed and memory side by side with ../shared/bench's baselines; see BENCHMARKS.md.
 bench: $(VENV)/.bench-installed
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
+
+# The gallery (examples/*.toml): P(fit), minimal linker and envelope per case; rewrites the
+# README's validation table. Results stay in out/validate, so running it again resumes.
+validate: $(VENV)/.installed
+	$(VENV)/bin/python tools/validate.py $(VALIDATE_ARGS)
 
 clean:
 	rm -rf out dist .pytest_cache

@@ -46,8 +46,8 @@ def params_from(args) -> dict:
             if getattr(args, f.name, None) is not None}
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
+def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
+    parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
@@ -72,10 +72,10 @@ def build_parser() -> argparse.ArgumentParser:
 OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES}
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     argv = sys.argv[1:] if argv is None else argv
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(prog).parse_args(argv)
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
@@ -97,6 +97,19 @@ def progress_printer(frames: int, every: int = 25):
     return on_frame
 
 
+def fresh_scene() -> None:
+    """An empty factory scene to build in, unless a file of the user's is open. Run by the
+    enabled extension (`blender -c fibrilfit`), the preferences stay: resetting them would
+    disable FibrilFit itself in the middle of its own command."""
+    import bpy
+    if bpy.data.filepath:
+        return
+    if __package__ in bpy.context.preferences.addons:
+        bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    else:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+
+
 def command_run(args) -> int:
     from . import pipeline, report
     p = P.make_params(force=args.force, **params_from(args))
@@ -106,8 +119,7 @@ def command_run(args) -> int:
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
     import bpy
-    if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
-        bpy.ops.wm.read_factory_settings(use_empty=True)
+    fresh_scene()
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                           on_frame=progress_printer(p.frames) if args.progress else None)
     from .exports import writers

@@ -4,10 +4,16 @@
 
 Installs the zip into the temporary user folder with Blender's own operator, enables it, runs
 every operator of the installed copy in the startup scene (whose Cube, Light and Camera stand for
-the user's objects), and prints one line "RESULT <json>" of what it saw. Asserts nothing itself.
+the user's objects), then its command line (`blender -c fibrilfit`, through the callback that
+register() hands to bpy.utils.register_cli_command), and prints one line "RESULT <json>" of what
+it saw. Asserts nothing itself.
 """
+import contextlib
+import io
 import json
+import pathlib
 import sys
+import tempfile
 
 import bpy
 import addon_utils  # noqa: E402  (importable once bpy is)
@@ -20,7 +26,33 @@ def fibrilfit_types():
     return sorted(name for name in dir(bpy.types) if name.startswith("FIBRILFIT_"))
 
 
+CLI_COMMANDS = []   # (id, callback) for every register_cli_command call
+CLI_RELEASED = []   # unregister_cli_command calls
+
+
+def spy_on_cli_commands():
+    register, unregister = bpy.utils.register_cli_command, bpy.utils.unregister_cli_command
+
+    def spy_register(id_, execute):
+        CLI_COMMANDS.append((id_, execute))
+        return register(id_, execute)
+
+    def spy_unregister(handle):
+        CLI_RELEASED.append(handle)
+        return unregister(handle)
+    bpy.utils.register_cli_command = spy_register
+    bpy.utils.unregister_cli_command = spy_unregister
+
+
+def run_command(execute, args) -> dict:
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()) as printed:
+        code = execute(args)
+    return {"code": code, "stdout": printed.getvalue(), "stderr": err.getvalue()}
+
+
 def main(zip_path: str, values: dict) -> dict:
+    spy_on_cli_commands()
     out = {}
     out["install"] = sorted(bpy.ops.extensions.package_install_files(
         filepath=zip_path, repo="user_default", enable_on_install=True))
@@ -67,6 +99,16 @@ def main(zip_path: str, values: dict) -> dict:
         cycles.append([off, on])
     out["cycles"] = cycles
     out["cycle_errors"] = [repr(e) for e in errors]
+    out["cli_registered"] = [[id_, f"{fn.__module__}.{fn.__name__}"] for id_, fn in CLI_COMMANDS]
+    out["cli_released"] = len(CLI_RELEASED)
+    execute = CLI_COMMANDS[-1][1]  # the enabled copy's
+    options = [a for k, v in values.items() for a in (f"--{k.replace('_', '-')}", str(v))]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp, "r.json")
+        out["cli_run"] = run_command(execute, ["run", *options, "--json", str(path)])
+        out["cli_result"] = json.loads(path.read_text()) if path.exists() else None
+    out["cli_bad"] = run_command(execute, ["run", "--layers", "0"])
+    out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     out["clone_imported"] = sorted(m for m in sys.modules if m.split(".")[0] == "fibrilfit")
     return out
 

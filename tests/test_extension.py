@@ -127,3 +127,19 @@ def test_disable_enable_three_times_without_error_or_leftover(installed):
     for off, on in installed["cycles"]:
         assert off == [[], False]
         assert on == [registered, True]
+
+
+def test_the_installed_command_line_runs_like_headless(installed):
+    """`blender -c fibrilfit ...`: the callback register() gave Blender, from the installed copy."""
+    module = "bl_ext.user_default.fibrilfit.entry.command"
+    assert installed["cli_registered"] == [["fibrilfit", module]] * 4  # install + 3 re-enables
+    assert installed["cli_released"] == 3                             # 3 disables
+    run = installed["cli_run"]
+    assert run["code"] == 0 and run["stderr"] == "" and "verdict:" in run["stdout"]
+    mine = {k: v for k, v in installed["cli_result"].items() if k != "timings_s"}
+    assert mine == installed["api_result"]
+    # the command reset the scene but not the preferences: FibrilFit is still enabled
+    assert installed["cli_enabled_after"] == installed["enabled"]
+    bad = installed["cli_bad"]
+    assert bad["code"] == 2 and bad["stdout"] == ""
+    assert bad["stderr"].startswith("fibrilfit: error: layers: ") and bad["stderr"].count("\n") == 1

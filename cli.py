@@ -116,8 +116,12 @@ def command_run(args) -> int:
     look = export_options.render_options(args)
     if args.pdb:
         export_options.pdb_fits(p)
+    step = export_options.movie_step(args)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    if "movie" in paths:
+        from .exports import movie  # imports bpy: only when a movie is asked for
+        movie.refuse_unsupported(paths["movie"], args.stop_after)
     import bpy
     fresh_scene()
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
@@ -138,6 +142,12 @@ def command_run(args) -> int:
     if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
         problems.append(writers.export(result, "render", "--render", writers.write_render,
                                        scene, result, paths["render"], look))
+        if "json" in paths:
+            output.write_json(paths["json"], result)
+    if "movie" in paths:  # a movie of the whole bake: the slowest, so last
+        problems.append(writers.export(result, "movie", "--movie", writers.write_movie, scene,
+                                       result, paths["movie"], step=step, size=look["size"],
+                                       progress=not args.quiet))
         if "json" in paths:
             output.write_json(paths["json"], result)
     print(report.summary(result, quiet=args.quiet))

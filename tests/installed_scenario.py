@@ -108,6 +108,13 @@ def main(zip_path: str, values: dict) -> dict:
         out["cli_run"] = run_command(execute, ["run", *options, "--json", str(path)])
         out["cli_result"] = json.loads(path.read_text()) if path.exists() else None
     out["cli_bad"] = run_command(execute, ["run", "--layers", "0"])
+    sweep_options = [a for a in options if a not in ("--seed", str(values.get("seed")))]
+    with tempfile.TemporaryDirectory() as tmp:  # workers load the installed copy's files
+        out["cli_sweep"] = run_command(execute, [
+            "sweep", *sweep_options, "--seed-list", str(values["seed"]), "--workers", "1",
+            "--no-plot", "--quiet", "--out", tmp])
+        lines = pathlib.Path(tmp, "results.jsonl").read_text().splitlines()
+        out["cli_sweep_results"] = [json.loads(line) for line in lines]
     out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     out["clone_imported"] = sorted(m for m in sys.modules if m.split(".")[0] == "fibrilfit")
     return out

@@ -15,7 +15,7 @@ SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
 VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
 # The repository's files that are not the extension (blender_manifest.toml excludes them).
 NOT_EXTENSION = {"tests", "bench", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
-                 "_load.py", "headless.py", "conftest.py", "Makefile", "pyproject.toml",
+                 "headless.py", "conftest.py", "Makefile", "pyproject.toml",
                  "BENCHMARKS.md", ".gitignore"}
 
 
@@ -143,3 +143,12 @@ def test_the_installed_command_line_runs_like_headless(installed):
     bad = installed["cli_bad"]
     assert bad["code"] == 2 and bad["stdout"] == ""
     assert bad["stderr"].startswith("fibrilfit: error: layers: ") and bad["stderr"].count("\n") == 1
+
+
+def test_the_installed_command_line_sweeps_with_the_installed_files(installed):
+    sweep = installed["cli_sweep"]
+    assert sweep["code"] == 0, sweep["stderr"]
+    (line,) = installed["cli_sweep_results"]
+    assert line["status"] == "ok"
+    for key in ("verdict", "gravity", "clashing_pairs", "max_bond_stretch", "params"):
+        assert line[key] == installed["api_result"][key], key

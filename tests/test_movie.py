@@ -93,3 +93,19 @@ def test_a_gif_without_pillow_is_refused_before_the_bake(tmp_path, capsys, monke
     assert err == ("fibrilfit: error: --movie: .gif needs Pillow (pip install pillow into "
                    "Blender's Python); write an .mp4 instead\n")
     assert not baked
+
+
+@pytest.mark.slow
+def test_the_default_model_as_an_mp4_at_the_default_size(tmp_path):
+    """The tutorial's model, every 5th frame at 640x360 (about 1.5 minutes here)."""
+    out = run_cli("run", "--movie", str(tmp_path / "bake.mp4"), "--json", str(tmp_path / "r.json"))
+    assert out.returncode == 0, out.stderr
+    r = json.loads((tmp_path / "r.json").read_text())
+    info = r["movie"]
+    assert info["frames"] == movie.movie_frames(r["frames_simulated"], 5)
+    clip = bpy.data.movieclips.load(str(tmp_path / "bake.mp4"))
+    try:
+        assert clip.frame_duration == info["video_frames"] == len(info["frames"]) + 23
+        assert tuple(clip.size) == (640, 360)
+    finally:
+        bpy.data.movieclips.remove(clip)

@@ -57,8 +57,11 @@ def refuse_registration(line):
     if bpy.app.background:
         sys.exit(EXIT_TOO_OLD)  # Blender before 4.2 lets SystemExit through addon_utils.enable
 
-    def popup():
+    def popup():  # once the window is up; the line above is already on the console
         def draw(menu, _context):
             menu.layout.label(text=line)
-        bpy.context.window_manager.popup_menu(draw, title="FibrilFit", icon="ERROR")
+        try:
+            bpy.context.window_manager.popup_menu(draw, title="FibrilFit", icon="ERROR")
+        except Exception:  # no window to show it in: the console line has to do
+            pass
     bpy.app.timers.register(popup, first_interval=0.5)

@@ -179,3 +179,31 @@ def test_a_real_old_blender_is_refused_in_one_line(how, tmp_path):
     assert out.stderr == ("fibrilfit: error: FibrilFit needs Blender 4.2.0 or newer; "
                           f"this is Blender {found}\n")
     assert "Traceback" not in out.stdout and not (tmp_path / "r.json").exists()
+
+
+UI_PROBE = """
+import bpy
+def probe():
+    print("PROBE", sorted(n for n in dir(bpy.types) if n.startswith("FIBRILFIT_")),
+          hasattr(bpy.types.Scene, "fibrilfit"), flush=True)
+    bpy.ops.wm.quit_blender()
+bpy.app.timers.register(probe, first_interval=3.0)
+"""
+
+
+@needs_old
+@pytest.mark.skipif(not shutil.which("xvfb-run"), reason="no xvfb-run for a window")
+def test_a_real_old_blender_with_a_window_keeps_running_with_the_addon_inert(tmp_path):
+    """With a window, the refusal must not quit Blender: one line, a popup, nothing registered."""
+    path, version = OLD
+    (tmp_path / "addons").mkdir()
+    (tmp_path / "addons" / "fibrilfit").symlink_to(ROOT, target_is_directory=True)
+    (tmp_path / "probe.py").write_text(UI_PROBE)
+    env = {"BLENDER_USER_SCRIPTS": str(tmp_path), "PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
+    out = subprocess.run(["xvfb-run", "-a", path, "--factory-startup", "--addons", "fibrilfit",
+                          "-P", str(tmp_path / "probe.py")], capture_output=True, text=True,
+                         timeout=300, env=env)
+    found = ".".join(str(v) for v in version)
+    assert "PROBE [] False" in out.stdout, out.stdout + out.stderr  # still running, inert
+    assert out.stderr == ("fibrilfit: error: FibrilFit needs Blender 4.2.0 or newer; "
+                          f"this is Blender {found}\n")

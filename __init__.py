@@ -4,10 +4,11 @@ A Blender extension. The logic lives in `params`, `builders`, `analysis` and `pi
 `operators` and `panels` are thin UI over the same functions.
 
 Importing the package imports nothing else: `cli`, `params`, `run` and every submodule load on
-first use, so that an old Blender reaches register()'s version check (one line) rather than an
-import error from a module it cannot run.
+first use, so `headless.py inspect` never loads bpy, and an old Blender reaches register()'s
+version check (one line) rather than an import error from a module it cannot run.
 """
 import importlib
+import pathlib
 
 __all__ = ["cli", "params", "run", "register", "unregister"]
 
@@ -22,17 +23,13 @@ bl_info = {
 
 
 def __getattr__(name):
+    """`run` and the submodules load on first use."""
     if name == "run":
-        from .pipeline import run
-        return run
-    if name.startswith("__"):
-        raise AttributeError(name)
-    try:
-        return importlib.import_module("." + name, __name__)
-    except ModuleNotFoundError as exc:
-        if exc.name != __name__ + "." + name:
-            raise
-        raise AttributeError("module {!r} has no attribute {!r}".format(__name__, name)) from None
+        return importlib.import_module(".pipeline", __name__).run
+    here = pathlib.Path(__file__).parent
+    if not name.startswith("__") and ((here / name).is_dir() or (here / f"{name}.py").is_file()):
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 _refused = False  # register() turned this Blender away: unregister() has nothing to undo

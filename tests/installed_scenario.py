@@ -101,23 +101,6 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
         cycles.append([off, on])
     out["cycles"] = cycles
     out["cycle_errors"] = [repr(e) for e in errors]
-    out["cli_registered"] = [[id_, f"{fn.__module__}.{fn.__name__}"] for id_, fn in CLI_COMMANDS]
-    out["cli_released"] = len(CLI_RELEASED)
-    execute = CLI_COMMANDS[-1][1]  # the enabled copy's
-    options = [a for k, v in values.items() for a in (f"--{k.replace('_', '-')}", str(v))]
-    with tempfile.TemporaryDirectory() as tmp:
-        path = pathlib.Path(tmp, "r.json")
-        out["cli_run"] = run_command(execute, ["run", *options, "--json", str(path)])
-        out["cli_result"] = json.loads(path.read_text()) if path.exists() else None
-    out["cli_bad"] = run_command(execute, ["run", "--layers", "0"])
-    sweep_options = [a for a in options if a not in ("--seed", str(values.get("seed")))]
-    with tempfile.TemporaryDirectory() as tmp:  # workers load the installed copy's files
-        out["cli_sweep"] = run_command(execute, [
-            "sweep", *sweep_options, "--seed-list", str(values["seed"]), "--workers", "1",
-            "--no-plot", "--quiet", "--out", tmp])
-        lines = pathlib.Path(tmp, "results.jsonl").read_text().splitlines()
-        out["cli_sweep_results"] = [json.loads(line) for line in lines]
-    out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     out["clone_imported"] = sorted(m for m in sys.modules if m.split(".")[0] == "fibrilfit")
     out["gemmi_loaded_by_the_model"] = "gemmi" in sys.modules  # it must be lazy
     if fibril:
@@ -135,6 +118,24 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
         out["gemmi_file"] = gemmi.__file__
         g = ff.structure.measure_fibril(fibril)
         out["fibril"] = [g.rise, g.twist, g.protofilaments]
+    # last: the command resets the scene, and its sweep's workers import what they need
+    out["cli_registered"] = [[id_, f"{fn.__module__}.{fn.__name__}"] for id_, fn in CLI_COMMANDS]
+    out["cli_released"] = len(CLI_RELEASED)
+    execute = CLI_COMMANDS[-1][1]  # the enabled copy's
+    options = [a for k, v in values.items() for a in (f"--{k.replace('_', '-')}", str(v))]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp, "r.json")
+        out["cli_run"] = run_command(execute, ["run", *options, "--json", str(path)])
+        out["cli_result"] = json.loads(path.read_text()) if path.exists() else None
+    out["cli_bad"] = run_command(execute, ["run", "--layers", "0"])
+    sweep_options = [a for a in options if a not in ("--seed", str(values.get("seed")))]
+    with tempfile.TemporaryDirectory() as tmp:  # workers load the installed copy's files
+        out["cli_sweep"] = run_command(execute, [
+            "sweep", *sweep_options, "--seed-list", str(values["seed"]), "--workers", "1",
+            "--no-plot", "--quiet", "--out", tmp])
+        lines = pathlib.Path(tmp, "results.jsonl").read_text().splitlines()
+        out["cli_sweep_results"] = [json.loads(line) for line in lines]
+    out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     return out
 
 

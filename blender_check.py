@@ -20,9 +20,23 @@ def minimum():
 
 
 def found():
-    """This Blender's version (bpy.app.version)."""
-    import bpy
-    return tuple(bpy.app.version)
+    """This Blender's version: bpy.app.version inside Blender (bpy is always loaded there), else
+    the installed bpy module's, read without importing it (commands such as `inspect` never
+    need bpy, which takes a second or more to import). None when there is no bpy at all."""
+    bpy = sys.modules.get("bpy")
+    if bpy is not None:
+        return tuple(bpy.app.version)
+    try:
+        from importlib.metadata import PackageNotFoundError, version
+    except ImportError:  # Python < 3.8: only an old Blender has one
+        import bpy
+        return tuple(bpy.app.version)
+    try:
+        text = version("bpy")
+    except PackageNotFoundError:
+        return None
+    m = re.match(r"(\d+)\.(\d+)(?:\.(\d+))?", text)
+    return tuple(int(v or 0) for v in m.groups()) if m else None
 
 
 def dotted(version):
@@ -31,9 +45,9 @@ def dotted(version):
 
 def refusal(version=None):
     """None if this Blender is new enough, else the one line that says what is needed."""
-    version = tuple(version or found())
+    version = version or found()
     need = minimum()
-    if version[:3] >= need:
+    if version is None or tuple(version)[:3] >= need:
         return None
     return "FibrilFit needs Blender {} or newer; this is Blender {}".format(
         dotted(need), dotted(version))

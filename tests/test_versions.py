@@ -23,3 +23,17 @@ def test_blender_info_log_lines_are_not_a_workers_last_words():
     error = "00:01.200  render           | ERROR Out of memory"
     assert pool.last_words([error, OCIO]) == error
     assert pool.last_words(["RuntimeError: boom"]) == "RuntimeError: boom"
+
+
+def test_the_version_check_does_not_import_bpy(ff):
+    """headless.py checks the version first; `inspect` must still never load bpy."""
+    import subprocess
+    import sys
+    from helpers import ROOT
+    code = ("import sys; sys.path.insert(0, sys.argv[1]); import blender_check; "
+            "print(blender_check.found(), blender_check.refusal(), 'bpy' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code, str(ROOT)], capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split("None")[-1].strip() == "False"
+    assert out.stdout.startswith(str(tuple(bpy.app.version)))

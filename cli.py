@@ -134,8 +134,8 @@ def params_from(args) -> dict:
     return out
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
+def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
+    parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
@@ -187,10 +187,10 @@ OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES,
            "save_case": cases.SUFFIXES, "envelope_plot": (".png",)}
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     argv = sys.argv[1:] if argv is None else argv
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(prog).parse_args(argv)
         args.loaded_case = apply_case(args, argv)
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, output.OutputError, export_options.OptionError,
@@ -214,6 +214,19 @@ def progress_printer(frames: int, every: int = 25):
     return on_frame
 
 
+def fresh_scene() -> None:
+    """An empty factory scene to build in, unless a file of the user's is open. Run by the
+    enabled extension (`blender -c fibrilfit`), the preferences stay: resetting them would
+    disable FibrilFit itself in the middle of its own command."""
+    import bpy
+    if bpy.data.filepath:
+        return
+    if __package__ in bpy.context.preferences.addons:
+        bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    else:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+
+
 def command_run(args) -> int:
     from . import pipeline, report
     from .search import command as search_command
@@ -226,15 +239,18 @@ def command_run(args) -> int:
     look = export_options.render_options(args)
     if args.pdb:
         export_options.pdb_fits(p)
+    step = export_options.movie_step(args)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    if "movie" in paths:
+        from .exports import movie  # imports bpy: only when a movie is asked for
+        movie.refuse_unsupported(paths["movie"], args.stop_after)
     restarts = None
     if args.restarts is not None:  # the seeds run on the executor; the best is run again here
         restarts = search_command.run_restarts(args, p, pipeline.version())
         p = p.replace(seed=restarts["best_seed"])
     import bpy
-    if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
-        bpy.ops.wm.read_factory_settings(use_empty=True)
+    fresh_scene()
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                           on_frame=progress_printer(p.bake_frames()) if args.progress else None)
     if structure_block:
@@ -269,6 +285,12 @@ def command_run(args) -> int:
     if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
         problems.append(writers.export(result, "render", "--render", writers.write_render,
                                        scene, result, paths["render"], look))
+        if "json" in paths:
+            output.write_json(paths["json"], result)
+    if "movie" in paths:  # a movie of the whole bake: the slowest, so last
+        problems.append(writers.export(result, "movie", "--movie", writers.write_movie, scene,
+                                       result, paths["movie"], step=step, size=look["size"],
+                                       progress=not args.quiet))
         if "json" in paths:
             output.write_json(paths["json"], result)
     if restarts is not None:

@@ -124,6 +124,10 @@ FIBRILFIT_PG_settings.__annotations__.update({
     for f in derived_fields()})
 FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
     name="Outline file", description="The file the core outline was last loaded from")
+# The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
+# Not a result: a bake or check leaves it alone.
+FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
+    name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
 
 CLASSES = (FIBRILFIT_PG_settings,)
 

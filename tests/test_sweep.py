@@ -99,7 +99,8 @@ def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, 
     if status != "ok":
         return {"params": p, "seed": seed, "status": status, "error": "boom"}
     return {"params": p, "seed": seed, "status": "ok", "accommodated": accommodated,
-            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames}
+            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames,
+            "envelope": {"outer_diameter": 100.0 + 10 * seed}}
 
 
 SYNTHETIC = [
@@ -123,7 +124,9 @@ def test_summary_pools_seeds_per_grid_point():
     csv = summary.csv_text(rows).splitlines()
     assert csv[0].startswith("linker,globule_diameter,n,failed,accommodated,accommodated_fraction,"
                              "wilson95_low,wilson95_high,clash_fraction,median_stretch")
-    assert csv[3] == f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225"
+    assert csv[3] == (f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225,"
+                      f"105.0,100.0,110.0")  # the envelope's outer diameter: median, min, max
+    assert r6.metric("outer_diameter") == 105.0
     minimal = {m.group["globule_diameter"]: m for m in summary.minimal_linkers(rows, 0.95)}
     assert minimal[30.0].row is r6 and minimal[45.0].row is None and minimal[45.0].best is r6b
     text = summary.table(rows, 0.95)
@@ -381,7 +384,7 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert record["status"] == "failed" and record["attempts"] == 2
     assert record["error"].startswith("timed out after 0.2 s") and len(record["errors"]) == 2
     assert "requirement failed: failed==0" in cp.stdout
-    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,"
+    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,"
     # --retry-failed runs it again, replacing the failed line
     cp = run_cli("sweep", "--linker", "6", "--layers", "4", "--frames", "40", "--workers", "1",
                  "--out", str(out), "--resume", "--retry-failed", "--quiet")

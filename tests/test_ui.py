@@ -489,6 +489,7 @@ def test_panels_draw_in_every_state(ui, scene):
                                        + switches)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
                                                     "import_domain")}

@@ -10,7 +10,7 @@ BENCH_ARGS ?=
 # imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
 PYTEST := -m pytest --rootdir=tests tests
 
-.PHONY: run test test-latest test-lts extension bench clean
+.PHONY: run test test-latest test-lts test-cluster extension bench clean
 
 $(VENV)/.installed: requirements-dev.txt Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -35,6 +35,13 @@ test-latest: $(VENV)/.installed
 
 test-lts: $(VENV_LTS)/.installed
 	$(VENV_LTS)/bin/python $(PYTEST) $(PYTEST_ARGS)
+
+# Sweeps through a real SLURM: as root, set up a single-node SLURM here (.ci/slurm/setup.sh:
+# Debian's slurm-wlm and munge), run the cluster-marked tests, stop the daemons it started.
+test-cluster: $(VENV)/.installed
+	sh .ci/slurm/setup.sh start || { sh .ci/slurm/setup.sh stop; exit 1; }
+	$(VENV)/bin/python $(PYTEST) -m cluster $(PYTEST_ARGS); \
+	status=$$?; sh .ci/slurm/setup.sh stop; exit $$status
 
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py

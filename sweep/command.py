@@ -95,9 +95,10 @@ def run(args) -> int:
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
-    _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-          *(["distributed"] if args.executor in ("dask", "slurm") else []),
-          *(["dask_jobqueue"] if args.executor == "slurm" else []))
+    with slurm.ctrl_c_kept():
+        _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+              *(["distributed"] if args.executor in ("dask", "slurm") else []),
+              *(["dask_jobqueue"] if args.executor == "slurm" else []))
     if args.show_job_script:
         print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
         return exits.EXIT_OK

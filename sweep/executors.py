@@ -185,17 +185,21 @@ class SlurmExecutor(DaskExecutor):
                              "SLURM login node)")
         self.cluster = SLURMCluster(**self.cluster_options)
         self.client = distributed.Client(self.cluster)
-        self.cluster.scale(jobs=self.size)
-        try:  # submit now, so that sbatch's refusal (bad partition, account...) stops the sweep
+        # SpecCluster.scale(), but waited for: sbatch's refusal (a wrong partition or account)
+        # must stop the sweep, where scale() would only log it and leave the sweep waiting
+        while len(self.cluster.worker_spec) < self.size:
+            self.cluster.worker_spec.update(self.cluster.new_worker_spec())
+        try:
             self.cluster.sync(self.cluster._correct_state)
         except Exception as exc:
             from .slurm import submit_error
+            from distributed.core import Status
+            for job in self.cluster.workers.values():
+                if job.job_id is None:  # never submitted; close() insists on a final state
+                    job.status = Status.failed
             self.__exit__(None, None, None)
             raise SweepError(f"SLURM refused the worker jobs: {submit_error(exc)}") from None
         self.kept = time.monotonic()
-
-    def job_ids(self) -> list[str]:
-        return [job.job_id for job in self.cluster.workers.values() if job.job_id]
 
     def wait(self) -> tuple[dict, dict]:
         while not self.done.has_ready():

@@ -8,9 +8,12 @@ the sweep's own process; the jobs need the repository, --out and the Python at t
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import re
+import signal
 import sys
+import threading
 
 from .. import exits
 
@@ -25,6 +28,19 @@ _WALLTIME = re.compile(r"\d+(:\d{1,2}){0,2}|\d+-\d+(:\d{1,2}){0,2}")
 _MEMORY = re.compile(r"\d+(\.\d+)?\s*([kmgt]i?b?)?", re.IGNORECASE)
 OPTIONS = ("partition", "account", "memory", "walltime", "job_name", "job_directive",
            "job_prologue", "python", "interface", "show_job_script")
+
+
+@contextlib.contextmanager
+def ctrl_c_kept():
+    """Importing dask_jobqueue sets SIGINT to sys.exit() (its runner.py), so Ctrl-C would end the
+    sweep with exit 0, past the interrupted-sweep handling (exit 130, jobs cancelled). Undo it."""
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.getsignal(signal.SIGINT) if main else None
+    try:
+        yield
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
 
 
 def check(args) -> None:
@@ -67,7 +83,7 @@ def cluster_options(args, out) -> dict:
         job_script_prologue=list(args.job_prologue),
         interface=args.interface,
         log_directory=str(out / JOB_LOGS),
-        scheduler_options={"dashboard_address": None},
+        scheduler_options={"dashboard": False, "dashboard_address": ":0"},  # no port clash
     )
 
 
@@ -90,4 +106,4 @@ def submit_error(exc: BaseException) -> str:
     text = str(exc)
     lines = [line.strip() for line in text.splitlines() if "error" in line.lower()]
     sbatch = [line for line in lines if line.startswith("sbatch:")]
-    return (sbatch or lines or [text.strip().splitlines()[0] if text.strip() else repr(exc)])[-1]
+    return (sbatch or lines or [text.strip().splitlines()[0] if text.strip() else repr(exc)])[0]

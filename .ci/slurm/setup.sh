@@ -120,8 +120,11 @@ stop_slurm() {  # the SLURM daemons, whoever started them (used when reconfiguri
             kill "$(cat /run/$d.pid)"
         fi
     done
-    for _ in $(seq 50); do
-        running /run/slurmd.pid || running /run/slurmctld.pid || return 0
+    for _ in $(seq 100); do
+        if ! running /run/slurmd.pid && ! running /run/slurmctld.pid; then
+            rm -f /run/slurmd.pid /run/slurmctld.pid
+            return 0
+        fi
         sleep 0.2
     done
     die "slurmd/slurmctld did not stop"
@@ -189,7 +192,10 @@ stop() {
         if running "$pidfile"; then
             say "stopping $d"
             kill "$(cat "$pidfile")"
+            for _ in $(seq 100); do running "$pidfile" || break; sleep 0.2; done
+            running "$pidfile" && die "$d (pid $(cat "$pidfile")) did not stop"
         fi
+        rm -f "$pidfile"  # slurmctld leaves its pid file behind
     done
     rm -f "$STATE/started"
 }

@@ -16,6 +16,7 @@ from . import params as P
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
+from .builders.hooks import frame_hooks
 
 STAGES = ("build", "bake", "check")
 
@@ -42,12 +43,14 @@ class Baking:
         p = model.params
         self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_chains(p)))
         self.stats = BakeStats()
-        self._frames = bake_steps(self.scene, model, self.stats)
+        # Hooks that judge a layout mid-bake (inflate) use the same check as the verdict.
+        self.hooks = frame_hooks(model, self.scene, judge=check_model)
+        self._frames = bake_steps(self.scene, model, self.stats, self.hooks)
         self.done = False
 
     @property
     def total(self) -> int:
-        return self.model.params.frames
+        return self.model.params.bake_frames()
 
     def step(self):
         """Simulate the next frame; return (frame, chain positions), or None once finished."""
@@ -73,13 +76,17 @@ class Baking:
         set_stage(self.model, "baked", last_frame=self.stats.frames_simulated)
 
     def result(self) -> dict:
-        return {
+        out = {
             "gravity": [round(g, 9) for g in self.scene.gravity],
             "frames_simulated": self.stats.frames_simulated,
             "settled_at": self.stats.settled_at,
             "cancelled": self.stats.cancelled,
             **self.stretch.summary(),
         }
+        for hook in self.hooks:
+            if hasattr(hook, "summary"):
+                out.update(hook.summary())
+        return out
 
 
 def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:

@@ -1,11 +1,12 @@
 """The FibrilFit tab of the 3D View's sidebar: Run all and Clear, the model's state and verdict,
 then one section per tutorial step with its parameters and its button."""
 import json
+import math
 
 import bpy
 
 from .. import params as P, properties
-from ..builders import model_stage
+from ..builders import model_stage, structure_trace
 from ..builders.scene import find_root
 from ..operators.common import percent, reached
 
@@ -50,6 +51,7 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         row.scale_y = 1.3
         row.operator("fibrilfit.run_all", icon="PLAY")
         row.operator("fibrilfit.clear", icon="TRASH")
+        _draw_case(layout, s)
         stage = model_stage(scene)
         text, icon = STATUS[stage]
         layout.label(text=text, icon=icon)
@@ -58,6 +60,22 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         if stage == "checked" and s.verdict:
             _draw_result(layout.box(), s)
         layout.label(text="Lengths in Å: 1 Blender unit = 1 Å")
+
+
+def _draw_case(layout, s):
+    row = layout.row(align=True)
+    row.operator("fibrilfit.load_case", icon="FILE_FOLDER")
+    row.operator("fibrilfit.save_case", icon="FILE_TICK")
+    name = _case_name(s)
+    if name:
+        layout.label(text=f"Case: {name}", icon="BOOKMARKS")
+
+
+def _case_name(s) -> str:
+    try:
+        return json.loads(s.case_metadata or "{}").get("name", "")
+    except ValueError:
+        return ""
 
 
 def _draw_changes(layout, s, root, stage):
@@ -153,5 +171,40 @@ class FIBRILFIT_PT_check(_Section, bpy.types.Panel):
             row.prop(shading, "color_type", text="")
 
 
+class FIBRILFIT_PT_structures(_Sidebar, bpy.types.Panel):
+    """Import fibril… / Import domain…, and what they measured."""
+    bl_idname = "FIBRILFIT_PT_structures"
+    bl_label = "Structures"
+    bl_parent_id = "FIBRILFIT_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        row = layout.row(align=True)
+        row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
+        row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
+        for line in structure_lines(structure_trace.measured(context.scene)):
+            layout.label(text=line)
+
+
+def structure_lines(measured: dict) -> list:
+    """The panel's lines for the imported structures' measurements."""
+    lines = []
+    f = measured.get("fibril")
+    if f:
+        hand = "right" if f["twist"] > 0 else "left"
+        twist = math.degrees(f["twist"])
+        lines.append(f"{f['file']}: rise {f['rise']:.3f} Å, twist {twist:+.3f}° ({hand}-handed)")
+        lines.append(f"{f['protofilaments']} protofilament(s), core {f['core_residues'][0]}-"
+                     f"{f['core_residues'][1]}, {f['layers']} layers in the file")
+        for a in f["anchors"]:
+            lines.append(f"anchor {a['chain']} {a['residue_name']}{a['residue']}: r "
+                         f"{a['radius']:.1f} Å" + (" (buried)" if a["buried"] else ""))
+    d = measured.get("domain")
+    if d:
+        lines.append(f"{d['file']} chain {d['chain']}: Rg {d['rg']:.2f} Å, globule "
+                     f"{d['globule_diameter']:.1f} Å")
+    return lines
+
+
 SECTION_PANELS = tuple(_section_panel(sec) for sec in properties.SECTIONS if sec != "Check")
-CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check)
+CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check, FIBRILFIT_PT_structures)

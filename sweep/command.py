@@ -9,7 +9,7 @@ import importlib
 import pathlib
 import sys
 
-from .. import exits, output
+from .. import exits, output, structure_inputs
 from . import gate, grid, runner, slurm, summary
 from .executors import DaskExecutor, ProcessExecutor, SlurmExecutor, SweepError, cpu_count
 
@@ -81,12 +81,23 @@ def _executor(args, out: pathlib.Path, runs: int):
                            blender_binary=bpy.app.binary_path)
 
 
+def _case(args) -> dict | None:
+    """The --case as every record embeds it (its params are each point's own)."""
+    case = getattr(args, "loaded_case", None)
+    if case is None:
+        return None
+    from .. import params as P
+    return case.resolved(P.DEFAULTS, case.overridden)
+
+
 def run(args) -> int:
     _check_options(args)
     specs = grid.specs_from(args)
     seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
                              else args.seed)
-    points = grid.build(specs, seeds, force=args.force)
+    merged, structure_block = structure_inputs.params_and_structure(args, specs)
+    base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
+    points = grid.build(specs, seeds, force=args.force, base=base)
     requirements = [gate.parse(text) for text in args.require]
     out = _out_dir(args)
     results = out / RESULTS
@@ -128,7 +139,9 @@ def run(args) -> int:
         try:
             with _executor(args, out, len(todo)) as executor:
                 runner.run(executor, todo, results, force=args.force,
-                                    progress=not args.quiet, version=pipeline.version())
+                           progress=not args.quiet, version=pipeline.version(),
+                           extra={"structure": structure_block} if structure_block else None,
+                           case=_case(args))
         except SweepError as exc:
             print(f"fibrilfit: error: {exc}", file=sys.stderr)
             return exits.EXIT_USAGE

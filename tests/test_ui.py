@@ -60,6 +60,10 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["kind"] is bool:
             assert prop.type == "BOOLEAN" and prop.default == f.default
             continue
+        if "choices" in meta:
+            assert prop.type == "ENUM" and prop.default == f.default, f.name
+            assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
+            continue
         if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
@@ -148,7 +152,8 @@ def test_no_module_name_is_hard_coded():
     skip = {"tests", "bench", ".venv", ".venv42", "dist", "out", ".git"}
     for path in ROOT.rglob("*.py"):
         rel = path.relative_to(ROOT)
-        if rel.parts[0] in skip or rel.name in ("_load.py", "headless.py"):
+        if (rel.parts[0] in skip or rel.parts[0].startswith(".venv")
+                or rel.name in ("_load.py", "headless.py")):
             continue
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.ImportFrom) and node.level == 0:
@@ -462,7 +467,8 @@ def draw_all(context):
 
 
 def test_panels_are_in_the_fibrilfit_tab_in_the_tutorials_order(ui):
-    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS]
+    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS,
+                                                                 "Structures"]
     for cls in sidebar.CLASSES:
         assert cls.is_registered
         assert (cls.bl_space_type, cls.bl_region_type, cls.bl_category) == ("VIEW_3D", "UI",
@@ -483,8 +489,10 @@ def test_panels_draw_in_every_state(ui, scene):
                                        + switches)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
-                                                    "clear_outline")}
+                                                    "clear_outline", "import_fibril",
+                                                    "import_domain")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])
@@ -509,3 +517,42 @@ def test_twist_shows_in_degrees(ui):
     ui.twist = math.radians(2.0)
     assert properties.read_params(ui).twist == pytest.approx(math.radians(2.0), rel=1e-6)
     assert bpy.utils.units.to_string("METRIC", "ROTATION", ui.twist).startswith("2")
+
+
+# ---- protofilaments, outline and anchor in the sidebar (issue #14) ---------------------------
+
+def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, scene, tmp_path):
+    ui.layers, ui.protofilaments, ui.frames = 3, 2, 10
+    ui.use_pf_rotation, ui.pf_rotation, ui.pf_rise = True, 3.1294, 2.34
+    run_steps(STEPS[:2])  # slab, then the anchor of every protofilament of layer 0
+    model = find_model(scene)
+    assert len(model.chain) == 2 and [len(c) for c in model.chain] == [1, 1]
+    run_steps(STEPS[2:])
+    model = find_model(scene)
+    assert len(model.chain) == 6 and len(model.slabs) == 3
+    assert stored_result(scene)["clashing_chains"] is not None
+    assert model.params.pf_rotation == pytest.approx(3.1294, abs=1e-6)
+    # the outline's file picker (run directly: a script gives the path)
+    bad = tmp_path / "bad.json"
+    bad.write_text("[[0, 0], [1, 1]]")
+    with pytest.raises(RuntimeError, match="core_outline: .*at least 3 points"):
+        run("load_outline", filepath=str(bad))
+    assert ui.core_outline == ""
+    good = tmp_path / "wide.json"
+    good.write_text(json.dumps([[-30, -11], [30, -11], [30, 11], [-30, 11]]))
+    assert run("load_outline", filepath=str(good)) == {"FINISHED"}
+    assert json.loads(ui.core_outline) == [[-30, -11], [30, -11], [30, 11], [-30, 11]]
+    # the default anchor (21.75, 0) is now inside the wider core: the build says so, naming it
+    with pytest.raises(RuntimeError, match="anchor: .*inside the core"):
+        run("run_all")
+    # with the anchor moved out, a bake of the old model refuses: the outline changed
+    ui.use_anchor, ui.anchor = True, (31.75, 0.0)
+    with pytest.raises(RuntimeError, match="core_outline changed from its default to an outline "
+                                           r"of 4 points \(and 1 more\)"):
+        run("bake")
+    assert run("run_all") == {"FINISHED"}
+    model = find_model(scene)
+    assert model.slabs[0].rigid_body.collision_shape == "MESH"
+    assert model.params.anchor == (31.75, 0.0)
+    assert run("clear_outline") == {"FINISHED"} and ui.core_outline == ""
+    assert properties.read_params(ui).core_outline is None

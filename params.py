@@ -94,6 +94,11 @@ class Params:
                               "Score interior layers only: leave out this many layers at each end "
                               "of the fibril ('all' or 0 scores every layer)",
                               kind=int, section="Check")
+    periodic: int = _spec(0, 0, 10_000, "layers",
+                          "Simulate an infinite fibril as a screw-periodic cell of this many layers "
+                          "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
+                          "--layers layers with two ends)",
+                          kind=int, section="Layers")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
@@ -195,6 +200,8 @@ def make_params(*, force: bool = False, **values) -> Params:
         value, meta = values[f.name], f.metadata
         if f.name == "score_layers" and isinstance(value, str) and value.strip().lower() == "all":
             value = 0
+        if f.name == "periodic" and isinstance(value, str) and value.strip().lower() == "auto":
+            continue  # resolved below, once the geometry it depends on is known
         if f.name == "slab":
             if isinstance(value, str):
                 value = value.replace(",", " ").split()
@@ -209,6 +216,11 @@ def make_params(*, force: bool = False, **values) -> Params:
             clean[f.name] = tuple(float(_coerce("slab", v, meta)) for v in items)
         else:
             clean[f.name] = _coerce(f.name, value, meta)
+    if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
+        from .screw import auto_cell_layers
+        clean["periodic"] = auto_cell_layers(Params(**{**clean, "periodic": 1}))
+    if clean.get("periodic"):
+        clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
     _check_combination(p, force)
     return p
@@ -219,6 +231,8 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("residue_spacing", f"must be at least the residue radius "
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
+    if p.periodic:
+        _check_periodic(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
@@ -229,6 +243,19 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("layers", f"{p.layers} layers × linker {p.linker} would make {n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
+
+
+def _check_periodic(p: Params) -> None:
+    from .screw import min_cell_layers
+    if p.score_layers:
+        raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
+                                         "ends, every layer is interior")
+    least = min_cell_layers(p)
+    if p.periodic < least:
+        raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
+                                     f"{p.globule_diameter:g} Å globules at a rise of {p.rise:g} Å: "
+                                     f"at least {least} layers (cell × rise must exceed the "
+                                     f"globule diameter), or 'auto'")
 
 
 def validate(p: Params, *, force: bool = False) -> Params:

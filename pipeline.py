@@ -16,6 +16,7 @@ from . import params as P
 from .analysis import StretchLog, check_model, scored_range
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
+from .builders.hooks import frame_hooks
 
 STAGES = ("build", "bake", "check")
 
@@ -42,7 +43,8 @@ class Baking:
         p = model.params
         self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_range(p)))
         self.stats = BakeStats()
-        self._frames = bake_steps(self.scene, model, self.stats)
+        self.hooks = frame_hooks(model, self.scene)
+        self._frames = bake_steps(self.scene, model, self.stats, hooks=self.hooks)
         self.done = False
 
     @property
@@ -79,6 +81,8 @@ class Baking:
             "settled_at": self.stats.settled_at,
             "cancelled": self.stats.cancelled,
             **self.stretch.summary(),
+            **{key: value for hook in self.hooks if hasattr(hook, "summary")
+               for key, value in hook.summary().items()},
         }
 
 

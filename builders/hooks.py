@@ -11,6 +11,9 @@ from __future__ import annotations
 def frame_hooks(model, scene) -> list:
     """The hooks a bake of `model` in `scene` runs, in order (none for the tutorial's model)."""
     hooks: list = []
+    if model.params.periodic:  # images follow their originals (builders/periodic.py)
+        from .periodic import ImageFollower
+        hooks.append(ImageFollower(model))
     return hooks
 
 

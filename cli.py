@@ -99,6 +99,7 @@ def progress_printer(frames: int, every: int = 25):
 
 def command_run(args) -> int:
     from . import pipeline, report
+    P.refuse_beside_periodic(params_from(args))
     p = P.make_params(force=args.force, **params_from(args))
     look = export_options.render_options(args)
     if args.pdb:

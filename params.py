@@ -258,6 +258,27 @@ def _check_periodic(p: Params) -> None:
                                      f"globule diameter), or 'auto'")
 
 
+# Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).
+NOT_WITH_PERIODIC = {
+    "layers": "cannot be given with periodic: the model is then a cell of M = periodic layers of "
+              "an infinite fibril, which has no length to set",
+    "score_layers": "cannot be given with periodic: a periodic cell has no ends, so every layer "
+                    "is interior and scored",
+}
+
+
+def refuse_beside_periodic(given: dict) -> None:
+    """Raise ParamError when `given` (the options a user set: name -> value or list of values)
+    turns periodic on and also sets an option that a periodic cell replaces."""
+    values = given.get("periodic")
+    values = values if isinstance(values, (list, tuple)) else [values]
+    if not any(v is not None and str(v).strip() not in ("0", "0.0", "") for v in values):
+        return
+    for name, why in NOT_WITH_PERIODIC.items():
+        if given.get(name) is not None:
+            raise ParamError(name, why)
+
+
 def validate(p: Params, *, force: bool = False) -> Params:
     """Validate an existing Params (e.g. one built directly) and return it."""
     return make_params(force=force, **p.to_dict())

@@ -9,8 +9,10 @@ def _pct(x: float) -> str:
 
 def summary(r: dict, quiet: bool = False) -> str:
     p = r["params"]
+    size = (f"periodic cell of {p['periodic']} layers (an infinite fibril)" if p.get("periodic")
+            else f"{p['layers']} layers")
     head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
-            f"{p['layers']} layers, linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
+            f"{size}, linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
             f"seed {r['seed']}")
     if "verdict" not in r:
         return head + f"\nstopped after {r['stage']}; no verdict"
@@ -52,6 +54,15 @@ def summary(r: dict, quiet: bool = False) -> str:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    if r.get("periodic"):
+        per, lag = r["periodic"], r.get("image_lag") or {}
+        lines.append(
+            f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
+            f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
+            f"pairs counted once, with images up to {per['check_cells']} cells above "
+            f"(globule j + m·{per['chains']} is globule j's image in cell m)"
+            + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
+               if lag else ""))
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
     lines += _export_lines(r)
     if r["accommodated"]:

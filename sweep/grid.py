@@ -131,4 +131,5 @@ def specs_from(args) -> dict:
             specs[f.name] = [" ".join(c) for c in itertools.product(*axes)]
         else:
             specs[f.name] = parse_spec(f.name, value)
+    P.refuse_beside_periodic(specs)
     return specs

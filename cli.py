@@ -102,6 +102,7 @@ def command_run(args) -> int:
     P.refuse_beside_periodic(params_from(args))
     p = P.make_params(force=args.force, **params_from(args))
     look = export_options.render_options(args)
+    pdb_images = export_options.pdb_images(args, p)
     if args.pdb:
         export_options.pdb_fits(p)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
@@ -118,7 +119,7 @@ def command_run(args) -> int:
                                        writers.prepare, scene, result, aspect=look["aspect"]))
     if "pdb" in paths:
         problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
-                                       result, paths["pdb"], args.pdb_frames))
+                                       result, paths["pdb"], args.pdb_frames, pdb_images))
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])

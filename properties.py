@@ -89,6 +89,11 @@ RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
 _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
+# The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
+FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
+    name="Periodic cell",
+    description="Simulate the interior of an infinite fibril: a screw-periodic cell of M layers "
+                "whose images stand in for the rest (Layers and Score layers are then unused)")
 
 CLASSES = (FIBRILFIT_PG_settings,)
 
@@ -114,7 +119,13 @@ def _plain(value):
 
 
 def values(settings) -> dict:
-    return {f.name: _plain(getattr(settings, f.name)) for f in P.fields()}
+    out = {f.name: _plain(getattr(settings, f.name)) for f in P.fields()}
+    if not settings.use_periodic:
+        out["periodic"] = 0
+    else:  # the cell replaces the fibril's length and its ends
+        out["periodic"] = out["periodic"] or "auto"
+        out["layers"], out["score_layers"] = P.DEFAULTS.layers, 0
+    return out
 
 
 def read_params(settings) -> P.Params:
@@ -125,11 +136,19 @@ def read_params(settings) -> P.Params:
 def write_params(settings, p: P.Params) -> None:
     for name, value in p.to_dict().items():
         setattr(settings, name, value)
+    settings.use_periodic = bool(p.periodic)
 
 
 def changed_fields(settings, p: P.Params, sections=SECTIONS) -> list[tuple[str, object, object]]:
     """Fields of `sections` whose panel value differs from `p`: (name, value in p, panel value)."""
     now, then = values(settings), p.to_dict()
+    if now["periodic"] == "auto":
+        try:
+            now["periodic"] = P.make_params(**now).periodic
+        except P.ParamError:
+            pass
+    if then.get("periodic"):
+        now["layers"] = then["layers"]  # a cell's layers follow from periodic
     out = []
     for f in P.fields():
         if section_of(f) in sections:

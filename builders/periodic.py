@@ -17,7 +17,8 @@ MOVING, STATIC = "image", "image_static"  # roles of the two kinds of image
 CHAIN = "fibrilfit_chain"  # on an image: the chain (or core, for a static core image) it copies
 CELL = "fibrilfit_cell"    # on an image: m, the power of the screw
 COLLECTIONS = {MOVING: "FibrilFit images", STATIC: "FibrilFit static images"}
-IMAGE_COLOR = (0.7, 0.72, 0.7, 0.25)
+FADE_TO, FADE = (0.3, 0.32, 0.36), 0.6  # images: their original's colour, 60 % of the way to the
+# render's backdrop (exports/dressing.BACKGROUND), so the cell stands out
 _RB_COPIED = ("friction", "restitution", "use_margin", "collision_margin")
 
 
@@ -103,7 +104,7 @@ def _copy(source, role, m, chain, index, coll, bodies):
     rb.collision_shape = src.collision_shape
     for attr in _RB_COPIED:
         setattr(rb, attr, getattr(src, attr))
-    ob.color = IMAGE_COLOR
+    ob.color = (*(c + FADE * (b - c) for c, b in zip(source.color[:3], FADE_TO)), 1.0)
     return ob
 
 

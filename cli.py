@@ -111,7 +111,8 @@ def command_run(args) -> int:
     if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.frames) if args.progress else None)
+                          on_frame=progress_printer(p.frames * (p.image_updates if p.periodic else 1))
+                          if args.progress else None)
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red

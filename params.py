@@ -100,6 +100,13 @@ class Params:
                           "--layers layers with two ends)",
                           kind=int, section="Layers")
 
+    # Measured (README, "Periodic cell"): images one frame behind their originals make every
+    # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.
+    image_updates: int = _spec(5, 1, 1000, "per frame",
+                               "With periodic: move the images to their originals this many times "
+                               "per frame (each frame is baked as this many shorter frames, with "
+                               "the same substep length; must divide substeps)", kind=int)
+
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
@@ -250,6 +257,10 @@ def _check_periodic(p: Params) -> None:
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
                                          "ends, every layer is interior")
+    if p.substeps % p.image_updates:
+        raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
+                                          f"frame's substeps split evenly between image updates "
+                                          f"(got {p.image_updates})")
     least = min_cell_layers(p)
     if p.periodic < least:
         raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "

@@ -60,7 +60,8 @@ def summary(r: dict, quiet: bool = False) -> str:
             f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
             f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
             f"pairs counted once, with images up to {per['check_cells']} cells above "
-            f"(globule j + m·{per['chains']} is globule j's image in cell m)"
+            f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
+            f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
             + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
                if lag else ""))
     lines += [f"warning: {w}" for w in r.get("warnings", [])]

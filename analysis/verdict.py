@@ -140,7 +140,8 @@ def periodic_block(model, cells: int) -> dict:
     return {"cell_layers": model.params.periodic, "chains": len(model.chain),
             "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
                        "cells": [int(m) for m in images.get("cells", [])]},
-            "check_cells": cells}
+            "check_cells": cells,
+            "scene_frames_per_frame": model.params.image_updates}
 
 
 def clashing_layers(result: dict) -> list[int]:

@@ -139,7 +139,7 @@ def test_hooks_follow_the_params(scene, ff):
 
 def test_images_sit_at_the_screw_of_their_originals_every_frame(scene, ff):
     S, PB = _screw(ff), _periodic(ff)
-    p = ff.params.make_params(periodic=8, frames=12, settle=False)
+    p = ff.params.make_params(periodic=8, frames=12, settle=False, image_updates=1)
     model = ff.pipeline.build(p, scene)
     moving = _images(ff, model)
     statics = _images(ff, model, PB.STATIC)
@@ -177,7 +177,7 @@ def test_bullet_feels_the_images_and_their_moves(scene, ff):
     """The same short bake with following images, with frozen images, and with none differ:
     the images collide, and they collide where the follower put them."""
     PB = _periodic(ff)
-    p = ff.params.make_params(periodic=7, frames=25, settle=False, seed=3)
+    p = ff.params.make_params(periodic=7, frames=25, settle=False, seed=3, image_updates=1)
 
     def bake(hooks_for, drop_images=False):
         model = ff.pipeline.build(p, scene)
@@ -196,6 +196,23 @@ def test_bullet_feels_the_images_and_their_moves(scene, ff):
     assert np.array_equal(following, again)  # deterministic, so the differences below are real
     assert np.abs(following - frozen).max() > 0.1
     assert np.abs(frozen - none).max() > 0.1
+
+
+def test_a_periodic_frame_is_baked_as_image_updates_shorter_frames(scene, ff):
+    """Same substep length, images moved `image_updates` times per frame of the model."""
+    p = ff.params.make_params(periodic=7, frames=4, settle=False, image_updates=5)
+    model = ff.pipeline.build(p, scene)
+    result = ff.pipeline.bake(model, scene)
+    rbw = scene.rigidbody_world
+    assert rbw.time_scale == pytest.approx(p.time_scale / 5)
+    assert rbw.substeps_per_frame == p.substeps // 5
+    assert result["frames_simulated"] == 20 and scene.frame_end == 20
+    assert len(result["image_lag"]) and result["image_lag"]["max"] > 0
+    with pytest.raises(ff.params.ParamError, match="image_updates: must divide substeps"):
+        ff.params.make_params(periodic=7, image_updates=3)
+    plain = ff.params.make_params(layers=3, frames=4, image_updates=5)  # ignored without a cell
+    ff.pipeline.bake(ff.pipeline.build(plain, scene), scene)
+    assert scene.rigidbody_world.substeps_per_frame == plain.substeps and scene.frame_end == 4
 
 
 # ---- the check across the cell's ends ----------------------------------------------------
@@ -254,3 +271,47 @@ def test_non_periodic_results_are_unchanged(scene, ff):
         for key, want in case.items():
             if key != "params":
                 assert r[key] == want, key
+
+
+# ---- the panel and the PDB ---------------------------------------------------------------
+
+@pytest.fixture
+def ui(scene, ff):
+    ff.register()
+    yield scene.fibrilfit
+    ff.unregister()
+
+
+def test_panel_checkbox_and_m(ui, ff):
+    from fibrilfit import properties
+    P = ff.params
+    assert properties.read_params(ui).periodic == 0  # off by default
+    ui.use_periodic = True
+    p = properties.read_params(ui)
+    assert p.periodic == _screw(ff).auto_cell_layers(p) and p.layers == p.periodic  # 0 = auto
+    ui.periodic, ui.score_layers = 9, 3  # score layers is unused (greyed) with the cell on
+    assert properties.read_params(ui).periodic == 9
+    ui.periodic = 4
+    with pytest.raises(P.ParamError, match="at least 7"):
+        properties.read_params(ui)
+    for p in (P.make_params(periodic=11, linker=8), P.make_params(layers=12)):
+        properties.write_params(ui, p)
+        assert properties.read_params(ui) == p
+        assert properties.changed_fields(ui, p) == []
+
+
+def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path):
+    import gemmi
+    from fibrilfit.exports import pdb
+    S = _screw(ff)
+    p = ff.params.make_params(periodic=8, linker=3)
+    model = ff.pipeline.build(p, scene)
+    info = pdb.write_pdb(tmp_path / "cell.pdb", model, scene, images=1)
+    st = gemmi.read_structure(str(tmp_path / "cell.pdb"))
+    chains = [np.array([[a.pos.x, a.pos.y, a.pos.z] for r in ch for a in r]) for ch in st[0]]
+    assert len(chains) == 3 * 8 and info["image_cells"] == [-1, 1]
+    cell = np.array(chains[:8])
+    assert np.allclose(np.array(chains[8:16]), S.apply_points(p, -1, cell), atol=2e-3)
+    assert np.allclose(np.array(chains[16:]), S.apply_points(p, 1, cell), atol=2e-3)
+    assert len(list(gemmi.read_structure(str(pdb.write_pdb(tmp_path / "c.pdb", model, scene)
+                                              ["path"]))[0])) == 8

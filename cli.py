@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import math
 import sys
 
 from . import output, params as P
@@ -28,22 +29,47 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
         meta = f.metadata
         if not meta["cli"]:
             continue
-        default = " ".join(f"{v:g}" for v in f.default) if f.name == "slab" else f.default
-        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}default {default}]"
+        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}{_default_text(f)}]"
         if meta["kind"] is bool:
             group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
                                default=None, help=help_)
         elif f.name == "slab":
             group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
+        elif meta["size"] == 2:
+            group.add_argument(option(f.name), nargs=2, metavar=("X", "Y"), help=help_)
+        elif meta["kind"] == "points":
+            group.add_argument(option(f.name), metavar="FILES" if as_lists else "FILE",
+                               help=help_ + ("; a JSON list of [x, y]; 'box' for the slab's box"
+                                             + ("; several: comma-separated" if as_lists else "")))
         else:
             group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
     parser.add_argument("--force", action="store_true",
                         help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
 
 
+def _default_text(f) -> str:
+    """'default 0.034 (1.95°)': the default, in degrees too for an angle; how a derived one
+    is worked out."""
+    meta, default = f.metadata, f.default
+    if meta["derived"]:
+        text = f"default {meta['derived']}"
+        return text + (": 180° for K = 2" if f.name == "pf_rotation" else "")
+    if f.name == "slab":
+        return "default " + " ".join(f"{v:g}" for v in default)
+    if meta["unit"] == "rad":
+        return f"default {default} ({math.degrees(default):.2f}°)"
+    return f"default {default}"
+
+
 def params_from(args) -> dict:
-    return {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
-            if getattr(args, f.name, None) is not None}
+    """The parameters given on the command line; an outline FILE is read into its points."""
+    out = {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
+           if getattr(args, f.name, None) is not None}
+    if "core_outline" in out:
+        text = out["core_outline"]
+        out["core_outline"] = (None if text.strip().lower() in P.DERIVED_WORDS
+                               else P.read_outline(text))
+    return out
 
 
 def build_parser() -> argparse.ArgumentParser:

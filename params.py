@@ -6,9 +6,16 @@ Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this
 from __future__ import annotations
 
 import dataclasses
+import functools
+import json
 import math
+import pathlib
 from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
+
+from . import geometry
 
 # Above this many objects a build is refused unless forced: past it a bake takes hours and
 # the scene needs gigabytes.
@@ -29,10 +36,18 @@ class ParamError(ValueError):
         self.param = param
 
 
-def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation"):
+def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
+          derived=None, size=None):
+    """`derived`: for a parameter whose default (None) is worked out from others, how (text).
+    `size`: a fixed number of values (a vector); kind "points" is a list of [x, y]."""
     meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
-            "section": section}
+            "section": section, "derived": derived, "size": size}
     return field(default=default, metadata=meta)
+
+
+# Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
+DERIVED_WORDS = ("auto", "default", "none", "box", "")
+MAX_OUTLINE_POINTS = 10_000
 
 
 @dataclass(frozen=True)
@@ -94,6 +109,28 @@ class Params:
                               "Score interior layers only: leave out this many layers at each end "
                               "of the fibril ('all' or 0 scores every layer)",
                               kind=int, section="Check")
+    # ---- real fibril geometry (issue #14): protofilaments, core outline, anchor --------------
+    protofilaments: int = _spec(1, 1, 6, "chains per layer",
+                                "Protofilaments: chains (anchor, linker, globule) per layer, "
+                                "sharing the layer's core", kind=int, section="Layers")
+    pf_rotation: float | None = _spec(None, -2 * math.pi, 2 * math.pi, "rad",
+                                      "Turn about the fibril axis from one protofilament to the "
+                                      "next (a pseudo-2₁ fibril: about 179.3°)",
+                                      section="Layers", derived="2π/K")
+    pf_rise: float = _spec(0.0, -50.0, 50.0, "Å",
+                           "Rise along the fibril axis from one protofilament to the next "
+                           "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers")
+    core_outline: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "The core's cross-section: a closed polygon of [x, y] "
+                                       "points in the layer's frame (axis at the origin), "
+                                       "extruded by the rise; replaces the slab's box",
+                                       kind="points", section="Slab",
+                                       derived="the slab's X × Y box")
+    anchor: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                 "Where protofilament 0's anchor sits in the layer's frame: X Y",
+                                 section="Anchor", size=2,
+                                 derived="(slab X / 2 + residue radius, 0)")
+
     periodic: int = _spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
                           "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
@@ -115,10 +152,40 @@ class Params:
     @property
     def anchor_x(self) -> float:
         """Distance of the anchor's centre from the fibril axis (21.75 Å by default)."""
-        return self.slab[0] / 2.0 + self.residue_radius
+        if self.anchor is None:
+            return self.slab[0] / 2.0 + self.residue_radius
+        return math.hypot(*self.anchor)
+
+    @property
+    def anchor_xy(self) -> tuple[float, float]:
+        """Protofilament 0's anchor in the layer's frame (default: (anchor_x, 0))."""
+        return (self.anchor_x, 0.0) if self.anchor is None else tuple(self.anchor)
+
+    @property
+    def pf_angle(self) -> float:
+        """The turn between protofilaments in rad: pf_rotation, or 2π/K by default."""
+        return 2 * math.pi / self.protofilaments if self.pf_rotation is None else self.pf_rotation
+
+    @property
+    def chains(self) -> int:
+        """Chains in the model: layers × protofilaments."""
+        return self.layers * self.protofilaments
+
+    def outline(self) -> np.ndarray:
+        """The core's cross-section as a polygon (n, 2): core_outline, or the slab's box."""
+        if self.core_outline is None:
+            return geometry.box_outline(self.slab[0], self.slab[1])
+        return np.array(self.core_outline, dtype=float)
+
+    @functools.cached_property
+    def chain_layout(self) -> "ChainLayout":
+        """Protofilament 0's chain in the layer's frame (see ChainLayout). Raises ParamError."""
+        return _chain_layout(self)
 
     def chain_x(self) -> list[float]:
-        """Distance from the axis of each chain member: anchor, residues, globule."""
+        """Distance of each chain member (anchor, residues, globule) from the axis, for a
+        radial linker (the tutorial's); in general the anchor's distance plus the distance along
+        the chain."""
         xs = [self.anchor_x + self.residue_spacing * i for i in range(self.linker)]
         return xs + [xs[-1] + self.residue_radius + self.globule_radius]
 
@@ -131,17 +198,128 @@ class Params:
         return [b - a for a, b in zip(xs, xs[1:])]
 
     def estimated_objects(self) -> int:
-        # slab + anchor + (linker-1) residues + globule + linker constraint empties
-        return self.layers * (2 * self.linker + 2)
+        # per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
+        # constraint empties
+        return self.layers * (1 + self.protofilaments * (2 * self.linker + 1))
 
     # ---- conversion ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
-        d = dataclasses.asdict(self)
+        d = {f.name: getattr(self, f.name) for f in fields()}
         d["slab"] = list(self.slab)
+        if self.anchor is not None:
+            d["anchor"] = list(self.anchor)
+        if self.core_outline is not None:
+            d["core_outline"] = [list(xy) for xy in self.core_outline]
         return d
 
     def replace(self, **changes) -> "Params":
         return make_params(**{**self.to_dict(), **changes})
+
+
+@dataclass(frozen=True)
+class ChainLayout:
+    """Protofilament 0's chain in the layer's frame: each member's centre (n, 2), the same in
+    polar form (radius, angle; exact for the tutorial's radial chain), the chain's direction
+    and the rule that chose it (geometry.linker_direction)."""
+
+    xy: np.ndarray
+    radius: np.ndarray
+    angle: np.ndarray
+    direction: np.ndarray
+    rule: str
+
+
+def chain_layers(p: "Params") -> tuple[np.ndarray, np.ndarray]:
+    """(layer, protofilament) of every chain: chain c = layer * K + protofilament."""
+    c = np.arange(p.chains)
+    return c // p.protofilaments, c % p.protofilaments
+
+
+def chain_transforms(p: "Params") -> tuple[np.ndarray, np.ndarray]:
+    """Turn (rad) and height (Å) of every chain: layer k's twist and rise, plus j times the
+    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0)."""
+    k, j = (a.astype(float) for a in chain_layers(p))
+    return k * p.twist + j * p.pf_angle, k * p.rise + j * p.pf_rise
+
+
+def _chain_layout(p: "Params") -> ChainLayout:
+    outline = p.outline()
+    anchor = np.array(p.anchor_xy, dtype=float)
+    offsets = geometry.chain_offsets(p.linker, p.residue_spacing, p.residue_radius,
+                                     p.globule_radius)
+    copies = [j * p.pf_angle for j in range(p.protofilaments)]
+    for j, a in enumerate(copies):
+        xy = geometry.rotate(anchor, a)
+        if geometry.inside(outline, xy[None])[0]:
+            where = "" if j == 0 else (f" (protofilament {j}'s copy, turned by "
+                                       f"{math.degrees(a):.1f}°, at ({xy[0]:.2f}, {xy[1]:.2f}))")
+            raise ParamError("anchor", f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
+                                       f"{where}; the linker must start outside it: put the "
+                                       f"anchor on or outside the core's outline")
+    try:
+        direction, rule = geometry.linker_direction(outline, anchor, offsets, p.chain_radii(),
+                                                    copies)
+    except geometry.GeometryError as exc:
+        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}") from None
+    if rule == "radial":
+        radius = np.asarray(p.chain_x())
+        angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))
+        xy = np.stack([np.cos(angle) * radius, np.sin(angle) * radius], axis=1)
+    else:
+        xy = anchor[None] + offsets[:, None] * direction[None]
+        radius, angle = np.hypot(xy[:, 0], xy[:, 1]), np.arctan2(xy[:, 1], xy[:, 0])
+    return ChainLayout(xy, radius, angle, direction, rule)
+
+
+def _check_anchors_apart(p: "Params") -> None:
+    """Anchors of different protofilaments must not start on top of each other (in 3-D,
+    over the first few layers: the model repeats layer by layer)."""
+    if p.protofilaments < 2:
+        return
+    k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * abs(p.pf_rise)
+                                             + 2 * p.residue_radius) / p.rise)) + 1)
+    q = dataclasses.replace(p, layers=k_max + 1)
+    angle, height = chain_transforms(q)
+    lay = q.chain_layout
+    xy = np.stack([np.cos(angle + lay.angle[0]), np.sin(angle + lay.angle[0])], 1) * lay.radius[0]
+    pts = np.column_stack([xy, height])
+    _, pf = chain_layers(q)
+    d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
+    clash = (d < 2 * p.residue_radius - 1e-9) & (pf[:, None] != pf[None, :])
+    if clash.any():
+        a, b = np.argwhere(clash)[0]
+        raise ParamError("pf_rotation", f"protofilaments {pf[a]} and {pf[b]} would start with "
+                                        f"their anchors {d[a, b]:.2f} Å apart, less than two "
+                                        f"residue radii ({2 * p.residue_radius:g} Å): change "
+                                        f"--pf-rotation, --pf-rise or --anchor")
+
+
+def read_outline(path) -> tuple:
+    """A core outline from a JSON file: a list of [x, y] in Å. Raises ParamError."""
+    try:
+        text = pathlib.Path(path).expanduser().read_text(encoding="utf-8")
+        data = json.loads(text)
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise ParamError("core_outline", f"cannot read '{path}' as a JSON list of [x, y] points "
+                                         f"({' '.join(str(reason).split())})") from None
+    return _outline_value(data, f" in '{path}'")
+
+
+def _outline_value(value, where: str = "") -> tuple:
+    meta = field_spec("core_outline")
+    try:
+        points = geometry.clean_outline(value)
+    except geometry.GeometryError as exc:
+        raise ParamError("core_outline", f"the outline{where} {exc}") from None
+    if len(points) > MAX_OUTLINE_POINTS:
+        raise ParamError("core_outline", f"the outline{where} has {len(points)} points; at most "
+                                         f"{MAX_OUTLINE_POINTS}")
+    if np.abs(points).max() > meta["max"]:
+        raise ParamError("core_outline", f"the outline{where} reaches {np.abs(points).max():g} Å "
+                                         f"from the axis; coordinates must be from "
+                                         f"{meta['min']:g} to {meta['max']:g} Å")
+    return tuple((float(x), float(y)) for x, y in points)
 
 
 def fields() -> tuple[dataclasses.Field, ...]:
@@ -209,18 +387,20 @@ def make_params(*, force: bool = False, **values) -> Params:
             value = 0
         if f.name == "periodic" and isinstance(value, str) and value.strip().lower() == "auto":
             continue  # resolved below, once the geometry it depends on is known
-        if f.name == "slab":
-            if isinstance(value, str):
-                value = value.replace(",", " ").split()
-            try:
-                items = list(value)
-            except TypeError:
-                raise ParamError("slab", f"must be three sizes X Y Z, each from {meta['min']:g} "
-                                         f"to {meta['max']:g} Å (got {value!r})") from None
-            if len(items) != 3:
-                raise ParamError("slab", f"must be three sizes X Y Z, each from {meta['min']:g} "
-                                         f"to {meta['max']:g} Å (got {value!r})")
-            clean[f.name] = tuple(float(_coerce("slab", v, meta)) for v in items)
+        if meta["derived"] and (value is None or (isinstance(value, str)
+                                                  and value.strip().lower() in DERIVED_WORDS)):
+            clean[f.name] = None
+        elif meta["kind"] == "points":
+            if isinstance(value, str) and value.strip().startswith("["):
+                try:
+                    value = json.loads(value)
+                except ValueError:
+                    raise ParamError(f.name, f"is not a JSON list of [x, y] points "
+                                             f"(got {value[:40]!r})") from None
+            clean[f.name] = (read_outline(value) if isinstance(value, (str, pathlib.Path))
+                             else _outline_value(value))
+        elif f.name == "slab" or meta["size"]:
+            clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
         else:
             clean[f.name] = _coerce(f.name, value, meta)
     if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
@@ -231,6 +411,21 @@ def make_params(*, force: bool = False, **values) -> Params:
     p = Params(**clean)
     _check_combination(p, force)
     return p
+
+
+def _vector(name: str, value, meta: dict, size: int) -> tuple:
+    what = {3: "three sizes X Y Z", 2: "two coordinates X Y"}.get(size, f"{size} numbers")
+    message = (f"must be {what}, each from {meta['min']:g} to {meta['max']:g} {meta['unit']} "
+               f"(got {value!r})")
+    if isinstance(value, str):
+        value = value.replace(",", " ").split()
+    try:
+        items = list(value)
+    except TypeError:
+        raise ParamError(name, message) from None
+    if len(items) != size:
+        raise ParamError(name, message)
+    return tuple(float(_coerce(name, v, meta)) for v in items)
 
 
 def _check_combination(p: Params, force: bool) -> None:
@@ -244,10 +439,13 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
                                          f"(got {p.score_layers})")
+    p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
+    _check_anchors_apart(p)
     n = p.estimated_objects()
     if n > MAX_OBJECTS_UNFORCED and not force:
-        most = MAX_OBJECTS_UNFORCED // (2 * p.linker + 2)
-        raise ParamError("layers", f"{p.layers} layers × linker {p.linker} would make {n} objects "
+        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.linker + 1))
+        chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
+        raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make {n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
 

@@ -13,7 +13,7 @@ from typing import Callable
 import bpy
 
 from . import params as P
-from .analysis import StretchLog, check_model, scored_range
+from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
 from .builders.hooks import frame_hooks
@@ -42,7 +42,7 @@ class Baking:
     def __init__(self, model, scene=None):
         self.model, self.scene = model, scene or bpy.context.scene
         p = model.params
-        self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_range(p)))
+        self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_chains(p)))
         self.stats = BakeStats()
         self.hooks = frame_hooks(model, self.scene)
         self._frames = bake_steps(self.scene, model, self.stats, hooks=self.hooks)

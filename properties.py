@@ -6,6 +6,9 @@ One property per field of params.Params, with the same name, its default, min/ma
 default Metric system, so lengths are plain numbers with the unit in the label, and the twist
 shows in degrees.
 """
+import json
+import math
+
 import bpy
 import numpy as np
 from bpy.props import (BoolProperty, FloatProperty, FloatVectorProperty, IntProperty,
@@ -46,13 +49,36 @@ def label(field) -> str:
 
 def _description(field) -> str:
     meta = field.metadata
+    if meta["kind"] == "points":
+        return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
+                f"Load one from a file with Load outline")
     note = _UNIT_NOTES.get(meta["unit"], meta["unit"])
-    return f"{meta['doc']} ({note})" if note and meta["kind"] is not bool else meta["doc"]
+    text = f"{meta['doc']} ({note})" if note and meta["kind"] is not bool else meta["doc"]
+    return text + (f". Used when its switch is on; off: {meta['derived']}" if meta.get("derived")
+                   else "")
+
+
+# What a derived parameter (default None: worked out from others) shows until the user turns
+# its "use_" switch on. The switch off means None.
+_SHOWN_DEFAULTS = {"pf_rotation": math.pi, "anchor": (21.75, 0.0)}
+
+
+def switch_name(name: str) -> str:
+    """The BoolProperty that says a derived parameter is set by hand (off: its default)."""
+    return "use_" + name
+
+
+def derived_fields() -> list:
+    return [f for f in P.fields() if f.metadata.get("derived") and f.metadata["kind"] != "points"]
 
 
 def _param_property(field):
     meta, default = field.metadata, field.default
     common = {"name": label(field), "description": _description(field)}
+    if meta["kind"] == "points":
+        return StringProperty(default="", **common)
+    if default is None:
+        default = _SHOWN_DEFAULTS[field.name]
     if meta["kind"] is bool:
         return BoolProperty(default=default, **common)
     if meta["kind"] is int:
@@ -89,6 +115,12 @@ RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
 _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
+FIBRILFIT_PG_settings.__annotations__.update({
+    switch_name(f.name): BoolProperty(name=f"Set {label(f).lower()}",
+                                      description=f"Set by hand; off: {f.metadata['derived']}")
+    for f in derived_fields()})
+FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
+    name="Outline file", description="The file the core outline was last loaded from")
 # The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
 FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
     name="Periodic cell",
@@ -118,8 +150,22 @@ def _plain(value):
     return tuple(_plain(v) for v in value)
 
 
+def _value(settings, field):
+    if field.metadata["kind"] == "points":  # JSON text, read exactly: no float32 rounding
+        text = getattr(settings, field.name).strip()
+        if not text:
+            return None
+        try:
+            return tuple(tuple(xy) for xy in json.loads(text))
+        except (ValueError, TypeError):
+            return text  # make_params refuses it, naming core_outline
+    if field.metadata.get("derived") and not getattr(settings, switch_name(field.name)):
+        return None
+    return _plain(getattr(settings, field.name))
+
+
 def values(settings) -> dict:
-    out = {f.name: _plain(getattr(settings, f.name)) for f in P.fields()}
+    out = {f.name: _value(settings, f) for f in P.fields()}
     if not settings.use_periodic:
         out["periodic"] = 0
     else:  # the cell replaces the fibril's length and its ends
@@ -134,8 +180,16 @@ def read_params(settings) -> P.Params:
 
 
 def write_params(settings, p: P.Params) -> None:
+    derived = {f.name for f in derived_fields()}
     for name, value in p.to_dict().items():
-        setattr(settings, name, value)
+        if name == "core_outline":
+            settings.core_outline = "" if value is None else json.dumps(value)
+        elif name in derived:
+            setattr(settings, switch_name(name), value is not None)
+            if value is not None:
+                setattr(settings, name, value)
+        else:
+            setattr(settings, name, value)
     settings.use_periodic = bool(p.periodic)
 
 
@@ -152,8 +206,14 @@ def changed_fields(settings, p: P.Params, sections=SECTIONS) -> list[tuple[str, 
     out = []
     for f in P.fields():
         if section_of(f) in sections:
-            old = tuple(then[f.name]) if isinstance(then[f.name], list) else then[f.name]
-            if _plain(old) != now[f.name]:
+            old = then[f.name]
+            if f.metadata["kind"] == "points":
+                old = None if old is None else tuple(map(tuple, old))
+                if old != now[f.name]:
+                    out.append((f.name, old, now[f.name]))
+                continue
+            old = tuple(old) if isinstance(old, list) else old
+            if (None if old is None else _plain(old)) != now[f.name]:
                 out.append((f.name, old, now[f.name]))
     return out
 

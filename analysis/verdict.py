@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import screw
+from .. import params as P, screw
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
 from .stretch import bond_stretch
@@ -14,7 +14,7 @@ TOUCH_SLACK = 1e-4
 
 
 def chain_positions(model) -> np.ndarray:
-    """World centres of every chain member now, shape (layers, linker + 1, 3)."""
+    """World centres of every chain member now, shape (chains, linker + 1, 3)."""
     obs = [ob for members in model.chain for ob in members]
     return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
 
@@ -27,6 +27,12 @@ def world_matrices(objects, collections=()) -> np.ndarray:
 def scored_range(p) -> tuple[int, int]:
     """Layers [lo, hi) that count towards the verdict: all but `score_layers` at each end."""
     return p.score_layers, p.layers - p.score_layers
+
+
+def scored_chains(p) -> tuple[int, int]:
+    """Chains [lo, hi) of the scored layers (chains are layer-major: every protofilament)."""
+    lo, hi = scored_range(p)
+    return lo * p.protofilaments, hi * p.protofilaments
 
 
 def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, list]:
@@ -69,6 +75,8 @@ def check_model(model) -> dict:
     """
     p = model.params
     lo, hi = scored_range(p)
+    c_lo, c_hi = scored_chains(p)
+    layer_of, pf_of = P.chain_layers(p)
     positions = chain_positions(model)
     globules = model.globules
     mesh = globules[0].data
@@ -81,7 +89,7 @@ def check_model(model) -> dict:
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
     centres = everything[:n]
     scored = np.zeros(len(everything), dtype=bool)
-    scored[slice(0, n) if p.periodic else slice(lo, hi)] = True  # a cell has no ends
+    scored[slice(0, n) if p.periodic else slice(c_lo, c_hi)] = True  # a cell has no ends
 
     def depth(i, j):
         return 2 * p.globule_radius - float(np.linalg.norm(everything[i] - everything[j]))
@@ -99,17 +107,27 @@ def check_model(model) -> dict:
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
 
     clashing = [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]
-    stretch = bond_stretch(positions[lo:hi], p.rest_lengths())
+    stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
     max_stretch = float(stretch.max()) if stretch.size else 0.0
-    layer_clash = [False if s else None for s in scored[:n].tolist()]  # None: not scored
+    chain_clash = [False if s else None for s in scored[:n].tolist()]  # None: not scored
     for i, j, _ in clashing:
-        for k in (i, j):
-            if scored[k % n]:
-                layer_clash[k % n] = True
+        for c in (i % n, j % n):  # a periodic cell: an image's globule is its original's
+            if scored[c]:
+                chain_clash[c] = True
+    layer_clash = [None if not lo <= k < hi else False for k in range(p.layers)]
+    for c, hit in enumerate(chain_clash):
+        if hit:
+            layer_clash[int(layer_of[c])] = True
 
     verdict = "intersection" if faces > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
     periodic = {"periodic": periodic_block(model, cells)} if p.periodic else {}
+    chains = {}
+    if p.protofilaments > 1:  # pair indices are chains: name each globule's layer and pf too
+        # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
+        name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
+        chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
+                  "chain_clashes": chain_clash}
     return {
         "verdict": verdict,
         "intersecting_faces": faces,
@@ -128,6 +146,7 @@ def check_model(model) -> dict:
         "accommodated": bool(verdict == "successful" and intact),
         "scored_layers": [lo, hi - 1],
         "layer_clashes": layer_clash,
+        **chains,
         "globule_centres": np.round(centres, 4).tolist(),
         **periodic,
     }
@@ -145,8 +164,9 @@ def periodic_block(model, cells: int) -> dict:
 
 
 def clashing_layers(result: dict) -> list[int]:
-    """Layers to show red: both globules of every pair in `clashing_pairs` (the BVH's pairs,
-    so none under a successful verdict), including an end layer that clashes with a scored one.
+    """Chains (= layers with one protofilament) to show red: both globules of every pair in
+    `clashing_pairs` (the BVH's pairs, so none under a successful verdict), including an end
+    layer that clashes with a scored one.
     """
     if result.get("verdict") != "intersection":
         return []

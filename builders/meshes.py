@@ -14,6 +14,24 @@ def box(name: str, size) -> bpy.types.Mesh:
     return _finish(bm, name)
 
 
+def prism(name: str, outline, height: float) -> bpy.types.Mesh:
+    """A closed polygon (n, 2), possibly concave, extruded `height` along Z about z = 0: two
+    n-gon caps and n quads, normals outward (Bullet's MESH shape triangulates the caps)."""
+    pts = [tuple(map(float, xy)) for xy in outline]
+    area = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
+    if area < 0:
+        pts.reverse()  # counter-clockwise seen from +Z
+    n, h = len(pts), height / 2.0
+    verts = [(x, y, -h) for x, y in pts] + [(x, y, h) for x, y in pts]
+    faces = [tuple(range(n - 1, -1, -1)), tuple(range(n, 2 * n))]
+    faces += [(i, (i + 1) % n, n + (i + 1) % n, n + i) for i in range(n)]
+    me = tag(bpy.data.meshes.new(name), "mesh")
+    me.from_pydata(verts, [], faces)
+    me.validate()
+    me.update()
+    return me
+
+
 def uv_sphere(name: str, radius: float, segments: int, rings: int) -> bpy.types.Mesh:
     bm = bmesh.new()
     bmesh.ops.create_uvsphere(bm, u_segments=segments, v_segments=rings, radius=radius)

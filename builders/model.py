@@ -1,4 +1,5 @@
-"""The fibril: `layers` copies of slab + anchor + linker + globule, each raised and twisted."""
+"""The fibril: `layers` copies of a core (slab or outline) with `protofilaments` chains (anchor +
+linker + globule) each, every layer raised and twisted, every protofilament turned and raised."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -9,7 +10,8 @@ import numpy as np
 from .. import params as P
 from . import meshes
 from .physics import check_world_free, ensure_world, keep_bake
-from .scene import INDEX, LAYER, ROOT, TAG, clear_model, find_root, new_collection, tag
+from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root,
+                    new_collection, tag)
 
 COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "slab": (0.55, 0.62, 0.75, 1.0),
@@ -18,11 +20,29 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "globule": (0.7, 0.72, 0.7, 1.0),
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
+# Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
+PF_COLORS = {
+    "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
+                (0.8, 0.6, 0.85, 1.0), (0.85, 0.75, 0.5, 1.0), (0.5, 0.8, 0.8, 1.0)),
+    "residue": ((0.95, 0.75, 0.2, 1.0), (0.95, 0.5, 0.15, 1.0), (0.75, 0.9, 0.2, 1.0),
+                (0.95, 0.6, 0.6, 1.0), (0.8, 0.8, 0.5, 1.0), (0.3, 0.85, 0.7, 1.0)),
+}
+chain_layers = P.chain_layers  # (layer, protofilament) of every chain index
+
+
+def part_colour(role: str, pf: int = 0) -> tuple:
+    """The colour of a part of protofilament `pf` (the same for every pf but globules, beads)."""
+    tints = PF_COLORS.get(role)
+    return COLORS[role] if tints is None else tints[pf % len(tints)]
 
 
 @dataclass
 class Model:
-    """Handles to a built model. `chain[k][i]`: layer k, member i (0 anchor .. linker globule)."""
+    """Handles to a built model. `chain[c][i]`: chain c, member i (0 anchor .. linker globule).
+
+    Chains are layer-major: chain c is protofilament c % K of layer c // K (chain_layers);
+    with one protofilament, chain c is layer c. `slabs[k]`: layer k's core. `constraints[c]`:
+    chain c's bonds."""
 
     root: bpy.types.Collection
     params: P.Params
@@ -46,18 +66,23 @@ def layer_transforms(p: P.Params, count: int | None = None) -> tuple[np.ndarray,
 
 
 def chain_positions(p: P.Params) -> np.ndarray:
-    """Rest positions of every chain member, shape (layers, linker + 1, 3)."""
-    angle, height = layer_transforms(p)
-    x = np.asarray(p.chain_x())
-    pos = np.empty((p.layers, x.size, 3))
-    pos[..., 0] = np.cos(angle)[:, None] * x
-    pos[..., 1] = np.sin(angle)[:, None] * x
+    """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
+
+    Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
+    (params.chain_transforms); for the tutorial's model the same floats as one chain per layer.
+    """
+    angle, height = P.chain_transforms(p)
+    layout = p.chain_layout
+    turn = angle[:, None] + layout.angle[None]
+    pos = np.empty((p.chains, layout.radius.size, 3))
+    pos[..., 0] = np.cos(turn) * layout.radius[None]
+    pos[..., 1] = np.sin(turn) * layout.radius[None]
     pos[..., 2] = height[:, None]
     return pos
 
 
 def bond_pivots(p: P.Params) -> np.ndarray:
-    """POINT-constraint pivots: where consecutive members touch, shape (layers, linker, 3)."""
+    """POINT-constraint pivots: where consecutive members touch, shape (chains, linker, 3)."""
     pos = chain_positions(p)
     a, b = pos[:, :-1], pos[:, 1:]
     ra = np.asarray(p.chain_radii()[:-1])
@@ -76,12 +101,13 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
     # 14,000 objects, measured on 5.0.1); each collection's own objects are a plain list.
     for ob in (ob for coll in (root, *root.children_recursive) for ob in coll.objects):
         role, k = ob.get(TAG), ob.get(LAYER)
+        key = (k, ob.get(PROTOFILAMENT, 0))  # layer-major, as the builder numbers chains
         if role == "slab":
             slabs[k] = ob
         elif role in ("anchor", "residue", "globule"):
-            chain.setdefault(k, {})[ob[INDEX]] = ob
+            chain.setdefault(key, {})[ob[INDEX]] = ob
         elif role == "bond":
-            cons.setdefault(k, {})[ob[INDEX]] = ob
+            cons.setdefault(key, {})[ob[INDEX]] = ob
     ordered = lambda d: [d[i] for i in sorted(d)]
     return Model(root, p, ordered(slabs), [ordered(chain[k]) for k in sorted(chain)],
                  [ordered(cons[k]) for k in sorted(cons)])
@@ -142,7 +168,7 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     clear_model(scene)
     rbw = ensure_world(scene)
     root = new_collection("FibrilFit", ROOT, scene.collection)
-    root["params"] = p.to_dict()
+    root["params"] = stored_params(p)
     for role, title in PART_COLLECTIONS.items():
         new_collection(f"FibrilFit {title}", role + "s", root)
     rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
@@ -167,7 +193,13 @@ def last_frame(model: Model) -> int:
 def update_params(model: Model, p: P.Params) -> None:
     """Give a built model new parameters that do not change what was built (bake, check)."""
     model.params = p
-    model.root["params"] = p.to_dict()
+    model.root["params"] = stored_params(p)
+
+
+def stored_params(p: P.Params) -> dict:
+    """p.to_dict() as an ID property: derived parameters (None) are left out, and
+    make_params gives them back as their defaults."""
+    return {k: v for k, v in p.to_dict().items() if v is not None}
 
 
 def model_stage(scene: bpy.types.Scene) -> str:
@@ -197,8 +229,10 @@ class _LayerBuilder:
         self.bodies, self.bonds = rbw.collection, rbw.constraints
         tags = {c.get(TAG): c for c in model.root.children}
         self.parts = {role: tags[role + "s"] for role in PART_COLLECTIONS}
-        self.angle, self.height = layer_transforms(p)
+        self.angle, self.height = layer_transforms(p)  # per layer: the cores
+        self.chain_angle = P.chain_transforms(p)[0]     # per chain: its members
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
+        self.pfs = p.protofilaments
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
@@ -210,7 +244,9 @@ class _LayerBuilder:
     def _shared_mesh(self, role):
         if role not in self.mesh:
             p = self.p
-            if role == "slab":
+            if role == "slab" and p.core_outline is not None:
+                self.mesh[role] = meshes.prism("FibrilFit core", p.outline(), p.rise)
+            elif role == "slab":
                 self.mesh[role] = meshes.box("FibrilFit slab", p.slab)
             elif role == "globule":
                 self.mesh[role] = meshes.uv_sphere("FibrilFit globule", p.globule_radius,
@@ -221,47 +257,61 @@ class _LayerBuilder:
         return self.mesh[role]
 
     def _slab(self, k):
+        # A concave outline needs Bullet's triangle-mesh shape: a convex hull fills its notches
+        # (README, "Concave cores").
+        shape = "BOX" if self.p.core_outline is None else "MESH"
         slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
-                     self.bodies, "PASSIVE", "BOX")
+                     self.bodies, "PASSIVE", shape)
         self.placed["slab"].append((slab, k, 0))
         self.model.slabs.append(slab)
 
+    def _name(self, k, j):
+        return f"FF{k:04d}" if self.pfs == 1 else f"FF{k:04d}.{j}"
+
     def _member(self, k, i):
+        """Member i of every protofilament's chain in layer k, protofilament 0 first."""
+        for j in range(self.pfs):
+            self._chain_member(k, j, i)
+
+    def _chain_member(self, k, j, i):
         p = self.p
+        c = k * self.pfs + j
         role = "anchor" if i == 0 else ("globule" if i == p.linker else "residue")
         mesh = self._shared_mesh("globule" if role == "globule" else "residue")
-        ob = _body(f"FF{k:04d} {role} {i}", mesh, role, k, self.parts, self.bodies,
+        ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
-        ob[INDEX] = i
-        self.placed[role].append((ob, k, i))
+        ob[INDEX], ob[PROTOFILAMENT] = i, j
+        self.placed[role].append((ob, c, i))
         chain = self.model.chain
         if i == 0:
             chain.append([])
             self.model.constraints.append([])
-        chain[k].append(ob)
+        chain[c].append(ob)
         if i > 0:
-            self._bond(k, i - 1)
+            self._bond(k, j, i - 1)
 
-    def _bond(self, k, i):
-        """The POINT constraint between chain members i and i + 1 of layer k."""
-        members = self.model.chain[k]
-        empty = tag(bpy.data.objects.new(f"FF{k:04d} bond {i}", None), "bond")
-        empty[LAYER], empty[INDEX] = k, i
-        self.placed["bond"].append((empty, k, i))
+    def _bond(self, k, j, i):
+        """The POINT constraint between members i and i + 1 of protofilament j's chain in layer k."""
+        c = k * self.pfs + j
+        members = self.model.chain[c]
+        empty = tag(bpy.data.objects.new(f"{self._name(k, j)} bond {i}", None), "bond")
+        empty[LAYER], empty[INDEX], empty[PROTOFILAMENT] = k, i, j
+        self.placed["bond"].append((empty, c, i))
         self.parts["bond"].objects.link(empty)
         self.bonds.objects.link(empty)
         rbc = empty.rigid_body_constraint
         rbc.type = "POINT"
         rbc.object1, rbc.object2 = members[i], members[i + 1]
         rbc.disable_collisions = True
-        self.model.constraints[k].append(empty)
+        self.model.constraints[c].append(empty)
 
     def _anchor(self, k):
         self._member(k, 0)
 
     def _linker(self, k):
-        for i in range(1, self.p.linker):
-            self._member(k, i)
+        for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
+            for i in range(1, self.p.linker):
+                self._chain_member(k, j, i)
 
     def _globule(self, k):
         self._member(k, self.p.linker)
@@ -274,23 +324,28 @@ class _LayerBuilder:
         """
         for role, placed in self.placed.items():
             objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
+            # (layer, 0) for slabs; (chain, member) for the rest
             k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
             if role == "slab":
                 loc = np.zeros((len(k), 3))
                 loc[:, 2] = self.height[k]
             else:
                 loc = (self.pivots if role == "bond" else self.pos)[k, i]
-            rot_z = np.zeros(len(k)) if role == "bond" else self.angle[k]
+            rot_z = (np.zeros(len(k)) if role == "bond" else
+                     self.angle[k] if role == "slab" else self.chain_angle[k])
             _place(objects, loc, rot_z)
             if role == "bond":
                 objects.foreach_set("empty_display_size",
                                     np.full(len(k), self.p.residue_radius, np.float32))
             else:
-                objects.foreach_set("color", np.tile(np.float32(COLORS[role]), len(k)))
+                pf = k % self.pfs if role != "slab" else np.zeros(len(k), dtype=np.intp)
+                tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
+                objects.foreach_set("color", tints[pf].ravel())
 
 
 def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
-    """Globules of `clashing_layers` red, the others neutral, through ob.color. Returns the red.
+    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), the
+    others their protofilament's colour, through ob.color. Returns the red.
 
     ob.color is what the viewport shows with Color: Object, and what materials read through
     an Object Info node, so one call recolours both after each check. Colouring edits simulated
@@ -300,7 +355,8 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
     red = {int(k) for k in clashing_layers}
     for k, members in enumerate(model.chain):
         if members and members[-1].get(TAG) == "globule":
-            colour = CLASH_COLOR if k in red else COLORS["globule"]
+            colour = (CLASH_COLOR if k in red else
+                      part_colour("globule", members[-1].get(PROTOFILAMENT, 0)))
             if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
                 members[-1].color = colour
     return sorted(red)

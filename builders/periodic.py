@@ -29,7 +29,8 @@ def plan(p, chain_layers, core_layers) -> dict:
     (screw.chain_reach, or half the core's height) plus the farthest reach of any cell body
     covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
     """
-    reach_cell = screw.body_reach(p)
+    # protofilaments rise from one to the next: the layer's chains spread over that much more
+    reach_cell = screw.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
     member_reach = screw.chain_reach(p)
     gaps = _gaps(p)
     moving, static = [], []

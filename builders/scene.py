@@ -10,6 +10,7 @@ import bpy
 TAG = "fibrilfit"          # on every ID the model creates; value = its role
 LAYER = "fibrilfit_layer"  # on objects: layer index, 0 = lowest
 INDEX = "fibrilfit_index"  # on chain objects: 0 = anchor ... linker = globule
+PROTOFILAMENT = "fibrilfit_protofilament"  # on chain objects and bonds: 0 .. K - 1
 ROOT = "model"
 WORLD_OWNED = "fibrilfit_owns_rigidbody_world"
 

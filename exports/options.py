@@ -76,7 +76,8 @@ def pdb_images(args, p) -> int:
 
 def pdb_fits(p) -> None:
     """Refuse, before any work, a fibril taller than PDB's coordinate columns (9999.999 Å)."""
-    top = (p.layers - 1) * p.rise + p.globule_diameter + p.residue_radius
+    top = ((p.layers - 1) * p.rise + max(0.0, (p.protofilaments - 1) * p.pf_rise)
+           + p.globule_diameter + p.residue_radius)
     if p.layers > 1 and top > 9999.999:
         most = int((9999.999 - p.globule_diameter - p.residue_radius) // p.rise) + 1
         raise OptionError(f"--pdb: a {p.layers}-layer fibril is {top:.0f} Å tall; PDB "

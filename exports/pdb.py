@@ -3,8 +3,10 @@
 One pseudo-atom (name CA, element C) per sphere: residue ANC (the anchor, resSeq 1), LNK (linker
 residues, 2 .. linker) and GLB (the globule, linker + 1). The B-factor column holds the sphere's
 radius in Å (PyMOL: `alter all, vdw=b`; ChimeraX: `size byattribute bfactor 0:0 1000:1000`).
-One chain per layer, layer 0 first: chain IDs A-Z, a-z, 0-9; past 62 layers the IDs repeat and
-the segment ID (columns 73-76) tells the copies apart: layer = 62 * segment + index of the chain
+One PDB chain per model chain, i.e. per molecule as in a deposited fibril: per layer, and per
+protofilament within a layer (chain c = layer c // K, protofilament c % K; with one protofilament
+a chain is a layer), chain 0 first: chain IDs A-Z, a-z, 0-9; past 62 chains the IDs repeat and
+the segment ID (columns 73-76) tells the copies apart: chain = 62 * segment + index of the chain
 ID, and residue numbers continue (segment 1 of a linker-3 model numbers its residues 5-8), so a
 viewer that merges chains by ID still sees distinct residues (gemmi: split_chains_by_segments).
 CONECT records join each chain in order; REMARK 250 lines carry the parameters, seed and verdict.
@@ -76,12 +78,13 @@ def residue_names(linker: int) -> list[str]:
 
 
 def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -> str:
-    """The PDB file for parameters `p` and [(frame, positions (layers, linker + 1, 3))]."""
-    layers, members = p.layers, p.linker + 1
+    """The PDB file for parameters `p` and [(frame, positions (chains, linker + 1, 3))]."""
+    layers, members = p.chains, p.linker + 1  # "layers" here: PDB chains, one per model chain
     names = residue_names(p.linker)
     radii = p.chain_radii()
     labels = [chain_label(k, layers) for k in range(layers)]
-    lines = [f"TITLE     FIBRILFIT COARSE-GRAINED FIBRIL, {layers} LAYERS, LINKER {p.linker}"]
+    pfs = (f" X {p.protofilaments} PROTOFILAMENTS" if p.protofilaments > 1 else "")
+    lines = [f"TITLE     FIBRILFIT COARSE-GRAINED FIBRIL, {p.layers} LAYERS{pfs}, LINKER {p.linker}"]
     lines += [f"{REMARK} {part}" for text in remarks
               for part in textwrap.wrap(text, 80 - len(REMARK) - 1, break_long_words=True)]
     lines.append(f"{REMARK} frames: {', '.join(str(f) for f, _ in models)}")
@@ -132,7 +135,10 @@ def result_remarks(result: dict | None) -> list[str]:
     out = [f"FibrilFit {result.get('fibrilfit_version', '?')} on Blender "
            f"{result.get('blender_version', '?')}",
            "one pseudo-atom per sphere: ANC anchor, LNK linker residue, GLB globule",
-           "B-factor = sphere radius (A); one chain per layer, layer 0 = chain A"]
+           "B-factor = sphere radius (A); one chain per layer, layer 0 = chain A"
+           if result.get("params", {}).get("protofilaments", 1) == 1 else
+           "B-factor = sphere radius (A); one chain per molecule: chain n (A = 0) is layer "
+           "n // K, protofilament n % K"]
     for name, value in result.get("params", {}).items():
         shown = " ".join(f"{v:g}" for v in value) if isinstance(value, list) else value
         out.append(f"param {name} = {shown}")
@@ -195,5 +201,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     text = pdb_text(p, models, remarks)
     output.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": p.layers * (p.linker + 1),
+            "atoms_per_model": p.chains * (p.linker + 1),
             **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

@@ -1,4 +1,4 @@
 """The sidebar's operators: thin wrappers over the functions headless runs call."""
-from . import build, check, export, simulate
+from . import build, check, export, outline, simulate
 
-CLASSES = (*build.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES)
+CLASSES = (*build.CLASSES, *outline.CLASSES, *simulate.CLASSES, *check.CLASSES, *export.CLASSES)

@@ -1,5 +1,7 @@
 """The FibrilFit tab of the 3D View's sidebar: Run all and Clear, the model's state and verdict,
 then one section per tutorial step with its parameters and its button."""
+import json
+
 import bpy
 
 from .. import params as P, properties
@@ -92,6 +94,16 @@ class _Section(_Sidebar):
         for field in properties.fields_in(self.section):
             if field.name == "periodic":  # its checkbox, then M (0 = auto)
                 col.prop(s, "use_periodic")
+            if field.metadata["kind"] == "points":
+                _draw_outline(col, s, field)
+                continue
+            if field.metadata.get("derived"):  # a switch: off means its default, worked out
+                switch = properties.switch_name(field.name)
+                col.prop(s, switch)
+                row = col.row()
+                row.active = getattr(s, switch)
+                row.prop(s, field.name)
+                continue
             row = col.row()
             if field.name == "periodic":
                 row.active = s.use_periodic
@@ -106,6 +118,24 @@ class _Section(_Sidebar):
         for idname, done_at in BUTTONS[self.section]:
             done = done_at is not None and reached(stage, done_at)
             layout.operator(idname, icon="CHECKMARK" if done else "NONE")
+
+
+def _draw_outline(col, s, field):
+    """The core outline: its JSON (editable), where it came from, the file picker, the box."""
+    text = s.core_outline.strip()
+    try:
+        count = len(json.loads(text)) if text else 0
+    except ValueError:
+        count = -1
+    what = ("Core: the slab's box" if not text else
+            f"Core: outline of {count} points" if count >= 0 else "Core: outline is not JSON")
+    col.label(text=what, icon="MESH_CUBE" if not text else "MOD_SOLIDIFY")
+    if text and s.core_outline_file:
+        col.label(text=f"from {bpy.path.basename(s.core_outline_file)}")
+    col.prop(s, field.name)
+    row = col.row(align=True)
+    row.operator("fibrilfit.load_outline", icon="FILEBROWSER")
+    row.operator("fibrilfit.clear_outline", icon="MESH_CUBE")
 
 
 def _section_panel(section):

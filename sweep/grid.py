@@ -126,9 +126,11 @@ def specs_from(args) -> dict:
             continue
         if f.metadata["kind"] is bool:
             specs[f.name] = [value]
-        elif f.name == "slab":  # three specs, one per size: the product of their values
-            axes = [parse_spec(f"slab {axis}", v) for axis, v in zip("XYZ", value)]
+        elif f.name == "slab" or f.metadata["size"]:  # one spec per coordinate: their product
+            axes = [parse_spec(f"{f.name} {axis}", v) for axis, v in zip("XYZ", value)]
             specs[f.name] = [" ".join(c) for c in itertools.product(*axes)]
+        elif f.metadata["kind"] == "points":  # outline files (or 'box'), comma-separated
+            specs[f.name] = [item.strip() for item in str(value).split(",")]
         else:
             specs[f.name] = parse_spec(f.name, value)
     P.refuse_beside_periodic(specs)

@@ -40,11 +40,22 @@ def in_range(meta, name=None):
     return st.floats(meta["min"], meta["max"])
 
 
+def polygons(coord):
+    """Any list of points: valid outlines, too few points, crossings, repeats."""
+    return st.lists(st.tuples(coord, coord), min_size=0, max_size=8)
+
+
 def value_for(name):
     meta = FIELDS[name]
     good, edge = in_range(meta, name), near_range(meta)
     if name == "slab":
         good, edge = st.tuples(good, good, good), st.tuples(edge, edge, edge)
+    elif meta["size"]:
+        good, edge = st.tuples(*[good] * meta["size"]), st.tuples(*[edge] * meta["size"])
+    elif meta["kind"] == "points":
+        good, edge = polygons(st.floats(-60, 60)), polygons(near_range({**meta, "kind": float}))
+    if meta["derived"]:
+        good = st.one_of(good, st.none(), st.just("auto"))
     # mostly valid values, so that accepted sets are common too, with every kind of bad one
     return st.one_of(*[good] * 24, edge, edge.map(str), junk)
 
@@ -67,7 +78,13 @@ def test_validation_accepts_or_refuses_with_paramerror_only(values):
     event("accepted")
     for f in dataclasses.fields(P.Params):
         v = getattr(p, f.name)
-        for x in (v if f.name == "slab" else (v,)):
+        if v is None:
+            assert f.metadata["derived"]
+            continue
+        if f.metadata["kind"] == "points":
+            v = [x for xy in v for x in xy]
+            assert len(v) >= 6
+        for x in (v if isinstance(v, (tuple, list)) else (v,)):
             assert isinstance(x, (int, float)) and math.isfinite(x)
             if f.metadata["kind"] is not bool:
                 assert f.metadata["min"] <= x <= f.metadata["max"]
@@ -80,7 +97,10 @@ small_models = st.fixed_dictionaries({}, optional={
     "residue_radius": st.floats(-1, 5, allow_nan=False), "residue_spacing": st.floats(-1, 8),
     "rise": st.floats(-1, 20, allow_nan=False), "twist": st.floats(-4, 4, allow_nan=False),
     "slab": st.tuples(*[st.floats(-1, 60, allow_nan=False)] * 3),
-    "score_layers": st.integers(-1, 4)})
+    "score_layers": st.integers(-1, 4), "protofilaments": st.integers(0, 7),
+    "pf_rotation": st.none() | st.floats(-7, 7), "pf_rise": st.floats(-6, 6),
+    "anchor": st.none() | st.tuples(st.floats(-60, 60), st.floats(-60, 60)),
+    "core_outline": st.none() | polygons(st.floats(-40, 40))})
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -97,6 +117,7 @@ def test_any_accepted_set_builds_a_valid_model(scene, values):
     assert len(scene.objects) == p.estimated_objects()
     centres = np.array([ob.matrix_world.translation for c in model.chain for ob in c])
     assert np.isfinite(centres).all()
-    assert len(model.chain) == p.layers and all(len(c) == p.linker + 1 for c in model.chain)
+    assert len(model.chain) == p.chains and all(len(c) == p.linker + 1 for c in model.chain)
+    assert len(model.slabs) == p.layers
     from fibrilfit.builders import clear_model
     clear_model(scene)

@@ -315,3 +315,42 @@ def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path):
     assert np.allclose(np.array(chains[16:]), S.apply_points(p, 1, cell), atol=2e-3)
     assert len(list(gemmi.read_structure(str(pdb.write_pdb(tmp_path / "c.pdb", model, scene)
                                               ["path"]))[0])) == 8
+
+
+# ---- two protofilaments ------------------------------------------------------------------
+
+def test_a_cell_of_two_protofilaments(scene, ff):
+    """The cell holds every chain (layer-major); images and the check work over chains."""
+    S, PB = _screw(ff), _periodic(ff)
+    M, K = 8, 2
+    p = ff.params.make_params(periodic=M, protofilaments=K, pf_rise=2.4, frames=3, settle=False,
+                              image_updates=1)
+    model = ff.pipeline.build(p, scene)
+    n = len(model.chain)
+    assert n == M * K
+    moving = _images(ff, model)
+    assert {ob[PB.CHAIN] for ob in moving} == set(range(n))  # images of both protofilaments
+    m = np.array([ob[PB.CELL] for ob in moving])
+    c = np.array([ob[PB.CHAIN] for ob in moving])
+    i = np.array([ob[PB.INDEX] for ob in moving])
+    for _, positions in ff.builders.bake_steps(scene, model):
+        have = np.array([ob.location for ob in moving])
+        assert np.allclose(have, S.apply_points(p, m, positions[c, i]), atol=1e-3)
+    # move chain 1's globule (layer 0, protofilament 1) onto the image, one cell down, of the top
+    # layer's protofilament 1 globule (chain n - 1), 4 Å deep: one pair, (n - 1, 1 + n)
+    model = ff.pipeline.build(p, scene)  # unbaked, at frame 1: globules go where they are put
+    scene.frame_set(1)
+    g = model.globules
+    for k, ob in enumerate(g):  # each on its own radius: no two, and no image, within reach
+        _move(ob, (100 + 40 * k, 0.0, ob.matrix_world.translation.z))
+    bpy.context.view_layer.update()
+    assert ff.pipeline.check(model, scene)["verdict"] == "successful"
+    below = S.apply_points(p, -1, np.array(g[n - 1].matrix_world.translation))
+    _move(g[1], below + np.array([0.0, 0.0, p.globule_diameter - 4.0]))
+    bpy.context.view_layer.update()
+    r = ff.pipeline.check(model, scene)
+    assert [pair[:2] for pair in r["sphere_check"]["clashing_pairs"]] == [[n - 1, 1 + n]]
+    assert r["sphere_check"]["clashing_pairs"][0][2] == pytest.approx(4.0, abs=1e-3)
+    assert r["chain_clashes"][1] is True and r["chain_clashes"][n - 1] is True
+    if r["clashing_pairs"]:  # the BVH's pairs, named by (layer, protofilament)
+        assert r["clashing_chains"][0][:2] == [[M - 1, 1], [M, 1]]

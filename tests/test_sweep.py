@@ -372,8 +372,10 @@ def test_a_killed_sweep_takes_its_workers_along_and_resumes(tmp_path):
 
 def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     out = tmp_path / "s"
-    cp = run_cli("sweep", "--linker", "6", "--workers", "1", "--timeout", "0.2", "--out",
-                 str(out), "--quiet", "--require", "failed==0")
+    # 3000 frames without settling take seconds: far past the 0.2 s timeout on any machine (the
+    # default model alone can finish inside the executor's 0.5 s polling interval on a fast core)
+    cp = run_cli("sweep", "--linker", "6", "--frames", "3000", "--no-settle", "--workers", "1",
+                 "--timeout", "0.2", "--out", str(out), "--quiet", "--require", "failed==0")
     assert cp.returncode == 1, cp.stderr  # the sweep completed; only the gate failed
     (record,) = lines(out / "results.jsonl")
     assert record["status"] == "failed" and record["attempts"] == 2

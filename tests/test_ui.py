@@ -60,9 +60,16 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["kind"] is bool:
             assert prop.type == "BOOLEAN" and prop.default == f.default
             continue
+        if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
+            assert prop.type == "STRING" and prop.default == "" and f.default is None
+            continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
         assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"], meta["max"])), f.name
-        default = tuple(prop.default_array) if f.name == "slab" else prop.default
+        default = tuple(prop.default_array) if prop.is_array else prop.default
+        if meta["derived"]:  # None: its switch is off by default
+            switch = rna[properties.switch_name(f.name)]
+            assert switch.type == "BOOLEAN" and switch.default is False, f.name
+            continue
         assert default == pytest.approx(f.default), f.name
         if meta["unit"].startswith("Å"):  # no Blender unit: Metric would show "30 m"
             assert prop.unit == "NONE" and prop.name.endswith(f"({meta['unit']})"), f.name
@@ -74,8 +81,13 @@ def test_one_property_per_parameter_with_its_metadata(ui):
 
 
 def test_panel_values_read_back_as_the_decimals_typed(ui):
+    outline = [[-20.123456789, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11],
+               [-20, 11]]
     for p in (P.DEFAULTS, P.make_params(slab=(39.5, 21, 4.75), twist=-0.0349, rise=4.7,
-                                        globule_diameter=27.3, settle=True, seed=123456)):
+                                        globule_diameter=27.3, settle=True, seed=123456),
+              P.make_params(protofilaments=2, pf_rotation=3.1294, pf_rise=2.34,
+                            anchor=(0.25, -12.75)),
+              P.make_params(anchor=(0.25, -1.5), core_outline=outline)):
         properties.write_params(ui, p)
         assert properties.read_params(ui) == p
         assert properties.changed_fields(ui, p) == []
@@ -136,7 +148,8 @@ def test_no_module_name_is_hard_coded():
     skip = {"tests", "bench", ".venv", ".venv42", "dist", "out", ".git"}
     for path in ROOT.rglob("*.py"):
         rel = path.relative_to(ROOT)
-        if rel.parts[0] in skip or rel.name in ("_load.py", "headless.py"):
+        if (rel.parts[0] in skip or rel.parts[0].startswith(".venv")
+                or rel.name in ("_load.py", "headless.py")):
             continue
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.ImportFrom) and node.level == 0:
@@ -466,10 +479,13 @@ def test_panels_draw_in_every_state(ui, scene):
         states[state] = draw_all(bpy.context)
     for drawn in states.values():  # every parameter and every step shows, once
         props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
-        assert sorted(props) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))
+        switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
+        assert sorted(props) == sorted([f.name for f in P.fields() if f.metadata.get("ui", True)]
+                                       + switches)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
-                                                    "run_all", "clear")}
+                                                    "run_all", "clear", "load_outline",
+                                                    "clear_outline")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

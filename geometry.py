@@ -1,0 +1,194 @@
+"""Plane geometry of one layer: the core's outline, the anchor, and where the chain starts.
+
+Plain Python and numpy (no bpy), so params.py can validate with it. Everything is in the
+layer's frame: Å, the fibril axis at the origin, X/Y across the fibril.
+
+The linker's direction (README, "Protofilaments, outlines and anchors"): the chain leaves the
+anchor in a straight line, radially away from the axis as in the tutorial. If a bead or the
+globule would then start overlapping the core, it runs along the outward normal of the core's
+edge nearest the anchor instead; if that is blocked too, along the free direction closest to
+radial (1° steps). If every direction is blocked the parameters are refused.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+CLEARANCE_SLACK = 1e-6  # Å: a bead exactly touching the core counts as outside
+
+
+class GeometryError(ValueError):
+    """A polygon or layout the model cannot build; params.py turns it into a ParamError."""
+
+
+def box_outline(width: float, depth: float) -> np.ndarray:
+    """The tutorial's slab seen from above: a width × depth rectangle about the axis, CCW."""
+    x, y = width / 2.0, depth / 2.0
+    return np.array([(-x, -y), (x, -y), (x, y), (-x, y)], dtype=float)
+
+
+def signed_area(points) -> float:
+    """Shoelace area: positive for a counter-clockwise polygon."""
+    p = np.asarray(points, dtype=float)
+    x, y = p[:, 0], p[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def counter_clockwise(points) -> np.ndarray:
+    p = np.asarray(points, dtype=float)
+    return p if signed_area(p) >= 0 else p[::-1].copy()
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def self_intersection(points) -> tuple[int, int] | None:
+    """The first pair of edges (i, j) that cross or touch other than at a shared corner, else None.
+
+    Edge i runs from point i to point i + 1 (the last back to the first).
+    """
+    p = np.asarray(points, dtype=float)
+    n = len(p)
+    a, b = p, np.roll(p, -1, axis=0)
+    scale = max(float(np.abs(p).max(initial=0.0)), 1.0)
+    eps = 1e-12 * scale * scale
+    for i in range(n):
+        j = np.arange(i + 1, n)
+        c, d = a[j], b[j]
+        r, s = b[i] - a[i], d - c
+        denom = _cross(r, s)
+        qp = c - a[i]
+        adjacent = (j == i + 1) | ((i == 0) & (j == n - 1))
+        # proper or touching crossings of non-adjacent edges
+        t = np.where(np.abs(denom) > eps, _cross(qp, s) / np.where(denom == 0, 1, denom), np.nan)
+        u = np.where(np.abs(denom) > eps, _cross(qp, r) / np.where(denom == 0, 1, denom), np.nan)
+        cross = (~adjacent) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)
+        # collinear overlaps (also adjacent edges folding back onto each other)
+        collinear = (np.abs(denom) <= eps) & (np.abs(_cross(qp, r)) <= eps)
+        rr = float(r @ r) or 1.0
+        t0 = (qp @ r) / rr
+        t1 = ((d - a[i]) @ r) / rr
+        lo, hi = np.minimum(t0, t1), np.maximum(t0, t1)
+        overlap = np.minimum(hi, 1.0) - np.maximum(lo, 0.0)
+        folded = collinear & (overlap > 1e-9)
+        hit = np.flatnonzero(cross | folded)
+        if hit.size:
+            return i, int(j[hit[0]])
+    return None
+
+
+def clean_outline(points) -> np.ndarray:
+    """Validate a closed polygon: at least 3 distinct corners, finite, no zero area, not
+    self-intersecting. A repeated first point at the end (an explicitly closed ring) is dropped.
+    Returns the corners as given (n, 2); raises GeometryError saying what is wrong."""
+    try:
+        p = np.asarray(points, dtype=float)
+    except (TypeError, ValueError):
+        raise GeometryError("must be a list of [x, y] points in Å") from None
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise GeometryError(f"must be a list of [x, y] points in Å (got shape {list(p.shape)})")
+    if not np.isfinite(p).all():
+        raise GeometryError("has a point that is not a finite number")
+    if len(p) > 1 and np.array_equal(p[0], p[-1]):
+        p = p[:-1]
+    if len(p) < 3:
+        raise GeometryError(f"needs at least 3 points (got {len(p)})")
+    step = np.linalg.norm(np.roll(p, -1, axis=0) - p, axis=1)
+    if (step < 1e-9).any():
+        i = int(np.argmax(step < 1e-9))
+        raise GeometryError(f"repeats point {i} ({p[i, 0]:g}, {p[i, 1]:g}) twice in a row")
+    crossing = self_intersection(p)
+    if crossing is not None:
+        i, j = crossing
+        raise GeometryError(f"intersects itself: edge {i} (point {i} to {(i + 1) % len(p)}) "
+                            f"meets edge {j} (point {j} to {(j + 1) % len(p)})")
+    if abs(signed_area(p)) < 1e-9:
+        raise GeometryError("encloses no area")
+    return p
+
+
+def inside(points, xy) -> np.ndarray:
+    """Whether each point of `xy` (m, 2) lies strictly inside the polygon (even-odd rule)."""
+    poly = np.asarray(points, dtype=float)
+    q = np.atleast_2d(np.asarray(xy, dtype=float))
+    a, b = poly, np.roll(poly, -1, axis=0)
+    qx, qy = q[:, 0:1], q[:, 1:2]
+    straddles = (a[:, 1] > qy) != (b[:, 1] > qy)
+    dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
+    x_cross = a[:, 0] + (qy - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
+    result = (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
+    return result & (edge_distance(poly, q)[0] > 1e-9)
+
+
+def edge_distance(points, xy) -> tuple[np.ndarray, np.ndarray]:
+    """Distance from each point of `xy` (m, 2) to the polygon's boundary, and the nearest edge."""
+    poly = np.asarray(points, dtype=float)
+    q = np.atleast_2d(np.asarray(xy, dtype=float))
+    a, b = poly, np.roll(poly, -1, axis=0)
+    ab = b - a
+    t = ((q[:, None, :] - a[None]) * ab[None]).sum(-1) / (ab * ab).sum(-1)[None]
+    t = np.clip(t, 0.0, 1.0)
+    nearest = a[None] + t[..., None] * ab[None]
+    dist = np.linalg.norm(q[:, None, :] - nearest, axis=-1)
+    edge = dist.argmin(axis=1)
+    return dist[np.arange(len(q)), edge], edge
+
+
+def outward_normal(points, edge: int) -> np.ndarray:
+    """Unit normal of edge `edge` (point edge to edge + 1, as given) pointing out of the polygon."""
+    poly = np.asarray(points, dtype=float)
+    a, b = poly[edge], poly[(edge + 1) % len(poly)]
+    d = (b - a) / np.linalg.norm(b - a)
+    right = np.array([d[1], -d[0]])  # outside of a counter-clockwise edge
+    return right if signed_area(poly) > 0 else -right
+
+
+def blocked(points, xy, radii) -> np.ndarray:
+    """Whether each sphere (centre xy, radius) starts inside or overlapping the core."""
+    dist, _ = edge_distance(points, xy)
+    return inside(points, xy) | (dist < np.asarray(radii, float) - CLEARANCE_SLACK)
+
+
+def rotate(xy, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    q = np.asarray(xy, dtype=float)
+    return np.stack([c * q[..., 0] - s * q[..., 1], s * q[..., 0] + c * q[..., 1]], axis=-1)
+
+
+def chain_offsets(linker: int, spacing: float, residue_radius: float,
+                  globule_radius: float) -> np.ndarray:
+    """Distance of each member (anchor, beads, globule) from the anchor along the chain."""
+    t = [spacing * i for i in range(linker)]
+    return np.array(t + [t[-1] + residue_radius + globule_radius])
+
+
+def linker_direction(outline, anchor, offsets, radii, copies=(0.0,)) -> tuple[np.ndarray, str]:
+    """Unit direction of the chain from `anchor`, and the rule that chose it ("radial",
+    "edge normal", "nearest free"). `copies`: angles of the other protofilaments' copies of
+    the chain, all of which must be clear of the core too. Raises GeometryError if none is."""
+    anchor = np.asarray(anchor, dtype=float)
+    active_t, active_r = np.asarray(offsets)[1:], np.asarray(radii)[1:]
+
+    def clear(u):
+        pts = anchor[None] + active_t[:, None] * u[None]
+        return not any(blocked(outline, rotate(pts, a), active_r).any() for a in copies)
+
+    r = math.hypot(*anchor)
+    radial = anchor / r if r > 1e-9 else np.array([1.0, 0.0])
+    if clear(radial):
+        return radial, "radial"
+    _, edge = edge_distance(outline, anchor[None])
+    normal = outward_normal(outline, int(edge[0]))
+    if clear(normal):
+        return normal, "edge normal"
+    base = math.atan2(radial[1], radial[0])
+    for step in range(1, 181):
+        for sign in (1, -1):
+            a = base + sign * math.radians(step)
+            u = np.array([math.cos(a), math.sin(a)])
+            if clear(u):
+                return u, "nearest free"
+    raise GeometryError("no straight direction from the anchor keeps the linker and the "
+                        "globule outside the core")

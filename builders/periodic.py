@@ -121,6 +121,10 @@ class ImageFollower:
 
     Images are spheres, so only their centres matter to the physics: each gets its original's
     centre under S^m and the screw's turn (the check and the exports use exact matrices).
+    Only images that can touch a cell body now are handed to Blender's depsgraph (tagged): an
+    image whose place, old and new, lies farther along Z from every cell body than its radius
+    plus the largest cell body's plus twice this frame's largest move keeps its old place,
+    which nothing can reach (tagging every image cost 4 of 7 ms a frame, measured).
     """
 
     def __init__(self, model):
@@ -135,6 +139,14 @@ class ImageFollower:
         self.rotation[:, 2] = angle
         self.count = len(obs)
         self.imaged = (self.chain, self.member)
+        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        self.radius = radii[self.member] if len(obs) else np.zeros(0)
+        self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
+        self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
+                       (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
+                       + abs(self.p.pf_rise) * (self.p.protofilaments - 1))
+        self.current = None  # the places Blender holds, (n, 3)
+        self.tagged: list[int] = []  # per frame: images handed to the depsgraph
         self.prev = None
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
 
@@ -142,10 +154,29 @@ class ImageFollower:
         """Where the images belong for chain positions (chains, members, 3)."""
         return screw.apply_points(self.p, self.m, positions[self.chain, self.member])
 
-    def place(self, positions: np.ndarray) -> None:
+    def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
+        """Images whose new or old place can touch a cell body along Z (see the class)."""
+        z = positions[..., 2]
+        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
+        hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
+        out = np.zeros(self.count, dtype=bool)
+        for where in (loc, self.current):
+            out |= (where[:, 2] + self.radius >= lo) & (where[:, 2] - self.radius <= hi)
+        return out
+
+    def place(self, positions: np.ndarray, margin: float | None = None) -> None:
+        """Move the images to S^m of `positions`; with `margin` (Å), only those near the cell."""
         if not self.count:
             return
         loc = self.targets(positions)
+        if margin is None or self.current is None:
+            moving = np.ones(self.count, dtype=bool)
+        else:
+            moving = self.near(positions, loc, margin)
+            loc = np.where(moving[:, None], loc, self.current)
+        self.current = loc
+        self.tagged.append(int(moving.sum()))
         objects = self.coll.objects
         objects.foreach_set("location", loc.astype(np.float32).ravel())
         objects.foreach_set("rotation_euler", self.rotation.ravel())
@@ -155,8 +186,8 @@ class ImageFollower:
         mat[:, 2, 2] = mat[:, 3, 3] = 1.0
         mat[:, 3, :3] = loc
         objects.foreach_set("matrix_world", mat.ravel())
-        for ob in self.objects:  # foreach_set tags nothing: untagged, Bullet never sees the move
-            ob.update_tag(refresh={"OBJECT"})
+        for k in np.flatnonzero(moving).tolist():  # foreach_set tags nothing: untagged, Bullet
+            self.objects[k].update_tag(refresh={"OBJECT"})  # would never see the move
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they
@@ -165,11 +196,12 @@ class ImageFollower:
         self.lag.append(float(np.linalg.norm(now - self.prev, axis=-1).max())
                         if self.prev is not None and self.count else 0.0)
         self.prev = now.copy()
-        self.place(positions)
+        self.place(positions, margin=2.0 * self.lag[-1] + 1.0)
 
     def summary(self) -> dict:
         """The bake result's "image_lag": the images' lag behind S^m of their originals."""
         lag = np.asarray(self.lag or [0.0])
         return {"image_lag": {"max": round(float(lag.max()), 4),
                               "max_frame": int(lag.argmax()) + 1,
-                              "last": round(float(lag[-1]), 4)}}
+                              "last": round(float(lag[-1]), 4)},
+                "images_moved_per_frame": round(float(np.mean(self.tagged or [0])), 1)}

@@ -363,3 +363,15 @@ def test_a_cell_of_two_protofilaments(scene, ff):
     assert r["chain_clashes"][1] is True and r["chain_clashes"][n - 1] is True
     if r["clashing_pairs"]:  # the BVH's pairs, named by (layer, protofilament)
         assert r["clashing_chains"][0][:2] == [[M - 1, 1], [M, 1]]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("linker, accommodated", [(6, False), (8, True)])
+def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker, accommodated):
+    """README, "Agreement with long fibrils": the interior of a 100-layer fibril at seed 0 is
+    not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the cell."""
+    r = ff.pipeline.run(ff.params.make_params(periodic="auto", linker=linker), scene)
+    assert r["accommodated"] is accommodated
+    assert r["checks_agree"] and r["periodic"]["cell_layers"] == 13
+    if not accommodated:
+        assert r["verdict"] == "intersection" and r["max_bond_stretch"] > 0.05

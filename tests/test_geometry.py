@@ -29,7 +29,7 @@ def test_default_only_gains_keys_and_keeps_the_tutorials_chain():
     assert list(d)[:len(OLD_DEFAULTS)] == list(OLD_DEFAULTS)  # old keys first, in their order
     assert {k: d[k] for k in set(d) - set(OLD_DEFAULTS)} == {
         "protofilaments": 1, "pf_rotation": None, "pf_rise": 0.0, "core_outline": None,
-        "anchor": None}
+        "anchor": None, "periodic": 0, "image_updates": 5}
     p = P.DEFAULTS
     assert (p.anchor_xy, p.pf_angle, p.chains) == ((21.75, 0.0), 2 * math.pi, 20)
     assert p.chain_layout.rule == "radial"

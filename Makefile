@@ -39,7 +39,10 @@ test-lts: $(VENV_LTS)/.installed
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
 
+# The gemmi wheels that blender_manifest.toml lists (every platform, Python 3.11 and 3.13) come
+# from PyPI with pip download (tools/fetch_wheels.py); wheels/ is not in git.
 extension: $(VENV)/.installed
+	$(VENV)/bin/python tools/fetch_wheels.py
 	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate .
 	mkdir -p dist
 	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir . --output-dir dist

@@ -10,6 +10,9 @@ from . import output, params as P
 from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
+from .structure.errors import StructureError
+from .structure_inputs import (add_structure_options, measure_structures,
+                               params_and_structure)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -35,6 +38,8 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                                default=None, help=help_)
         elif f.name == "slab":
             group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
+        elif "choices" in meta and not as_lists:
+            group.add_argument(option(f.name), choices=meta["choices"], help=help_)
         elif meta["size"] == 2:
             group.add_argument(option(f.name), nargs=2, metavar=("X", "Y"), help=help_)
         elif meta["kind"] == "points":
@@ -78,6 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)
+    add_structure_options(run)
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
@@ -87,11 +93,29 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--quiet", action="store_true", help="print only the verdict line")
     run.add_argument("--progress", action="store_true",
                      help="print the bake's frame to stderr at its start and every 25 frames")
+    inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
+                                             "(PDB/mmCIF, .gz too) without building anything")
+    add_structure_options(inspect)
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
+    from .search import command as search_command  # argparse only: nothing runs at import
+    search_command.add_restart_options(run)
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
+    add_structure_options(sweep)
     from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
+    minimal = sub.add_parser(
+        "minimal-linker", help="for each globule diameter, the shortest linker with an "
+                               "accommodated layout, searched with restarts (protocol inflate "
+                               "unless --protocol says otherwise)")
+    add_param_options(minimal)
+    add_structure_options(minimal)
+    for action in minimal._actions:
+        if action.dest == "globule_diameter":
+            action.metavar, action.help = "LIST", (
+                "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
+    search_command.add_minimal_arguments(minimal)
     return parser
 
 
@@ -103,7 +127,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         return COMMANDS[args.command](args)
-    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError) as exc:
+    except (UsageError, P.ParamError, output.OutputError, export_options.OptionError,
+            StructureError) as exc:
         print(f"fibrilfit: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
@@ -125,20 +150,34 @@ def progress_printer(frames: int, every: int = 25):
 
 def command_run(args) -> int:
     from . import pipeline, report
+    from .search import command as search_command
+    search_command.check_restart_options(args)
     P.refuse_beside_periodic(params_from(args))
-    p = P.make_params(force=args.force, **params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    p = P.make_params(force=args.force, **values)
     look = export_options.render_options(args)
     pdb_images = export_options.pdb_images(args, p)
     if args.pdb:
         export_options.pdb_fits(p)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    restarts = None
+    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
+        restarts = search_command.run_restarts(args, p, pipeline.version())
+        p = p.replace(seed=restarts["best_seed"])
     import bpy
     if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
         bpy.ops.wm.read_factory_settings(use_empty=True)
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.frames * (p.image_updates if p.periodic else 1))
+                          on_frame=progress_printer(p.bake_frames() * (p.image_updates if p.periodic else 1))
                           if args.progress else None)
+    if structure_block:
+        result["structure"] = structure_block
+    if restarts is not None:
+        best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
+        restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
+            best.get("max_bond_stretch") == result.get("max_bond_stretch")
+        result["restarts"] = restarts
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
@@ -157,6 +196,11 @@ def command_run(args) -> int:
                                        scene, result, paths["render"], look))
         if "json" in paths:
             output.write_json(paths["json"], result)
+    if restarts is not None:
+        print(search_command.restarts_line(restarts))
+        if not restarts["reproduced"]:
+            print("fibrilfit: warning: the best seed, run again here, did not reproduce the "
+                  "worker's result", file=sys.stderr)
     print(report.summary(result, quiet=args.quiet))
     problems = [msg for msg in problems if msg]
     for problem in problems:
@@ -168,9 +212,32 @@ def command_run(args) -> int:
     return EXIT_OK
 
 
+def command_inspect(args) -> int:
+    from . import structure
+    from .structure import summary
+    if not (args.fibril or args.domain):
+        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    path = output.check_writable("--json", args.json, (".json",)) if args.json else None
+    fib, dom = measure_structures(args)
+    values = structure.model_values(fib, dom)
+    if path:
+        import gemmi
+        output.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+                                 "model_values": values, "gemmi_version": gemmi.__version__})
+    print(summary.text(fib, dom, values))
+    return EXIT_OK
+
+
 def command_sweep(args) -> int:
     from .sweep import command
     return command.run(args)
 
 
-COMMANDS = {"run": command_run, "sweep": command_sweep}
+def command_minimal_linker(args) -> int:
+    from .search import command
+    values, _ = params_and_structure(args, params_from(args))
+    return command.run_minimal(args, values)
+
+
+COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
+            "minimal-linker": command_minimal_linker}

@@ -37,17 +37,21 @@ class ParamError(ValueError):
 
 
 def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
-          derived=None, size=None):
+          derived=None, size=None, choices=None):
     """`derived`: for a parameter whose default (None) is worked out from others, how (text).
-    `size`: a fixed number of values (a vector); kind "points" is a list of [x, y]."""
+    `size`: a fixed number of values (a vector); kind "points" is a list of [x, y].
+    `choices`: kind str, one of these (CLI choices, the panel's enum)."""
     meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
             "section": section, "derived": derived, "size": size}
+    if choices is not None:
+        meta["choices"] = tuple(choices)
     return field(default=default, metadata=meta)
 
 
 # Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
 DERIVED_WORDS = ("auto", "default", "none", "box", "")
 MAX_OUTLINE_POINTS = 10_000
+PROTOCOLS = ("tutorial", "inflate")
 
 
 @dataclass(frozen=True)
@@ -131,6 +135,34 @@ class Params:
                                  section="Anchor", size=2,
                                  derived="(slab X / 2 + residue radius, 0)")
 
+    # Search protocol (README, "Search: inflate, restarts and the minimal linker"). `tutorial`
+    # starts every globule at full size on a straight chain and lets Bullet push them apart;
+    # `inflate` starts the chains fanned out with small globules and grows them. It changes the
+    # start layout, so it sits with the build's parameters.
+    protocol: str = _spec("tutorial", None, None, "",
+                          "How the search starts: tutorial (straight chains, full-size globules "
+                          "pushed apart) or inflate (fanned chains, globules grown from small)",
+                          kind=str, choices=PROTOCOLS, section="Linker")
+    # The inflate schedule, measured (README, "The inflate schedule"): grow, hold at full size
+    # with the gravity off, judge; a jammed layout is shrunk and grown again under a new gravity.
+    grow_start: float = _spec(0.3, 0.01, 1.0, "fraction",
+                              "inflate: globule scale at the start (smaller if the fanned start "
+                              "layout would overlap)", section="Search")
+    grow_frames: int = _spec(100, 1, 100_000, "frames",
+                             "inflate: frames over which the globules grow to full size",
+                             kind=int, section="Search")
+    hold_frames: int = _spec(60, 1, 100_000, "frames",
+                             "inflate: most frames at full size (gravity off) before a layout "
+                             "is judged; it is judged earlier once every body has settled",
+                             kind=int, section="Search")
+    regrow_cycles: int = _spec(4, 0, 1000, "cycles",
+                               "inflate: times a jammed layout (clash or stretched linker) is "
+                               "shrunk and grown again under a new random gravity",
+                               kind=int, section="Search")
+    regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
+                                "inflate: globule scale a jammed layout is shrunk to",
+                                section="Search")
+
     periodic: int = _spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
                           "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
@@ -196,6 +228,14 @@ class Params:
         """Rest length of each bond along the chain (`linker` bonds)."""
         xs = self.chain_x()
         return [b - a for a, b in zip(xs, xs[1:])]
+
+    def bake_frames(self) -> int:
+        """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
+        if self.protocol == "inflate":
+            # each cycle: grow_frames + 1 frames from the start scale to full size inclusive,
+            # then at most hold_frames
+            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + self.hold_frames)
+        return self.frames
 
     def estimated_objects(self) -> int:
         # per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
@@ -331,6 +371,8 @@ def field_spec(name: str) -> dict:
 
 
 def _describe_range(meta: dict) -> str:
+    if "choices" in meta:
+        return f"must be one of {', '.join(meta['choices'])}"
     kind, lo, hi, unit = meta["kind"], meta["min"], meta["max"], meta["unit"]
     what = "an integer" if kind is int else "a number"
     suffix = f" {unit}" if unit and unit not in ("×", "fraction") else ""
@@ -347,6 +389,11 @@ def _coerce(name: str, value: Any, meta: dict):
         if isinstance(value, (int, float)) and value in (0, 1):
             return bool(value)
         raise ParamError(name, f"must be true or false (got {value!r})")
+    if "choices" in meta:
+        text = value.strip().lower() if isinstance(value, str) else value
+        if text not in meta["choices"]:
+            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+        return text
     try:
         if isinstance(value, bool):
             raise TypeError
@@ -455,6 +502,9 @@ def _check_periodic(p: Params) -> None:
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
                                          "ends, every layer is interior")
+    if p.protocol != "tutorial":
+        raise ParamError("protocol", f"{p.protocol} cannot be used with periodic yet: the cell's "
+                                     f"images would not grow and shrink with their originals")
     if p.substeps % p.image_updates:
         raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
                                           f"frame's substeps split evenly between image updates "

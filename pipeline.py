@@ -44,14 +44,15 @@ class Baking:
         p = model.params
         self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_chains(p)))
         self.stats = BakeStats()
-        self.hooks = frame_hooks(model, self.scene)
-        self._frames = bake_steps(self.scene, model, self.stats, hooks=self.hooks)
+        # Hooks that judge a layout mid-bake (inflate) use the same check as the verdict.
+        self.hooks = frame_hooks(model, self.scene, judge=check_model)
+        self._frames = bake_steps(self.scene, model, self.stats, self.hooks)
         self.done = False
 
     @property
     def total(self) -> int:
         """Scene frames the bake may take (a periodic cell's frames are split, frame_split)."""
-        return self.model.params.frames * frame_split(self.model.params)
+        return self.model.params.bake_frames() * frame_split(self.model.params)
 
     def step(self):
         """Simulate the next frame; return (frame, chain positions), or None once finished."""
@@ -77,15 +78,17 @@ class Baking:
         set_stage(self.model, "baked", last_frame=self.stats.frames_simulated)
 
     def result(self) -> dict:
-        return {
+        out = {
             "gravity": [round(g, 9) for g in self.scene.gravity],
             "frames_simulated": self.stats.frames_simulated,
             "settled_at": self.stats.settled_at,
             "cancelled": self.stats.cancelled,
             **self.stretch.summary(),
-            **{key: value for hook in self.hooks if hasattr(hook, "summary")
-               for key, value in hook.summary().items()},
         }
+        for hook in self.hooks:
+            if hasattr(hook, "summary"):
+                out.update(hook.summary())
+        return out
 
 
 def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:

@@ -11,8 +11,8 @@ import math
 
 import bpy
 import numpy as np
-from bpy.props import (BoolProperty, FloatProperty, FloatVectorProperty, IntProperty,
-                       PointerProperty, StringProperty)
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, PointerProperty, StringProperty)
 
 from . import params as P
 
@@ -81,6 +81,9 @@ def _param_property(field):
         default = _SHOWN_DEFAULTS[field.name]
     if meta["kind"] is bool:
         return BoolProperty(default=default, **common)
+    if "choices" in meta:  # a choice: the panel's drop-down, its items the choices
+        return EnumProperty(items=[(c, c.capitalize(), "") for c in meta["choices"]],
+                            default=default, name=common["name"], description=meta["doc"])
     if meta["kind"] is int:
         return IntProperty(default=default, min=meta["min"], max=meta["max"], **common)
     units = _FLOAT_UNITS.get(meta["unit"], {})

@@ -7,10 +7,23 @@ a model gets, so the CLI, the sidebar's modal bake and sweeps bake the same way.
 """
 from __future__ import annotations
 
+from typing import Callable
 
-def frame_hooks(model, scene) -> list:
-    """The hooks a bake of `model` in `scene` runs, in order (none for the tutorial's model)."""
+from .growth import Inflate
+
+
+def frame_hooks(model, scene, *, judge: Callable | None = None) -> list:
+    """The hooks a bake of `model` in `scene` runs, in order (none for the tutorial's model).
+
+    `judge(model)` -> the check's result at the current frame, for hooks that judge layouts
+    mid-bake (inflate); without it they fall back to sphere depths and bond stretch.
+
+    A hook may also have `busy` (True: settling must not end the bake yet), `finished` (True:
+    end the bake after this frame) and `summary()` (fields added to the bake's result).
+    """
     hooks: list = []
+    if model.params.protocol == "inflate":
+        hooks.append(Inflate(model, scene, judge))
     if model.params.periodic:  # images follow their originals (builders/periodic.py)
         from .periodic import ImageFollower
         hooks.append(ImageFollower(model))

@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import params as P
 from . import meshes
+from .start_layout import inflate_layout
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root,
                     new_collection, tag)
@@ -187,7 +188,7 @@ def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> Non
 
 def last_frame(model: Model) -> int:
     """The frame the bake ended on (the tutorial's "last frame")."""
-    return int(model.root.get(LAST_FRAME, model.params.frames))
+    return int(model.root.get(LAST_FRAME, model.params.bake_frames()))
 
 
 def update_params(model: Model, p: P.Params) -> None:
@@ -233,6 +234,8 @@ class _LayerBuilder:
         self.chain_angle = P.chain_transforms(p)[0]     # per chain: its members
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
         self.pfs = p.protofilaments
+        if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
+            self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).

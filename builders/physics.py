@@ -62,8 +62,8 @@ def setup_world(scene: bpy.types.Scene, p: P.Params) -> tuple[float, float, floa
     rbw.substeps_per_frame = p.substeps // k
     rbw.solver_iterations = p.solver_iterations
     rbw.point_cache.frame_start = 1
-    rbw.point_cache.frame_end = p.frames * k
-    scene.frame_start, scene.frame_end = 1, p.frames * k
+    rbw.point_cache.frame_end = p.bake_frames() * k
+    scene.frame_start, scene.frame_end = 1, p.bake_frames() * k
     _free_cache(scene)
     return gravity
 
@@ -103,13 +103,14 @@ class BakeStats:
 
 
 def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, hooks=None):
-    """Simulate frames 1..p.frames one at a time, yielding (frame, chain positions) after each.
+    """Simulate frames 1..p.bake_frames() one at a time, yielding (frame, chain positions) after each.
 
     The generator form lets the sidebar's modal operator advance a few frames per timer tick.
     With `p.settle`, stops once every active body moved less than `settle_speed` per frame for
-    `settle_frames` frames. `stats` (updated in place) says how far it got. `hooks` (default:
-    hooks.frame_hooks for the model) run before and after every frame. A periodic cell's frames
-    are split (frame_split): frames, speeds and counts here are then the scene's shorter ones.
+    `settle_frames` frames, unless a hook is `busy`; a hook that is `finished` ends the bake.
+    `stats` (updated in place) says how far it got. `hooks` (default: hooks.frame_hooks for the
+    model) run before and after every frame. A periodic cell's frames are
+    split (frame_split): frames, speeds and counts here are then the scene's shorter ones.
     """
     p = model.params
     k = frame_split(p)
@@ -122,14 +123,16 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, ho
     reader = MatrixReader(chain_objects, (scene.rigidbody_world.collection,))
     prev, quiet = None, 0
     settle_speed, settle_frames = p.settle_speed / k, p.settle_frames * k
-    for frame in range(1, p.frames * k + 1):
+    for frame in range(1, p.bake_frames() * k + 1):
         run_before(hooks, scene, frame)
         scene.frame_set(frame)
         pos = reader.positions().reshape(shape)
         run_after(hooks, scene, frame, pos)
         stats.frames_simulated = frame
         yield frame, pos
-        if p.settle and prev is not None:
+        if any(getattr(h, "finished", False) for h in hooks):
+            return
+        if p.settle and prev is not None and not any(getattr(h, "busy", False) for h in hooks):
             speed = np.linalg.norm(pos - prev, axis=-1).max()
             quiet = quiet + 1 if speed < settle_speed else 0
             if quiet >= settle_frames:

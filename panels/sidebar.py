@@ -1,11 +1,12 @@
 """The FibrilFit tab of the 3D View's sidebar: Run all and Clear, the model's state and verdict,
 then one section per tutorial step with its parameters and its button."""
 import json
+import math
 
 import bpy
 
 from .. import params as P, properties
-from ..builders import model_stage
+from ..builders import model_stage, structure_trace
 from ..builders.scene import find_root
 from ..operators.common import percent, reached
 
@@ -159,5 +160,40 @@ class FIBRILFIT_PT_check(_Section, bpy.types.Panel):
             row.prop(shading, "color_type", text="")
 
 
+class FIBRILFIT_PT_structures(_Sidebar, bpy.types.Panel):
+    """Import fibril… / Import domain…, and what they measured."""
+    bl_idname = "FIBRILFIT_PT_structures"
+    bl_label = "Structures"
+    bl_parent_id = "FIBRILFIT_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        row = layout.row(align=True)
+        row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
+        row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
+        for line in structure_lines(structure_trace.measured(context.scene)):
+            layout.label(text=line)
+
+
+def structure_lines(measured: dict) -> list:
+    """The panel's lines for the imported structures' measurements."""
+    lines = []
+    f = measured.get("fibril")
+    if f:
+        hand = "right" if f["twist"] > 0 else "left"
+        twist = math.degrees(f["twist"])
+        lines.append(f"{f['file']}: rise {f['rise']:.3f} Å, twist {twist:+.3f}° ({hand}-handed)")
+        lines.append(f"{f['protofilaments']} protofilament(s), core {f['core_residues'][0]}-"
+                     f"{f['core_residues'][1]}, {f['layers']} layers in the file")
+        for a in f["anchors"]:
+            lines.append(f"anchor {a['chain']} {a['residue_name']}{a['residue']}: r "
+                         f"{a['radius']:.1f} Å" + (" (buried)" if a["buried"] else ""))
+    d = measured.get("domain")
+    if d:
+        lines.append(f"{d['file']} chain {d['chain']}: Rg {d['rg']:.2f} Å, globule "
+                     f"{d['globule_diameter']:.1f} Å")
+    return lines
+
+
 SECTION_PANELS = tuple(_section_panel(sec) for sec in properties.SECTIONS if sec != "Check")
-CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check)
+CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check, FIBRILFIT_PT_structures)

@@ -9,7 +9,7 @@ import importlib
 import pathlib
 import sys
 
-from .. import exits, output
+from .. import exits, output, structure_inputs
 from . import gate, grid, runner, summary
 from .executors import DaskExecutor, ProcessExecutor, SweepError, cpu_count
 
@@ -82,7 +82,9 @@ def run(args) -> int:
     specs = grid.specs_from(args)
     seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
                              else args.seed)
-    points = grid.build(specs, seeds, force=args.force)
+    merged, structure_block = structure_inputs.params_and_structure(args, specs)
+    base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
+    points = grid.build(specs, seeds, force=args.force, base=base)
     requirements = [gate.parse(text) for text in args.require]
     out = _out_dir(args)
     results = out / RESULTS
@@ -117,7 +119,8 @@ def run(args) -> int:
         try:
             with _executor(args, out) as executor:
                 runner.run(executor, todo, results, force=args.force,
-                                    progress=not args.quiet, version=pipeline.version())
+                           progress=not args.quiet, version=pipeline.version(),
+                           extra={"structure": structure_block} if structure_block else None)
         except SweepError as exc:
             print(f"fibrilfit: error: {exc}", file=sys.stderr)
             return exits.EXIT_USAGE

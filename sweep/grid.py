@@ -94,9 +94,11 @@ def seed_values(seeds: int | None, seed_spec: str | None) -> list[str]:
     return [str(s) for s in range(n)]
 
 
-def build(specs: dict, seeds: list[str], *, force: bool = False) -> list[Point]:
+def build(specs: dict, seeds: list[str], *, force: bool = False,
+          base: dict | None = None) -> list[Point]:
     """Every combination of `specs` (name -> list of values) for every seed, seed-major so an
-    interrupted sweep has covered the whole grid evenly. Raises ParamError for any bad point."""
+    interrupted sweep has covered the whole grid evenly. Raises ParamError for any bad point.
+    `base`: fixed values under every point (e.g. measured from --fibril), not sweep axes."""
     names = [f.name for f in P.fields() if f.name in specs and f.name != "seed"]
     lists = [list(specs[n]) for n in names]
     size = math.prod(len(v) for v in lists) * len(seeds)
@@ -107,7 +109,7 @@ def build(specs: dict, seeds: list[str], *, force: bool = False) -> list[Point]:
     points, seen = [], set()
     for seed in seeds:
         for combo in itertools.product(*lists):
-            values = dict(zip(names, combo), seed=seed)
+            values = {**(base or {}), **dict(zip(names, combo)), "seed": seed}
             p = P.make_params(force=force, **values).to_dict()
             point = {n: p[n] for n in names} | {"seed": p["seed"]}
             pt = Point(p, point)

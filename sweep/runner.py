@@ -68,7 +68,8 @@ def done_keys(records: list[dict]) -> set[str]:
     return {point_key(r["params"]) for r in records}
 
 
-def _record(point: Point, job: dict, reply: dict, errors: list[str], version: str) -> dict:
+def _record(point: Point, job: dict, reply: dict, errors: list[str], version: str,
+            extra: dict | None = None) -> dict:
     if reply["ok"]:
         record = dict(reply["result"])
         record.update(point=point.point, status="ok", attempts=job["attempt"],
@@ -79,6 +80,7 @@ def _record(point: Point, job: dict, reply: dict, errors: list[str], version: st
                   "error": errors[-1], "attempts": job["attempt"]}
     if errors:
         record["errors"] = errors  # every failed attempt, oldest first
+    record.update(extra or {})
     return record
 
 
@@ -93,8 +95,9 @@ class Counts:
 
 
 def run(executor, points: list[Point], results_path, *, force: bool = False,
-        progress: bool = True, version: str = "") -> Counts:
-    """Run every point on `executor` (already entered); append each record as it finishes."""
+        progress: bool = True, version: str = "", extra: dict | None = None) -> Counts:
+    """Run every point on `executor` (already entered); append each record as it finishes,
+    with `extra` (e.g. the structure block) in every record."""
     counts = Counts()
     errors: dict[int, list[str]] = {i: [] for i in range(len(points))}
     bar = None
@@ -116,7 +119,7 @@ def run(executor, points: list[Point], results_path, *, force: bool = False,
                     if bar is not None:
                         bar.set_postfix_str(str(counts))
                     continue
-            record = _record(points[i], job, reply, errors[i], version)
+            record = _record(points[i], job, reply, errors[i], version, extra)
             output.append_line(results_path, json.dumps(record))
             if reply["ok"]:
                 counts.ok += 1

@@ -1,12 +1,14 @@
 """Drive the installed extension in a fresh interpreter; tests/test_extension.py runs this.
 
-    BLENDER_USER_RESOURCES=<tmp> python installed_scenario.py <zip> '<params as JSON>'
+    BLENDER_USER_RESOURCES=<tmp> python installed_scenario.py <zip> '<params as JSON>' [fibril]
 
 Installs the zip into the temporary user folder with Blender's own operator, enables it, runs
 every operator of the installed copy in the startup scene (whose Cube, Light and Camera stand for
-the user's objects), and prints one line "RESULT <json>" of what it saw. Asserts nothing itself.
+the user's objects), reads the fibril file (if given) with the gemmi of the extension's wheel,
+and prints one line "RESULT <json>" of what it saw. Asserts nothing itself.
 """
 import json
+import os
 import sys
 
 import bpy
@@ -20,7 +22,7 @@ def fibrilfit_types():
     return sorted(name for name in dir(bpy.types) if name.startswith("FIBRILFIT_"))
 
 
-def main(zip_path: str, values: dict) -> dict:
+def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
     out = {}
     out["install"] = sorted(bpy.ops.extensions.package_install_files(
         filepath=zip_path, repo="user_default", enable_on_install=True))
@@ -68,8 +70,24 @@ def main(zip_path: str, values: dict) -> dict:
     out["cycles"] = cycles
     out["cycle_errors"] = [repr(e) for e in errors]
     out["clone_imported"] = sorted(m for m in sys.modules if m.split(".")[0] == "fibrilfit")
+    out["gemmi_loaded_by_the_model"] = "gemmi" in sys.modules  # it must be lazy
+    if fibril:
+        # Blender unpacks the extension's wheel for this platform and Python into the user's
+        # extensions/.local site-packages and appends that folder to sys.path. The test venv
+        # has its own gemmi earlier on sys.path: put Blender's folder first, so that the import
+        # below can only succeed from the extension's wheel.
+        home = os.environ["BLENDER_USER_RESOURCES"]
+        local = [p for p in sys.path if p.startswith(home) and "site-packages" in p]
+        out["wheel_site_packages"] = local
+        for p in local:
+            sys.path.remove(p)
+        sys.path[:0] = local
+        import gemmi
+        out["gemmi_file"] = gemmi.__file__
+        g = ff.structure.measure_fibril(fibril)
+        out["fibril"] = [g.rise, g.twist, g.protofilaments]
     return out
 
 
 if __name__ == "__main__":
-    print("RESULT " + json.dumps(main(sys.argv[1], json.loads(sys.argv[2]))))
+    print("RESULT " + json.dumps(main(sys.argv[1], json.loads(sys.argv[2]), *sys.argv[3:4])))

@@ -14,7 +14,7 @@ from helpers import ROOT
 SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
 VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
 # The repository's files that are not the extension (blender_manifest.toml excludes them).
-NOT_EXTENSION = {"tests", "bench", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
+NOT_EXTENSION = {"tests", "bench", "tools", "docs", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
                  "_load.py", "headless.py", "conftest.py", "Makefile", "pyproject.toml",
                  "BENCHMARKS.md", ".gitignore"}
 
@@ -35,6 +35,9 @@ def cli(*args) -> subprocess.CompletedProcess:
 @pytest.fixture(scope="module")
 def built_zip(tmp_path_factory):
     out = tmp_path_factory.mktemp("dist")
+    sys.path.insert(0, str(ROOT / "tools"))
+    import fetch_wheels  # as `make extension`: the manifest's gemmi wheels from PyPI (cached)
+    fetch_wheels.fetch()
     checked = cli("validate", str(ROOT))
     assert checked.returncode == 0, checked.stdout + checked.stderr
     built = cli("build", "--source-dir", str(ROOT), "--output-dir", str(out))
@@ -48,7 +51,8 @@ def installed(built_zip, tmp_path_factory):
     """Run installed_scenario.py in a fresh interpreter with its own user folder."""
     home = tmp_path_factory.mktemp("blender_user")
     env = {"BLENDER_USER_RESOURCES": str(home), "PATH": "/usr/bin:/bin", "HOME": str(home)}
-    proc = subprocess.run([sys.executable, str(SCENARIO), str(built_zip), json.dumps(VALUES)],
+    proc = subprocess.run([sys.executable, str(SCENARIO), str(built_zip), json.dumps(VALUES),
+                           str(ROOT / "tests" / "data" / "6cu7.pdb.gz")],
                           capture_output=True, text=True, timeout=600, cwd=home, env=env)
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith("RESULT ")]
     assert proc.returncode == 0 and lines, proc.stdout[-3000:] + proc.stderr[-3000:]
@@ -78,7 +82,8 @@ def test_the_zip_holds_only_the_extension(built_zip):
     assert {"blender_manifest.toml", "__init__.py", "registration.py", "panels/sidebar.py"} <= names
     assert names == extension_files()
     for name in names:
-        assert name.endswith(".py") or name in ("blender_manifest.toml", "README.md", "LICENSE")
+        assert name.endswith(".py") or name in ("blender_manifest.toml", "README.md", "LICENSE") \
+            or name.startswith("wheels/") and name.endswith(".whl")
     assert manifest == (ROOT / "blender_manifest.toml").read_text(encoding="utf-8")
 
 
@@ -127,3 +132,28 @@ def test_disable_enable_three_times_without_error_or_leftover(installed):
     for off, on in installed["cycles"]:
         assert off == [[], False]
         assert on == [registered, True]
+
+
+def test_the_zip_carries_gemmi_wheels_for_every_platform_and_python(built_zip):
+    import tomllib
+    manifest = tomllib.loads((ROOT / "blender_manifest.toml").read_text(encoding="utf-8"))
+    assert manifest["platforms"] == ["linux-x64", "windows-x64", "macos-arm64", "macos-x64"]
+    wheels = [w.removeprefix("./") for w in manifest["wheels"]]
+    with zipfile.ZipFile(built_zip) as zf:
+        assert sorted(n for n in zf.namelist() if n.endswith(".whl")) == sorted(wheels)
+    for plat, machine in (("win", "amd64"), ("macosx", "arm64"), ("macosx", "x86_64"),
+                          ("manylinux", "x86_64")):
+        for py in ("cp311", "cp313"):
+            assert any(f"-{py}-" in w and plat in w and machine in w for w in wheels), (py, plat)
+
+
+def test_the_installed_copy_reads_structures_with_its_own_gemmi_wheel(installed):
+    """Blender's installer unpacks the wheel for this platform into the user's extensions/.local
+    site-packages and puts it on sys.path, in the bpy module too; the default model never
+    imports gemmi."""
+    assert installed["gemmi_loaded_by_the_model"] is False
+    (local,) = installed["wheel_site_packages"]
+    assert pathlib.Path(local).is_relative_to(installed["home"])
+    assert pathlib.Path(installed["gemmi_file"]).is_relative_to(local)
+    rise, twist, k = installed["fibril"]
+    assert abs(rise - 4.825) < 0.1 and twist < 0 and k == 2

@@ -20,6 +20,8 @@ junk = st.one_of(
 
 def near_range(meta):
     lo, hi = meta["min"], meta["max"]
+    if "choices" in meta:
+        return st.sampled_from([*meta["choices"], "", "Tutorial ", "other"])
     if meta["kind"] is bool:
         return st.booleans()
     if meta["kind"] is int:
@@ -33,6 +35,8 @@ SMALLER = {"layers": (1, 3000), "score_layers": (0, 5)}  # keeps combination lim
 def in_range(meta, name=None):
     if name in SMALLER:
         return st.integers(*SMALLER[name])
+    if "choices" in meta:
+        return st.sampled_from(meta["choices"])
     if meta["kind"] is bool:
         return st.booleans()
     if meta["kind"] is int:
@@ -81,6 +85,9 @@ def test_validation_accepts_or_refuses_with_paramerror_only(values):
         if v is None:
             assert f.metadata["derived"]
             continue
+        if "choices" in f.metadata:
+            assert v in f.metadata["choices"]
+            continue
         if f.metadata["kind"] == "points":
             v = [x for xy in v for x in xy]
             assert len(v) >= 6
@@ -100,7 +107,8 @@ small_models = st.fixed_dictionaries({}, optional={
     "score_layers": st.integers(-1, 4), "protofilaments": st.integers(0, 7),
     "pf_rotation": st.none() | st.floats(-7, 7), "pf_rise": st.floats(-6, 6),
     "anchor": st.none() | st.tuples(st.floats(-60, 60), st.floats(-60, 60)),
-    "core_outline": st.none() | polygons(st.floats(-40, 40))})
+    "core_outline": st.none() | polygons(st.floats(-40, 40)),
+    "protocol": st.sampled_from(P.PROTOCOLS)})
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

@@ -60,6 +60,10 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["kind"] is bool:
             assert prop.type == "BOOLEAN" and prop.default == f.default
             continue
+        if "choices" in meta:
+            assert prop.type == "ENUM" and prop.default == f.default, f.name
+            assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
+            continue
         if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
@@ -463,7 +467,8 @@ def draw_all(context):
 
 
 def test_panels_are_in_the_fibrilfit_tab_in_the_tutorials_order(ui):
-    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS]
+    assert [getattr(c, "bl_label") for c in sidebar.CLASSES] == ["FibrilFit", *properties.SECTIONS,
+                                                                 "Structures"]
     for cls in sidebar.CLASSES:
         assert cls.is_registered
         assert (cls.bl_space_type, cls.bl_region_type, cls.bl_category) == ("VIEW_3D", "UI",
@@ -485,7 +490,8 @@ def test_panels_draw_in_every_state(ui, scene):
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
                                                     "run_all", "clear", "load_outline",
-                                                    "clear_outline")}
+                                                    "clear_outline", "import_fibril",
+                                                    "import_domain")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

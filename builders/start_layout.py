@@ -1,0 +1,78 @@
+"""The inflate protocol's start layout: every chain a random outward walk, the chains fanned.
+
+Pure numpy (no bpy): (params, rest layout, seed) -> member positions and constraint pivots.
+Written over chains generically: any number of chains, anchors anywhere; each chain's outward
+direction is taken from its rest layout (anchor -> globule), the fibril axis is Z.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+FAN_AXIAL = 0.9       # tan of the largest tilt along the fibril axis (chains at the ends): ~42°
+FAN_SIDE = 0.6        # tan of the sideways tilt, alternating layer by layer: ~31°
+WALK_NOISE = 0.25     # spread of each step's direction about the chain's fan direction (rad)
+MIN_OUTWARD = 0.3     # every step keeps at least this cosine with the outward direction
+SEED_SALT = 0x1F1A7E  # keeps this stream apart from any other use of the seed
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(n > 0, n, 1.0)
+
+
+def fan_frames(rest: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per chain: outward u (anchor -> rest globule), axial a (Z made perpendicular to u) and
+    sideways s = u × a, each (n, 3)."""
+    u = _unit(rest[:, -1] - rest[:, 0])
+    z = np.array([0.0, 0.0, 1.0])
+    a = z - (u @ z)[:, None] * u
+    along_z = np.linalg.norm(a, axis=1) < 1e-6  # an outward direction along the axis
+    a[along_z] = np.array([1.0, 0.0, 0.0]) - u[along_z, 0:1] * u[along_z]
+    a = _unit(a)
+    return u, a, np.cross(u, a)
+
+
+def fan_directions(rest: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """Each chain's fan direction: outward, tilted along the axis in proportion to its anchor's
+    height (monotone, so neighbouring chains never cross) and sideways, alternating from one
+    height to the next (so neighbours part) with a random amplitude."""
+    u, a, s = fan_frames(rest)
+    h = rest[:, 0, 2]
+    span = np.ptp(h) / 2.0
+    axial = (h - h.mean()) / span if span > 0 else np.zeros_like(h)
+    levels = np.unique(np.round(h, 3), return_inverse=True)[1].ravel()
+    side = np.where(levels % 2 == 0, 1.0, -1.0) * rng.choice([-1.0, 1.0])
+    side = side * rng.uniform(0.5, 1.0, len(h))
+    return _unit(u + FAN_AXIAL * axial[:, None] * a + FAN_SIDE * side[:, None] * s)
+
+
+def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """Start positions (n, linker + 1, 3) and bond pivots (n, linker, 3) for the inflate protocol.
+
+    `rest` is the rest layout (n chains × [anchor, beads..., globule] × 3). Anchors stay where
+    they are. The first bond points straight out; later bonds turn towards the chain's fan
+    direction over two steps, each with a random wobble (`seed`), never turning back towards
+    the core. Every bond keeps its rest length, and each pivot is the contact point of the new
+    layout: member i's radius along the bond, so the globule's joint sits on its full-size
+    surface whatever scale it starts at.
+    """
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    rng = np.random.default_rng([int(seed), SEED_SALT])
+    radii = np.asarray(p.chain_radii(), dtype=float)
+    lengths = np.asarray(p.rest_lengths(), dtype=float)
+    u = fan_frames(rest)[0]
+    fan = fan_directions(rest, rng)
+    pos = np.empty_like(rest)
+    pos[:, 0] = rest[:, 0]
+    for i in range(1, m):
+        w = min(1.0, (i - 1) / 2.0)
+        d = _unit((1.0 - w) * u + w * fan + WALK_NOISE * w * rng.normal(size=(n, 3)))
+        low = (d * u).sum(axis=1) < MIN_OUTWARD  # too far round: pull back towards outward
+        while low.any():
+            d[low] = _unit(d[low] + 0.5 * u[low])
+            low = (d * u).sum(axis=1) < MIN_OUTWARD
+        pos[:, i] = pos[:, i - 1] + lengths[i - 1] * d
+    bond = _unit(pos[:, 1:] - pos[:, :-1])
+    pivots = pos[:, :-1] + radii[None, :-1, None] * bond
+    return pos, pivots

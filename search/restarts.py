@@ -1,0 +1,78 @@
+"""R independent seeds of one model, run through the sweep's executors and runner.
+
+A restart is the same model with another seed: another random start layout and gravity. What
+comes back is how many were accommodated, P(fit) with its 95 % Wilson interval, and which seed
+gave the best layout.
+"""
+from __future__ import annotations
+
+import pathlib
+
+from ..sweep import runner
+from ..sweep.grid import Point
+from ..sweep.stats import wilson
+
+
+def points(base: dict, seeds) -> list[Point]:
+    """One sweep point per seed of the model `base` (a params dict)."""
+    return [Point({**base, "seed": int(s)}, {"seed": int(s)}) for s in seeds]
+
+
+def run(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
+        window: int = 1, force: bool = False, progress: bool = False, version: str = "") -> list[dict]:
+    """Run `base` at each seed; return their records (results.jsonl lines), in seed order.
+
+    With `stop_on_fit`, seeds go out `window` at a time and no more are started once one is
+    accommodated (the runs already started still finish and are recorded).
+    """
+    todo = points(base, seeds)
+    batch = max(1, window) if stop_on_fit else len(todo)
+    for start in range(0, len(todo), batch):
+        runner.run(executor, todo[start:start + batch], results_path, force=force,
+                   progress=progress, version=version)
+        if stop_on_fit and any(r.get("accommodated") for r in read(results_path, base)):
+            break
+    return read(results_path, base)
+
+
+def read(results_path, base: dict) -> list[dict]:
+    """The records of `base`'s seeds in `results_path`, in seed order (the last of duplicates)."""
+    records, _ = runner.read_lines(pathlib.Path(results_path))
+    same = {k: v for k, v in base.items() if k != "seed"}
+    found = {}
+    for r in records:
+        if {k: v for k, v in r["params"].items() if k != "seed"} == same:
+            found[r["params"]["seed"]] = r
+    return [found[s] for s in sorted(found)]
+
+
+def badness(record: dict) -> tuple:
+    """Sort key, best first: accommodated, then fewest clashing pairs, shallowest overlap,
+    least stretch; failed runs last."""
+    if record.get("status") != "ok":
+        return (2, 0, 0.0, 0.0)
+    return (0 if record["accommodated"] else 1, len(record["clashing_pairs"]),
+            record["max_overlap"], record["max_bond_stretch"])
+
+
+def summarise(records: list[dict]) -> dict:
+    """How many restarts were accommodated, P(fit) and its Wilson interval, and the best seed."""
+    ok = [r for r in records if r.get("status") == "ok"]
+    fits = sum(bool(r["accommodated"]) for r in ok)
+    low, high = wilson(fits, len(ok)) if ok else (0.0, 1.0)
+    best = min(records, key=badness) if records else None
+    return {
+        "restarts": len(ok),
+        "failed": len(records) - len(ok),
+        "accommodated": fits,
+        "p_fit": round(fits / len(ok), 4) if ok else None,
+        "p_fit_interval": [round(low, 4), round(high, 4)],
+        "best_seed": None if best is None else best["params"]["seed"],
+        "runs": [{"seed": r["params"]["seed"], "status": r.get("status"),
+                  **({"accommodated": r["accommodated"], "verdict": r["verdict"],
+                      "clashing_pairs": len(r["clashing_pairs"]),
+                      "max_bond_stretch": r["max_bond_stretch"],
+                      "frames_simulated": r["frames_simulated"]}
+                     if r.get("status") == "ok" else {"error": r.get("error")})}
+                 for r in records],
+    }

@@ -1,0 +1,82 @@
+"""Measure a globular domain: radius of gyration and the equivalent sphere's diameter."""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from . import reading
+from .errors import StructureError
+
+RG_TO_DIAMETER = 2.0 * math.sqrt(5.0 / 3.0)  # the uniform sphere with the same Rg
+
+
+@dataclass
+class DomainSize:
+    """What `inspect --domain` measures. to_dict() gives the JSON of the issue's key names."""
+
+    file: str
+    sha256: str
+    chain: str
+    residues: list  # [first, last] used
+    atoms: int  # heavy atoms used
+    rg: float  # Å, heavy atoms, unweighted
+    globule_diameter: float  # Å, 2·√(5/3)·Rg
+    max_dimension: float  # Å, largest heavy-atom distance (for comparison: an upper bound)
+    notes: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def parse_range(text) -> tuple:
+    """'a-b' (negative numbers allowed, e.g. '-3-40') -> (a, b)."""
+    if isinstance(text, (tuple, list)) and len(text) == 2:
+        a, b = text
+    else:
+        m = re.fullmatch(r"\s*(-?\d+)\s*[-:]\s*(-?\d+)\s*", str(text))
+        if not m:
+            raise StructureError("--domain-residues", f"must be a residue range a-b, e.g. 1-72 "
+                                                      f"(got {text!r})")
+        a, b = m.groups()
+    a, b = int(a), int(b)
+    if a > b:
+        raise StructureError("--domain-residues", f"must be a range a-b with a <= b (got {text!r})")
+    return a, b
+
+
+def measure(path, *, chain: str | None = None, residues=None,
+            option: str = "--domain") -> DomainSize:
+    loaded = reading.load(path, option)
+    name = loaded.path.name
+    names = [c.name for c in loaded.chains]
+    if chain is None:
+        c = loaded.chains[0]
+    elif chain in names:
+        c = loaded.chains[names.index(chain)]
+    else:
+        raise StructureError("--domain-chain", f"no protein chain {chain!r} in {name} "
+                                               f"(chains: {', '.join(names)})")
+    notes = list(loaded.notes)
+    if chain is None and len(names) > 1:
+        notes.append(f"{len(names)} protein chains ({', '.join(names)}): chain {c.name} used")
+    keep = np.ones(len(c.heavy), bool)
+    if residues is not None:
+        a, b = parse_range(residues)
+        keep = (c.heavy_residue >= a) & (c.heavy_residue <= b)
+        if not keep.any():
+            raise StructureError("--domain-residues", f"no residue {a}-{b} in chain {c.name} of "
+                                                      f"{name} (residues {c.residues[0]}-"
+                                                      f"{c.residues[-1]})")
+    xyz = c.heavy[keep]
+    used = np.unique(c.heavy_residue[keep])
+    rg = float(np.sqrt(((xyz - xyz.mean(axis=0)) ** 2).sum(axis=1).mean()))
+    hull = xyz  # max dimension over all pairs, in blocks to bound memory
+    dmax = 0.0
+    for i in range(0, len(hull), 512):
+        d = np.linalg.norm(hull[i:i + 512, None, :] - hull[None, :, :], axis=-1)
+        dmax = max(dmax, float(d.max()))
+    return DomainSize(name, loaded.sha256, c.name, [int(used[0]), int(used[-1])], int(len(xyz)),
+                      round(rg, 3), round(RG_TO_DIAMETER * rg, 3), round(dmax, 2), notes)

@@ -1,0 +1,55 @@
+"""The printed summary of `inspect`: plain lines, units in the text."""
+from __future__ import annotations
+
+import math
+
+
+def _deg(rad: float) -> str:
+    return f"{math.degrees(rad):+.3f}°"
+
+
+def fibril_lines(g) -> list:
+    hand = "right-handed" if g.twist > 0 else "left-handed"
+    lines = [f"fibril {g.file} (sha256 {g.sha256[:12]}…)"]
+    lines += [f"  note: {n}" for n in g.notes]
+    ax = g.axis
+    lines.append(f"  axis: through ({', '.join(f'{v:.2f}' for v in ax['point'])}) along "
+                 f"({', '.join(f'{v:.4f}' for v in ax['direction'])})"
+                 + ("" if g.axis_exact else " (approximate)"))
+    lines.append(f"  rise {g.rise:.3f} ± {g.rise_sd:.3f} Å, twist {g.twist:+.5f} ± "
+                 f"{g.twist_sd:.5f} rad ({_deg(g.twist)} per layer, {hand})")
+    pf = (f", pf_rotation {g.pf_rotation:+.4f} rad ({_deg(g.pf_rotation)}), pf_rise "
+          f"{g.pf_rise:.3f} Å" if g.protofilaments > 1 else "")
+    lines.append(f"  protofilaments {g.protofilaments}{pf}; layers {g.layers} "
+                 f"({' | '.join(' '.join(q) for q in g.layer_chains)})")
+    lines.append(f"  core residues {g.core_residues[0]}-{g.core_residues[1]}; outline "
+                 f"{len(g.core_outline)} points")
+    for a in g.anchors:
+        tail = (f", tail {a['tail_residues'][0]}-{a['tail_residues'][1]} (linker)"
+                if a["tail_residues"] else "")
+        lines.append(f"  anchor pf {a['protofilament']}: {a['chain']} {a['residue_name']}"
+                     f"{a['residue']} at r {a['radius']:.2f} Å, depth {a['depth']:.1f} Å"
+                     f"{' BURIED' if a['buried'] else ''}{tail}")
+    lines += [f"  warning: {w}" for w in g.warnings]
+    return lines
+
+
+def domain_lines(d) -> list:
+    lines = [f"domain {d.file} (sha256 {d.sha256[:12]}…): chain {d.chain} residues "
+             f"{d.residues[0]}-{d.residues[1]}, {d.atoms} heavy atoms"]
+    lines += [f"  note: {n}" for n in d.notes]
+    lines.append(f"  rg {d.rg:.2f} Å, globule_diameter {d.globule_diameter:.2f} Å "
+                 f"(2·√(5/3)·Rg; largest dimension {d.max_dimension:.1f} Å)")
+    return lines
+
+
+def text(fibril=None, domain=None, values=None) -> str:
+    lines = []
+    if fibril is not None:
+        lines += fibril_lines(fibril)
+    if domain is not None:
+        lines += domain_lines(domain)
+    if values:
+        shown = {k: (f"{len(v)} points" if k == "core_outline" else v) for k, v in values.items()}
+        lines.append("model values: " + ", ".join(f"{k}={v}" for k, v in shown.items()))
+    return "\n".join(lines)

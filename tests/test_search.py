@@ -1,0 +1,327 @@
+"""Issue #13: the inflate protocol, restarts and the minimal-linker map."""
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from fibrilfit import params as P
+from fibrilfit.builders.model import bond_pivots, chain_positions
+from fibrilfit.builders.start_layout import fan_frames, inflate_layout
+from fibrilfit.search import minimal, restarts
+from helpers import ROOT
+
+PY = sys.executable
+FAST = {"protocol": "inflate", "grow_frames": 30, "hold_frames": 30, "regrow_cycles": 1}
+
+
+# ---- the start layout: pure numpy ---------------------------------------------------------------
+
+def _rotated_rest(p, k=2):
+    """A rest layout with `k` chains per layer, anchors round the axis (not on +X)."""
+    rest = chain_positions(p)
+    out = []
+    for j in range(k):
+        a = 2.0 + j * np.pi / k
+        rot = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+        out.append(rest @ rot.T)
+    return np.stack(out, axis=1).reshape(-1, p.linker + 1, 3)  # layer-major
+
+
+@pytest.mark.parametrize("chains_per_layer", [1, 3])
+def test_inflate_layout_keeps_bonds_anchors_and_pivots(chains_per_layer):
+    p = P.make_params(linker=5, layers=12, protocol="inflate")
+    rest = _rotated_rest(p, chains_per_layer)
+    pos, piv = inflate_layout(p, rest, seed=3)
+    n = len(rest)
+    assert pos.shape == (n, p.linker + 1, 3) and piv.shape == (n, p.linker, 3)
+    np.testing.assert_allclose(pos[:, 0], rest[:, 0])  # anchors stay on the core
+    bonds = np.linalg.norm(np.diff(pos, axis=1), axis=-1)
+    np.testing.assert_allclose(bonds, np.broadcast_to(p.rest_lengths(), bonds.shape), atol=1e-9)
+    # each pivot is the contact point: member i's radius along the bond; the globule's joint
+    # is on its full-size surface
+    radii = np.asarray(p.chain_radii())
+    np.testing.assert_allclose(np.linalg.norm(piv - pos[:, :-1], axis=-1),
+                               np.broadcast_to(radii[:-1], piv.shape[:2]), atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(pos[:, -1] - piv[:, -1], axis=-1),
+                               p.globule_radius, atol=1e-9)
+    # every step goes outward from the chain's own anchor direction (taken from the rest layout)
+    u = fan_frames(rest)[0]
+    steps = np.diff(pos, axis=1)
+    assert ((steps * u[:, None]).sum(-1) > 0).all()
+    assert (np.linalg.norm(pos[:, 1:, :2], axis=-1) > np.linalg.norm(rest[:, :1, :2], axis=-1)).all()
+
+
+def test_inflate_layout_over_protofilaments_and_an_anchor_off_the_x_axis():
+    p = P.make_params(linker=5, layers=8, protofilaments=2, anchor=(-5.0, 12.75),
+                      protocol="inflate")
+    rest = chain_positions(p)
+    pos, piv = inflate_layout(p, rest, seed=1)
+    assert pos.shape == rest.shape == (16, 6, 3)
+    np.testing.assert_allclose(pos[:, 0], rest[:, 0])
+    u = fan_frames(rest)[0]
+    assert ((np.diff(pos, axis=1) * u[:, None]).sum(-1) > 0).all()
+
+
+def test_inflate_bakes_several_protofilaments(scene, ff):
+    p = P.make_params(layers=3, linker=6, protofilaments=2, **FAST)
+    r = ff.pipeline.run(p, scene)
+    assert len(r["globule_centres"]) == 6 and r["inflate"]["cycles"]
+    assert r["frames_simulated"] == r["inflate"]["cycles"][-1]["judged_at"]
+
+
+def test_inflate_layout_is_fixed_by_the_seed_and_fans_the_globules():
+    p = P.make_params(linker=5, layers=20, protocol="inflate")
+    rest = chain_positions(p)
+    a, b = inflate_layout(p, rest, 7), inflate_layout(p, rest, 7)
+    np.testing.assert_array_equal(a[0], b[0])
+    assert not np.allclose(a[0], inflate_layout(p, rest, 8)[0])
+
+    def nearest(g):
+        d = np.linalg.norm(g[:, None] - g[None], axis=-1)
+        np.fill_diagonal(d, np.inf)
+        return d.min(axis=1)
+
+    # fanned: a globule's nearest neighbour starts about twice as far away as at rest
+    assert np.median(nearest(a[0][:, -1])) > 1.8 * np.median(nearest(rest[:, -1]))
+    # neighbouring chains do not start on each other: beads of different chains keep apart
+    beads = a[0][:, 1:-1].reshape(-1, 3)
+    chain = np.repeat(np.arange(len(rest)), p.linker - 1)
+    dd = np.linalg.norm(beads[:, None] - beads[None], axis=-1)
+    other = chain[:, None] != chain[None]
+    assert dd[other].min() > 2 * p.residue_radius - 0.5
+
+
+def test_rest_layout_helpers_are_unchanged_for_the_tutorial():
+    p = P.DEFAULTS
+    assert p.protocol == "tutorial" and p.bake_frames() == p.frames
+    pos, piv = chain_positions(p), bond_pivots(p)
+    assert pos.shape == (20, 7, 3) and piv.shape == (20, 6, 3)
+
+
+# ---- the protocol parameter ---------------------------------------------------------------------
+
+def test_protocol_is_a_choice_named_in_its_error():
+    assert P.make_params(protocol="Inflate ").protocol == "inflate"
+    with pytest.raises(P.ParamError, match="protocol: must be one of tutorial, inflate"):
+        P.make_params(protocol="anneal")
+    p = P.make_params(protocol="inflate", grow_frames=10, hold_frames=5, regrow_cycles=2)
+    assert p.bake_frames() == 3 * 16
+
+
+def test_sweeps_take_the_protocol_as_an_axis():
+    from fibrilfit.sweep import grid
+    points = grid.build({"protocol": grid.parse_spec("protocol", "tutorial,inflate")}, ["0"])
+    assert [pt.point["protocol"] for pt in points] == ["tutorial", "inflate"]
+    with pytest.raises(P.ParamError, match="protocol"):
+        grid.build({"protocol": grid.parse_spec("protocol", "tutorial,grow")}, ["0"])
+
+
+def test_cli_refuses_a_bad_protocol_in_one_line(tmp_path):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "run", "--protocol", "anneal"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert proc.stderr.strip().count("\n") == 0 and "--protocol" in proc.stderr
+
+
+# ---- the schedule in Blender -------------------------------------------------------------------
+
+def test_inflate_grows_with_the_pivot_on_the_full_size_surface(scene, ff):
+    """While the globules are small, the last bead stays r + R (full size) from its globule's
+    centre: the joint is not scaled with the globule, so the reach is never over-stated. The
+    collision sphere follows the scale set between frames."""
+    p = P.make_params(layers=3, linker=5, grow_start=0.3, **{**FAST, "grow_frames": 40})
+    model = ff.pipeline.build(p, scene)
+    baking = ff.pipeline.Baking(model, scene)
+    reach = p.residue_radius + p.globule_radius
+    seen = []
+    for _ in range(12):
+        frame, pos = baking.step()
+        scale = model.globules[0].matrix_world.to_scale()[0]
+        seen.append(scale)
+        gap = np.linalg.norm(pos[:, -1] - pos[:, -2], axis=-1)
+        # a ball joint may bend (centres closer), never farther than the full-size contact
+        assert (gap <= reach * 1.02).all() and (gap > reach - 3.0).all(), (frame, gap)
+    assert seen[0] < 0.4 and seen[-1] > seen[0]  # the scale set before each frame took effect
+    while baking.step() is not None:
+        pass
+    r = baking.result()
+    assert r["inflate"]["cycles"] and model.globules[0].matrix_world.to_scale()[0] == pytest.approx(1.0)
+
+
+def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
+    """An accommodated inflate verdict holds at the frame it is reported for: spheres apart,
+    bonds intact, and the BVH check run again after scrubbing away and back."""
+    p = P.make_params(layers=6, linker=7, **FAST)
+    r = ff.pipeline.run(p, scene)
+    assert r["accommodated"], r["inflate"]
+    frame = r["frames_simulated"]
+    assert r["inflate"]["cycles"][-1]["judged_at"] == frame
+    scene.frame_set(max(1, frame - 5))
+    scene.frame_set(frame)
+    model = ff.pipeline.current_model(scene)
+    pos = np.array([[ob.matrix_world.translation[:] for ob in c] for c in model.chain])
+    g = pos[:, -1]
+    d = np.linalg.norm(g[:, None] - g[None], axis=-1)[np.triu_indices(len(g), 1)]
+    assert d.min() >= p.globule_diameter - 0.05
+    stretch = np.linalg.norm(np.diff(pos, axis=1), axis=-1) / np.asarray(p.rest_lengths()) - 1
+    assert stretch.max() <= p.stretch_tolerance
+    again = ff.pipeline.check(model, scene)
+    assert again["accommodated"] and again["intersecting_faces"] == 0
+    assert again["globule_centres"] == r["globule_centres"]
+
+
+def test_inflate_is_reproducible(scene, ff):
+    p = P.make_params(layers=4, linker=5, seed=2, **FAST)
+    a = ff.pipeline.run(p, scene)
+    b = ff.pipeline.run(p, scene)
+    for key in ("timings_s",):
+        a.pop(key), b.pop(key)
+    assert a == b
+
+
+# ---- restarts and the minimal-linker walk (pure) ----------------------------------------------
+
+def _record(seed, fits, pairs=0, stretch=0.0):
+    return {"params": {"seed": seed}, "status": "ok", "accommodated": fits, "verdict":
+            "successful" if not pairs else "intersection", "clashing_pairs": [[0, 1, 1.0]] * pairs,
+            "max_overlap": float(pairs), "max_bond_stretch": stretch, "frames_simulated": 100}
+
+
+def test_restarts_summary_has_p_fit_its_wilson_interval_and_the_best_seed():
+    recs = [_record(0, False, 2, 0.1), _record(1, True), _record(2, False, 1, 0.02),
+            {"params": {"seed": 3}, "status": "failed", "error": "boom"}]
+    s = restarts.summarise(recs)
+    assert (s["restarts"], s["failed"], s["accommodated"], s["best_seed"]) == (3, 1, 1, 1)
+    assert s["p_fit"] == pytest.approx(1 / 3, abs=1e-4)
+    lo, hi = s["p_fit_interval"]
+    assert 0 < lo < 1 / 3 < hi < 1
+    none = restarts.summarise([_record(0, False, 1), _record(1, False, 3)])
+    assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
+
+
+class FakeExecutor:
+    """The executor interface (submit, pending, wait) answering from a table, no Blender."""
+
+    def __init__(self, fits):
+        self.fits, self.queue, self.ran = fits, [], []
+
+    def submit(self, job):
+        self.queue.append(job)
+
+    def pending(self):
+        return len(self.queue)
+
+    def wait(self):
+        job = self.queue.pop(0)
+        seed = job["params"]["seed"]
+        self.ran.append(seed)
+        return job, {"id": job["id"], "ok": True, "result": {
+            **_record(seed, seed in self.fits), "params": job["params"]}}
+
+
+@pytest.mark.parametrize("stop, window, ran", [(False, 1, [0, 1, 2, 3, 4]), (True, 1, [0, 1, 2]),
+                                               (True, 2, [0, 1, 2, 3])])
+def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
+    base = P.make_params(linker=5).to_dict()
+    ex = FakeExecutor(fits={2, 4})
+    recs = restarts.run(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop, window=window)
+    assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
+    assert restarts.summarise(recs)["best_seed"] == 2
+
+
+@pytest.mark.parametrize("start", [1, 3, 5, 9])
+def test_walk_finds_the_minimum_with_a_miss_just_below_it(start):
+    w = minimal.Walk(30.0, start, max_linker=20)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 2 if L >= 5 else 0, 5)
+    row = w.row()
+    assert row["minimal_linker"] == 5 and row["linker_below"] == 4
+    assert row["p_fit"] == 0.4 and row["p_fit_below"] == 0.0 and row["p_fit_below_interval"][1] < 0.5
+    assert set(w.tried) == set(range(min(start, 4), max(start, 5) + 1))
+
+
+def test_walk_gives_up_at_the_cap_and_at_one_needs_no_miss():
+    w = minimal.Walk(60.0, 3, max_linker=6)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 0, 5)
+    assert w.minimal is None and max(w.tried) == 6 and w.row()["linker_below"] == 6
+    w = minimal.Walk(5.0, 3, max_linker=6)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 5, 5)
+    assert w.minimal == 1 and w.row()["p_fit_below"] is None
+
+
+# ---- the commands, end to end on tiny models ----------------------------------------------------
+
+TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow-cycles", "0",
+        "--workers", "1", "--quiet"]
+
+
+def test_run_with_restarts_reports_p_fit_and_keeps_the_best(tmp_path):
+    out = tmp_path / "best.json"
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "run", "--protocol", "inflate",
+                           "--linker", "6", "--restarts", "2", "--seed", "4", *TINY,
+                           "--json", str(out)], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    r = json.loads(out.read_text())
+    s = r["restarts"]
+    assert [run["seed"] for run in s["runs"]] == [4, 5] and s["restarts"] == 2
+    assert r["seed"] == s["best_seed"] and s["reproduced"] is True
+    assert "restarts: " in proc.stdout and "P(fit)" in proc.stdout
+
+
+def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
+    out = tmp_path / "map"
+    cmd = [PY, str(ROOT / "headless.py"), "minimal-linker", "--globule-diameter", "8,12",
+           "--restarts", "2", "--max-linker", "4", *TINY, "--out", str(out)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads((out / "minimal_linker.json").read_text())
+    rows = doc["rows"]
+    assert [r["globule_diameter"] for r in rows] == [8.0, 12.0]
+    for r in rows:
+        assert {"globule_diameter", "minimal_linker", "p_fit", "p_fit_below", "restarts"} <= set(r)
+        if r["minimal_linker"] is not None and r["minimal_linker"] > 1:
+            below = r["tried"][str(r["minimal_linker"] - 1)]
+            assert below["accommodated"] == 0 and below["restarts"] == 2
+            assert r["tried"][str(r["minimal_linker"])]["accommodated"] >= 1
+    head = (out / "minimal_linker.csv").read_text().splitlines()[0].split(",")
+    assert head[:4] == ["kind", "globule_diameter", "minimal_linker", "p_fit"]
+    assert (out / "minimal_linker.png").read_bytes()[:4] == b"\x89PNG"
+    lines = (out / "results.jsonl").read_text().splitlines()
+    runs = [json.loads(x) for x in lines]
+    assert all(x["params"]["protocol"] == "inflate" for x in runs)
+    # every accommodated run passed the check at its reported frame (the worker's verdict)
+    assert all(x["intersecting_faces"] == 0 and x["linker_intact"] for x in runs if x["accommodated"])
+    again = subprocess.run(cmd + ["--resume"], capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert (out / "results.jsonl").read_text().splitlines() == lines  # nothing run twice
+    assert json.loads((out / "minimal_linker.json").read_text())["rows"] == rows
+    refused = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    assert refused.returncode == 2 and "--resume" in refused.stderr
+
+
+def test_minimal_linker_refuses_a_given_linker(tmp_path):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--linker", "5",
+                           "--out", str(tmp_path / "x")], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "--linker" in proc.stderr
+    assert not (tmp_path / "x").exists()
+
+
+# ---- the issue's target (slow) -----------------------------------------------------------------
+
+@pytest.mark.slow
+@pytest.mark.parametrize("linker, least, most", [(5, 3, 5), (4, 0, 0)])
+def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
+    """30 Å globules on 20 layers with inflate: linker 5 fits in at least 3 of 5 seeds, linker 4
+    never (the independent optimizer finds no layout there in 256 restarts)."""
+    fits = 0
+    for seed in range(5):
+        r = ff.pipeline.run(P.make_params(protocol="inflate", linker=linker, seed=seed), scene)
+        fits += r["accommodated"]
+        if r["accommodated"]:
+            assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05
+    assert least <= fits <= most

@@ -1,0 +1,75 @@
+"""The sidebar's Import fibril… / Import domain…: parameters filled, measurements shown, the CA
+trace beside the model under a tagged collection; bad files reported, nothing changed."""
+import json
+import pathlib
+
+import bpy
+import numpy as np
+import pytest
+
+from fibrilfit import params as P, properties
+from fibrilfit.builders import structure_trace
+from fibrilfit.builders.scene import TAG
+from fibrilfit.panels import sidebar
+
+DATA = pathlib.Path(__file__).with_name("data")
+
+
+@pytest.fixture
+def ui(scene, ff):
+    ff.register()
+    yield scene.fibrilfit
+    ff.unregister()
+
+
+def test_import_fibril_fills_parameters_and_adds_the_trace(ui, scene):
+    assert bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "6cu7.pdb.gz")) == {"FINISHED"}
+    p = properties.read_params(ui)
+    m = structure_trace.measured(scene)["fibril"]
+    assert p.rise == pytest.approx(m["rise"], abs=1e-5)
+    assert p.twist == pytest.approx(m["twist"], abs=1e-6) and p.twist < 0
+    (coll,) = [c for c in bpy.data.collections if c.get(TAG) == structure_trace.COLLECTION]
+    (ob,) = coll.objects
+    assert ob.get(TAG) == structure_trace.TRACE and ob.rigid_body is None
+    assert len(ob.data.vertices) == 10 * 60 and len(ob.data.edges) == 10 * 59
+    # aligned with the model: the axis is Z, the layers step by the rise along it
+    z = np.array([v.co.z for v in ob.data.vertices]).reshape(10, 60).mean(axis=1)
+    assert np.diff(z[:5]) == pytest.approx([4.825] * 4, abs=0.2)  # protofilament 0, bottom-up
+    # beside it: every CA farther out than any globule can reach
+    reach = max(p.chain_x()) + p.globule_radius
+    xy = np.array([(v.co.x, v.co.y) for v in ob.data.vertices]) + np.array(ob.location[:2])
+    assert (xy[:, 0] > reach).all()
+    lines = sidebar.structure_lines(structure_trace.measured(scene))
+    assert any("left-handed" in ln for ln in lines) and any("K97" in ln or "LYS97" in ln
+                                                              for ln in lines)
+    # importing again replaces the trace
+    assert bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "8a9l.pdb.gz")) == {"FINISHED"}
+    assert len(coll.objects) == 1 and properties.read_params(ui).twist > 0
+
+
+def test_import_domain_sets_the_globule(ui, scene):
+    assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1gfl.pdb.gz"), chain="A") == \
+        {"FINISHED"}
+    assert properties.read_params(ui).globule_diameter == pytest.approx(43.94, abs=0.01)
+    assert any("Rg 17.02" in ln for ln in sidebar.structure_lines(
+        structure_trace.measured(scene)))
+
+
+def test_a_bad_file_is_reported_and_changes_nothing(ui, scene):
+    before = properties.values(ui)
+    with pytest.raises(RuntimeError, match="--fibril"):  # bpy.ops raises on an ERROR report
+        bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "1ubq.pdb.gz"))
+    assert properties.values(ui) == before
+    assert structure_trace.find_collection(scene) is None
+
+
+def test_the_panel_draws_with_imports(ui, scene):
+    import types
+    from test_ui import FakeLayout
+    bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "2n0a.pdb.gz"))
+    log = []
+    sidebar.FIBRILFIT_PT_structures.draw(types.SimpleNamespace(layout=FakeLayout(log)),
+                                         bpy.context)
+    assert ("operator", "fibrilfit.import_fibril") in log
+    labels = [t for kind, t in log if kind == "label"]
+    assert labels[0].startswith("2n0a.pdb.gz: rise 4.89") and "right-handed" in labels[0]

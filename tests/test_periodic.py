@@ -63,6 +63,8 @@ def test_too_short_a_cell_is_refused_with_the_minimum(ff):
     assert P.make_params(periodic=least).periodic == least
     with pytest.raises(P.ParamError, match="score_layers"):
         P.make_params(periodic=13, score_layers=2)
+    with pytest.raises(P.ParamError, match="protocol"):  # the images would not grow
+        P.make_params(periodic=13, protocol="inflate")
 
 
 @pytest.mark.parametrize("extra, name", [(["--layers", "100"], "layers"),

@@ -124,6 +124,10 @@ FIBRILFIT_PG_settings.__annotations__.update({
     for f in derived_fields()})
 FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
     name="Outline file", description="The file the core outline was last loaded from")
+# The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
+# Not a result: a bake or check leaves it alone.
+FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
+    name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
 # The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
 FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
     name="Periodic cell",

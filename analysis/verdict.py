@@ -6,6 +6,7 @@ import numpy as np
 from .. import params as P, screw
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
+from .envelope import envelope
 from .stretch import bond_stretch
 
 # A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
@@ -148,6 +149,7 @@ def check_model(model) -> dict:
         "layer_clashes": layer_clash,
         **chains,
         "globule_centres": np.round(centres, 4).tolist(),
+        "envelope": envelope(centres[scored[:n]], p.globule_radius),
         **periodic,
     }
 

@@ -2,17 +2,20 @@
 
     --pdb PATH [--pdb-frames last|all]
     --render PATH.png [--render-size WxH] [--render-samples N] [--render-engine cycles|workbench]
+    --movie PATH.mp4|PATH.gif [--movie-step K]
 """
 from __future__ import annotations
 
 import argparse
 import re
 
-SUFFIXES = {"pdb": (".pdb",), "render": (".png",)}
+MOVIE_FORMATS = (".mp4", ".gif")
+SUFFIXES = {"pdb": (".pdb",), "render": (".png",), "movie": MOVIE_FORMATS}
 ENGINES = ("cycles", "workbench")     # exports.render.ENGINES, without importing bpy
 SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
 DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8
 PDB_STEP = 50                        # exports.pdb.KEYFRAME_STEP
+MOVIE_STEP, MOVIE_STEP_RANGE = 5, (1, 10000)
 
 
 class OptionError(ValueError):
@@ -40,6 +43,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--render-engine", choices=ENGINES, default="cycles",
                        help="cycles (CPU, any machine) or workbench (faster; needs a software "
                             "or hardware OpenGL context) (default cycles)")
+    group.add_argument("--movie", metavar="PATH.mp4|PATH.gif",
+                       help="render the bake as a movie (Workbench, --render-size; clashing "
+                            "globules red on the last frame, held for a second), with a "
+                            "progress bar on stderr")
+    group.add_argument("--movie-step", metavar="K", default=str(MOVIE_STEP),
+                       help=f"put every K-th baked frame in the movie, and the last "
+                            f"(default {MOVIE_STEP})")
 
 
 def render_options(args) -> dict:
@@ -72,6 +82,19 @@ def pdb_images(args, p) -> int:
     if not 0 <= n <= 10:
         raise OptionError(f"--pdb-images: must be an integer from 0 to 10 cells (got {n})")
     return n
+
+
+def movie_step(args) -> int:
+    """Validated --movie-step. Raises OptionError naming the option."""
+    lo, hi = MOVIE_STEP_RANGE
+    try:
+        step = int(str(args.movie_step))
+    except ValueError:
+        step = None
+    if step is None or not lo <= step <= hi:
+        raise OptionError(f"--movie-step: must be an integer from {lo} to {hi} "
+                          f"(got {args.movie_step!r})")
+    return step
 
 
 def pdb_fits(p) -> None:

@@ -140,8 +140,7 @@ def result_remarks(result: dict | None) -> list[str]:
            "B-factor = sphere radius (A); one chain per molecule: chain n (A = 0) is layer "
            "n // K, protofilament n % K"]
     for name, value in result.get("params", {}).items():
-        shown = " ".join(f"{v:g}" for v in value) if isinstance(value, list) else value
-        out.append(f"param {name} = {shown}")
+        out.append(f"param {name} = {_shown(value)}")
     out.append(f"seed = {result.get('seed')}")
     if "gravity" in result:
         out.append("gravity = " + " ".join(f"{g:.6f}" for g in result["gravity"]))
@@ -149,8 +148,18 @@ def result_remarks(result: dict | None) -> list[str]:
         out.append(f"verdict = {result['verdict']}; accommodated = {result['accommodated']}; "
                    f"max_bond_stretch = {result['max_bond_stretch']:.4f}")
         pairs = [f"{i}-{j}" for i, j, *_ in result.get("clashing_pairs", [])]
-        out.append("clashing layer pairs: " + (" ".join(pairs) or "none"))
+        what = "layer" if result.get("params", {}).get("protofilaments", 1) == 1 else "chain"
+        out.append(f"clashing {what} pairs: " + (" ".join(pairs) or "none"))
     return out
+
+
+def _shown(value) -> str:
+    """A parameter's value in a REMARK: numbers by %g, lists space-separated, an outline's
+    points as x,y pairs."""
+    if isinstance(value, (list, tuple)):
+        return " ".join(",".join(f"{v:g}" for v in item) if isinstance(item, (list, tuple))
+                        else f"{item:g}" for item in value)
+    return str(value)
 
 
 def positions_at(scene: bpy.types.Scene, model, frames) -> list[tuple[int, np.ndarray]]:

@@ -6,7 +6,7 @@ import bpy
 
 from ..analysis import clashing_layers
 from ..builders import find_model
-from . import dressing, pdb, render
+from . import dressing, movie, pdb, render
 
 
 def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> None:
@@ -33,6 +33,11 @@ def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> d
     return render.render_png(scene, path, clashing=clashing_layers(result),
                              size=options["size"], samples=options["samples"],
                              engine=options["engine"])
+
+
+def write_movie(scene: bpy.types.Scene, result: dict, path, **options) -> dict:
+    """--movie: the bake, every k-th frame, clashing globules red at the end."""
+    return movie.write_movie(scene, result, path, **options)
 
 
 def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | None:

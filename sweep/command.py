@@ -77,6 +77,15 @@ def _executor(args, out: pathlib.Path):
                            blender_binary=bpy.app.binary_path)
 
 
+def _case(args) -> dict | None:
+    """The --case as every record embeds it (its params are each point's own)."""
+    case = getattr(args, "loaded_case", None)
+    if case is None:
+        return None
+    from .. import params as P
+    return case.resolved(P.DEFAULTS, case.overridden)
+
+
 def run(args) -> int:
     _check_options(args)
     specs = grid.specs_from(args)
@@ -120,7 +129,8 @@ def run(args) -> int:
             with _executor(args, out) as executor:
                 runner.run(executor, todo, results, force=args.force,
                            progress=not args.quiet, version=pipeline.version(),
-                           extra={"structure": structure_block} if structure_block else None)
+                           extra={"structure": structure_block} if structure_block else None,
+                           case=_case(args))
         except SweepError as exc:
             print(f"fibrilfit: error: {exc}", file=sys.stderr)
             return exits.EXIT_USAGE

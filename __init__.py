@@ -12,24 +12,26 @@ import pathlib
 
 __all__ = ["cli", "params", "run", "register", "unregister"]
 
-# Blender before 4.2 knows add-ons only by bl_info; 4.2+ uses blender_manifest.toml and drops
-# this. It is here so that an old Blender reaches register() and is told what it needs.
-bl_info = {
-    "name": "FibrilFit",
-    "blender": (4, 2, 0),
-    "category": "Physics",
-    "description": "Can tethered globular domains fit on an amyloid fibril",
-}
-
-
 def __getattr__(name):
     """`run` and the submodules load on first use."""
+    if name == "bl_info":
+        return _old_blender_info()
     if name == "run":
         return importlib.import_module(".pipeline", __name__).run
     here = pathlib.Path(__file__).parent
     if not name.startswith("__") and ((here / name).is_dir() or (here / f"{name}.py").is_file()):
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _old_blender_info():
+    """Extensions have no bl_info (Blender 4.2+ reads blender_manifest.toml). Only Blender before
+    4.2 asks for one, to enable the package as a legacy add-on: it gets just enough to reach
+    register(), whose version check then refuses it in one line."""
+    from . import blender_check
+    if blender_check.refusal() is None:
+        raise AttributeError(f"module {__name__!r} has no attribute 'bl_info'")
+    return {"name": "FibrilFit", "blender": blender_check.minimum(), "category": "Physics"}
 
 
 _refused = False  # register() turned this Blender away: unregister() has nothing to undo

@@ -304,6 +304,16 @@ def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
     assert refused.returncode == 2 and "--resume" in refused.stderr
 
 
+def test_minimal_linker_passes_model_options_through(tmp_path):
+    """--periodic auto reaches the model: inflate is refused there in one line (periodic
+    images do not grow yet), nothing written."""
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--periodic", "auto",
+                           "--out", str(tmp_path / "x")], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "protocol" in proc.stderr and "periodic" in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and not (tmp_path / "x").exists()
+
+
 def test_minimal_linker_refuses_a_given_linker(tmp_path):
     proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--linker", "5",
                            "--out", str(tmp_path / "x")], capture_output=True, text=True,

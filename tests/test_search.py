@@ -336,3 +336,31 @@ def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
         if r["accommodated"]:
             assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05
     assert least <= fits <= most
+
+
+# ---- the sidebar -------------------------------------------------------------------------------
+
+def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
+    """The protocol is the panel's drop-down; the modal bake runs the same schedule as the API."""
+    import bpy
+    from fibrilfit import pipeline, properties
+    from fibrilfit.operators import simulate
+    from test_ui import detached, event, stored_result
+    small = dict(layers=4, linker=6, seed=1, **FAST)
+    ff.register()
+    try:
+        properties.write_params(scene.fibrilfit, P.make_params(**small))
+        assert scene.fibrilfit.protocol == "inflate"
+        op = detached(simulate.FIBRILFIT_OT_run_all)
+        op.start(bpy.context)
+        while (state := op.modal(bpy.context, event("TIMER"))) == {"RUNNING_MODAL"}:
+            pass
+        assert state == {"FINISHED"}
+        mine = stored_result(scene)
+    finally:
+        ff.unregister()
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    api = pipeline.run(P.make_params(**small), bpy.context.scene)
+    assert api["inflate"]["cycles"]
+    for key in ("verdict", "accommodated", "frames_simulated", "globule_centres"):
+        assert mine[key] == api[key], key

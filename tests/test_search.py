@@ -304,6 +304,16 @@ def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
     assert refused.returncode == 2 and "--resume" in refused.stderr
 
 
+def test_minimal_linker_passes_model_options_through(tmp_path):
+    """--periodic auto reaches the model: inflate is refused there in one line (periodic
+    images do not grow yet), nothing written."""
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--periodic", "auto",
+                           "--out", str(tmp_path / "x")], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "protocol" in proc.stderr and "periodic" in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and not (tmp_path / "x").exists()
+
+
 def test_minimal_linker_refuses_a_given_linker(tmp_path):
     proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--linker", "5",
                            "--out", str(tmp_path / "x")], capture_output=True, text=True,
@@ -326,3 +336,31 @@ def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
         if r["accommodated"]:
             assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05
     assert least <= fits <= most
+
+
+# ---- the sidebar -------------------------------------------------------------------------------
+
+def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
+    """The protocol is the panel's drop-down; the modal bake runs the same schedule as the API."""
+    import bpy
+    from fibrilfit import pipeline, properties
+    from fibrilfit.operators import simulate
+    from test_ui import detached, event, stored_result
+    small = dict(layers=4, linker=6, seed=1, **FAST)
+    ff.register()
+    try:
+        properties.write_params(scene.fibrilfit, P.make_params(**small))
+        assert scene.fibrilfit.protocol == "inflate"
+        op = detached(simulate.FIBRILFIT_OT_run_all)
+        op.start(bpy.context)
+        while (state := op.modal(bpy.context, event("TIMER"))) == {"RUNNING_MODAL"}:
+            pass
+        assert state == {"FINISHED"}
+        mine = stored_result(scene)
+    finally:
+        ff.unregister()
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    api = pipeline.run(P.make_params(**small), bpy.context.scene)
+    assert api["inflate"]["cycles"]
+    for key in ("verdict", "accommodated", "frames_simulated", "globule_centres"):
+        assert mine[key] == api[key], key

@@ -21,7 +21,7 @@ say() { echo "slurm-setup: $*"; }
 die() { echo "slurm-setup: error: $*" >&2; exit 1; }
 
 running() {  # running PIDFILE: the pid file names a live process
-    [ -s "$1" ] && kill -0 "$(cat "$1")" 2>/dev/null
+    [ -s "$1" ] && kill -0 "$(cat "$1" 2>/dev/null)" 2>/dev/null
 }
 
 install_packages() {

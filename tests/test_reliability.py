@@ -51,7 +51,14 @@ def test_unknown_option_and_command():
 def _start(args, tmp_path):
     return subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "run", *args, "--progress",
                              "--json", str(tmp_path / "r.json"), "--blend", str(tmp_path / "m.blend")],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT,
+                            preexec_fn=_ctrl_c_as_in_a_terminal)
+
+
+def _ctrl_c_as_in_a_terminal():
+    # A shell starts background jobs with SIGINT ignored, and Python then never turns SIGINT
+    # into KeyboardInterrupt: give the run the disposition it has when started from a terminal.
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def _wait_for_bake(proc):

@@ -63,3 +63,24 @@ def test_members_inside_core_follows_each_layers_turn_and_height():
                      [19.0, -10.0, k * p.rise],  # inside the unturned outline, not the turned one
                      [*turned[0], 3 * p.rise]]])        # above the top layer
     assert members_inside_core(p, pos) == [[0, 0]]
+
+
+@pytest.mark.parametrize("layer, pf", [(0, 1), (3, 1), (3, 2), (1, 0)])
+def test_the_linker_check_covers_every_chain_of_every_protofilament(scene, layer, pf):
+    """A bond pulled 2 Å long in any one chain shows in the verdict's worst stretch."""
+    from fibrilfit.analysis import check_model
+    p = P.make_params(layers=4, linker=3, globule_diameter=10, protofilaments=3,
+                      core_outline=U_CORE, anchor=(0, -25), pf_rise=1.0)
+    model = build_model(p, scene)
+    assert check_model(model)["max_bond_stretch"] == pytest.approx(0.0, abs=1e-5)
+    globule = model.chain[layer * p.protofilaments + pf][-1]
+    anchor_to_globule = np.array(globule.matrix_world.translation) - np.array(
+        model.chain[layer * p.protofilaments + pf][-2].matrix_world.translation)
+    out = 2.0 * anchor_to_globule / np.linalg.norm(anchor_to_globule)
+    mw = globule.matrix_world.copy()
+    mw.translation = mw.translation + type(mw.translation)(out.tolist())
+    globule.matrix_world = mw
+    result = check_model(model)
+    assert result["max_bond_stretch"] == pytest.approx(2.0 / p.rest_lengths()[-1], rel=1e-3)
+    assert not result["linker_intact"]
+    assert result["inside_core"] == []

@@ -1,16 +1,28 @@
-# FibrilFit: `make run` runs the default model, `make test` runs the suite on both supported bpy.
+# FibrilFit: `make run` runs the default model, `make test` runs the suite on every supported bpy
+# (4.2 LTS, 5.0, 5.2 LTS).
 PYTHON ?= python3.11
 BPY ?= 5.0.1
 BPY_LTS ?= 4.2.0
 VENV ?= .venv
 VENV_LTS ?= .venv42
+# bpy 5.2 LTS needs Python 3.13: a python3.13 on the PATH that runs (pyenv's shim may not),
+# else pyenv's newest 3.13.
+PYTHON_52 ?= $(or $(shell python3.13 -c "import sys; print(sys.executable)" 2>/dev/null),\
+  $(addsuffix /bin/python3.13,$(shell pyenv prefix 3.13 2>/dev/null)),\
+  $(lastword $(sort $(wildcard $(HOME)/.pyenv/versions/3.13*/bin/python3.13))),python3.13)
+BPY_52 ?= 5.2.3
+VENV_52 ?= .venv52
 PYTEST_ARGS ?=
 BENCH_ARGS ?=
+VALIDATE_ARGS ?=
 # rootdir=tests: the repository root is itself a package (the extension); without it pytest 8
 # imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
 PYTEST := -m pytest --rootdir=tests tests
 
-.PHONY: run test test-latest test-lts extension bench clean
+# `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.
+TEST_MARK ?= not slow
+
+.PHONY: run test test-latest test-lts test-52 test-slow test-cluster extension bench validate clean
 
 $(VENV)/.installed: requirements-dev.txt Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -24,17 +36,40 @@ $(VENV_LTS)/.installed: requirements-dev.txt Makefile
 	$(VENV_LTS)/bin/python -m pip install --quiet "bpy==$(BPY_LTS)" -r requirements-dev.txt
 	touch $@
 
+# Blender 5.2 ships numpy 2: its own requirements (the others pin numpy<2).
+$(VENV_52)/.installed: requirements-dev-52.txt Makefile
+	$(PYTHON_52) -m venv $(VENV_52)
+	$(VENV_52)/bin/python -m pip install --quiet --upgrade pip
+	$(VENV_52)/bin/python -m pip install --quiet "bpy==$(BPY_52)" -r requirements-dev-52.txt
+	touch $@
+
 run: $(VENV)/.installed
 	mkdir -p out
 	$(VENV)/bin/python headless.py run --json out/result.json --render out/final.png
 
-test: test-latest test-lts
+test: test-latest test-lts test-52
 
 test-latest: $(VENV)/.installed
-	$(VENV)/bin/python $(PYTEST) $(PYTEST_ARGS)
+	$(VENV)/bin/python $(PYTEST) -m "$(TEST_MARK)" $(PYTEST_ARGS)
 
 test-lts: $(VENV_LTS)/.installed
-	$(VENV_LTS)/bin/python $(PYTEST) $(PYTEST_ARGS)
+	$(VENV_LTS)/bin/python $(PYTEST) -m "$(TEST_MARK)" $(PYTEST_ARGS)
+
+test-52: $(VENV_52)/.installed
+	$(VENV_52)/bin/python $(PYTEST) -m "$(TEST_MARK)" $(PYTEST_ARGS)
+
+# Only the slow tests, on every bpy (pytest's exit 5, "none selected", counts as a pass).
+test-slow: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
+	for py in $(VENV)/bin/python $(VENV_LTS)/bin/python $(VENV_52)/bin/python; do \
+	  $$py $(PYTEST) -m slow $(PYTEST_ARGS); rc=$$?; [ $$rc -eq 0 ] || [ $$rc -eq 5 ] || exit $$rc; \
+	done
+
+# Sweeps through a real SLURM: as root, set up a single-node SLURM here (.ci/slurm/setup.sh:
+# Debian's slurm-wlm and munge), run the cluster-marked tests, stop the daemons it started.
+test-cluster: $(VENV)/.installed
+	sh .ci/slurm/setup.sh start || { sh .ci/slurm/setup.sh stop; exit 1; }
+	$(VENV)/bin/python $(PYTEST) -m cluster $(PYTEST_ARGS); \
+	status=$$?; sh .ci/slurm/setup.sh stop; exit $$status
 
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
@@ -54,6 +89,11 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 # Speed and memory side by side with ../shared/bench's baselines; see BENCHMARKS.md.
 bench: $(VENV)/.bench-installed
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
+
+# The gallery (examples/*.toml): P(fit), minimal linker and envelope per case; rewrites the
+# README's validation table. Results stay in out/validate, so running it again resumes.
+validate: $(VENV)/.installed
+	$(VENV)/bin/python tools/validate.py $(VALIDATE_ARGS)
 
 clean:
 	rm -rf out dist .pytest_cache

@@ -1,6 +1,7 @@
 """Import this folder as the package `fibrilfit`, whatever the folder is called.
 
-Used by headless.py and the tests, which run from a clone rather than an installed extension.
+Used by headless.py and the tests (from a clone), and by sweep workers (also of an installed
+extension: `blender -c fibrilfit sweep`), which load the package in a process of their own.
 """
 import importlib.util
 import pathlib

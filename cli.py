@@ -6,7 +6,7 @@ import dataclasses
 import math
 import sys
 
-from . import output, params as P
+from . import cases, output, params as P
 from .exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from .exports import options as export_options
@@ -52,6 +52,63 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                         help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
 
 
+def add_case_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--case", metavar="FILE.toml",
+                        help="start from this case file (README, Case files); options given "
+                             "beside it win")
+
+
+def _given(argv, name: str) -> bool:
+    flag = option(name)
+    return any(a == flag or a.startswith(flag + "=") for a in argv)
+
+
+def structure_options(args) -> dict:
+    """The --fibril/--domain options as they will run (for a case's [structure])."""
+    if not (getattr(args, "fibril", None) or getattr(args, "domain", None)):
+        return {}
+    out = {k: getattr(args, k) for k in cases.STRUCTURE_KEYS if getattr(args, k, None) is not None}
+    if not args.fibril:
+        out.pop("terminus", None)
+    return out
+
+
+SEARCHED = {"minimal-linker": ("linker",)}  # what a command finds, so a case cannot set it
+
+
+def apply_case(args, argv=()):
+    """Load args.case and fill every option the command line left unset from it (model
+    parameters, the [structure] options; for a sweep also its seeds). Returns the Case, or None
+    without --case."""
+    if not getattr(args, "case", None):
+        return None
+    case = cases.load(args.case)
+    for key, value in case.structure.items():
+        if not hasattr(args, key):
+            raise cases.CaseError(f"{cases.STRUCTURE}.{key}",
+                                  f"`{args.command}` takes no structure files")
+        if _given(argv, key):
+            case.overridden.append(key)
+        else:
+            setattr(args, key, value)
+    sweep = hasattr(args, "seed_list")  # a command that runs a list of seeds
+    seeds_given = sweep and any(getattr(args, o, None) is not None
+                                for o in ("seeds", "seed_list", "seed"))
+    overridden = []
+    searched = SEARCHED.get(args.command, ())
+    for name, value in case.params.items():
+        if name in searched:  # the command's answer, e.g. minimal-linker's linker
+            continue
+        if getattr(args, name, None) is not None:
+            overridden.append(name)
+        elif not (name == "seed" and sweep and (seeds_given or case.seeds is not None)):
+            setattr(args, name, value)
+    if sweep and case.seeds is not None and not seeds_given:
+        args.seed_list = ",".join(str(s) for s in case.seeds)
+    case.overridden = sorted(case.overridden + overridden)
+    return case
+
+
 def _default_text(f) -> str:
     """'default 0.034 (1.95°)': the default, in degrees too for an angle; how a derived one
     is worked out."""
@@ -70,19 +127,24 @@ def params_from(args) -> dict:
     """The parameters given on the command line; an outline FILE is read into its points."""
     out = {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
            if getattr(args, f.name, None) is not None}
-    if "core_outline" in out:
+    if isinstance(out.get("core_outline"), str):  # a case file may give the points inline
         text = out["core_outline"]
         out["core_outline"] = (None if text.strip().lower() in P.DERIVED_WORDS
                                else P.read_outline(text))
     return out
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="headless.py", description="FibrilFit: fit tethered globular domains "
+def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
+    parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)
+    add_case_option(run)
+    run.add_argument("--save-case", metavar="FILE.toml",
+                     help="write this run's case (every parameter, and the --case metadata)")
+    run.add_argument("--envelope-plot", metavar="PATH.png",
+                     help="draw the radial density of the domain centres (needs matplotlib)")
     add_structure_options(run)
     run.add_argument("--json", metavar="PATH", help="write the result as JSON")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
@@ -102,6 +164,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
+    add_case_option(sweep)
     add_structure_options(sweep)
     from .sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
@@ -110,6 +173,7 @@ def build_parser() -> argparse.ArgumentParser:
                                "accommodated layout, searched with restarts (protocol inflate "
                                "unless --protocol says otherwise)")
     add_param_options(minimal)
+    add_case_option(minimal)
     add_structure_options(minimal)
     for action in minimal._actions:
         if action.dest == "globule_diameter":
@@ -119,13 +183,15 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES}
+OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES,
+           "save_case": cases.SUFFIXES, "envelope_plot": (".png",)}
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     argv = sys.argv[1:] if argv is None else argv
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(prog).parse_args(argv)
+        args.loaded_case = apply_case(args, argv)
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, output.OutputError, export_options.OptionError,
             StructureError) as exc:
@@ -148,26 +214,48 @@ def progress_printer(frames: int, every: int = 25):
     return on_frame
 
 
+def fresh_scene() -> None:
+    """An empty factory scene to build in, unless a file of the user's is open. Run by the
+    enabled extension (`blender -c fibrilfit`), the preferences stay: resetting them would
+    disable FibrilFit itself in the middle of its own command."""
+    import bpy
+    if bpy.data.filepath:
+        return
+    if __package__ in bpy.context.preferences.addons:
+        bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    else:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+
+
 def command_run(args) -> int:
     from . import pipeline, report
     from .search import command as search_command
     search_command.check_restart_options(args)
+    P.refuse_beside_periodic(params_from(args))
     values, structure_block = params_and_structure(args, params_from(args))
     p = P.make_params(force=args.force, **values)
+    if args.envelope_plot:
+        from .exports import envelope_plot
+        envelope_plot.available(args.stop_after)
     look = export_options.render_options(args)
+    pdb_images = export_options.pdb_images(args, p)
     if args.pdb:
         export_options.pdb_fits(p)
+    step = export_options.movie_step(args)
     paths = {key: output.check_writable(option(key), getattr(args, key), suffixes)
              for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    if "movie" in paths:
+        from .exports import movie  # imports bpy: only when a movie is asked for
+        movie.refuse_unsupported(paths["movie"], args.stop_after)
     restarts = None
     if args.restarts is not None:  # the seeds run on the executor; the best is run again here
         restarts = search_command.run_restarts(args, p, pipeline.version())
         p = p.replace(seed=restarts["best_seed"])
     import bpy
-    if not bpy.data.filepath:  # no file of the user's is open: start from an empty scene
-        bpy.ops.wm.read_factory_settings(use_empty=True)
+    fresh_scene()
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.bake_frames()) if args.progress else None)
+                          on_frame=progress_printer(p.bake_frames() * (p.image_updates if p.periodic else 1))
+                          if args.progress else None)
     if structure_block:
         result["structure"] = structure_block
     if restarts is not None:
@@ -175,6 +263,9 @@ def command_run(args) -> int:
         restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
             best.get("max_bond_stretch") == result.get("max_bond_stretch")
         result["restarts"] = restarts
+    if args.loaded_case is not None:
+        result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
+                                                   structure_options(args))
     from .exports import writers
     scene, problems = bpy.context.scene, []
     if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
@@ -182,15 +273,27 @@ def command_run(args) -> int:
                                        writers.prepare, scene, result, aspect=look["aspect"]))
     if "pdb" in paths:
         problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
-                                       result, paths["pdb"], args.pdb_frames))
+                                       result, paths["pdb"], args.pdb_frames, pdb_images))
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])
+    if "save_case" in paths:
+        cases.save(paths["save_case"], result.get("case")
+                   or cases.Case({}, {}).resolved(p, structure=structure_options(args)))
+    if "envelope_plot" in paths and "envelope" in result:
+        problems.append(writers.export(result, "envelope_plot", "--envelope-plot",
+                                       envelope_plot.write, result, paths["envelope_plot"]))
     if "json" in paths:
         output.write_json(paths["json"], result)
     if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
         problems.append(writers.export(result, "render", "--render", writers.write_render,
                                        scene, result, paths["render"], look))
+        if "json" in paths:
+            output.write_json(paths["json"], result)
+    if "movie" in paths:  # a movie of the whole bake: the slowest, so last
+        problems.append(writers.export(result, "movie", "--movie", writers.write_movie, scene,
+                                       result, paths["movie"], step=step, size=look["size"],
+                                       progress=not args.quiet))
         if "json" in paths:
             output.write_json(paths["json"], result)
     if restarts is not None:

@@ -9,9 +9,15 @@ def _pct(x: float) -> str:
 
 def summary(r: dict, quiet: bool = False) -> str:
     p = r["params"]
+    size = (f"periodic cell of {p['periodic']} layers (an infinite fibril)" if p.get("periodic")
+            else f"{p['layers']} layers")
     head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
-            f"{p['layers']} layers, linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
+            f"{size}"
+            + (f" × {p['protofilaments']} protofilaments" if p.get("protofilaments", 1) > 1
+               else "")
+            + f", linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
             f"seed {r['seed']}")
+    head = "\n".join([head, *_case_lines(r.get("case"))])
     if "verdict" not in r:
         return head + f"\nstopped after {r['stage']}; no verdict"
     verdict = f"verdict: {r['verdict']}"
@@ -52,7 +58,22 @@ def summary(r: dict, quiet: bool = False) -> str:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    if r.get("periodic"):
+        per, lag = r["periodic"], r.get("image_lag") or {}
+        lines.append(
+            f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
+            f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
+            f"pairs counted once, with images up to {per['check_cells']} cells above "
+            f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
+            f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
+            + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
+               if lag else ""))
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
+    env = r.get("envelope") or {}
+    if env.get("n"):
+        lines.append(f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; "
+                     f"95 % within {env['r95']:.1f} Å), outer diameter "
+                     f"{env['outer_diameter']:.0f} Å")
     lines += _export_lines(r)
     if r["accommodated"]:
         lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "
@@ -67,6 +88,20 @@ def summary(r: dict, quiet: bool = False) -> str:
                      "that no clash-free layout exists: one bake is one random search, not an "
                      "exhaustive one. Sweep seeds to see how often one is found.")
     return "\n".join(lines)
+
+
+def _case_lines(case: dict | None) -> list[str]:
+    """With --case: which case, and which of its numbers are estimates or were overridden."""
+    if not case:
+        return []
+    name = case.get("name") or case.get("file", "")
+    ref = case.get("doi") or case.get("pdb")
+    line = f"case: {name}" + (f" ({ref})" if ref else "")
+    if case.get("estimates"):
+        line += f"; estimates: {', '.join(case['estimates'])}"
+    if case.get("overridden"):
+        line += f"; set on the command line: {', '.join(case['overridden'])}"
+    return [line]
 
 
 def _export_lines(r: dict) -> list[str]:

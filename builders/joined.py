@@ -10,7 +10,7 @@ import numpy as np
 
 from ..analysis.clashes import mesh_arrays
 from ..analysis.verdict import world_matrices
-from .scene import LAYER, TAG, is_ours, tag
+from .scene import LAYER, PROTOFILAMENT, TAG, is_ours, tag
 
 ROLE = "joined"
 
@@ -18,7 +18,8 @@ ROLE = "joined"
 def join_globules(model) -> bpy.types.Object:
     """Replace any earlier joined copy with the globules, joined in world space as they stand now.
 
-    Each face carries the integer attribute "fibrilfit_layer", the layer of its globule.
+    Each face carries the integer attributes "fibrilfit_layer" and "fibrilfit_protofilament",
+    the layer and protofilament of its globule.
     """
     remove_joined(model)
     globules = model.globules
@@ -26,6 +27,9 @@ def join_globules(model) -> bpy.types.Object:
     layers = np.repeat(np.array([ob[LAYER] for ob in globules], dtype=np.int32),
                        len(globules[0].data.polygons))
     mesh.attributes.new(LAYER, "INT", "FACE").data.foreach_set("value", layers)
+    pfs = np.repeat(np.array([ob.get(PROTOFILAMENT, 0) for ob in globules], dtype=np.int32),
+                    len(globules[0].data.polygons))
+    mesh.attributes.new(PROTOFILAMENT, "INT", "FACE").data.foreach_set("value", pfs)
     ob = tag(bpy.data.objects.new("FibrilFit joined globules", mesh), ROLE)
     model.root.objects.link(ob)
     return ob

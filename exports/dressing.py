@@ -196,6 +196,14 @@ def view_azimuth(model) -> float:
     centres = np.array([ob.matrix_world.translation for ob in model.globules], dtype=float)
     gx, gy = centres[:, :2].mean(axis=0) if len(centres) else (1.0, 0.0)
     towards = math.atan2(gy, gx) if math.hypot(gx, gy) > 1e-6 else 0.0
+    if model.params.protofilaments > 1 and len(centres) > 1:
+        # Globules all round the axis (protofilaments): their mean says little. Look across the
+        # direction they spread most, so the protofilaments stand side by side, not one behind
+        # the other.
+        xy = centres[:, :2] - centres[:, :2].mean(axis=0)
+        spread = np.linalg.eigh(xy.T @ xy)[1][:, -1]
+        if math.hypot(gx, gy) < 0.25 * float(np.sqrt((xy ** 2).sum(axis=1).mean())):
+            towards = math.atan2(spread[1], spread[0])
     return towards - math.pi / 2 + TURN
 
 

@@ -2,17 +2,20 @@
 
     --pdb PATH [--pdb-frames last|all]
     --render PATH.png [--render-size WxH] [--render-samples N] [--render-engine cycles|workbench]
+    --movie PATH.mp4|PATH.gif [--movie-step K]
 """
 from __future__ import annotations
 
 import argparse
 import re
 
-SUFFIXES = {"pdb": (".pdb",), "render": (".png",)}
+MOVIE_FORMATS = (".mp4", ".gif")
+SUFFIXES = {"pdb": (".pdb",), "render": (".png",), "movie": MOVIE_FORMATS}
 ENGINES = ("cycles", "workbench")     # exports.render.ENGINES, without importing bpy
 SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
 DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8
 PDB_STEP = 50                        # exports.pdb.KEYFRAME_STEP
+MOVIE_STEP, MOVIE_STEP_RANGE = 5, (1, 10000)
 
 
 class OptionError(ValueError):
@@ -28,6 +31,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                        help=f"'last': the final frame; 'all': a multi-model PDB with frames 1, "
                             f"{1 + PDB_STEP}, {1 + 2 * PDB_STEP}, ... and the last baked frame "
                             f"(default last)")
+    group.add_argument("--pdb-images", metavar="N", type=int, default=0,
+                       help="with --periodic: add the cell's images in the N cells below and "
+                            "above as extra chains, after the cell's own (default 0: the cell)")
     group.add_argument("--render", metavar="PATH.png",
                        help="render the final frame to a PNG (clashing globules red)")
     group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,
@@ -37,6 +43,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--render-engine", choices=ENGINES, default="cycles",
                        help="cycles (CPU, any machine) or workbench (faster; needs a software "
                             "or hardware OpenGL context) (default cycles)")
+    group.add_argument("--movie", metavar="PATH.mp4|PATH.gif",
+                       help="render the bake as a movie (Workbench, --render-size; clashing "
+                            "globules red on the last frame, held for a second), with a "
+                            "progress bar on stderr")
+    group.add_argument("--movie-step", metavar="K", default=str(MOVIE_STEP),
+                       help=f"put every K-th baked frame in the movie, and the last "
+                            f"(default {MOVIE_STEP})")
 
 
 def render_options(args) -> dict:
@@ -57,6 +70,31 @@ def render_options(args) -> dict:
     width, height = int(m.group(1)), int(m.group(2))
     return {"size": (width, height), "aspect": width / height, "samples": samples,
             "engine": args.render_engine}
+
+
+def pdb_images(args, p) -> int:
+    """--pdb-images, checked: only with --periodic and --pdb, from 0 to 10 cells."""
+    n = args.pdb_images
+    if n and not p.periodic:
+        raise OptionError("--pdb-images: only with --periodic (a fibril with ends has no images)")
+    if n and not args.pdb:
+        raise OptionError("--pdb-images: only with --pdb")
+    if not 0 <= n <= 10:
+        raise OptionError(f"--pdb-images: must be an integer from 0 to 10 cells (got {n})")
+    return n
+
+
+def movie_step(args) -> int:
+    """Validated --movie-step. Raises OptionError naming the option."""
+    lo, hi = MOVIE_STEP_RANGE
+    try:
+        step = int(str(args.movie_step))
+    except ValueError:
+        step = None
+    if step is None or not lo <= step <= hi:
+        raise OptionError(f"--movie-step: must be an integer from {lo} to {hi} "
+                          f"(got {args.movie_step!r})")
+    return step
 
 
 def pdb_fits(p) -> None:

@@ -6,7 +6,7 @@ import bpy
 
 from ..analysis import clashing_layers
 from ..builders import find_model
-from . import dressing, pdb, render
+from . import dressing, movie, pdb, render
 
 
 def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> None:
@@ -17,14 +17,15 @@ def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> 
         dressing.dress(scene, model, clashing_layers(result), aspect=aspect)
 
 
-def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last") -> dict:
+def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last",
+              images: int = 0) -> dict:
     """--pdb: the last baked frame, or with frames='all' the tutorial's keyframes too."""
     model = find_model(scene)
     if model is None:
         raise pdb.PdbError(f"scene '{scene.name}' holds no FibrilFit model")
     last = int(result.get("frames_simulated") or scene.frame_current)
     wanted = pdb.keyframes(last) if frames == "all" else [last]
-    return pdb.write_pdb(path, model, scene, frames=wanted, result=result)
+    return pdb.write_pdb(path, model, scene, frames=wanted, result=result, images=images)
 
 
 def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> dict:
@@ -32,6 +33,11 @@ def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> d
     return render.render_png(scene, path, clashing=clashing_layers(result),
                              size=options["size"], samples=options["samples"],
                              engine=options["engine"])
+
+
+def write_movie(scene: bpy.types.Scene, result: dict, path, **options) -> dict:
+    """--movie: the bake, every k-th frame, clashing globules red at the end."""
+    return movie.write_movie(scene, result, path, **options)
 
 
 def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | None:

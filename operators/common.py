@@ -61,6 +61,12 @@ def panel_params(context) -> P.Params:
 
 
 def _show(value) -> str:
+    if value is None:
+        return "its default"
+    if isinstance(value, tuple) and value and isinstance(value[0], (tuple, list)):
+        return f"an outline of {len(value)} points"
+    if isinstance(value, str):
+        return repr(value[:30])
     if isinstance(value, tuple):
         return " × ".join(f"{v:g}" for v in value)
     return f"{value:g}" if isinstance(value, float) else str(value)

@@ -51,6 +51,7 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         row.scale_y = 1.3
         row.operator("fibrilfit.run_all", icon="PLAY")
         row.operator("fibrilfit.clear", icon="TRASH")
+        _draw_case(layout, s)
         stage = model_stage(scene)
         text, icon = STATUS[stage]
         layout.label(text=text, icon=icon)
@@ -59,6 +60,22 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         if stage == "checked" and s.verdict:
             _draw_result(layout.box(), s)
         layout.label(text="Lengths in Å: 1 Blender unit = 1 Å")
+
+
+def _draw_case(layout, s):
+    row = layout.row(align=True)
+    row.operator("fibrilfit.load_case", icon="FILE_FOLDER")
+    row.operator("fibrilfit.save_case", icon="FILE_TICK")
+    name = _case_name(s)
+    if name:
+        layout.label(text=f"Case: {name}", icon="BOOKMARKS")
+
+
+def _case_name(s) -> str:
+    try:
+        return json.loads(s.case_metadata or "{}").get("name", "")
+    except ValueError:
+        return ""
 
 
 def _draw_changes(layout, s, root, stage):
@@ -93,6 +110,8 @@ class _Section(_Sidebar):
         layout.use_property_decorate = False
         col = layout.column()
         for field in properties.fields_in(self.section):
+            if field.name == "periodic":  # its checkbox, then M (0 = auto)
+                col.prop(s, "use_periodic")
             if field.metadata["kind"] == "points":
                 _draw_outline(col, s, field)
                 continue
@@ -104,6 +123,10 @@ class _Section(_Sidebar):
                 row.prop(s, field.name)
                 continue
             row = col.row()
+            if field.name == "periodic":
+                row.active = s.use_periodic
+            elif field.name in P.NOT_WITH_PERIODIC:
+                row.active = not s.use_periodic
             # settle_speed, settle_frames... only matter when the bool field they extend is on
             switch = field.name.split("_")[0]
             if switch != field.name and isinstance(getattr(s, switch, None), bool):

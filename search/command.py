@@ -124,7 +124,10 @@ def restarts_line(s: dict) -> str:
             f"(95 % Wilson {low:.2f}-{high:.2f})"
             + (f", {s['failed']} failed" if s["failed"] else "")
             + (", stopped at the first fit" if s["stop_on_fit"] and s["accommodated"] else "")
-            + f"; best layout: seed {s['best_seed']}")
+            + f"; best layout: seed {s['best_seed']}"
+            + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
+               f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "
+               f"seeds" if s.get("outer_diameter") else ""))
 
 
 # ---- minimal-linker ----------------------------------------------------------------------------

@@ -7,6 +7,7 @@ gave the best layout.
 from __future__ import annotations
 
 import pathlib
+import statistics
 
 from ..sweep import runner
 from ..sweep.grid import Point
@@ -61,6 +62,8 @@ def summarise(records: list[dict]) -> dict:
     fits = sum(bool(r["accommodated"]) for r in ok)
     low, high = wilson(fits, len(ok)) if ok else (0.0, 1.0)
     best = min(records, key=badness) if records else None
+    outer = [r["envelope"]["outer_diameter"] for r in ok
+             if (r.get("envelope") or {}).get("outer_diameter") is not None]
     return {
         "restarts": len(ok),
         "failed": len(records) - len(ok),
@@ -72,7 +75,11 @@ def summarise(records: list[dict]) -> dict:
                   **({"accommodated": r["accommodated"], "verdict": r["verdict"],
                       "clashing_pairs": len(r["clashing_pairs"]),
                       "max_bond_stretch": r["max_bond_stretch"],
-                      "frames_simulated": r["frames_simulated"]}
+                      "frames_simulated": r["frames_simulated"],
+                      "outer_diameter": (r.get("envelope") or {}).get("outer_diameter")}
                      if r.get("status") == "ok" else {"error": r.get("error")})}
                  for r in records],
+        # the envelope's outer diameter over the seeds, Å (README, The envelope)
+        "outer_diameter": ({"median": statistics.median(outer), "min": min(outer),
+                            "max": max(outer)} if outer else None),
     }

@@ -21,6 +21,7 @@ METRICS = {
     "clash": "fraction of seeds ending with intersecting globules",
     "stretch": "median worst bond stretch (fraction)",
     "frames": "median frames baked",
+    "outer_diameter": "median envelope outer diameter over the seeds, Å",
     "n": "runs with a verdict",
     "failed": "runs that failed twice",
 }

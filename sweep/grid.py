@@ -131,8 +131,11 @@ def specs_from(args) -> dict:
         elif f.name == "slab" or f.metadata["size"]:  # one spec per coordinate: their product
             axes = [parse_spec(f"{f.name} {axis}", v) for axis, v in zip("XYZ", value)]
             specs[f.name] = [" ".join(c) for c in itertools.product(*axes)]
+        elif f.metadata["kind"] == "points" and isinstance(value, (list, tuple)):
+            specs[f.name] = [json.dumps(value)]  # inline points (from a case file)
         elif f.metadata["kind"] == "points":  # outline files (or 'box'), comma-separated
             specs[f.name] = [item.strip() for item in str(value).split(",")]
         else:
             specs[f.name] = parse_spec(f.name, value)
+    P.refuse_beside_periodic(specs)
     return specs

@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 
 from .. import output, params as P
-from .summary import fmt_value, varied
+from .summary import fmt_value, order_key, varied
 
 MAX_LINES = 10
 MARKERS = "os^Dv<>p"  # lines that coincide stay distinguishable
@@ -56,8 +56,8 @@ def _lines(ax, rows, x: str, series: list[str], target: float) -> None:
 
 
 def _heatmap(fig, ax, rows, x: str, y: str) -> None:
-    xs = sorted({json.dumps(r.values[x]) for r in rows}, key=lambda v: json.loads(v))
-    ys = sorted({json.dumps(r.values[y]) for r in rows}, key=lambda v: json.loads(v))
+    xs = sorted({json.dumps(r.values[x]) for r in rows}, key=lambda v: order_key(json.loads(v)))
+    ys = sorted({json.dumps(r.values[y]) for r in rows}, key=lambda v: order_key(json.loads(v)))
     grid = [[float("nan")] * len(xs) for _ in ys]
     for r in rows:
         if r.n:

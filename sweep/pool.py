@@ -11,6 +11,7 @@ import collections
 import json
 import os
 import queue
+import re
 import signal
 import subprocess
 import sys
@@ -28,6 +29,16 @@ def worker_command(root: str, blender_binary: str = "") -> list[str]:
         return [blender_binary, "-b", "--factory-startup", "--python-exit-code", "1",
                 "-P", script, "--", str(root)]
     return [sys.executable, script, str(root)]
+
+
+# Blender 5.2 logs informational lines on stderr as it starts, e.g.
+# "00:00.085  color_management | Using OCIO=.../config.ocio": they never say why a worker died.
+_BLENDER_INFO = re.compile(r"^\d+:\d\d\.\d+\s+[\w.]+\s+\|\s(?!.*\b(?:ERROR|FATAL|WARNING)\b)")
+
+
+def last_words(lines) -> str:
+    """The last line of a worker's stderr worth quoting: not blank, not Blender's info log."""
+    return next((t for t in reversed(lines) if t.strip() and not _BLENDER_INFO.match(t)), "")
 
 
 def exit_reason(returncode: int) -> str:
@@ -102,7 +113,7 @@ class WorkerProcess:
         """The error recorded for the job this worker was running when it exited."""
         if self.timed_out is not None:
             return f"timed out after {self.timed_out:g} s (worker pid {self.pid} stopped)"
-        last = next((t for t in reversed(self.tail) if t.strip()), "")
+        last = last_words(self.tail)
         return f"worker pid {self.pid} {exit_reason(returncode)}" + (f": {last}" if last else "")
 
     def close(self, grace: float = 5.0) -> None:

@@ -69,7 +69,7 @@ def done_keys(records: list[dict]) -> set[str]:
 
 
 def _record(point: Point, job: dict, reply: dict, errors: list[str], version: str,
-            extra: dict | None = None) -> dict:
+            extra: dict | None = None, case: dict | None = None) -> dict:
     if reply["ok"]:
         record = dict(reply["result"])
         record.update(point=point.point, status="ok", attempts=job["attempt"],
@@ -81,6 +81,8 @@ def _record(point: Point, job: dict, reply: dict, errors: list[str], version: st
     if errors:
         record["errors"] = errors  # every failed attempt, oldest first
     record.update(extra or {})
+    if case is not None:  # the --case, resolved for this point
+        record["case"] = {**case, "params": point.params}
     return record
 
 
@@ -95,9 +97,11 @@ class Counts:
 
 
 def run(executor, points: list[Point], results_path, *, force: bool = False,
-        progress: bool = True, version: str = "", extra: dict | None = None) -> Counts:
+        progress: bool = True, version: str = "", extra: dict | None = None,
+        case: dict | None = None) -> Counts:
     """Run every point on `executor` (already entered); append each record as it finishes,
-    with `extra` (e.g. the structure block) in every record."""
+    with `extra` (e.g. the structure block) in every record, and `case` (the --case,
+    Case.resolved) with the point's params."""
     counts = Counts()
     errors: dict[int, list[str]] = {i: [] for i in range(len(points))}
     bar = None
@@ -119,7 +123,7 @@ def run(executor, points: list[Point], results_path, *, force: bool = False,
                     if bar is not None:
                         bar.set_postfix_str(str(counts))
                     continue
-            record = _record(points[i], job, reply, errors[i], version, extra)
+            record = _record(points[i], job, reply, errors[i], version, extra, case)
             output.append_line(results_path, json.dumps(record))
             if reply["ok"]:
                 counts.ok += 1

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import hashlib
 import io
 import json
 import statistics
@@ -32,6 +33,7 @@ class Row:
     clashes: int = 0
     stretches: list = dataclasses.field(default_factory=list)
     frames: list = dataclasses.field(default_factory=list)
+    diameters: list = dataclasses.field(default_factory=list)  # envelope outer_diameter, Å
 
     @property
     def fraction(self) -> float | None:
@@ -53,13 +55,19 @@ class Row:
     def median_frames(self) -> float | None:
         return statistics.median(self.frames) if self.frames else None
 
+    @property
+    def diameter(self) -> tuple[float, float, float] | tuple[None, None, None]:
+        """The envelope's outer diameter over the seeds: median, min, max (Å)."""
+        d = self.diameters
+        return (statistics.median(d), min(d), max(d)) if d else (None, None, None)
+
     def metric(self, name: str):
         """The value a --require condition names (see gate.METRICS)."""
         low, high = self.interval
         return {"accommodated": self.fraction, "accommodated_low": low,
                 "accommodated_high": high, "clash": self.clash_fraction,
                 "stretch": self.median_stretch, "frames": self.median_frames,
-                "n": self.n, "failed": self.failed}[name]
+                "n": self.n, "failed": self.failed, "outer_diameter": self.diameter[0]}[name]
 
 
 def _group_key(params: dict) -> str:
@@ -80,12 +88,26 @@ def rows(records: list[dict]) -> list[Row]:
         row.clashes += r.get("verdict") == "intersection"
         row.stretches.append(r["max_bond_stretch"])
         row.frames.append(r["frames_simulated"])
+        outer = (r.get("envelope") or {}).get("outer_diameter")
+        if outer is not None:
+            row.diameters.append(outer)
     return sorted(groups.values(), key=lambda row: _sort_key(row.values))
 
 
+def order_key(value):
+    """Sorts any parameter value: None (a derived default) first, then numbers, then lists
+    (sizes, anchors), then outlines (lists of points), so mixed axes never compare a list to None."""
+    if value is None:
+        return (0, 0)
+    if isinstance(value, list):
+        if value and isinstance(value[0], list):
+            return (3, json.dumps(value))
+        return (2, tuple(value))
+    return (1, value)
+
+
 def _sort_key(values: dict):
-    return tuple(tuple(v) if isinstance(v, list) else (v if v is not None else 0)
-                 for _, v in sorted(values.items()))
+    return tuple(order_key(v) for _, v in sorted(values.items()))
 
 
 def varied(rows_: list[Row]) -> list[str]:
@@ -104,6 +126,11 @@ def columns(rows_: list[Row]) -> list[str]:
 
 
 def fmt_value(value) -> str:
+    if value is None:
+        return "auto"  # a derived default: 2π/K, the slab's box, the tutorial's anchor
+    if isinstance(value, list) and value and isinstance(value[0], list):  # a core outline
+        digest = hashlib.sha1(json.dumps(value).encode()).hexdigest()[:6]
+        return f"{len(value)}-point outline {digest}"
     if isinstance(value, list):
         return "x".join(f"{v:g}" for v in value)
     if isinstance(value, float):
@@ -116,7 +143,8 @@ def _num(x, digits: int) -> str:
 
 
 CSV_FIELDS = ("n", "failed", "accommodated", "accommodated_fraction", "wilson95_low",
-              "wilson95_high", "clash_fraction", "median_stretch", "median_frames")
+              "wilson95_high", "clash_fraction", "median_stretch", "median_frames",
+              "outer_diameter_median", "outer_diameter_min", "outer_diameter_max")
 
 
 def csv_text(rows_: list[Row]) -> str:
@@ -129,7 +157,8 @@ def csv_text(rows_: list[Row]) -> str:
         writer.writerow([fmt_value(r.values[n]) for n in names] + [
             r.n, r.failed, r.accommodated, _num(r.fraction, 4), _num(low, 4), _num(high, 4),
             _num(r.clash_fraction, 4), _num(r.median_stretch, 6),
-            "" if r.median_frames is None else f"{r.median_frames:g}"])
+            "" if r.median_frames is None else f"{r.median_frames:g}",
+            *(_num(d, 1) for d in r.diameter)])
     return buf.getvalue()
 
 
@@ -180,9 +209,15 @@ def minimal_lines(rows_: list[Row], target: float) -> list[str]:
     return lines
 
 
+def _diameter_text(r: Row) -> str:
+    mid, low, high = r.diameter
+    return "-" if mid is None else f"{mid:.0f} ({low:.0f}-{high:.0f})"
+
+
 def table(rows_: list[Row], target: float) -> str:
     names = columns(rows_)
-    head = names + ["n", "failed", "accommodated", "95 % CI", "clash", "stretch", "frames"]
+    head = names + ["n", "failed", "accommodated", "95 % CI", "clash", "stretch", "frames",
+                    "outer Å"]
     body = []
     for r in rows_:
         low, high = r.interval
@@ -190,11 +225,13 @@ def table(rows_: list[Row], target: float) -> str:
             str(r.n), str(r.failed), _num(r.fraction, 2) or "-",
             f"{low:.2f}-{high:.2f}" if r.n else "-", _num(r.clash_fraction, 2) or "-",
             _num(r.median_stretch, 3) or "-",
-            "-" if r.median_frames is None else f"{r.median_frames:g}"])
+            "-" if r.median_frames is None else f"{r.median_frames:g}",
+            _diameter_text(r)])
     widths = [max(len(h), *(len(b[i]) for b in body)) if body else len(h)
               for i, h in enumerate(head)]
     lines = ["  ".join(h.rjust(w) for h, w in zip(head, widths))]
     lines += ["  ".join(c.rjust(w) for c, w in zip(b, widths)) for b in body]
     lines += ["clash = fraction of seeds ending with intersecting globules; stretch = median of "
-              "the worst bond stretch (fraction); frames = median frames baked.", MEANING, ""]
+              "the worst bond stretch (fraction); frames = median frames baked; outer = the envelope's "
+              "outer diameter, median (range) over the seeds.", MEANING, ""]
     return "\n".join(lines + minimal_lines(rows_, target))

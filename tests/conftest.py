@@ -8,8 +8,16 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))  # helpers.py
 
+import os  # noqa: E402
+
 import bpy  # noqa: E402  (first: it makes mathutils and bmesh importable)
 import _load  # noqa: E402
+
+# bpy 5.2 puts its own OCIO=<its config> into the process environment (os.environ does not show
+# it), and a child bpy or Blender that finds OCIO set logs "color_management | Using OCIO=..."
+# on stdout. Subprocesses started by the tests get the environment a user's shell would give.
+if bpy.app.version >= (5, 2, 0) and "OCIO" not in os.environ:
+    os.unsetenv("OCIO")
 
 fibrilfit = _load.load(ROOT)
 

@@ -4,12 +4,18 @@
 
 Installs the zip into the temporary user folder with Blender's own operator, enables it, runs
 every operator of the installed copy in the startup scene (whose Cube, Light and Camera stand for
-the user's objects), reads the fibril file (if given) with the gemmi of the extension's wheel,
-and prints one line "RESULT <json>" of what it saw. Asserts nothing itself.
+the user's objects), then its command line (`blender -c fibrilfit`, through the callback that
+register() hands to bpy.utils.register_cli_command), reads the fibril file (if given) with the
+gemmi of the extension's wheel, and prints one line "RESULT <json>" of what it saw. Asserts
+nothing itself.
 """
+import contextlib
+import io
 import json
 import os
+import pathlib
 import sys
+import tempfile
 
 import bpy
 import addon_utils  # noqa: E402  (importable once bpy is)
@@ -22,7 +28,33 @@ def fibrilfit_types():
     return sorted(name for name in dir(bpy.types) if name.startswith("FIBRILFIT_"))
 
 
+CLI_COMMANDS = []   # (id, callback) for every register_cli_command call
+CLI_RELEASED = []   # unregister_cli_command calls
+
+
+def spy_on_cli_commands():
+    register, unregister = bpy.utils.register_cli_command, bpy.utils.unregister_cli_command
+
+    def spy_register(id_, execute):
+        CLI_COMMANDS.append((id_, execute))
+        return register(id_, execute)
+
+    def spy_unregister(handle):
+        CLI_RELEASED.append(handle)
+        return unregister(handle)
+    bpy.utils.register_cli_command = spy_register
+    bpy.utils.unregister_cli_command = spy_unregister
+
+
+def run_command(execute, args) -> dict:
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()) as printed:
+        code = execute(args)
+    return {"code": code, "stdout": printed.getvalue(), "stderr": err.getvalue()}
+
+
 def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
+    spy_on_cli_commands()
     out = {}
     out["install"] = sorted(bpy.ops.extensions.package_install_files(
         filepath=zip_path, repo="user_default", enable_on_install=True))
@@ -86,6 +118,24 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
         out["gemmi_file"] = gemmi.__file__
         g = ff.structure.measure_fibril(fibril)
         out["fibril"] = [g.rise, g.twist, g.protofilaments]
+    # last: the command resets the scene, and its sweep's workers import what they need
+    out["cli_registered"] = [[id_, f"{fn.__module__}.{fn.__name__}"] for id_, fn in CLI_COMMANDS]
+    out["cli_released"] = len(CLI_RELEASED)
+    execute = CLI_COMMANDS[-1][1]  # the enabled copy's
+    options = [a for k, v in values.items() for a in (f"--{k.replace('_', '-')}", str(v))]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp, "r.json")
+        out["cli_run"] = run_command(execute, ["run", *options, "--json", str(path)])
+        out["cli_result"] = json.loads(path.read_text()) if path.exists() else None
+    out["cli_bad"] = run_command(execute, ["run", "--layers", "0"])
+    sweep_options = [a for a in options if a not in ("--seed", str(values.get("seed")))]
+    with tempfile.TemporaryDirectory() as tmp:  # workers load the installed copy's files
+        out["cli_sweep"] = run_command(execute, [
+            "sweep", *sweep_options, "--seed-list", str(values["seed"]), "--workers", "1",
+            "--no-plot", "--quiet", "--out", tmp])
+        lines = pathlib.Path(tmp, "results.jsonl").read_text().splitlines()
+        out["cli_sweep_results"] = [json.loads(line) for line in lines]
+    out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     return out
 
 

@@ -84,3 +84,20 @@ def test_the_linker_check_covers_every_chain_of_every_protofilament(scene, layer
     assert result["max_bond_stretch"] == pytest.approx(2.0 / p.rest_lengths()[-1], rel=1e-3)
     assert not result["linker_intact"]
     assert result["inside_core"] == []
+
+
+def test_a_periodic_cells_core_images_carry_the_solid_pieces_too(scene):
+    """An image of a COMPOUND core without the pieces would collide with nothing."""
+    from fibrilfit.builders.scene import TAG
+    p = P.make_params(layers=4, periodic=4, linker=3, globule_diameter=10, core_outline=U_CORE,
+                      anchor=(0, -1))
+    model = build_model(p, scene)
+    pieces = len(meshes.convex_pieces(U_CORE))
+    images = [ob for coll in model.root.children for ob in coll.objects
+              if ob.get(TAG) == "image_static" and ob.rigid_body.collision_shape == "COMPOUND"]
+    assert images
+    for image in images:
+        kids = [c for c in image.children if c.get(TAG) == "core_piece"]
+        assert len(kids) == pieces
+        assert all(c.rigid_body.collision_shape == "CONVEX_HULL" for c in kids)
+        assert all(c.name in scene.rigidbody_world.collection.objects for c in kids)

@@ -14,8 +14,8 @@ from helpers import ROOT
 SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
 VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
 # The repository's files that are not the extension (blender_manifest.toml excludes them).
-NOT_EXTENSION = {"tests", "bench", "tools", "docs", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
-                 "_load.py", "headless.py", "conftest.py", "Makefile", "pyproject.toml",
+NOT_EXTENSION = {"tests", "bench", "tools", "docs", "examples", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
+                 "headless.py", "conftest.py", "Makefile", "pyproject.toml",
                  "BENCHMARKS.md", ".gitignore"}
 
 
@@ -132,6 +132,31 @@ def test_disable_enable_three_times_without_error_or_leftover(installed):
     for off, on in installed["cycles"]:
         assert off == [[], False]
         assert on == [registered, True]
+
+
+def test_the_installed_command_line_runs_like_headless(installed):
+    """`blender -c fibrilfit ...`: the callback register() gave Blender, from the installed copy."""
+    module = "bl_ext.user_default.fibrilfit.entry.command"
+    assert installed["cli_registered"] == [["fibrilfit", module]] * 4  # install + 3 re-enables
+    assert installed["cli_released"] == 3                             # 3 disables
+    run = installed["cli_run"]
+    assert run["code"] == 0 and run["stderr"] == "" and "verdict:" in run["stdout"]
+    mine = {k: v for k, v in installed["cli_result"].items() if k != "timings_s"}
+    assert mine == installed["api_result"]
+    # the command reset the scene but not the preferences: FibrilFit is still enabled
+    assert installed["cli_enabled_after"] == installed["enabled"]
+    bad = installed["cli_bad"]
+    assert bad["code"] == 2 and bad["stdout"] == ""
+    assert bad["stderr"].startswith("fibrilfit: error: layers: ") and bad["stderr"].count("\n") == 1
+
+
+def test_the_installed_command_line_sweeps_with_the_installed_files(installed):
+    sweep = installed["cli_sweep"]
+    assert sweep["code"] == 0, sweep["stderr"]
+    (line,) = installed["cli_sweep_results"]
+    assert line["status"] == "ok"
+    for key in ("verdict", "gravity", "clashing_pairs", "max_bond_stretch", "params"):
+        assert line[key] == installed["api_result"][key], key
 
 
 def test_the_zip_carries_gemmi_wheels_for_every_platform_and_python(built_zip):

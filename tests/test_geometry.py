@@ -232,3 +232,30 @@ def test_a_bead_rests_in_the_notch_of_a_concave_mesh_core(scene, case):
 def test_a_convex_hull_would_fill_the_notch(scene):
     r = _bench("concave_core").probe("CONVEX_HULL", "falls into the notch from outside", frames=60)
     assert r["end_xyz"][1] > 11  # held on the hull's lid over the notch: why cores use MESH
+
+
+def test_protofilaments_have_their_own_colours_and_clashes_turn_red(scene):
+    from fibrilfit.builders.model import CLASH_COLOR, colour_globules, part_colour
+    model = build_model(P.make_params(layers=2, linker=2, **TWO_ONE), scene)
+    globules = [tuple(round(v, 4) for v in ob.color) for ob in model.globules]
+    beads = [tuple(round(v, 4) for v in c[1].color) for c in model.chain]
+    assert globules[0] == globules[2] != globules[1] == globules[3]
+    assert beads[0] == beads[2] != beads[1] == beads[3]
+    assert part_colour("globule", 0) == (0.7, 0.72, 0.7, 1.0)  # protofilament 0: the tutorial's
+    assert colour_globules(model, [1]) == [1]
+    shown = [tuple(ob.color) for ob in model.globules]
+    assert shown[1] == pytest.approx(CLASH_COLOR)
+    assert [s == pytest.approx(part_colour("globule", c % 2)) for c, s in enumerate(shown)] == [
+        True, False, True, True]
+
+
+def test_k2_scores_every_protofilament_of_the_scored_layers(scene):
+    p = P.make_params(layers=4, linker=2, frames=1, score_layers=1, **TWO_ONE)
+    r = pipeline.run(p, scene)
+    assert r["scored_layers"] == [1, 2]
+    assert [v is None for v in r["layer_clashes"]] == [True, False, False, True]
+    assert [v is None for v in r["chain_clashes"]] == [True, True, False, False, False, False,
+                                                       True, True]
+    layer, _ = P.chain_layers(p)
+    assert all(1 <= layer[i] <= 2 or 1 <= layer[j] <= 2 for i, j, _ in r["clashing_pairs"])
+    assert r["clashing_pairs"]  # frame 1: the overlapping start

@@ -119,3 +119,24 @@ def test_pdb_frames_are_the_baked_positions_and_the_bake_survives(scene, tmp_pat
     scene.frame_set(1)
     scene.frame_set(110)
     assert np.abs(current_positions(model) - final).max() < 1e-6
+
+
+def test_two_protofilaments_give_one_chain_per_molecule(tmp_path, scene):
+    """K = 2: chain n is layer n // 2, protofilament n % 2, as deposited fibrils name molecules;
+    gemmi reads it back; the REMARKs carry the outline and say how chains map."""
+    outline = [[-25, -11], [25, -11], [25, 11], [-25, 11]]
+    p = P.make_params(layers=3, linker=3, protofilaments=2, pf_rotation=3.1294, pf_rise=2.34,
+                      anchor=(26.75, 0), core_outline=outline, frames=3)
+    result = pipeline.run(p, scene)
+    path = tmp_path / "k2.pdb"
+    from fibrilfit.exports import writers
+    info = writers.write_pdb(scene, result, path)
+    assert info["atoms_per_model"] == 6 * 4
+    st = gemmi.read_structure(str(path))
+    assert [ch.name for ch in st[0]] == ["A", "B", "C", "D", "E", "F"]
+    pos = current_positions(pipeline.current_model(scene))
+    assert np.abs(coords(st[0], pos.shape) - pos).max() < 5e-4
+    remarks = "\n".join(st.raw_remarks)
+    assert "layer n // K, protofilament n % K" in remarks and "param protofilaments = 2" in remarks
+    assert "param core_outline = -25,-11 25,-11" in remarks.replace("\nREMARK 250 ", " ")
+    assert "FIBRILFIT COARSE-GRAINED FIBRIL, 3 LAYERS X 2 PROTOFILAMENTS" in path.read_text()

@@ -99,7 +99,8 @@ def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, 
     if status != "ok":
         return {"params": p, "seed": seed, "status": status, "error": "boom"}
     return {"params": p, "seed": seed, "status": "ok", "accommodated": accommodated,
-            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames}
+            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames,
+            "envelope": {"outer_diameter": 100.0 + 10 * seed}}
 
 
 SYNTHETIC = [
@@ -123,7 +124,9 @@ def test_summary_pools_seeds_per_grid_point():
     csv = summary.csv_text(rows).splitlines()
     assert csv[0].startswith("linker,globule_diameter,n,failed,accommodated,accommodated_fraction,"
                              "wilson95_low,wilson95_high,clash_fraction,median_stretch")
-    assert csv[3] == f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225"
+    assert csv[3] == (f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225,"
+                      f"105.0,100.0,110.0")  # the envelope's outer diameter: median, min, max
+    assert r6.metric("outer_diameter") == 105.0
     minimal = {m.group["globule_diameter"]: m for m in summary.minimal_linkers(rows, 0.95)}
     assert minimal[30.0].row is r6 and minimal[45.0].row is None and minimal[45.0].best is r6b
     text = summary.table(rows, 0.95)
@@ -381,7 +384,7 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert record["status"] == "failed" and record["attempts"] == 2
     assert record["error"].startswith("timed out after 0.2 s") and len(record["errors"]) == 2
     assert "requirement failed: failed==0" in cp.stdout
-    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,"
+    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,"
     # --retry-failed runs it again, replacing the failed line
     cp = run_cli("sweep", "--linker", "6", "--layers", "4", "--frames", "40", "--workers", "1",
                  "--out", str(out), "--resume", "--retry-failed", "--quiet")
@@ -402,3 +405,57 @@ def test_register_and_run_leave_the_sweep_dependencies_alone():
                         timeout=300, cwd=ROOT)
     assert cp.returncode == 0, cp.stderr
     assert "HEAVY []" in cp.stdout
+
+
+# ---- geometry axes (issue #14) --------------------------------------------------------------
+U_CORE = [[-20, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11], [-20, 11]]
+
+
+def test_geometry_parameters_are_sweep_axes(tmp_path):
+    (tmp_path / "u.json").write_text(json.dumps(U_CORE))
+    from fibrilfit import cli
+    args = cli.build_parser().parse_args([
+        "sweep", "--protofilaments", "1,2", "--pf-rotation", "auto,3.1294", "--pf-rise", "0:2:2",
+        "--core-outline", f"box,{tmp_path / 'u.json'}", "--anchor", "0,21.75", "-12.75",
+        "--out", str(tmp_path / "s")])
+    specs = grid.specs_from(args)
+    assert specs["protofilaments"] == ["1", "2"] and specs["pf_rise"] == ["0", "2"]
+    assert specs["anchor"] == ["0 -12.75", "21.75 -12.75"]
+    points = grid.build(specs, ["0"])
+    # every point is validated before any run: an anchor inside the U's base is refused
+    with pytest.raises(P.ParamError, match="^anchor: .*inside the core"):
+        grid.build({**specs, "anchor": ["0 -5"]}, ["0"])
+    seen = {(p.params["protofilaments"], p.params["pf_rotation"], p.params["pf_rise"],
+             p.params["core_outline"] is None, tuple(p.params["anchor"])) for p in points}
+    assert len(seen) == len(points) == 32
+    assert all(p.point["core_outline"] in (None, [[float(x), float(y)] for x, y in U_CORE])
+               for p in points)
+
+
+def test_summary_names_outlines_and_derived_values():
+    rows = summary.rows([
+        {"params": P.make_params(linker=6).to_dict(), "accommodated": True, "verdict": "successful",
+         "max_bond_stretch": 0.0, "frames_simulated": 100},
+        {"params": P.make_params(linker=6, core_outline=U_CORE, anchor=(0, -1)).to_dict(),
+         "accommodated": False, "verdict": "intersection", "max_bond_stretch": 0.0,
+         "frames_simulated": 100}])
+    assert [r.values["core_outline"] is None for r in rows] == [True, False]  # None sorts first
+    text = summary.table(rows, 0.95)
+    assert "8-point outline" in text and "auto" in text
+    assert summary.csv_text(rows).splitlines()[0].startswith("linker,globule_diameter,core_outline,")
+
+
+def test_a_sweep_over_protofilaments_runs(tmp_path):
+    (tmp_path / "box.json").write_text(json.dumps([[-20, -11], [20, -11], [20, 11], [-20, 11]]))
+    out = tmp_path / "s"
+    cp = run_cli("sweep", "--protofilaments", "1,2", "--core-outline",
+                 f"box,{tmp_path / 'box.json'}", "--layers", "2", "--frames", "5",
+                 "--workers", "1", "--quiet", "--out", str(out))
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert len(records) == 4 and all(r["status"] == "ok" for r in records)
+    got = {(r["point"]["protofilaments"], r["point"]["core_outline"] is None,
+            len(r["globule_centres"])) for r in records}
+    assert got == {(1, True, 2), (1, False, 2), (2, True, 4), (2, False, 4)}
+    csv = (out / "summary.csv").read_text().splitlines()
+    assert csv[0].startswith("linker,globule_diameter,protofilaments,core_outline,") and len(csv) == 5

@@ -486,9 +486,10 @@ def test_panels_draw_in_every_state(ui, scene):
         props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
         switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
         assert sorted(props) == sorted([f.name for f in P.fields() if f.metadata.get("ui", True)]
-                                       + switches)
+                                       + switches + ["use_periodic"])  # the cell's checkbox
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
+                                                    "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
                                                     "import_domain")}
@@ -516,3 +517,42 @@ def test_twist_shows_in_degrees(ui):
     ui.twist = math.radians(2.0)
     assert properties.read_params(ui).twist == pytest.approx(math.radians(2.0), rel=1e-6)
     assert bpy.utils.units.to_string("METRIC", "ROTATION", ui.twist).startswith("2")
+
+
+# ---- protofilaments, outline and anchor in the sidebar (issue #14) ---------------------------
+
+def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, scene, tmp_path):
+    ui.layers, ui.protofilaments, ui.frames = 3, 2, 10
+    ui.use_pf_rotation, ui.pf_rotation, ui.pf_rise = True, 3.1294, 2.34
+    run_steps(STEPS[:2])  # slab, then the anchor of every protofilament of layer 0
+    model = find_model(scene)
+    assert len(model.chain) == 2 and [len(c) for c in model.chain] == [1, 1]
+    run_steps(STEPS[2:])
+    model = find_model(scene)
+    assert len(model.chain) == 6 and len(model.slabs) == 3
+    assert stored_result(scene)["clashing_chains"] is not None
+    assert model.params.pf_rotation == pytest.approx(3.1294, abs=1e-6)
+    # the outline's file picker (run directly: a script gives the path)
+    bad = tmp_path / "bad.json"
+    bad.write_text("[[0, 0], [1, 1]]")
+    with pytest.raises(RuntimeError, match="core_outline: .*at least 3 points"):
+        run("load_outline", filepath=str(bad))
+    assert ui.core_outline == ""
+    good = tmp_path / "wide.json"
+    good.write_text(json.dumps([[-30, -11], [30, -11], [30, 11], [-30, 11]]))
+    assert run("load_outline", filepath=str(good)) == {"FINISHED"}
+    assert json.loads(ui.core_outline) == [[-30, -11], [30, -11], [30, 11], [-30, 11]]
+    # the default anchor (21.75, 0) is now inside the wider core: the build says so, naming it
+    with pytest.raises(RuntimeError, match="anchor: .*inside the core"):
+        run("run_all")
+    # with the anchor moved out, a bake of the old model refuses: the outline changed
+    ui.use_anchor, ui.anchor = True, (31.75, 0.0)
+    with pytest.raises(RuntimeError, match="core_outline changed from its default to an outline "
+                                           r"of 4 points \(and 1 more\)"):
+        run("bake")
+    assert run("run_all") == {"FINISHED"}
+    model = find_model(scene)
+    assert model.slabs[0].rigid_body.collision_shape == "MESH"
+    assert model.params.anchor == (31.75, 0.0)
+    assert run("clear_outline") == {"FINISHED"} and ui.core_outline == ""
+    assert properties.read_params(ui).core_outline is None

@@ -1,0 +1,206 @@
+"""`make validate`: run the gallery (examples/*.toml) and write the README's validation table.
+
+For every case: its seeds at the real linker (P(fit) = the accommodated fraction, with its 95 %
+Wilson interval, and the envelope's outer diameter over the seeds), then the minimal linker from
+`headless.py minimal-linker --case` (issue #13's walk with R restarts per length, protocol
+inflate unless the case sets one), searched up to the real linker or MAX_LINKER.
+Runs go through `headless.py sweep` (results kept in out/validate/, so running again resumes).
+A case that cannot run in this build (e.g. a parameter from an issue not merged yet) gets a row
+saying why. Nothing is filled in by hand.
+
+    python tools/validate.py [--out out/validate] [--workers 2] [--restarts 3] [--no-readme]
+                             [CASE.toml ...]
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import pathlib
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+import _load  # noqa: E402
+
+ff = _load.load(ROOT)
+cases, runner, summary, stats = (importlib.import_module(f"{ff.__name__}.{m}") for m in
+                                 ("cases", "sweep.runner", "sweep.summary", "sweep.stats"))
+wilson = stats.wilson
+
+MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
+START, END = "<!-- validation table: written by make validate -->", "<!-- end of validation table -->"
+
+
+def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
+    """Run `headless.py sweep --case` (resuming) and return its records."""
+    cmd = [sys.executable, str(ROOT / "headless.py"), "sweep", "--case", str(case_path),
+           "--out", str(out), "--workers", str(workers), "--quiet", "--no-plot", *extra]
+    if (out / "results.jsonl").exists():
+        cmd.append("--resume")
+    cp = subprocess.run(cmd, capture_output=True, text=True)
+    if cp.returncode not in (0, 1):
+        raise RuntimeError(cp.stderr.strip().splitlines()[-1] if cp.stderr.strip() else
+                           f"sweep exited {cp.returncode}")
+    records, _ = runner.read_lines(out / "results.jsonl")
+    return records
+
+
+def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int) -> dict:
+    """`headless.py minimal-linker --case` (issue #13's walk, protocol inflate unless the case
+    sets one), up to the real linker or MAX_LINKER."""
+    top = min(p.linker, MAX_LINKER)
+    cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
+           "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
+           "--workers", str(workers), "--quiet", "--no-plot"]
+    if (out / "results.jsonl").exists():
+        cmd.append("--resume")
+    cp = subprocess.run(cmd, capture_output=True, text=True)
+    if cp.returncode != 0:
+        last = cp.stderr.strip().splitlines()[-1] if cp.stderr.strip() else f"exit {cp.returncode}"
+        return {"status": f"minimal-linker failed: {last}"}
+    (row,) = json.loads((out / "minimal_linker.json").read_text(encoding="utf-8"))["rows"]
+    return {"row": row, "max": top, "restarts": restarts}
+
+
+def contour_radius(p) -> float:
+    """Where the build puts a globule: the linker fully stretched, radially."""
+    return p.chain_x()[-1]
+
+
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, restarts: int) -> dict:
+    row = {"case": case_path.name}
+    try:
+        case = cases.load(case_path)
+    except cases.CaseError as exc:
+        row["error"] = str(exc).replace(str(case_path) + ": ", "")
+        return row
+    p = case.make_params()
+    row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
+    records = sweep(case_path, out / case_path.stem / "real", workers)
+    (r,) = summary.rows(records)
+    row["fit"] = {"accommodated": r.accommodated, "n": r.n, "failed": r.failed,
+                  "wilson95": list(wilson(r.accommodated, r.n)) if r.n else None}
+    mid, low, high = r.diameter
+    row["outer_diameter"] = {"median": mid, "min": low, "max": high}
+    medians = [x["envelope"]["r_median"] for x in records if x.get("envelope")]
+    row["envelope_at_contour"] = bool(medians) and all(
+        abs(m - contour_radius(p)) < 0.01 * contour_radius(p) for m in medians)
+    row["frames"] = sorted({x["frames_simulated"] for x in records if "frames_simulated" in x})
+    row["minimal"] = minimal_linker(case_path, p, out / case_path.stem / "minimal-linker",
+                                    workers, restarts)
+    return row
+
+
+def _fit_text(row) -> str:
+    f = row["fit"]
+    if not f["n"]:
+        return f"no run finished ({f['failed']} failed)"
+    low, high = f["wilson95"]
+    return f"{f['accommodated']}/{f['n']} ({low:.2f}-{high:.2f})"
+
+
+def _minimal_text(row) -> tuple[str, str]:
+    m, real = row["minimal"], row["params"]["linker"]
+    if "row" not in m:
+        return m["status"], "-"
+    r = m["row"]
+    if r.get("error"):
+        return f"not found: {r['error']}", "-"
+    if r["minimal_linker"] is None:
+        return f"none up to {m['max']} ({m['restarts']} restarts each)", "-"
+    below = (f"; {r['linker_below']}: 0/{m['restarts']}" if r.get("linker_below") else "")
+    return (f"{r['minimal_linker']} ({r['fits']}/{r['restarts']} fit{below})",
+            f"{real / r['minimal_linker']:.1f}")
+
+
+def _envelope_text(row) -> str:
+    d = row["outer_diameter"]
+    if d["median"] is None:
+        return "-"
+    text = f"{d['median'] / 10:.1f} nm ({d['min'] / 10:.1f}-{d['max'] / 10:.1f})"
+    if row["envelope_at_contour"]:
+        text += ", = the stretched linker (upper bound)"
+    return text
+
+
+def _agreement(row) -> str:
+    meta, f = row["meta"], row["fit"]
+    expected = meta.get("expected", "unknown")
+    fits = f["accommodated"] > 0
+    if expected == "unknown" or not f["n"]:
+        verdict = "no verdict to compare"
+    elif (expected == "fits") == fits:
+        verdict = "agrees" + (" (a clash-free layout exists)" if fits else "")
+    elif expected == "fits":
+        verdict = ("disagrees: no seed found room; a failed search is not proof that none "
+                   "exists (README, What a verdict proves), or an estimate is off")
+    else:
+        verdict = "disagrees: the model finds room the literature says is missing"
+    width = meta.get("envelope_width")
+    if width and row["outer_diameter"]["median"] is not None:
+        ratio = row["outer_diameter"]["median"] / width
+        verdict += f"; width {ratio:.1f}x the measured"
+        if row["envelope_at_contour"]:
+            verdict += " (the model's width is the linker's full extension, not a prediction)"
+    return verdict
+
+
+def table(rows: list[dict]) -> str:
+    head = ("| case | source | observed | P(fit) at the real linker | real linker | minimal "
+            "linker | margin (real / minimal) | predicted outer diameter | measured width | "
+            "FibrilFit vs literature |")
+    lines = [head, "|" + "---|" * 10]
+    for row in rows:
+        if "error" in row:
+            lines.append(f"| `{row['case']}` | | | not run: {row['error']} | | | | | | |")
+            continue
+        meta = row["meta"]
+        source = meta.get("pdb", "") + (f", doi:{meta['doi']}" if meta.get("doi") else "")
+        minimal, margin = _minimal_text(row)
+        width = meta.get("envelope_width")
+        lines.append("| " + " | ".join([
+            f"`{row['case']}` {row['name']}", source or meta.get("source", ""),
+            meta.get("observed", ""), _fit_text(row), str(row["params"]["linker"]), minimal,
+            margin, _envelope_text(row), f"{width / 10:.0f} nm" if width else "-",
+            _agreement(row)]) + " |")
+    return "\n".join(lines)
+
+
+def write_readme(text: str) -> None:
+    readme = ROOT / "README.md"
+    body = readme.read_text(encoding="utf-8")
+    if START not in body or END not in body:
+        raise SystemExit(f"README.md has no {START} ... {END} markers")
+    a, b = body.index(START) + len(START), body.index(END)
+    readme.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("cases", nargs="*", type=pathlib.Path)
+    ap.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "validate")
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--restarts", type=int, default=3,
+                    help="restarts per linker length in minimal-linker [default 3]")
+    ap.add_argument("--no-readme", action="store_true")
+    args = ap.parse_args(argv)
+    paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
+                                 key=lambda q: (q.stem != "tutorial", q.stem))
+    rows = []
+    for path in paths:
+        print(f"validate: {path.name}", file=sys.stderr, flush=True)
+        rows.append(validate(path, args.out, args.workers, args.restarts))
+        (args.out / "validation.json").parent.mkdir(parents=True, exist_ok=True)
+        (args.out / "validation.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
+        (args.out / "table.md").write_text(table(rows) + "\n", encoding="utf-8")
+    text = table(rows)
+    print(text)
+    if not args.no_readme:
+        write_readme(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

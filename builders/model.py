@@ -405,7 +405,8 @@ def _in_order(coll, objects):
     return coll.objects
 
 
-def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None, world_rot_z=None) -> None:
+def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
+           world_rot_z=None) -> None:
     """Set location and Z rotation of a collection's objects, and a world matrix to match
     (`world_loc`, `world_rot_z` for children: their parent's).
 

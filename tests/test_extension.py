@@ -14,7 +14,7 @@ from helpers import ROOT
 SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
 VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
 # The repository's files that are not the extension (blender_manifest.toml excludes them).
-NOT_EXTENSION = {"tests", "bench", "tools", "docs", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
+NOT_EXTENSION = {"tests", "bench", "tools", "docs", "examples", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
                  "headless.py", "conftest.py", "Makefile", "pyproject.toml",
                  "BENCHMARKS.md", ".gitignore"}
 

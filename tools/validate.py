@@ -27,8 +27,9 @@ sys.path.insert(0, str(ROOT))
 import _load  # noqa: E402
 
 ff = _load.load(ROOT)
-cases, runner, summary, stats = (importlib.import_module(f"{ff.__name__}.{m}") for m in
-                                 ("cases", "sweep.runner", "sweep.summary", "sweep.stats"))
+cases, P, runner, summary, stats = (
+    importlib.import_module(f"{ff.__name__}.{m}")
+    for m in ("cases", "params", "sweep.runner", "sweep.summary", "sweep.stats"))
 wilson = stats.wilson
 
 MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
@@ -88,6 +89,9 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
     p = case.make_params()
     row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
     records = sweep(case_path, out / case_path.stem / "real", workers)
+    if records and "params" in records[0]:  # as run: structure files may have filled some
+        p = P.make_params(force=True, **records[0]["params"])
+        row["params"] = p.to_dict()
     (r,) = summary.rows(records)
     row["fit"] = {"accommodated": r.accommodated, "n": r.n, "failed": r.failed,
                   "wilson95": list(wilson(r.accommodated, r.n)) if r.n else None}
@@ -227,7 +231,7 @@ def main(argv=None) -> int:
         if args.until and time.time() > args.until:
             continue  # the row keeps saying it was not computed
         print(f"validate: minimal linker of {path.name}", file=sys.stderr, flush=True)
-        row["minimal"] = minimal_linker(path, cases.load(path).make_params(),
+        row["minimal"] = minimal_linker(path, P.make_params(force=True, **row["params"]),
                                         args.out / path.stem / "minimal-linker", args.workers,
                                         args.restarts, args.until)
         save()

@@ -22,7 +22,7 @@ PYTEST := -m pytest --rootdir=tests tests
 # `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.
 TEST_MARK ?= not slow
 
-.PHONY: run test test-latest test-lts test-52 test-slow extension bench validate clean
+.PHONY: run test test-latest test-lts test-52 test-slow test-cluster extension bench validate clean
 
 $(VENV)/.installed: requirements-dev.txt Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -63,6 +63,13 @@ test-slow: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
 	for py in $(VENV)/bin/python $(VENV_LTS)/bin/python $(VENV_52)/bin/python; do \
 	  $$py $(PYTEST) -m slow $(PYTEST_ARGS); rc=$$?; [ $$rc -eq 0 ] || [ $$rc -eq 5 ] || exit $$rc; \
 	done
+
+# Sweeps through a real SLURM: as root, set up a single-node SLURM here (.ci/slurm/setup.sh:
+# Debian's slurm-wlm and munge), run the cluster-marked tests, stop the daemons it started.
+test-cluster: $(VENV)/.installed
+	sh .ci/slurm/setup.sh start || { sh .ci/slurm/setup.sh stop; exit 1; }
+	$(VENV)/bin/python $(PYTEST) -m cluster $(PYTEST_ARGS); \
+	status=$$?; sh .ci/slurm/setup.sh stop; exit $$status
 
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py

@@ -231,12 +231,14 @@ def command_run(args) -> int:
     from . import pipeline, report
     from .search import command as search_command
     search_command.check_restart_options(args)
+    P.refuse_beside_periodic(params_from(args))
     values, structure_block = params_and_structure(args, params_from(args))
     p = P.make_params(force=args.force, **values)
     if args.envelope_plot:
         from .exports import envelope_plot
         envelope_plot.available(args.stop_after)
     look = export_options.render_options(args)
+    pdb_images = export_options.pdb_images(args, p)
     if args.pdb:
         export_options.pdb_fits(p)
     step = export_options.movie_step(args)
@@ -252,7 +254,8 @@ def command_run(args) -> int:
     import bpy
     fresh_scene()
     result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.bake_frames()) if args.progress else None)
+                          on_frame=progress_printer(p.bake_frames() * (p.image_updates if p.periodic else 1))
+                          if args.progress else None)
     if structure_block:
         result["structure"] = structure_block
     if restarts is not None:
@@ -270,7 +273,7 @@ def command_run(args) -> int:
                                        writers.prepare, scene, result, aspect=look["aspect"]))
     if "pdb" in paths:
         problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
-                                       result, paths["pdb"], args.pdb_frames))
+                                       result, paths["pdb"], args.pdb_frames, pdb_images))
     if "blend" in paths:
         pipeline.save_blend(paths["blend"])
         result["blend"] = str(paths["blend"])

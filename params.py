@@ -163,6 +163,19 @@ class Params:
                                 "inflate: globule scale a jammed layout is shrunk to",
                                 section="Search")
 
+    periodic: int = _spec(0, 0, 10_000, "layers",
+                          "Simulate an infinite fibril as a screw-periodic cell of this many layers "
+                          "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
+                          "--layers layers with two ends)",
+                          kind=int, section="Layers")
+
+    # Measured (README, "Periodic cell"): images one frame behind their originals make every
+    # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.
+    image_updates: int = _spec(5, 1, 1000, "per frame",
+                               "With periodic: move the images to their originals this many times "
+                               "per frame (each frame is baked as this many shorter frames, with "
+                               "the same substep length; must divide substeps)", kind=int)
+
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
@@ -419,6 +432,8 @@ def make_params(*, force: bool = False, **values) -> Params:
         value, meta = values[f.name], f.metadata
         if f.name == "score_layers" and isinstance(value, str) and value.strip().lower() == "all":
             value = 0
+        if f.name == "periodic" and isinstance(value, str) and value.strip().lower() == "auto":
+            continue  # resolved below, once the geometry it depends on is known
         if meta["derived"] and (value is None or (isinstance(value, str)
                                                   and value.strip().lower() in DERIVED_WORDS)):
             clean[f.name] = None
@@ -435,6 +450,11 @@ def make_params(*, force: bool = False, **values) -> Params:
             clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
         else:
             clean[f.name] = _coerce(f.name, value, meta)
+    if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
+        from .screw import auto_cell_layers
+        clean["periodic"] = auto_cell_layers(Params(**{**clean, "periodic": 1}))
+    if clean.get("periodic"):
+        clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
     _check_combination(p, force)
     return p
@@ -460,6 +480,8 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("residue_spacing", f"must be at least the residue radius "
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
+    if p.periodic:
+        _check_periodic(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
@@ -473,6 +495,47 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make {n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
+
+
+def _check_periodic(p: Params) -> None:
+    from .screw import min_cell_layers
+    if p.score_layers:
+        raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
+                                         "ends, every layer is interior")
+    if p.protocol != "tutorial":
+        raise ParamError("protocol", f"{p.protocol} cannot be used with periodic yet: the cell's "
+                                     f"images would not grow and shrink with their originals")
+    if p.substeps % p.image_updates:
+        raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
+                                          f"frame's substeps split evenly between image updates "
+                                          f"(got {p.image_updates})")
+    least = min_cell_layers(p)
+    if p.periodic < least:
+        raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
+                                     f"{p.globule_diameter:g} Å globules at a rise of {p.rise:g} Å: "
+                                     f"at least {least} layers (cell × rise must exceed the "
+                                     f"globule diameter), or 'auto'")
+
+
+# Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).
+NOT_WITH_PERIODIC = {
+    "layers": "cannot be given with periodic: the model is then a cell of M = periodic layers of "
+              "an infinite fibril, which has no length to set",
+    "score_layers": "cannot be given with periodic: a periodic cell has no ends, so every layer "
+                    "is interior and scored",
+}
+
+
+def refuse_beside_periodic(given: dict) -> None:
+    """Raise ParamError when `given` (the options a user set: name -> value or list of values)
+    turns periodic on and also sets an option that a periodic cell replaces."""
+    values = given.get("periodic")
+    values = values if isinstance(values, (list, tuple)) else [values]
+    if not any(v is not None and str(v).strip() not in ("0", "0.0", "") for v in values):
+        return
+    for name, why in NOT_WITH_PERIODIC.items():
+        if given.get(name) is not None:
+            raise ParamError(name, why)
 
 
 def validate(p: Params, *, force: bool = False) -> Params:

@@ -17,6 +17,7 @@ from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
 from .builders.hooks import frame_hooks
+from .builders.physics import frame_split
 
 STAGES = ("build", "bake", "check")
 
@@ -50,7 +51,8 @@ class Baking:
 
     @property
     def total(self) -> int:
-        return self.model.params.bake_frames()
+        """Scene frames the bake may take (a periodic cell's frames are split, frame_split)."""
+        return self.model.params.bake_frames() * frame_split(self.model.params)
 
     def step(self):
         """Simulate the next frame; return (frame, chain positions), or None once finished."""

@@ -128,6 +128,11 @@ FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
 # Not a result: a bake or check leaves it alone.
 FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
     name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
+# The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
+FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
+    name="Periodic cell",
+    description="Simulate the interior of an infinite fibril: a screw-periodic cell of M layers "
+                "whose images stand in for the rest (Layers and Score layers are then unused)")
 
 CLASSES = (FIBRILFIT_PG_settings,)
 
@@ -167,7 +172,13 @@ def _value(settings, field):
 
 
 def values(settings) -> dict:
-    return {f.name: _value(settings, f) for f in P.fields()}
+    out = {f.name: _value(settings, f) for f in P.fields()}
+    if not settings.use_periodic:
+        out["periodic"] = 0
+    else:  # the cell replaces the fibril's length and its ends
+        out["periodic"] = out["periodic"] or "auto"
+        out["layers"], out["score_layers"] = P.DEFAULTS.layers, 0
+    return out
 
 
 def read_params(settings) -> P.Params:
@@ -186,11 +197,19 @@ def write_params(settings, p: P.Params) -> None:
                 setattr(settings, name, value)
         else:
             setattr(settings, name, value)
+    settings.use_periodic = bool(p.periodic)
 
 
 def changed_fields(settings, p: P.Params, sections=SECTIONS) -> list[tuple[str, object, object]]:
     """Fields of `sections` whose panel value differs from `p`: (name, value in p, panel value)."""
     now, then = values(settings), p.to_dict()
+    if now["periodic"] == "auto":
+        try:
+            now["periodic"] = P.make_params(**now).periodic
+        except P.ParamError:
+            pass
+    if then.get("periodic"):
+        now["layers"] = then["layers"]  # a cell's layers follow from periodic
     out = []
     for f in P.fields():
         if section_of(f) in sections:

@@ -9,8 +9,10 @@ def _pct(x: float) -> str:
 
 def summary(r: dict, quiet: bool = False) -> str:
     p = r["params"]
+    size = (f"periodic cell of {p['periodic']} layers (an infinite fibril)" if p.get("periodic")
+            else f"{p['layers']} layers")
     head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
-            f"{p['layers']} layers"
+            f"{size}"
             + (f" × {p['protofilaments']} protofilaments" if p.get("protofilaments", 1) > 1
                else "")
             + f", linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
@@ -56,6 +58,16 @@ def summary(r: dict, quiet: bool = False) -> str:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    if r.get("periodic"):
+        per, lag = r["periodic"], r.get("image_lag") or {}
+        lines.append(
+            f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
+            f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
+            f"pairs counted once, with images up to {per['check_cells']} cells above "
+            f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
+            f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
+            + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
+               if lag else ""))
     lines += [f"warning: {w}" for w in r.get("warnings", [])]
     env = r.get("envelope") or {}
     if env.get("n"):

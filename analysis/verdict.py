@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import params as P
+from .. import params as P, screw
 from ..builders.readback import MatrixReader
-from .clashes import bvh_clashes, grazing_depth, sphere_clashes
+from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
 from .envelope import envelope
 from .stretch import bond_stretch
 
@@ -54,30 +54,49 @@ def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, l
     return grazing, disagree
 
 
+def with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
+    """The cell's globule matrices followed by their images S^m for m = 1 .. cells, each m as a
+    block, so that globule j of image m has index j + m·n (its chain in the infinite fibril).
+
+    Only m ≥ 1: a pair of the infinite fibril is one cell globule with a cell globule or with
+    an image above; the same pair seen from below (m < 0) is that pair shifted, counted once.
+    `cells` comes from where the globules stand now, so every image that can touch is there.
+    """
+    cells = screw.check_cells(p, matrices[:, 2, 3], mesh_radius)
+    blocks = [matrices] + [screw.apply_matrices(p, m, matrices) for m in range(1, cells + 1)]
+    return np.concatenate(blocks), cells
+
+
 def check_model(model) -> dict:
     """Judge the model as it stands in the scene now (call at the last baked frame).
 
     Layers outside the scored range are still simulated and still collide; only pairs with at
-    least one scored globule count, and only scored layers' linkers.
+    least one scored globule count, and only scored layers' linkers. A periodic cell counts
+    every pair of the infinite fibril once, recomputing the images from the originals now.
     """
     p = model.params
     lo, hi = scored_range(p)
     c_lo, c_hi = scored_chains(p)
     layer_of, pf_of = P.chain_layers(p)
     positions = chain_positions(model)
-    centres = positions[:, -1]
-    scored = np.zeros(len(centres), dtype=bool)  # per chain
-    scored[c_lo:c_hi] = True
     globules = model.globules
     mesh = globules[0].data
     band = grazing_depth(mesh)
+    matrices = world_matrices(globules, model.root.children)
+    n = len(matrices)
+    cells = 0
+    if p.periodic:
+        matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
+    everything = matrices[:, :3, 3]  # the cell's globules, then their images
+    centres = everything[:n]
+    scored = np.zeros(len(everything), dtype=bool)
+    scored[slice(0, n) if p.periodic else slice(c_lo, c_hi)] = True  # a cell has no ends
 
     def depth(i, j):
-        return 2 * p.globule_radius - float(np.linalg.norm(centres[i] - centres[j]))
+        return 2 * p.globule_radius - float(np.linalg.norm(everything[i] - everything[j]))
 
-    faces, bvh_pairs = bvh_clashes(mesh, world_matrices(globules, model.root.children),
-                                   keep=scored)
-    spheres = [(i, j, d) for i, j, d in sphere_clashes(centres, p.globule_radius, band)
+    faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
+    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, p.globule_radius, band)
                if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
     grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band)
@@ -91,9 +110,9 @@ def check_model(model) -> dict:
     clashing = [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]
     stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
     max_stretch = float(stretch.max()) if stretch.size else 0.0
-    chain_clash = [False if s else None for s in scored.tolist()]  # None: not scored
+    chain_clash = [False if s else None for s in scored[:n].tolist()]  # None: not scored
     for i, j, _ in clashing:
-        for c in (i, j):
+        for c in (i % n, j % n):  # a periodic cell: an image's globule is its original's
             if scored[c]:
                 chain_clash[c] = True
     layer_clash = [None if not lo <= k < hi else False for k in range(p.layers)]
@@ -103,9 +122,11 @@ def check_model(model) -> dict:
 
     verdict = "intersection" if faces > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
+    periodic = {"periodic": periodic_block(model, cells)} if p.periodic else {}
     chains = {}
     if p.protofilaments > 1:  # pair indices are chains: name each globule's layer and pf too
-        name = lambda c: [int(layer_of[c]), int(pf_of[c])]  # noqa: E731
+        # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
+        name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
         chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
                   "chain_clashes": chain_clash}
     return {
@@ -128,8 +149,20 @@ def check_model(model) -> dict:
         "layer_clashes": layer_clash,
         **chains,
         "globule_centres": np.round(centres, 4).tolist(),
-        "envelope": envelope(centres[scored], p.globule_radius),
+        "envelope": envelope(centres[scored[:n]], p.globule_radius),
+        **periodic,
     }
+
+
+def periodic_block(model, cells: int) -> dict:
+    """The JSON's "periodic": the cell, the images simulated, and how far up the check looked."""
+    images = model.root.get("fibrilfit_images")
+    images = images.to_dict() if hasattr(images, "to_dict") else dict(images or {})
+    return {"cell_layers": model.params.periodic, "chains": len(model.chain),
+            "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
+                       "cells": [int(m) for m in images.get("cells", [])]},
+            "check_cells": cells,
+            "scene_frames_per_frame": model.params.image_updates}
 
 
 def clashing_layers(result: dict) -> list[int]:
@@ -139,4 +172,6 @@ def clashing_layers(result: dict) -> list[int]:
     """
     if result.get("verdict") != "intersection":
         return []
-    return sorted({k for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})
+    n = len(result.get("globule_centres") or []) if result.get("periodic") else 0
+    cell = (lambda k: k % n) if n else (lambda k: k)  # an image's globule is its original's
+    return sorted({cell(k) for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})

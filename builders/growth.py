@@ -94,6 +94,7 @@ class Inflate:
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
         self.holding, self.hold_start, self.quiet, self.prev = False, 0, 0, None
         self.finished, self.gravity, self.scale = False, None, None
+        self.start = self.first = None
         self.cycles: list[dict] = []
 
     def _set_scale(self, s: float) -> None:
@@ -111,8 +112,9 @@ class Inflate:
         p = self.p
         if frame == 1:
             centres = np.array([c[-1].matrix_world.translation[:] for c in self.model.chain])
-            self.grow_from = start_scale(p, centres)
-            self.gravity = cycle_gravity(p, 0, scene.gravity)
+            self.grow_from = self.start = start_scale(p, centres)
+            self.first = tuple(scene.gravity)
+            self.gravity = cycle_gravity(p, 0, self.first)
         if self.holding:
             return
         t = min(1.0, (frame - self.grow_start) / p.grow_frames)
@@ -148,6 +150,10 @@ class Inflate:
         self.gravity = cycle_gravity(p, self.cycle, None)
 
     def summary(self) -> dict:
-        return {"inflate": {"start_scale": None if self.grow_from is None else
-                            round(self.cycles[0]["grown_from"] if self.cycles else self.grow_from, 4),
-                            "cycles": self.cycles}}
+        """The result's `inflate` block, and `gravity` kept as the seed's (the scene ends with
+        none, annealed away)."""
+        out = {"inflate": {"start_scale": None if self.start is None else round(self.start, 4),
+                           "cycles": self.cycles}}
+        if self.start is not None:
+            out["gravity"] = [round(float(g), 9) for g in cycle_gravity(self.p, 0, self.first)]
+        return out

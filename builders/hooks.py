@@ -24,6 +24,9 @@ def frame_hooks(model, scene, *, judge: Callable | None = None) -> list:
     hooks: list = []
     if model.params.protocol == "inflate":
         hooks.append(Inflate(model, scene, judge))
+    if model.params.periodic:  # images follow their originals (builders/periodic.py)
+        from .periodic import ImageFollower
+        hooks.append(ImageFollower(model))
     return hooks
 
 

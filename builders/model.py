@@ -119,6 +119,7 @@ STEPS = (*PARTS, "layers")  # the build steps; "layers" replicates layer 0 to ev
 STAGE = "fibrilfit_stage"   # on the root collection: the last step done, then "baked", "checked"
 LAST_FRAME = "fibrilfit_last_frame"  # on the root collection: the last frame the bake reached
 STAGES = (*STEPS, "baked", "checked")
+IMAGES = "fibrilfit_images"  # on the root collection of a periodic cell: its images, by kind
 PART_COLLECTIONS = {"slab": "slabs", "anchor": "anchors", "residue": "linkers",
                     "globule": "globules", "bond": "bonds"}  # role: title; tagged role + "s"
 
@@ -152,6 +153,9 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
             for part in PARTS:
                 builder.add(part, k)
     builder.place()
+    if "layers" in steps and model.params.periodic:
+        from .periodic import build_images
+        model.root[IMAGES] = build_images(model, scene)
     # No view_layer.update() here: place() sets valid world matrices, and the depsgraph is
     # built once, on first use (the bake's first frame, or the viewport's next redraw).
     set_stage(model, upto)

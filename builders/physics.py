@@ -44,19 +44,26 @@ def draw_gravity(p: P.Params) -> tuple[float, float, float]:
     return tuple(rng.uniform(-p.gravity, p.gravity) for _ in range(3))
 
 
+def frame_split(p: P.Params) -> int:
+    """Scene frames per frame of the model: a periodic cell's images move once per scene frame,
+    so its frames are baked as `image_updates` shorter ones (same substeps); else 1."""
+    return p.image_updates if p.periodic else 1
+
+
 def setup_world(scene: bpy.types.Scene, p: P.Params) -> tuple[float, float, float]:
     """Set gravity, speed, quality and the cache range; free the old cache. Returns gravity."""
     rbw = scene.rigidbody_world
     gravity = draw_gravity(p)
+    k = frame_split(p)
     scene.use_gravity = True
     scene.gravity = gravity
     rbw.enabled = True
-    rbw.time_scale = p.time_scale
-    rbw.substeps_per_frame = p.substeps
+    rbw.time_scale = p.time_scale / k if k > 1 else p.time_scale
+    rbw.substeps_per_frame = p.substeps // k
     rbw.solver_iterations = p.solver_iterations
     rbw.point_cache.frame_start = 1
-    rbw.point_cache.frame_end = p.bake_frames()
-    scene.frame_start, scene.frame_end = 1, p.bake_frames()
+    rbw.point_cache.frame_end = p.bake_frames() * k
+    scene.frame_start, scene.frame_end = 1, p.bake_frames() * k
     _free_cache(scene)
     return gravity
 
@@ -102,9 +109,11 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, ho
     With `p.settle`, stops once every active body moved less than `settle_speed` per frame for
     `settle_frames` frames, unless a hook is `busy`; a hook that is `finished` ends the bake.
     `stats` (updated in place) says how far it got. `hooks` (default: hooks.frame_hooks for the
-    model) run before and after every frame.
+    model) run before and after every frame. A periodic cell's frames are
+    split (frame_split): frames, speeds and counts here are then the scene's shorter ones.
     """
     p = model.params
+    k = frame_split(p)
     stats = stats if stats is not None else BakeStats()
     setup_world(scene, p)
     hooks = frame_hooks(model, scene) if hooks is None else list(hooks)
@@ -113,7 +122,8 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, ho
     # One foreach_get over the rigid-body world's objects per frame, not one read per object.
     reader = MatrixReader(chain_objects, (scene.rigidbody_world.collection,))
     prev, quiet = None, 0
-    for frame in range(1, p.bake_frames() + 1):
+    settle_speed, settle_frames = p.settle_speed / k, p.settle_frames * k
+    for frame in range(1, p.bake_frames() * k + 1):
         run_before(hooks, scene, frame)
         scene.frame_set(frame)
         pos = reader.positions().reshape(shape)
@@ -124,8 +134,8 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, ho
             return
         if p.settle and prev is not None and not any(getattr(h, "busy", False) for h in hooks):
             speed = np.linalg.norm(pos - prev, axis=-1).max()
-            quiet = quiet + 1 if speed < p.settle_speed else 0
-            if quiet >= p.settle_frames:
+            quiet = quiet + 1 if speed < settle_speed else 0
+            if quiet >= settle_frames:
                 stats.settled_at = frame
                 return
         prev = pos

@@ -31,6 +31,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                        help=f"'last': the final frame; 'all': a multi-model PDB with frames 1, "
                             f"{1 + PDB_STEP}, {1 + 2 * PDB_STEP}, ... and the last baked frame "
                             f"(default last)")
+    group.add_argument("--pdb-images", metavar="N", type=int, default=0,
+                       help="with --periodic: add the cell's images in the N cells below and "
+                            "above as extra chains, after the cell's own (default 0: the cell)")
     group.add_argument("--render", metavar="PATH.png",
                        help="render the final frame to a PNG (clashing globules red)")
     group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,
@@ -67,6 +70,18 @@ def render_options(args) -> dict:
     width, height = int(m.group(1)), int(m.group(2))
     return {"size": (width, height), "aspect": width / height, "samples": samples,
             "engine": args.render_engine}
+
+
+def pdb_images(args, p) -> int:
+    """--pdb-images, checked: only with --periodic and --pdb, from 0 to 10 cells."""
+    n = args.pdb_images
+    if n and not p.periodic:
+        raise OptionError("--pdb-images: only with --periodic (a fibril with ends has no images)")
+    if n and not args.pdb:
+        raise OptionError("--pdb-images: only with --pdb")
+    if not 0 <= n <= 10:
+        raise OptionError(f"--pdb-images: must be an integer from 0 to 10 cells (got {n})")
+    return n
 
 
 def movie_step(args) -> int:

@@ -15,6 +15,8 @@ Several frames make a multi-model file (MODEL/ENDMDL), one model per frame, same
 """
 from __future__ import annotations
 
+import dataclasses
+
 import string
 import textwrap
 
@@ -22,6 +24,7 @@ import bpy
 import numpy as np
 
 from .. import output
+from .. import screw
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
 
@@ -176,14 +179,36 @@ def positions_at(scene: bpy.types.Scene, model, frames) -> list[tuple[int, np.nd
     return out
 
 
+def image_cells(images: int) -> list[int]:
+    """The cells (m) whose images follow the periodic cell's chains: -1 .. -N, then 1 .. N."""
+    return [*range(-1, -images - 1, -1), *range(1, images + 1)]
+
+
+def with_images(p, positions: np.ndarray, images: int) -> np.ndarray:
+    """The cell's chain positions followed by their exact images S^m, cell by cell."""
+    return np.concatenate([positions] + [screw.apply_points(p, m, positions)
+                                         for m in image_cells(images)])
+
+
 def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
-              result: dict | None = None) -> dict:
+              result: dict | None = None, images: int = 0) -> dict:
     """Write the model as a PDB to `path` (atomically). `frames`: frame numbers, or None for
-    the current frame. `result`: the pipeline result, for the REMARK header."""
+    the current frame. `result`: the pipeline result, for the REMARK header. `images`: for a
+    periodic cell, the images in that many cells below and above, as extra chains."""
     scene = scene or bpy.context.scene
     frames = [scene.frame_current] if frames is None else [int(f) for f in frames]
     models = positions_at(scene, model, frames)
-    text = pdb_text(model.params, models, result_remarks(result))
+    p, remarks = model.params, result_remarks(result)
+    if p.periodic and images:
+        n = len(model.chain)
+        models = [(f, with_images(p, pos, images)) for f, pos in models]
+        remarks.append(f"periodic cell: chains 0-{n - 1} are the cell; then its images, "
+                       f"{n} chains per cell, in cells "
+                       + ", ".join(f"{m:+d}" for m in image_cells(images))
+                       + " (S^m: turn m*M*twist about Z, raise m*M*rise)")
+        p = dataclasses.replace(p, layers=len(models[0][1]))
+    text = pdb_text(p, models, remarks)
     output.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": model.params.chains * (model.params.linker + 1)}
+            "atoms_per_model": p.chains * (p.linker + 1),
+            **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

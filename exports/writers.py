@@ -17,14 +17,15 @@ def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> 
         dressing.dress(scene, model, clashing_layers(result), aspect=aspect)
 
 
-def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last") -> dict:
+def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last",
+              images: int = 0) -> dict:
     """--pdb: the last baked frame, or with frames='all' the tutorial's keyframes too."""
     model = find_model(scene)
     if model is None:
         raise pdb.PdbError(f"scene '{scene.name}' holds no FibrilFit model")
     last = int(result.get("frames_simulated") or scene.frame_current)
     wanted = pdb.keyframes(last) if frames == "all" else [last]
-    return pdb.write_pdb(path, model, scene, frames=wanted, result=result)
+    return pdb.write_pdb(path, model, scene, frames=wanted, result=result, images=images)
 
 
 def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> dict:

@@ -110,6 +110,8 @@ class _Section(_Sidebar):
         layout.use_property_decorate = False
         col = layout.column()
         for field in properties.fields_in(self.section):
+            if field.name == "periodic":  # its checkbox, then M (0 = auto)
+                col.prop(s, "use_periodic")
             if field.metadata["kind"] == "points":
                 _draw_outline(col, s, field)
                 continue
@@ -121,6 +123,10 @@ class _Section(_Sidebar):
                 row.prop(s, field.name)
                 continue
             row = col.row()
+            if field.name == "periodic":
+                row.active = s.use_periodic
+            elif field.name in P.NOT_WITH_PERIODIC:
+                row.active = not s.use_periodic
             # settle_speed, settle_frames... only matter when the bool field they extend is on
             switch = field.name.split("_")[0]
             if switch != field.name and isinstance(getattr(s, switch, None), bool):

@@ -10,8 +10,8 @@ import pathlib
 import sys
 
 from .. import exits, output, structure_inputs
-from . import gate, grid, runner, summary
-from .executors import DaskExecutor, ProcessExecutor, SweepError, cpu_count
+from . import gate, grid, runner, slurm, summary
+from .executors import DaskExecutor, ProcessExecutor, SlurmExecutor, SweepError, cpu_count
 
 RESULTS, SUMMARY, PHASE, LOG = "results.jsonl", "summary.csv", "phase.png", "workers.log"
 
@@ -40,6 +40,7 @@ def _check_options(args) -> None:
         raise exits.UsageError("--retry-failed: only with --resume")
     if args.seed is not None and args.seed_list is not None:
         raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
+    slurm.check(args)
 
 
 def _out_dir(args) -> pathlib.Path:
@@ -68,7 +69,10 @@ def _lock(out: pathlib.Path):
     return fh
 
 
-def _executor(args, out: pathlib.Path):
+def _executor(args, out: pathlib.Path, runs: int):
+    if args.executor == "slurm":
+        return SlurmExecutor(slurm.jobs(args, runs), slurm.cluster_options(args, out.resolve()),
+                             timeout=args.timeout)
     workers = args.workers or cpu_count()
     if args.executor == "dask":
         return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
@@ -102,8 +106,13 @@ def run(args) -> int:
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
-    _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-          *(["distributed"] if args.executor == "dask" else []))
+    with slurm.ctrl_c_kept():
+        _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+              *(["distributed"] if args.executor in ("dask", "slurm") else []),
+              *(["dask_jobqueue"] if args.executor == "slurm" else []))
+    if args.show_job_script:
+        print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
+        return exits.EXIT_OK
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
     lock = _lock(out)  # noqa: F841 (held until this function returns)
@@ -119,6 +128,8 @@ def run(args) -> int:
     if not args.quiet:
         kind = "Dask LocalCluster" if args.executor == "dask" else "local"
         where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
+                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
+                 f"{out / slurm.JOB_LOGS})" if args.executor == "slurm" else
                  f"{args.workers or cpu_count()} {kind} workers")
         print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
               f"{results}, {len(todo)} to run on {where}")
@@ -126,7 +137,7 @@ def run(args) -> int:
     if todo:
         from .. import pipeline
         try:
-            with _executor(args, out) as executor:
+            with _executor(args, out, len(todo)) as executor:
                 runner.run(executor, todo, results, force=args.force,
                            progress=not args.quiet, version=pipeline.version(),
                            extra={"structure": structure_block} if structure_block else None,

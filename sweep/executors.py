@@ -11,6 +11,7 @@ import os
 import pathlib
 import queue
 import threading
+import time
 import uuid
 
 from . import pool
@@ -122,19 +123,22 @@ class DaskExecutor:
         from .dask_task import make_task
         self._task = make_task()
         try:
-            if self.scheduler:
-                self.client = distributed.Client(self.scheduler, timeout="30s")
-            else:
-                self.cluster = distributed.LocalCluster(
-                    n_workers=self.size, threads_per_worker=1, processes=True,
-                    dashboard_address=None, silence_logs=logging.ERROR)
-                self.client = distributed.Client(self.cluster)
+            self._connect(distributed)
         except (OSError, TimeoutError, ValueError) as exc:
             self.__exit__(None, None, None)
             raise SweepError(f"cannot reach the Dask scheduler {self.scheduler or '(local)'}: "
                              f"{exc}") from None
         self.done = distributed.as_completed()
         return self
+
+    def _connect(self, distributed) -> None:
+        if self.scheduler:
+            self.client = distributed.Client(self.scheduler, timeout="30s")
+        else:
+            self.cluster = distributed.LocalCluster(
+                n_workers=self.size, threads_per_worker=1, processes=True,
+                dashboard_address=None, silence_logs=logging.ERROR)
+            self.client = distributed.Client(self.cluster)
 
     def __exit__(self, *exc):
         for thing in (self.client, self.cluster):
@@ -159,3 +163,50 @@ class DaskExecutor:
             reply = {"id": job["id"], "ok": False, "error": f"{type(exc).__name__}: {exc}"}
         future.release()
         return job, reply
+
+
+class SlurmExecutor(DaskExecutor):
+    """The DaskExecutor on a dask-jobqueue SLURMCluster: `workers` SLURM jobs, one single-threaded
+    Dask worker each (options: sweep/slurm.py). A job that ends early (scancel, walltime, a failed
+    node) loses its run in flight, which Dask runs again elsewhere; the job is replaced."""
+
+    KEEP_EVERY = 10.0  # seconds between asking the cluster to replace lost jobs
+
+    def __init__(self, workers: int, cluster_options: dict, *, timeout: float | None = None):
+        super().__init__(workers, timeout=timeout)
+        self.cluster_options = cluster_options
+        self.kept = 0.0
+
+    def _connect(self, distributed) -> None:
+        import shutil
+        from dask_jobqueue import SLURMCluster
+        if shutil.which("sbatch") is None:
+            raise SweepError("--executor slurm: sbatch is not on the PATH (run the sweep on a "
+                             "SLURM login node)")
+        self.cluster = SLURMCluster(**self.cluster_options)
+        self.client = distributed.Client(self.cluster)
+        # SpecCluster.scale(), but waited for: sbatch's refusal (a wrong partition or account)
+        # must stop the sweep, where scale() would only log it and leave the sweep waiting
+        while len(self.cluster.worker_spec) < self.size:
+            self.cluster.worker_spec.update(self.cluster.new_worker_spec())
+        try:
+            self.cluster.sync(self.cluster._correct_state)
+        except Exception as exc:
+            from .slurm import submit_error
+            from distributed.core import Status
+            for job in self.cluster.workers.values():
+                if job.job_id is None:  # never submitted; close() insists on a final state
+                    job.status = Status.failed
+            self.__exit__(None, None, None)
+            raise SweepError(f"SLURM refused the worker jobs: {submit_error(exc)}") from None
+        self.kept = time.monotonic()
+
+    def wait(self) -> tuple[dict, dict]:
+        while not self.done.has_ready():
+            if time.monotonic() - self.kept > self.KEEP_EVERY:
+                # a lost job leaves cluster.workers once Dask gives up on it (lost-worker-timeout);
+                # scale() then submits a replacement under the same name
+                self.cluster.scale(jobs=self.size)
+                self.kept = time.monotonic()
+            time.sleep(0.1)
+        return super().wait()

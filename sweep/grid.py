@@ -137,4 +137,5 @@ def specs_from(args) -> dict:
             specs[f.name] = [item.strip() for item in str(value).split(",")]
         else:
             specs[f.name] = parse_spec(f.name, value)
+    P.refuse_beside_periodic(specs)
     return specs

@@ -48,6 +48,8 @@ def main() -> int:
     import _load
     ff = _load.load(root)
     me = {"host": socket.gethostname(), "pid": os.getpid()}
+    if os.environ.get("SLURM_JOB_ID"):  # a SLURM job's worker (--executor slurm) names its job
+        me["slurm_job"] = os.environ["SLURM_JOB_ID"]
 
     def send(message):
         replies.write(json.dumps(message) + "\n")

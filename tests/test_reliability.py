@@ -169,7 +169,7 @@ def test_every_operator_spares_the_users_data_and_clear_removes_exactly_the_mode
 def test_every_scene_changing_operator_declares_undo(registered):
     from fibrilfit.operators import CLASSES
     for cls in CLASSES:
-        if cls.bl_idname.split(".")[1] not in ("render", "export_pdb", "save_case"):
+        if cls.bl_idname.split(".")[1] not in ("render", "export_pdb", "save_case"):  # files only
             assert "UNDO" in cls.bl_options, cls.bl_idname
 
 

@@ -69,6 +69,7 @@ def test_inflate_bakes_several_protofilaments(scene, ff):
     r = ff.pipeline.run(p, scene)
     assert len(r["globule_centres"]) == 6 and r["inflate"]["cycles"]
     assert r["frames_simulated"] == r["inflate"]["cycles"][-1]["judged_at"]
+    assert r["gravity"] == pytest.approx(list(ff.builders.draw_gravity(p)))  # the seed's
 
 
 def test_inflate_layout_is_fixed_by_the_seed_and_fans_the_globules():

@@ -486,7 +486,7 @@ def test_panels_draw_in_every_state(ui, scene):
         props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
         switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
         assert sorted(props) == sorted([f.name for f in P.fields() if f.metadata.get("ui", True)]
-                                       + switches)
+                                       + switches + ["use_periodic"])  # the cell's checkbox
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
                                                     "load_case", "save_case",

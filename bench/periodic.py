@@ -1,0 +1,104 @@
+"""The periodic cell against the 100-layer interior job, side by side; prints one table.
+
+    .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0]
+
+Target (issue #12): a periodic job at the default model (`--periodic auto`) costs at most 1/4 of
+the wall time of the 100-layer `--layers 100 --score-layers 20` job. Each job is the whole
+command (`headless.py run`) in a fresh process, the two run back to back in every round, so the
+ratio is taken within a round (the machine may be shared: trust the ratio, not the seconds).
+Memory is each process's peak resident set (ru_maxrss of the child).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import pathlib
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+JOBS = {
+    "periodic": ["--periodic", "auto"],
+    "layers100": ["--layers", "100", "--score-layers", "20"],
+}
+
+
+def run_job(args: list[str]) -> dict:
+    """One `headless.py run` in a fresh process: wall time, peak memory, and its result."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = pathlib.Path(tmp) / "r.json"
+        start = time.perf_counter()
+        proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "run", *args,
+                                 "--json", str(out), "--quiet"], cwd=ROOT,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        _, err = proc.communicate()
+        wall = time.perf_counter() - start
+        if proc.returncode not in (0, 1):
+            raise RuntimeError(f"{' '.join(args)}: exit {proc.returncode}: {err.strip()}")
+        result = json.loads(out.read_text())
+    return {"wall_s": wall, "result": result}
+
+
+def measure(args: list[str]) -> dict:
+    """run_job in a wrapper process, so the peak RSS reported is this job's alone."""
+    code = ("import json, resource, sys; sys.path.insert(0, %r); import periodic as b; "
+            "r = b.run_job(%r); "
+            "u = resource.getrusage(resource.RUSAGE_CHILDREN); "
+            "r['peak_mib'] = u.ru_maxrss / 1024.0; r['cpu_s'] = u.ru_utime + u.ru_stime; "
+            "print('BENCH ' + json.dumps(r))") % (str(ROOT / "bench"), args)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    line = next((ln for ln in out.stdout.splitlines() if ln.startswith("BENCH ")), None)
+    if line is None:
+        raise RuntimeError(out.stderr.strip()[-500:])
+    return json.loads(line[6:])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--linker", default="6")
+    ap.add_argument("--seed", default="0")
+    ap.add_argument("--json", metavar="PATH", help="write every round's figures here")
+    a = ap.parse_args(argv)
+    extra = ["--linker", a.linker, "--seed", a.seed]
+    rounds = []
+    for r in range(a.runs):
+        row = {name: measure(args + extra) for name, args in JOBS.items()}
+        row["ratio"] = row["periodic"]["wall_s"] / row["layers100"]["wall_s"]
+        row["cpu_ratio"] = row["periodic"]["cpu_s"] / row["layers100"]["cpu_s"]
+        rounds.append(row)
+        print(f"round {r + 1}: periodic {row['periodic']['wall_s']:.2f} s "
+              f"{row['periodic']['peak_mib']:.0f} MiB, 100 layers {row['layers100']['wall_s']:.2f} s "
+              f"{row['layers100']['peak_mib']:.0f} MiB, ratio {row['ratio']:.3f} "
+              f"(CPU time {row['cpu_ratio']:.3f})", flush=True)
+    med = lambda xs: statistics.median(xs)  # noqa: E731
+    per = rounds[0]["periodic"]["result"]
+    print(f"\nperiodic cell of {per['params']['periodic']} layers vs 100 layers, --score-layers 20 "
+          f"(linker {a.linker}, seed {a.seed}; median of {a.runs} rounds, "
+          f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f})")
+    print("| job | wall (s) | CPU (s) | peak memory (MiB) | bake (s) | scene frames |")
+    print("|---|---|---|---|---|---|")
+    for name in JOBS:
+        rs = [row[name] for row in rounds]
+        print(f"| {name} | {med([x['wall_s'] for x in rs]):.2f} | "
+              f"{med([x['cpu_s'] for x in rs]):.2f} | {med([x['peak_mib'] for x in rs]):.0f} | "
+              f"{med([x['result']['timings_s']['bake'] for x in rs]):.2f} | "
+              f"{med([x['result']['frames_simulated'] for x in rs]):.0f} |")
+    ratio = med([row["ratio"] for row in rounds])
+    cpu = med([row["cpu_ratio"] for row in rounds])
+    mem = med([row["periodic"]["peak_mib"] / row["layers100"]["peak_mib"] for row in rounds])
+    print(f"wall-time ratio periodic / 100 layers: {ratio:.3f} (target <= 0.25: "
+          f"{'met' if ratio <= 0.25 else 'NOT met'}); CPU-time ratio {cpu:.3f}; memory ratio "
+          f"{mem:.2f}")
+    if a.json:
+        pathlib.Path(a.json).write_text(json.dumps(rounds, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -221,3 +221,12 @@ def test_bad_structure_tables(tmp_path, text, says):
     case = write(tmp_path / "c.toml", text)
     cp = run_cli("run", "--case", str(case))
     assert cp.returncode == 2 and says in cp.stderr and cp.stderr.count("\n") == 1, cp.stderr
+
+
+def test_integer_parameters_that_take_a_word():
+    case = cases.from_dict({"params": {"periodic": "auto", "score_layers": "all",
+                                       "globule_diameter": 30.0}})
+    p = case.make_params()
+    assert p.periodic > 0 and p.score_layers == 0
+    with pytest.raises(cases.CaseError, match="params.periodic: must be a number"):
+        cases.from_dict({"params": {"periodic": "some"}})

@@ -14,19 +14,22 @@ saying why. Nothing is filled in by hand.
 from __future__ import annotations
 
 import argparse
+import datetime
 import importlib
 import json
 import pathlib
 import subprocess
 import sys
+import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 import _load  # noqa: E402
 
 ff = _load.load(ROOT)
-cases, runner, summary, stats = (importlib.import_module(f"{ff.__name__}.{m}") for m in
-                                 ("cases", "sweep.runner", "sweep.summary", "sweep.stats"))
+cases, P, runner, summary, stats = (
+    importlib.import_module(f"{ff.__name__}.{m}")
+    for m in ("cases", "params", "sweep.runner", "sweep.summary", "sweep.stats"))
 wilson = stats.wilson
 
 MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
@@ -47,7 +50,8 @@ def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
     return records
 
 
-def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int) -> dict:
+def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
+                   until: float | None = None) -> dict:
     """`headless.py minimal-linker --case` (issue #13's walk, protocol inflate unless the case
     sets one), up to the real linker or MAX_LINKER."""
     top = min(p.linker, MAX_LINKER)
@@ -56,7 +60,12 @@ def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int)
            "--workers", str(workers), "--quiet", "--no-plot"]
     if (out / "results.jsonl").exists():
         cmd.append("--resume")
-    cp = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        cp = subprocess.run(cmd, capture_output=True, text=True,
+                            timeout=None if until is None else max(1.0, until - time.time()))
+    except subprocess.TimeoutExpired:
+        return {"status": "not finished in this run's time budget (--until); make validate "
+                          "again resumes it"}
     if cp.returncode != 0:
         last = cp.stderr.strip().splitlines()[-1] if cp.stderr.strip() else f"exit {cp.returncode}"
         return {"status": f"minimal-linker failed: {last}"}
@@ -69,7 +78,8 @@ def contour_radius(p) -> float:
     return p.chain_x()[-1]
 
 
-def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, restarts: int) -> dict:
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
+    """The real linker's seeds (the minimal linker comes in a second pass, see main)."""
     row = {"case": case_path.name}
     try:
         case = cases.load(case_path)
@@ -79,6 +89,9 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, restarts:
     p = case.make_params()
     row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
     records = sweep(case_path, out / case_path.stem / "real", workers)
+    if records and "params" in records[0]:  # as run: structure files may have filled some
+        p = P.make_params(force=True, **records[0]["params"])
+        row["params"] = p.to_dict()
     (r,) = summary.rows(records)
     row["fit"] = {"accommodated": r.accommodated, "n": r.n, "failed": r.failed,
                   "wilson95": list(wilson(r.accommodated, r.n)) if r.n else None}
@@ -88,8 +101,8 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, restarts:
     row["envelope_at_contour"] = bool(medians) and all(
         abs(m - contour_radius(p)) < 0.01 * contour_radius(p) for m in medians)
     row["frames"] = sorted({x["frames_simulated"] for x in records if "frames_simulated" in x})
-    row["minimal"] = minimal_linker(case_path, p, out / case_path.stem / "minimal-linker",
-                                    workers, restarts)
+    row["minimal"] = {"status": "not computed in this run (time budget, --until); "
+                                "make validate again resumes"}
     return row
 
 
@@ -184,17 +197,44 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--restarts", type=int, default=3,
                     help="restarts per linker length in minimal-linker [default 3]")
+    ap.add_argument("--until", metavar="HH:MM",
+                    help="start no minimal-linker search after this UTC time, and stop one "
+                         "still running then (its runs are kept for the next make validate)")
+    ap.add_argument("--skip", action="append", default=[], metavar="CASE",
+                    help="leave this case out (its row says so); repeatable")
     ap.add_argument("--no-readme", action="store_true")
     args = ap.parse_args(argv)
+    if args.until:
+        hh, mm = (int(x) for x in args.until.split(":"))
+        now = datetime.datetime.now(datetime.timezone.utc)
+        args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
     paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
                                  key=lambda q: (q.stem != "tutorial", q.stem))
     rows = []
-    for path in paths:
-        print(f"validate: {path.name}", file=sys.stderr, flush=True)
-        rows.append(validate(path, args.out, args.workers, args.restarts))
-        (args.out / "validation.json").parent.mkdir(parents=True, exist_ok=True)
+
+    def save():
+        args.out.mkdir(parents=True, exist_ok=True)
         (args.out / "validation.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
         (args.out / "table.md").write_text(table(rows) + "\n", encoding="utf-8")
+
+    for path in paths:  # first every case at its real linker: the cheaper, more telling part
+        if path.name in args.skip or path.stem in args.skip:
+            rows.append({"case": path.name, "error": "skipped in this run (--skip), e.g. for "
+                                                     "lack of time; make validate runs it"})
+            continue
+        print(f"validate: {path.name}", file=sys.stderr, flush=True)
+        rows.append(validate(path, args.out, args.workers))
+        save()
+    for path, row in zip(paths, rows):  # then the minimal linkers, while time allows
+        if "error" in row:
+            continue
+        if args.until and time.time() > args.until:
+            continue  # the row keeps saying it was not computed
+        print(f"validate: minimal linker of {path.name}", file=sys.stderr, flush=True)
+        row["minimal"] = minimal_linker(path, P.make_params(force=True, **row["params"]),
+                                        args.out / path.stem / "minimal-linker", args.workers,
+                                        args.restarts, args.until)
+        save()
     text = table(rows)
     print(text)
     if not args.no_readme:

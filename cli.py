@@ -335,7 +335,10 @@ def command_sweep(args) -> int:
 
 def command_minimal_linker(args) -> int:
     from .search import command
-    values, _ = params_and_structure(args, params_from(args))
+    explicit = params_from(args)
+    values, _ = params_and_structure(args, explicit)
+    if "linker" not in explicit:  # a fibril file's tail length: the very thing the map searches
+        values.pop("linker", None)
     return command.run_minimal(args, values)
 
 

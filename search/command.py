@@ -135,7 +135,9 @@ def restarts_line(s: dict) -> str:
 def kind_of(values: dict) -> str:
     """The fibril kind a map line stands for: the model options given, besides the searched ones."""
     skip = {"globule_diameter", "linker", "seed", "protocol"}
-    shown = [f"{k.replace('_', ' ')} {v}" for k, v in values.items() if k not in skip]
+    shown = [f"{k.replace('_', ' ')} " + (f"({len(v)} points)" if isinstance(v, (list, tuple))
+                                          and len(v) > 3 else str(v))
+             for k, v in values.items() if k not in skip]
     return ", ".join(shown) if shown else f"{P.DEFAULTS.layers} layers"
 
 

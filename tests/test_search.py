@@ -364,3 +364,20 @@ def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
     assert api["inflate"]["cycles"]
     for key in ("verdict", "accommodated", "frames_simulated", "globule_centres"):
         assert mine[key] == api[key], key
+
+
+def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff, monkeypatch):
+    """2N0A models a 43-residue tail past its anchor, which `run --fibril` takes as the linker;
+    minimal-linker searches the linker, so it drops that value (an explicit --linker is refused)."""
+    from fibrilfit.search import command
+    seen = {}
+    monkeypatch.setattr(command, "run_minimal", lambda args, values: seen.update(values) or 0)
+    data = ROOT / "tests" / "data"
+    argv = ["minimal-linker", "--fibril", str(data / "2n0a.pdb.gz"),
+            "--domain", str(data / "1gfl.pdb.gz")]
+    assert ff.cli.main(argv) == 0
+    assert "linker" not in seen
+    assert float(seen["globule_diameter"]) == pytest.approx(43.9, abs=0.5)
+    assert int(seen["protofilaments"]) == 1 and seen["core_outline"]
+    monkeypatch.undo()
+    assert ff.cli.main([*argv, "--linker", "8"]) == 2  # the one searched: never given

@@ -33,7 +33,14 @@ class Point:
 
 def point_key(params: dict) -> str:
     """Identity of a run: all of its parameters, so --resume never mixes different models."""
-    return json.dumps(params, sort_keys=True)
+    return json.dumps(with_defaults(params), sort_keys=True)
+
+
+def with_defaults(params: dict) -> dict:
+    """A record's parameters with every parameter it predates at its default: a parameter is
+    only ever added with a default that keeps the earlier model, so an older results.jsonl
+    still resumes and summarises beside new runs."""
+    return {**P.DEFAULTS.to_dict(), **params}
 
 
 def _number(name: str, spec: str, text: str) -> Decimal:

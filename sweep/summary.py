@@ -14,6 +14,7 @@ import json
 import statistics
 
 from .. import params as P
+from .grid import with_defaults
 from .stats import wilson
 
 MEANING = ("accommodated = the fraction of seeds whose relaxation found a clash-free layout with "
@@ -77,7 +78,7 @@ def _group_key(params: dict) -> str:
 def rows(records: list[dict]) -> list[Row]:
     groups: dict[str, Row] = {}
     for r in records:
-        params = r["params"]
+        params = with_defaults(r["params"])
         row = groups.setdefault(_group_key(params), Row({k: v for k, v in params.items()
                                                          if k != "seed"}))
         if r.get("status", "ok") != "ok" or "accommodated" not in r:

@@ -459,3 +459,19 @@ def test_a_sweep_over_protofilaments_runs(tmp_path):
     assert got == {(1, True, 2), (1, False, 2), (2, True, 4), (2, False, 4)}
     csv = (out / "summary.csv").read_text().splitlines()
     assert csv[0].startswith("linker,globule_diameter,protofilaments,core_outline,") and len(csv) == 5
+
+
+def test_results_from_before_a_parameter_existed_resume_and_summarise(ff):
+    """A record written before a parameter was added has no key for it: it was run at that
+    parameter's default, so it keys, groups and prints as the same point as a new record."""
+    from fibrilfit.sweep import grid, runner, summary
+    new = ff.params.make_params(linker=6, seed=0).to_dict()
+    old = {k: v for k, v in new.items() if k not in ("periodic", "protofilaments", "protocol")}
+    records = [{"params": old, "accommodated": True, "verdict": "successful",
+                "max_bond_stretch": 0.0, "frames_simulated": 155},
+               {"params": {**new, "seed": 1}, "accommodated": False, "verdict": "intersection",
+                "max_bond_stretch": 0.3, "frames_simulated": 250}]
+    assert grid.point_key(new) in runner.done_keys(records)
+    (row,) = summary.rows(records)
+    assert (row.n, row.accommodated) == (2, 1)
+    assert summary.csv_text([row]).splitlines()[1].startswith("6,30,2,0,1,0.5000,")

@@ -66,6 +66,14 @@ def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     centres = positions[:, -1]
     keep = np.zeros(len(centres), dtype=bool)
     keep[scored] = True
+    if p.periodic:  # the images above the cell, as far as a globule can reach (pairs with the
+        # images below are the same pairs shifted): cell-image pairs count, image-image do not
+        from .. import screw
+        cells = screw.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
+        m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
+        images = screw.apply_points(p, m, np.tile(centres, (cells, 1)))
+        centres = np.concatenate([centres, images])
+        keep = np.concatenate([keep, np.zeros(len(images), dtype=bool)])
     deep = 0
     order = np.argsort(centres[:, 2])
     c, k = centres[order], keep[order]
@@ -96,6 +104,9 @@ class Inflate:
         self.finished, self.gravity, self.scale = False, None, None
         self.start = self.first = None
         self.cycles: list[dict] = []
+        # scene frames per frame of the model (physics.frame_split): a periodic cell's frames
+        # are split, so the schedule's frames and speeds are counted in the shorter ones
+        self.k = self.p.image_updates if self.p.periodic else 1
 
     def _set_scale(self, s: float) -> None:
         if s == self.scale:
@@ -117,21 +128,22 @@ class Inflate:
             self.gravity = cycle_gravity(p, 0, self.first)
         if self.holding:
             return
-        t = min(1.0, (frame - self.grow_start) / p.grow_frames)
+        t = min(1.0, (frame - self.grow_start) / (p.grow_frames * self.k))
         self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
         scene.gravity = tuple(self.gravity * (1.0 - t))
 
     def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:
         p = self.p
         if not self.holding:
-            if frame - self.grow_start >= p.grow_frames:
+            if frame - self.grow_start >= p.grow_frames * self.k:
                 self.holding, self.hold_start, self.quiet, self.prev = True, frame + 1, 0, positions.copy()
             return
         speed = float(np.linalg.norm(positions - self.prev, axis=-1).max())
         self.prev = positions.copy()
-        self.quiet = self.quiet + 1 if speed < p.settle_speed else 0
+        self.quiet = self.quiet + 1 if speed < p.settle_speed / self.k else 0
         held = frame - self.hold_start + 1
-        if self.quiet < min(p.settle_frames, p.hold_frames) and held < p.hold_frames:
+        if (self.quiet < min(p.settle_frames, p.hold_frames) * self.k
+                and held < p.hold_frames * self.k):
             return
         verdict = (self.judge(self.model) if self.judge is not None
                    else sphere_judge(p, positions, self.scored))

@@ -20,6 +20,7 @@ from typing import Callable
 
 import numpy as np
 
+from .. import screw
 from .scene import TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
@@ -35,11 +36,25 @@ def cycle_gravity(p, cycle: int, first) -> np.ndarray:
 
 
 def start_scale(p, centres: np.ndarray) -> float:
-    """`grow_start`, or less if the start layout's globules would overlap at that scale."""
-    d = _closest(centres)
+    """`grow_start`, or less if the start layout's globules would overlap at that scale (in a
+    periodic cell, also with the images of the cell's globules)."""
+    d = _closest(with_images(p, centres)[0])
     if d is None:
         return p.grow_start
     return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
+
+
+def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
+    """The globule centres and, in a periodic cell, their images above it as far as a globule
+    can reach (pairs with the images below are the same pairs shifted). Returns (centres, n):
+    the first n are the cell's; image-image pairs repeat cell pairs and must not be counted."""
+    centres = np.asarray(centres, dtype=float)
+    if not p.periodic or not len(centres):
+        return centres, len(centres)
+    cells = screw.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
+    m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
+    images = screw.apply_points(p, m, np.tile(centres, (cells, 1)))
+    return np.concatenate([centres, images]), len(centres)
 
 
 def _closest(centres: np.ndarray) -> float | None:
@@ -66,14 +81,8 @@ def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     centres = positions[:, -1]
     keep = np.zeros(len(centres), dtype=bool)
     keep[scored] = True
-    if p.periodic:  # the images above the cell, as far as a globule can reach (pairs with the
-        # images below are the same pairs shifted): cell-image pairs count, image-image do not
-        from .. import screw
-        cells = screw.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
-        m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
-        images = screw.apply_points(p, m, np.tile(centres, (cells, 1)))
-        centres = np.concatenate([centres, images])
-        keep = np.concatenate([keep, np.zeros(len(images), dtype=bool)])
+    centres, _ = with_images(p, centres)
+    keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
     deep = 0
     order = np.argsort(centres[:, 2])
     c, k = centres[order], keep[order]

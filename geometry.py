@@ -192,3 +192,54 @@ def linker_direction(outline, anchor, offsets, radii, copies=(0.0,)) -> tuple[np
                 return u, "nearest free"
     raise GeometryError("no straight direction from the anchor keeps the linker and the "
                         "globule outside the core")
+
+
+def _convex_at(poly: np.ndarray, i: int) -> bool:
+    """Whether corner i of a counter-clockwise polygon turns left (or goes straight)."""
+    a, b, c = poly[i - 1], poly[i], poly[(i + 1) % len(poly)]
+    return float(_cross(b - a, c - b)) >= -1e-9
+
+
+def convex_pieces(points, triangles) -> list[np.ndarray]:
+    """Cover a polygon with convex pieces: the triangles of its triangulation (index triples
+    into `points`, e.g. from mathutils.geometry.tessellate_polygon), merged across shared edges
+    while the union stays convex (Hertel-Mehlhorn: at most 4× the fewest pieces). Each piece
+    is counter-clockwise, (m, 2)."""
+    pts = counter_clockwise(points) if signed_area(points) < 0 else np.asarray(points, float)
+    flip = signed_area(points) < 0
+    n = len(pts)
+    pieces = []
+    for tri in triangles:
+        idx = [n - 1 - i for i in tri] if flip else list(tri)
+        if signed_area(pts[idx]) < 0:
+            idx = idx[::-1]
+        pieces.append(idx)
+    merged = True
+    while merged:
+        merged = False
+        for a in range(len(pieces)):
+            for b in range(a + 1, len(pieces)):
+                joined = _join(pieces[a], pieces[b])
+                if joined is not None and all(_convex_at(pts[joined], i)
+                                              for i in range(len(joined))):
+                    pieces[a] = joined
+                    del pieces[b]
+                    merged = True
+                    break
+            if merged:
+                break
+    return [pts[p] for p in pieces]
+
+
+def _join(p: list, q: list) -> list | None:
+    """The union of two counter-clockwise index polygons sharing an edge (u, v) in p and
+    (v, u) in q, as one index polygon; None if they share no edge."""
+    for i in range(len(p)):
+        u, v = p[i], p[(i + 1) % len(p)]
+        for j in range(len(q)):
+            if q[j] == v and q[(j + 1) % len(q)] == u:
+                # p from v round to u, then q's corners strictly between u and v
+                p_part = [p[(i + 1 + k) % len(p)] for k in range(len(p))]  # v ... u
+                q_part = [q[(j + 2 + k) % len(q)] for k in range(len(q) - 2)]
+                return p_part + q_part
+    return None

@@ -240,7 +240,9 @@ class Params:
     def estimated_objects(self) -> int:
         # per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
         # constraint empties
-        return self.layers * (1 + self.protofilaments * (2 * self.linker + 1))
+        # an outline's core: at most (corners - 2) convex pieces per layer besides its slab
+        pieces = 0 if self.core_outline is None else len(self.core_outline) - 2
+        return self.layers * (1 + pieces + self.protofilaments * (2 * self.linker + 1))
 
     # ---- conversion ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

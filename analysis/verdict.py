@@ -7,6 +7,7 @@ from .. import params as P, screw
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
 from .envelope import envelope
+from .leaks import members_inside_core
 from .stretch import bond_stretch
 
 # A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
@@ -129,6 +130,11 @@ def check_model(model) -> dict:
         name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
         chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
                   "chain_clashes": chain_clash}
+    if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
+        chains["inside_core"] = members_inside_core(p, positions)
+        if chains["inside_core"]:
+            warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
+                            f"([chain, member]: {chains['inside_core'][:5]})")
     return {
         "verdict": verdict,
         "intersecting_faces": faces,

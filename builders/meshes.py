@@ -3,7 +3,10 @@ from __future__ import annotations
 
 import bmesh
 import bpy
-from mathutils import Matrix
+from mathutils import Matrix, Vector
+from mathutils.geometry import tessellate_polygon
+
+from .. import geometry
 
 from .scene import tag
 
@@ -30,6 +33,13 @@ def prism(name: str, outline, height: float) -> bpy.types.Mesh:
     me.validate()
     me.update()
     return me
+
+
+def convex_pieces(outline) -> list:
+    """A polygon (n, 2), possibly concave, cut into convex polygons (geometry.convex_pieces
+    over Blender's own triangulation)."""
+    pts = [[Vector((float(x), float(y), 0.0)) for x, y in outline]]
+    return geometry.convex_pieces(outline, tessellate_polygon(pts))
 
 
 def uv_sphere(name: str, radius: float, segments: int, rings: int) -> bpy.types.Mesh:

@@ -260,13 +260,37 @@ class _LayerBuilder:
         return self.mesh[role]
 
     def _slab(self, k):
-        # A concave outline needs Bullet's triangle-mesh shape: a convex hull fills its notches
-        # (README, "Concave cores").
-        shape = "BOX" if self.p.core_outline is None else "MESH"
+        # A concave outline: a convex hull would fill its notches (README, "Concave cores"), and
+        # Bullet's triangle-mesh shape is a hollow surface that traps a bead once it is pushed
+        # through (README, "Why real-fibril linkers stayed stretched"). So the core is a
+        # compound of solid convex prisms, children of the slab, which keeps the drawn prism.
+        shape = "BOX" if self.p.core_outline is None else "COMPOUND"
         slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
                      self.bodies, "PASSIVE", shape)
         self.placed["slab"].append((slab, k, 0))
         self.model.slabs.append(slab)
+        if shape == "COMPOUND":
+            self._core_pieces(slab, k)
+
+    def _core_pieces(self, slab, k):
+        """The convex prisms of layer k's core outline, parented to its slab (same frame)."""
+        if "pieces" not in self.mesh:
+            self.mesh["pieces"] = [meshes.prism(f"FibrilFit core piece {i}", piece, self.p.rise)
+                                   for i, piece in enumerate(meshes.convex_pieces(
+                                       self.p.outline()))]
+            self.pieces_coll = new_collection("FibrilFit core pieces", "core_pieces",
+                                              self.parts["slab"])
+        for i, mesh in enumerate(self.mesh["pieces"]):
+            ob = tag(bpy.data.objects.new(f"FF{k:04d} core piece {i}", mesh), "core_piece")
+            ob[LAYER], ob[INDEX] = k, i
+            ob.parent = slab
+            ob.hide_render = True
+            ob.display_type = "WIRE"
+            self.pieces_coll.objects.link(ob)
+            self.bodies.objects.link(ob)
+            ob.rigid_body.type = "PASSIVE"
+            ob.rigid_body.collision_shape = "CONVEX_HULL"
+            self.placed.setdefault("core_piece", []).append((ob, k, 0))
 
     def _name(self, k, j):
         return f"FF{k:04d}" if self.pfs == 1 else f"FF{k:04d}.{j}"
@@ -326,6 +350,13 @@ class _LayerBuilder:
         a seed); only their transforms come later, with the same float32 values as one by one.
         """
         for role, placed in self.placed.items():
+            if role == "core_piece":  # children of their slab: the slab's frame
+                objects = _in_order(self.pieces_coll, [ob for ob, _, _ in placed])
+                k = np.array([ki for _, ki, _ in placed], dtype=np.intp)
+                loc = np.zeros((len(k), 3))
+                loc[:, 2] = self.height[k]
+                _place(objects, np.zeros((len(k), 3)), np.zeros(len(k)), loc, self.angle[k])
+                continue
             objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
             # (layer, 0) for slabs; (chain, member) for the rest
             k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
@@ -374,8 +405,10 @@ def _in_order(coll, objects):
     return coll.objects
 
 
-def _place(objects, loc: np.ndarray, rot_z: np.ndarray) -> None:
-    """Set location and Z rotation of a collection's objects, and a world matrix to match.
+def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
+           world_rot_z=None) -> None:
+    """Set location and Z rotation of a collection's objects, and a world matrix to match
+    (`world_loc`, `world_rot_z` for children: their parent's).
 
     The world matrix makes the objects' matrix_world right before any depsgraph evaluation.
     foreach_set writes Blender's float[4][4] as stored: column-major, translation in row 3.
@@ -385,6 +418,8 @@ def _place(objects, loc: np.ndarray, rot_z: np.ndarray) -> None:
     rot[:, 2] = rot_z
     objects.foreach_set("location", loc.astype(np.float32).ravel())
     objects.foreach_set("rotation_euler", rot.astype(np.float32).ravel())
+    loc = loc if world_loc is None else world_loc
+    rot_z = rot_z if world_rot_z is None else world_rot_z
     mat = np.zeros((n, 4, 4))
     c, s = np.cos(rot_z), np.sin(rot_z)
     mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c

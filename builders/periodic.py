@@ -72,6 +72,7 @@ def build_images(model, scene) -> dict:
         ob = _copy(source, STATIC, m, j, 0, colls[STATIC], bodies)
         ob.matrix_world = _to_blender(screw.apply_matrices(p, m, _matrix(source)[None])[0])
         made[STATIC].append(ob)
+        _copy_pieces(source, ob, colls[STATIC], bodies)
     for m, c, i in todo["moving"]:
         ob = _copy(model.chain[c][i], MOVING, m, c, i, colls[MOVING], bodies)
         ob.rigid_body.kinematic = True
@@ -107,6 +108,24 @@ def _copy(source, role, m, chain, index, coll, bodies):
         setattr(rb, attr, getattr(src, attr))
     ob.color = (*(c + FADE * (b - c) for c, b in zip(source.color[:3], FADE_TO)), 1.0)
     return ob
+
+
+def _copy_pieces(source, image, coll, bodies) -> None:
+    """An outline core's solid convex pieces (children of its slab, builders.model) for its
+    image: a COMPOUND shape without them would collide with nothing."""
+    for child in source.children:
+        if child.get(TAG) != "core_piece":
+            continue
+        ob = tag(bpy.data.objects.new(f"FF image {image[CELL]:+d} {child.name}", child.data),
+                 "core_piece")
+        ob[LAYER], ob[INDEX] = child[LAYER], child[INDEX]
+        ob.parent = image
+        ob.hide_render, ob.display_type = True, "WIRE"
+        coll.objects.link(ob)
+        bodies.objects.link(ob)
+        ob.rigid_body.type = "PASSIVE"
+        ob.rigid_body.collision_shape = "CONVEX_HULL"
+        ob.matrix_world = image.matrix_world
 
 
 def image_collection(model, role: str = MOVING):

@@ -104,7 +104,7 @@ def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
     assert p.chain_layout.rule == "edge normal"  # radial (down) points into the notch's floor
     model = build_model(p, scene)
     slab = model.slabs[0]
-    assert (slab.rigid_body.type, slab.rigid_body.collision_shape) == ("PASSIVE", "MESH")
+    assert (slab.rigid_body.type, slab.rigid_body.collision_shape) == ("PASSIVE", "COMPOUND")
     assert tuple(slab.dimensions) == pytest.approx((40, 22, 4.8), abs=1e-4)
     radii = np.array(p.chain_radii())
     start = chain_positions(p)
@@ -219,7 +219,8 @@ def _bench(name):
 @pytest.mark.parametrize("case", ["notch floor", "notch corner", "floor at a layer seam",
                                   "falls into the notch from outside"])
 def test_a_bead_rests_in_the_notch_of_a_concave_mesh_core(scene, case):
-    """Bullet's MESH shape (what an outline's core uses) holds a bead pushed into a concave notch:
+    """Bullet's MESH shape (what an outline's core used before its convex pieces) holds a bead
+    pushed into a concave notch:
     it neither sinks in nor falls through (bench/concave_core.py measures CONVEX_HULL too)."""
     probe = _bench("concave_core").probe
     r = probe("MESH", case, frames=60)

@@ -273,7 +273,7 @@ def test_a_globule_on_its_neighbours_image_across_the_end_clashes_once(scene, ff
 
 def test_non_periodic_results_are_unchanged(scene, ff):
     """The default verdicts (and everything the check reports) are those of the code before
-    the periodic cell, recorded on bpy 5.0.1 and 4.2.0 (tests/data)."""
+    the periodic cell, recorded with the code before it on bpy 5.0.1, 4.2.0 and 5.2.3 (tests/data)."""
     reference = json.loads(REFERENCE.read_text())[bpy.app.version_string]
     for case in reference.values():
         r = ff.pipeline.run(ff.params.make_params(**case["params"]), scene)

@@ -552,7 +552,7 @@ def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, s
         run("bake")
     assert run("run_all") == {"FINISHED"}
     model = find_model(scene)
-    assert model.slabs[0].rigid_body.collision_shape == "MESH"
+    assert model.slabs[0].rigid_body.collision_shape == "COMPOUND"  # solid pieces
     assert model.params.anchor == (31.75, 0.0)
     assert run("clear_outline") == {"FINISHED"} and ui.core_outline == ""
     assert properties.read_params(ui).core_outline is None

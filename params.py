@@ -504,9 +504,6 @@ def _check_periodic(p: Params) -> None:
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
                                          "ends, every layer is interior")
-    if p.protocol != "tutorial":
-        raise ParamError("protocol", f"{p.protocol} cannot be used with periodic yet: the cell's "
-                                     f"images would not grow and shrink with their originals")
     if p.substeps % p.image_updates:
         raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
                                           f"frame's substeps split evenly between image updates "

@@ -20,6 +20,7 @@ from typing import Callable
 
 import numpy as np
 
+from .. import screw
 from .scene import TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
@@ -35,11 +36,25 @@ def cycle_gravity(p, cycle: int, first) -> np.ndarray:
 
 
 def start_scale(p, centres: np.ndarray) -> float:
-    """`grow_start`, or less if the start layout's globules would overlap at that scale."""
-    d = _closest(centres)
+    """`grow_start`, or less if the start layout's globules would overlap at that scale (in a
+    periodic cell, also with the images of the cell's globules)."""
+    d = _closest(with_images(p, centres)[0])
     if d is None:
         return p.grow_start
     return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
+
+
+def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
+    """The globule centres and, in a periodic cell, their images above it as far as a globule
+    can reach (pairs with the images below are the same pairs shifted). Returns (centres, n):
+    the first n are the cell's; image-image pairs repeat cell pairs and must not be counted."""
+    centres = np.asarray(centres, dtype=float)
+    if not p.periodic or not len(centres):
+        return centres, len(centres)
+    cells = screw.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
+    m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
+    images = screw.apply_points(p, m, np.tile(centres, (cells, 1)))
+    return np.concatenate([centres, images]), len(centres)
 
 
 def _closest(centres: np.ndarray) -> float | None:
@@ -66,6 +81,8 @@ def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     centres = positions[:, -1]
     keep = np.zeros(len(centres), dtype=bool)
     keep[scored] = True
+    centres, _ = with_images(p, centres)
+    keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
     deep = 0
     order = np.argsort(centres[:, 2])
     c, k = centres[order], keep[order]
@@ -96,6 +113,9 @@ class Inflate:
         self.finished, self.gravity, self.scale = False, None, None
         self.start = self.first = None
         self.cycles: list[dict] = []
+        # scene frames per frame of the model (physics.frame_split): a periodic cell's frames
+        # are split, so the schedule's frames and speeds are counted in the shorter ones
+        self.k = self.p.image_updates if self.p.periodic else 1
 
     def _set_scale(self, s: float) -> None:
         if s == self.scale:
@@ -117,21 +137,22 @@ class Inflate:
             self.gravity = cycle_gravity(p, 0, self.first)
         if self.holding:
             return
-        t = min(1.0, (frame - self.grow_start) / p.grow_frames)
+        t = min(1.0, (frame - self.grow_start) / (p.grow_frames * self.k))
         self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
         scene.gravity = tuple(self.gravity * (1.0 - t))
 
     def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:
         p = self.p
         if not self.holding:
-            if frame - self.grow_start >= p.grow_frames:
+            if frame - self.grow_start >= p.grow_frames * self.k:
                 self.holding, self.hold_start, self.quiet, self.prev = True, frame + 1, 0, positions.copy()
             return
         speed = float(np.linalg.norm(positions - self.prev, axis=-1).max())
         self.prev = positions.copy()
-        self.quiet = self.quiet + 1 if speed < p.settle_speed else 0
+        self.quiet = self.quiet + 1 if speed < p.settle_speed / self.k else 0
         held = frame - self.hold_start + 1
-        if self.quiet < min(p.settle_frames, p.hold_frames) and held < p.hold_frames:
+        if (self.quiet < min(p.settle_frames, p.hold_frames) * self.k
+                and held < p.hold_frames * self.k):
             return
         verdict = (self.judge(self.model) if self.judge is not None
                    else sphere_judge(p, positions, self.scored))

@@ -158,6 +158,9 @@ class ImageFollower:
         self.rotation[:, 2] = angle
         self.count = len(obs)
         self.imaged = (self.chain, self.member)
+        # each image's original: an image carries its scale (inflate grows and shrinks globules)
+        self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
+        self.scale = np.ones(len(obs), dtype=np.float32)
         radii = np.asarray(self.p.chain_radii(), dtype=float)
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
@@ -184,8 +187,23 @@ class ImageFollower:
             out |= (where[:, 2] + self.radius >= lo) & (where[:, 2] - self.radius <= hi)
         return out
 
+    def source_scales(self) -> np.ndarray:
+        """Each image's original's (uniform) scale now."""
+        return np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
+
+    def before_frame(self, scene, frame) -> None:
+        """Give the images their originals' scale when it changed since they were placed (the
+        inflate hook, which runs first, grows or shrinks the originals before each frame)."""
+        if self.count and self.current is not None:
+            scale = self.source_scales()
+            changed = scale != self.scale
+            if changed.any():  # the images near the cell are handed to the depsgraph again
+                self.scale = scale
+                self._write(changed & self.near_now)
+
     def place(self, positions: np.ndarray, margin: float | None = None) -> None:
-        """Move the images to S^m of `positions`; with `margin` (Å), only those near the cell."""
+        """Move the images to S^m of `positions`, with their originals' scale; with `margin`
+        (Å), only those near the cell."""
         if not self.count:
             return
         loc = self.targets(positions)
@@ -195,18 +213,27 @@ class ImageFollower:
             moving = self.near(positions, loc, margin)
             loc = np.where(moving[:, None], loc, self.current)
         self.current = loc
+        self.scale = self.source_scales()
         self.tagged.append(int(moving.sum()))
+        self.near_now = moving
+        self._write(moving)
+
+    def _write(self, moving: np.ndarray) -> None:
+        """Set every image's place, turn and scale (one foreach_set each); tag those `moving`."""
+        loc, sc = self.current, self.scale
         objects = self.coll.objects
         objects.foreach_set("location", loc.astype(np.float32).ravel())
         objects.foreach_set("rotation_euler", self.rotation.ravel())
+        objects.foreach_set("scale", np.repeat(sc, 3))
         c, s = np.cos(self.rotation[:, 2]), np.sin(self.rotation[:, 2])
         mat = np.zeros((self.count, 4, 4), dtype=np.float32)
-        mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
-        mat[:, 2, 2] = mat[:, 3, 3] = 1.0
+        mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c * sc, s * sc, -s * sc, c * sc
+        mat[:, 2, 2], mat[:, 3, 3] = sc, 1.0
         mat[:, 3, :3] = loc
         objects.foreach_set("matrix_world", mat.ravel())
         for k in np.flatnonzero(moving).tolist():  # foreach_set tags nothing: untagged, Bullet
-            self.objects[k].update_tag(refresh={"OBJECT"})  # would never see the move
+            self.objects[k].update_tag(refresh={"OBJECT"})  # would never see the move (or the
+            # scale: Bullet re-reads a kinematic body's scale only when it is tagged)
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they

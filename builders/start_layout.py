@@ -32,14 +32,20 @@ def fan_frames(rest: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return u, a, np.cross(u, a)
 
 
-def fan_directions(rest: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+def fan_directions(rest: np.ndarray, rng: np.random.Generator,
+                   periodic: bool = False) -> np.ndarray:
     """Each chain's fan direction: outward, tilted along the axis in proportion to its anchor's
     height (monotone, so neighbouring chains never cross) and sideways, alternating from one
-    height to the next (so neighbours part) with a random amplitude."""
+    height to the next (so neighbours part) with a random amplitude.
+
+    In a screw-periodic cell (`periodic`) there is no axial tilt: any tilt that grows with the
+    height would jump back at the cell's end, where the top chain and the bottom chain's image
+    (one rise above it) would then cross. An infinite fibril cannot spread along its axis, so
+    the chains part sideways only; the images, S^m of the originals, follow that layout."""
     u, a, s = fan_frames(rest)
     h = rest[:, 0, 2]
     span = np.ptp(h) / 2.0
-    axial = (h - h.mean()) / span if span > 0 else np.zeros_like(h)
+    axial = (h - h.mean()) / span if span > 0 and not periodic else np.zeros_like(h)
     levels = np.unique(np.round(h, 3), return_inverse=True)[1].ravel()
     side = np.where(levels % 2 == 0, 1.0, -1.0) * rng.choice([-1.0, 1.0])
     side = side * rng.uniform(0.5, 1.0, len(h))
@@ -52,9 +58,9 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     `rest` is the rest layout (n chains × [anchor, beads..., globule] × 3). Anchors stay where
     they are. The first bond points straight out; later bonds turn towards the chain's fan
     direction over two steps, each with a random wobble (`seed`), never turning back towards
-    the core. Every bond keeps its rest length, and each pivot is the contact point of the new
-    layout: member i's radius along the bond, so the globule's joint sits on its full-size
-    surface whatever scale it starts at.
+    the core (in a periodic cell, no axial tilt: fan_directions). Every bond keeps its rest
+    length, and each pivot is the contact point of the new layout: member i's radius along the
+    bond, so the globule's joint sits on its full-size surface whatever scale it starts at.
     """
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
@@ -62,7 +68,7 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     radii = np.asarray(p.chain_radii(), dtype=float)
     lengths = np.asarray(p.rest_lengths(), dtype=float)
     u = fan_frames(rest)[0]
-    fan = fan_directions(rest, rng)
+    fan = fan_directions(rest, rng, periodic=bool(getattr(p, "periodic", 0)))
     pos = np.empty_like(rest)
     pos[:, 0] = rest[:, 0]
     for i in range(1, m):

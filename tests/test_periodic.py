@@ -63,8 +63,7 @@ def test_too_short_a_cell_is_refused_with_the_minimum(ff):
     assert P.make_params(periodic=least).periodic == least
     with pytest.raises(P.ParamError, match="score_layers"):
         P.make_params(periodic=13, score_layers=2)
-    with pytest.raises(P.ParamError, match="protocol"):  # the images would not grow
-        P.make_params(periodic=13, protocol="inflate")
+    assert P.make_params(periodic=13, protocol="inflate").protocol == "inflate"  # images grow
 
 
 @pytest.mark.parametrize("extra, name", [(["--layers", "100"], "layers"),
@@ -282,6 +281,106 @@ def test_non_periodic_results_are_unchanged(scene, ff):
         for key, want in case.items():
             if key != "params":
                 assert r[key] == want, key
+
+
+# ---- the inflate protocol in a cell --------------------------------------------------------
+
+def _members_with_images(ff, p, pos, cells=(1, -1)):
+    """Linker beads (no anchors, no globules) of the cell and their images: points, radii, chain
+    of the infinite fibril (chain + m·n)."""
+    S, n = _screw(ff), len(pos)
+    r = np.asarray(p.chain_radii(), dtype=float)[1:-1]
+    pts, chain = pos[:, 1:-1].reshape(-1, 3), np.repeat(np.arange(n), pos.shape[1] - 2)
+    all_pts, all_chain = [pts], [chain]
+    for m in cells:
+        all_pts.append(S.apply_points(p, np.full(len(pts), m, dtype=float), pts))
+        all_chain.append(chain + m * n)
+    return pts, np.tile(r, n), chain, np.concatenate(all_pts), np.tile(r, n * (1 + len(cells))), \
+        np.concatenate(all_chain)
+
+
+def _deepest_bead_overlap(ff, p, pos):
+    """The deepest overlap (Å) of two linker beads of different chains, images included."""
+    pts, r, chain, q, qr, qchain = _members_with_images(ff, p, pos, (1, -1) if p.periodic else ())
+    gap = np.linalg.norm(pts[:, None] - q[None], axis=-1) - r[:, None] - qr[None]
+    gap[chain[:, None] == qchain[None]] = np.inf
+    return float(-gap.min())
+
+
+def test_periodic_inflate_start_layout_is_no_more_tangled_than_twenty_layers(ff):
+    """A cell's inflate start: linker beads (originals and images) overlap no more than at the
+    20-layer model (median of the deepest overlap over 20 seeds; the axial fan the 20-layer
+    model uses would, in a cell, start the top chain across the bottom chain's image: median
+    about 1.6 Å against 0.3 Å), and no two globules overlap at the start scale, images included."""
+    from importlib import import_module
+    layout = import_module(ff.__name__ + ".builders.start_layout")
+    growth = import_module(ff.__name__ + ".builders.growth")
+    rest_of = import_module(ff.__name__ + ".builders.model").chain_positions
+    S, P = _screw(ff), ff.params
+    for linker in (5, 7):
+        flat = P.make_params(linker=linker, protocol="inflate")
+        cell = P.make_params(linker=linker, protocol="inflate", periodic="auto")
+        depth = {}
+        for name, p in (("flat", flat), ("cell", cell)):
+            depth[name] = [_deepest_bead_overlap(ff, p, layout.inflate_layout(p, rest_of(p), s)[0])
+                           for s in range(20)]
+        assert np.median(depth["cell"]) <= np.median(depth["flat"]), (linker, depth)
+        for seed in range(5):
+            pos = layout.inflate_layout(cell, rest_of(cell), seed)[0]
+            g = pos[:, -1]
+            scale = growth.start_scale(cell, g)
+            everything = np.concatenate([g] + [S.apply_points(cell, np.full(len(g), m, float), g)
+                                               for m in (1, 2, -1, -2)])
+            d = np.linalg.norm(g[:, None] - everything[None], axis=-1)
+            d[np.arange(len(g)), np.arange(len(g))] = np.inf
+            assert d.min() >= scale * cell.globule_diameter  # at the start scale: no overlap
+            assert scale < cell.grow_start or d.min() >= cell.grow_start * cell.globule_diameter
+
+
+def test_periodic_inflate_images_start_at_the_screw_and_carry_the_scale(scene, ff):
+    """A periodic inflate model builds; its images start at S^m of the inflate layout and, after
+    every frame, carry their originals' scale, also when the originals are shrunk to regrow."""
+    S, PB = _screw(ff), _periodic(ff)
+    from importlib import import_module
+    hooks_mod = import_module(ff.__name__ + ".builders.hooks")
+    p = ff.params.make_params(periodic=7, protocol="inflate", linker=4, grow_frames=2,
+                              hold_frames=2, regrow_cycles=1)
+    model = ff.pipeline.build(p, scene)
+    moving = _images(ff, model)
+    m = np.array([ob[PB.CELL] for ob in moving])
+    c = np.array([ob[PB.CHAIN] for ob in moving])
+    i = np.array([ob[PB.INDEX] for ob in moving])
+    start = np.array([[ob.matrix_world.translation[:] for ob in members] for members in model.chain])
+    rest = import_module(ff.__name__ + ".builders.model").chain_positions(p)
+    assert not np.allclose(start, rest)  # the inflate layout, not the rest one
+    have = np.array([ob.matrix_world.translation[:] for ob in moving])
+    assert np.allclose(have, S.apply_points(p, m, start[c, i]), atol=1e-3)
+    hooks = hooks_mod.frame_hooks(model, scene)
+    inflate, follower = hooks
+    globule = i == p.linker
+    assert globule.any()
+    scales, handed = [], 0
+    for frame, _ in ff.builders.bake_steps(scene, model, hooks=hooks):
+        want = np.array([model.chain[k][-1].scale[0] for k in c[globule]])
+        got = np.array([ob.scale[0] for ob in np.array(moving)[globule]])
+        world = np.array([ob.matrix_world.to_scale()[0] for ob in np.array(moving)[globule]])
+        assert np.allclose(got, want, atol=1e-6) and np.allclose(world, want, atol=1e-5)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        near = [ob for ob, k in zip(moving, follower.near_now) if k and ob[PB.INDEX] == p.linker]
+        for ob in near:  # what Blender (and so Bullet) evaluates for the images it was handed
+            assert ob.evaluated_get(depsgraph).matrix_world.to_scale()[0] == \
+                pytest.approx(want[0], abs=1e-5)
+        scales.append(float(want[0]))
+        handed += len(near)
+        if frame == 3:
+            break
+    assert scales[0] < 1.0 and len(set(scales)) > 1  # the globules grew, so the images did
+    assert handed > 0
+    inflate._set_scale(p.regrow_scale)  # a jammed layout shrinks: the images follow
+    follower.before_frame(scene, 4)
+    assert all(ob.scale[0] == pytest.approx(p.regrow_scale) for ob in np.array(moving)[globule])
+    beads = [ob for ob, k in zip(moving, i) if k != p.linker]
+    assert all(ob.scale[0] == pytest.approx(1.0) for ob in beads)  # beads never scale
 
 
 # ---- the panel and the PDB ---------------------------------------------------------------

@@ -305,12 +305,12 @@ def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
 
 
 def test_minimal_linker_passes_model_options_through(tmp_path):
-    """--periodic auto reaches the model: inflate is refused there in one line (periodic
-    images do not grow yet), nothing written."""
-    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--periodic", "auto",
+    """--periodic reaches the model (inflate in a cell is allowed; a too-short cell is refused
+    in one line), nothing written."""
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--periodic", "3",
                            "--out", str(tmp_path / "x")], capture_output=True, text=True,
                           timeout=120)
-    assert proc.returncode == 2 and "protocol" in proc.stderr and "periodic" in proc.stderr
+    assert proc.returncode == 2 and "periodic" in proc.stderr and "at least" in proc.stderr
     assert proc.stderr.strip().count("\n") == 0 and not (tmp_path / "x").exists()
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pathlib
 import statistics
 
-from ..sweep import runner
+from ..sweep import grid, runner
 from ..sweep.grid import Point
 from ..sweep.stats import wilson
 
@@ -39,10 +39,10 @@ def run(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
 def read(results_path, base: dict) -> list[dict]:
     """The records of `base`'s seeds in `results_path`, in seed order (the last of duplicates)."""
     records, _ = runner.read_lines(pathlib.Path(results_path))
-    same = {k: v for k, v in base.items() if k != "seed"}
+    same = {k: v for k, v in grid.with_defaults(base).items() if k != "seed"}
     found = {}
-    for r in records:
-        if {k: v for k, v in r["params"].items() if k != "seed"} == same:
+    for r in records:  # as runner.done_keys sees them: a record predating a parameter has its default
+        if {k: v for k, v in grid.with_defaults(r["params"]).items() if k != "seed"} == same:
             found[r["params"]["seed"]] = r
     return [found[s] for s in sorted(found)]
 

@@ -381,3 +381,14 @@ def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff,
     assert int(seen["protofilaments"]) == 1 and seen["core_outline"]
     monkeypatch.undo()
     assert ff.cli.main([*argv, "--linker", "8"]) == 2  # the one searched: never given
+
+
+def test_restart_records_from_before_a_parameter_existed_are_found(tmp_path, ff):
+    """runner.done_keys counts a record that predates a parameter as that parameter's default,
+    so restarts.read must find it too (a resumed minimal-linker crashed on it)."""
+    base = ff.params.make_params(linker=6, seed=0).to_dict()
+    old = {k: v for k, v in base.items() if k not in ("periodic", "image_updates")}
+    results = tmp_path / "results.jsonl"
+    results.write_text(json.dumps({"params": old, "status": "ok", "accommodated": True}) + "\n")
+    (record,) = restarts.read(results, base)
+    assert record["params"] == old

@@ -36,6 +36,14 @@ def ff():
 
 
 @pytest.fixture
+def registered(scene, ff):
+    """The add-on registered on an empty scene (unregistered after); yields scene.fibrilfit."""
+    ff.register()
+    yield scene.fibrilfit
+    ff.unregister()
+
+
+@pytest.fixture
 def user_objects(scene):
     """Objects named like the tutorial's, owned by the user: a build must leave them alone."""
     made = {}

@@ -386,10 +386,8 @@ def test_periodic_inflate_images_start_at_the_screw_and_carry_the_scale(scene, f
 # ---- the panel and the PDB ---------------------------------------------------------------
 
 @pytest.fixture
-def ui(scene, ff):
-    ff.register()
-    yield scene.fibrilfit
-    ff.unregister()
+def ui(registered):
+    return registered
 
 
 def test_panel_checkbox_and_m(ui, ff):

@@ -114,13 +114,6 @@ def test_same_seed_same_json_across_processes(tmp_path):
     assert results[0]["blender_version"] == bpy.app.version_string
 
 
-@pytest.fixture
-def registered(scene, ff):
-    ff.register()
-    yield scene.fibrilfit
-    ff.unregister()
-
-
 @pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
 def test_operators_refuse_bad_input_and_keep_the_scene(cli_args, api_kwargs, name, registered,
                                                        scene, user_objects):

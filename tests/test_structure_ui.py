@@ -16,10 +16,8 @@ DATA = pathlib.Path(__file__).with_name("data")
 
 
 @pytest.fixture
-def ui(scene, ff):
-    ff.register()
-    yield scene.fibrilfit
-    ff.unregister()
+def ui(registered):
+    return registered
 
 
 def test_import_fibril_fills_parameters_and_adds_the_trace(ui, scene):

@@ -10,10 +10,8 @@ from fibrilfit.panels import sidebar
 
 
 @pytest.fixture
-def ui(scene, ff):
-    ff.register()
-    yield scene.fibrilfit
-    ff.unregister()
+def ui(registered):
+    return registered
 
 
 def test_load_then_save_keeps_parameters_and_metadata(ui, tmp_path):

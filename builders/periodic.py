@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import bpy
 import numpy as np
+from mathutils import Matrix
 
 from .. import screw
 from .scene import INDEX, LAYER, TAG, new_collection, tag
@@ -171,6 +172,9 @@ class ImageFollower:
         self.tagged: list[int] = []  # per frame: images handed to the depsgraph
         self.prev = None
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
+        self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
+
+    via_tag = False  # True: hand moved images to Bullet by update_tag (the old, slower way)
 
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
@@ -191,9 +195,14 @@ class ImageFollower:
         """Each image's original's (uniform) scale now."""
         return np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
 
+    def _know(self, scene) -> None:
+        if self.depsgraphs is None:  # every view layer's that exists: the active one steps Bullet
+            self.depsgraphs = [vl.depsgraph for vl in scene.view_layers if vl.depsgraph]
+
     def before_frame(self, scene, frame) -> None:
         """Give the images their originals' scale when it changed since they were placed (the
         inflate hook, which runs first, grows or shrinks the originals before each frame)."""
+        self._know(scene)
         if self.count and self.current is not None:
             scale = self.source_scales()
             changed = scale != self.scale
@@ -219,7 +228,8 @@ class ImageFollower:
         self._write(moving)
 
     def _write(self, moving: np.ndarray) -> None:
-        """Set every image's place, turn and scale (one foreach_set each); tag those `moving`."""
+        """Set every image's place, turn and scale (one foreach_set each, on the data Blender
+        saves) and hand those `moving` to Bullet by writing their evaluated copies' matrices."""
         loc, sc = self.current, self.scale
         objects = self.coll.objects
         objects.foreach_set("location", loc.astype(np.float32).ravel())
@@ -231,13 +241,25 @@ class ImageFollower:
         mat[:, 2, 2], mat[:, 3, 3] = sc, 1.0
         mat[:, 3, :3] = loc
         objects.foreach_set("matrix_world", mat.ravel())
-        for k in np.flatnonzero(moving).tolist():  # foreach_set tags nothing: untagged, Bullet
-            self.objects[k].update_tag(refresh={"OBJECT"})  # would never see the move (or the
-            # scale: Bullet re-reads a kinematic body's scale only when it is tagged)
+        # foreach_set tags nothing, so Bullet, which reads the evaluated copies, would never see
+        # the move. Tagging an image costs ~30 us of depsgraph work a frame; writing the copy's
+        # matrix costs ~2 us and Bullet reads it (the copy is rebuilt from the data above when
+        # anything tags it). bench/periodic.py measures both ("update_tag" keeps the old way).
+        idx = np.flatnonzero(moving).tolist()
+        if self.via_tag or not self.depsgraphs:  # (before the bake: once, at build)
+            for k in idx:
+                self.objects[k].update_tag(refresh={"OBJECT"})
+            return
+        for dg in self.depsgraphs:
+            for k in idx:
+                self.objects[k].evaluated_get(dg).matrix_world = Matrix(mat[k].T.tolist())
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they
-        stood where the previous frame had left them: that distance is the frame's lag."""
+        stood where the previous frame had left them: that distance is the frame's lag.
+        (Placing them where the last move would take them next instead was measured and is
+        worse: the images overshoot at every contact, and the cell blew apart.)"""
+        self._know(scene)
         now = positions[self.imaged]
         self.lag.append(float(np.linalg.norm(now - self.prev, axis=-1).max())
                         if self.prev is not None and self.count else 0.0)

@@ -167,6 +167,10 @@ def test_images_sit_at_the_screw_of_their_originals_every_frame(scene, ff):
         assert (gap[~at] > 0).all()
         world = np.array([ob.matrix_world.translation for ob in moving])
         assert np.allclose(world, have, atol=1e-4)
+        # Bullet reads the evaluated copies: the images it will use in the next frame are there
+        dg = scene.view_layers[0].depsgraph
+        seen_by_bullet = np.array([ob.evaluated_get(dg).matrix_world.translation for ob in moving])
+        assert np.allclose(seen_by_bullet[at], want[at], atol=1e-4)
         seen.append(positions.copy())
         exact.append(at)
     assert len(seen) == 12 and follower.summary()["image_lag"]["max"] > 0

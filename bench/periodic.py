@@ -1,12 +1,14 @@
 """The periodic cell against the 100-layer interior job, side by side; prints one table.
 
-    .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0]
+    .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0] [--old CHECKOUT]
 
 Target (issue #12): a periodic job at the default model (`--periodic auto`) costs at most 1/4 of
 the wall time of the 100-layer `--layers 100 --score-layers 20` job. Each job is the whole
 command (`headless.py run`) in a fresh process, the two run back to back in every round, so the
 ratio is taken within a round (the machine may be shared: trust the ratio, not the seconds).
-Memory is each process's peak resident set (ru_maxrss of the child).
+Memory is each process's peak resident set (ru_maxrss of the child). "job" is the run's own
+build + bake + check (timings_s), without starting Python and importing bpy. `--old CHECKOUT` adds
+the periodic job run from another checkout (e.g. a git worktree of an older commit) in every round.
 """
 from __future__ import annotations
 
@@ -28,13 +30,13 @@ JOBS = {
 }
 
 
-def run_job(args: list[str]) -> dict:
+def run_job(args: list[str], root: str = str(ROOT)) -> dict:
     """One `headless.py run` in a fresh process: wall time, peak memory, and its result."""
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / "r.json"
         start = time.perf_counter()
-        proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "run", *args,
-                                 "--json", str(out), "--quiet"], cwd=ROOT,
+        proc = subprocess.Popen([sys.executable, str(pathlib.Path(root) / "headless.py"), "run",
+                                 *args, "--json", str(out), "--quiet"], cwd=root,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         _, err = proc.communicate()
         wall = time.perf_counter() - start
@@ -44,13 +46,13 @@ def run_job(args: list[str]) -> dict:
     return {"wall_s": wall, "result": result}
 
 
-def measure(args: list[str]) -> dict:
+def measure(args: list[str], root: str = str(ROOT)) -> dict:
     """run_job in a wrapper process, so the peak RSS reported is this job's alone."""
     code = ("import json, resource, sys; sys.path.insert(0, %r); import periodic as b; "
-            "r = b.run_job(%r); "
+            "r = b.run_job(%r, %r); "
             "u = resource.getrusage(resource.RUSAGE_CHILDREN); "
             "r['peak_mib'] = u.ru_maxrss / 1024.0; r['cpu_s'] = u.ru_utime + u.ru_stime; "
-            "print('BENCH ' + json.dumps(r))") % (str(ROOT / "bench"), args)
+            "print('BENCH ' + json.dumps(r))") % (str(ROOT / "bench"), args, root)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     line = next((ln for ln in out.stdout.splitlines() if ln.startswith("BENCH ")), None)
     if line is None:
@@ -64,37 +66,49 @@ def main(argv=None) -> int:
     ap.add_argument("--linker", default="6")
     ap.add_argument("--seed", default="0")
     ap.add_argument("--json", metavar="PATH", help="write every round's figures here")
+    ap.add_argument("--old", metavar="CHECKOUT", help="also run the periodic job from here")
     a = ap.parse_args(argv)
     extra = ["--linker", a.linker, "--seed", a.seed]
+    jobs = {name: (args, str(ROOT)) for name, args in JOBS.items()}
+    if a.old:
+        jobs["periodic (--old)"] = (JOBS["periodic"], str(pathlib.Path(a.old).resolve()))
     rounds = []
     for r in range(a.runs):
-        row = {name: measure(args + extra) for name, args in JOBS.items()}
+        row = {name: measure(args + extra, root) for name, (args, root) in jobs.items()}
+        for x in row.values():
+            x["job_s"] = sum(x["result"]["timings_s"].values())
         row["ratio"] = row["periodic"]["wall_s"] / row["layers100"]["wall_s"]
         row["cpu_ratio"] = row["periodic"]["cpu_s"] / row["layers100"]["cpu_s"]
+        row["job_ratio"] = row["periodic"]["job_s"] / row["layers100"]["job_s"]
         rounds.append(row)
         print(f"round {r + 1}: periodic {row['periodic']['wall_s']:.2f} s "
               f"{row['periodic']['peak_mib']:.0f} MiB, 100 layers {row['layers100']['wall_s']:.2f} s "
               f"{row['layers100']['peak_mib']:.0f} MiB, ratio {row['ratio']:.3f} "
-              f"(CPU time {row['cpu_ratio']:.3f})", flush=True)
+              f"(CPU time {row['cpu_ratio']:.3f}, job {row['job_ratio']:.3f})", flush=True)
     med = lambda xs: statistics.median(xs)  # noqa: E731
     per = rounds[0]["periodic"]["result"]
     print(f"\nperiodic cell of {per['params']['periodic']} layers vs 100 layers, --score-layers 20 "
           f"(linker {a.linker}, seed {a.seed}; median of {a.runs} rounds, "
           f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f})")
-    print("| job | wall (s) | CPU (s) | peak memory (MiB) | bake (s) | scene frames |")
-    print("|---|---|---|---|---|---|")
-    for name in JOBS:
+    print("| job | wall (s) | CPU (s) | peak memory (MiB) | job (s) | bake (s) | scene frames |")
+    print("|---|---|---|---|---|---|---|")
+    for name in jobs:
         rs = [row[name] for row in rounds]
         print(f"| {name} | {med([x['wall_s'] for x in rs]):.2f} | "
               f"{med([x['cpu_s'] for x in rs]):.2f} | {med([x['peak_mib'] for x in rs]):.0f} | "
+              f"{med([x['job_s'] for x in rs]):.2f} | "
               f"{med([x['result']['timings_s']['bake'] for x in rs]):.2f} | "
               f"{med([x['result']['frames_simulated'] for x in rs]):.0f} |")
     ratio = med([row["ratio"] for row in rounds])
     cpu = med([row["cpu_ratio"] for row in rounds])
+    job = med([row["job_ratio"] for row in rounds])
     mem = med([row["periodic"]["peak_mib"] / row["layers100"]["peak_mib"] for row in rounds])
     print(f"wall-time ratio periodic / 100 layers: {ratio:.3f} (target <= 0.25: "
-          f"{'met' if ratio <= 0.25 else 'NOT met'}); CPU-time ratio {cpu:.3f}; memory ratio "
-          f"{mem:.2f}")
+          f"{'met' if ratio <= 0.25 else 'NOT met'}); CPU-time ratio {cpu:.3f}; job ratio "
+          f"{job:.3f}; memory ratio {mem:.2f}")
+    if a.old:
+        old = med([row["periodic (--old)"]["job_s"] / row["periodic"]["job_s"] for row in rounds])
+        print(f"periodic job, --old / this checkout: {old:.2f}")
     if a.json:
         pathlib.Path(a.json).write_text(json.dumps(rounds, indent=1))
     return 0

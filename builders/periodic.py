@@ -20,6 +20,7 @@ CELL = "fibrilfit_cell"    # on an image: m, the power of the screw
 COLLECTIONS = {MOVING: "FibrilFit images", STATIC: "FibrilFit static images"}
 FADE_TO, FADE = (0.3, 0.32, 0.36), 0.6  # images: their original's colour, 60 % of the way to the
 # render's backdrop (exports/dressing.BACKGROUND), so the cell stands out
+ONE_SIDED = False
 _RB_COPIED = ("friction", "restitution", "use_margin", "collision_margin")
 
 
@@ -74,6 +75,8 @@ def build_images(model, scene) -> dict:
         ob.matrix_world = _to_blender(screw.apply_matrices(p, m, _matrix(source)[None])[0])
         made[STATIC].append(ob)
         _copy_pieces(source, ob, colls[STATIC], bodies)
+    if ONE_SIDED:
+        todo["moving"] = [t for t in todo["moving"] if t[0] > 0]
     for m, c, i in todo["moving"]:
         ob = _copy(model.chain[c][i], MOVING, m, c, i, colls[MOVING], bodies)
         ob.rigid_body.kinematic = True
@@ -174,7 +177,8 @@ class ImageFollower:
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
         self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
 
-    via_tag = False  # True: hand moved images to Bullet by update_tag (the old, slower way)
+    via_tag = False  # True: hand moved images to Bullet by update_tag (the old, slower way;
+    # bench/periodic.py --compare measures both)
 
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
@@ -192,7 +196,9 @@ class ImageFollower:
         return out
 
     def source_scales(self) -> np.ndarray:
-        """Each image's original's (uniform) scale now."""
+        """Each image's original's (uniform) scale now (only inflate scales them)."""
+        if self.p.protocol != "inflate":
+            return self.scale
         return np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
 
     def _know(self, scene) -> None:

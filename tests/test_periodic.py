@@ -47,6 +47,7 @@ def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
     assert P.DEFAULTS.periodic == 0 and P.DEFAULTS.layers == 20
     p = P.make_params(periodic="auto")
     assert p.periodic == S.auto_cell_layers(p) and p.layers == p.periodic
+    assert p.periodic == 50  # ceil(8 · 30 Å / 4.8 Å): the measured margin (screw.AUTO_FACTOR)
     assert p.periodic * p.rise > p.globule_diameter
     assert P.make_params(periodic=" AUTO ", globule_diameter=60).periodic > p.periodic
     assert P.make_params(periodic=11).layers == 11
@@ -323,7 +324,8 @@ def test_periodic_inflate_start_layout_is_no_more_tangled_than_twenty_layers(ff)
     S, P = _screw(ff), ff.params
     for linker in (5, 7):
         flat = P.make_params(linker=linker, protocol="inflate")
-        cell = P.make_params(linker=linker, protocol="inflate", periodic="auto")
+        # as many chains as the flat model: the deepest of more pairs is deeper by itself
+        cell = P.make_params(linker=linker, protocol="inflate", periodic=flat.layers)
         depth = {}
         for name, p in (("flat", flat), ("cell", cell)):
             depth[name] = [_deepest_bead_overlap(ff, p, layout.inflate_layout(p, rest_of(p), s)[0])
@@ -472,9 +474,10 @@ def test_a_cell_of_two_protofilaments(scene, ff):
 @pytest.mark.parametrize("linker, accommodated", [(6, False), (8, True)])
 def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker, accommodated):
     """README, "Agreement with long fibrils": the interior of a 100-layer fibril at seed 0 is
-    not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the cell."""
+    not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the
+    cell that `auto` picks (50 layers for 30 Å globules)."""
     r = ff.pipeline.run(ff.params.make_params(periodic="auto", linker=linker), scene)
     assert r["accommodated"] is accommodated
-    assert r["checks_agree"] and r["periodic"]["cell_layers"] == 13
+    assert r["checks_agree"] and r["periodic"]["cell_layers"] == 50
     if not accommodated:
         assert r["verdict"] == "intersection" and r["max_bond_stretch"] > 0.05

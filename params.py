@@ -238,9 +238,11 @@ class Params:
         return self.frames
 
     def estimated_objects(self) -> int:
-        # per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
-        # constraint empties
-        # an outline's core: at most (corners - 2) convex pieces per layer besides its slab
+        """Objects a build makes: exact without an outline, at most this with one.
+
+        Per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
+        constraint empties. An outline's core adds its convex pieces per layer: the n - 2
+        triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
         pieces = 0 if self.core_outline is None else len(self.core_outline) - 2
         return self.layers * (1 + pieces + self.protofilaments * (2 * self.linker + 1))
 
@@ -494,7 +496,8 @@ def _check_combination(p: Params, force: bool) -> None:
     if n > MAX_OBJECTS_UNFORCED and not force:
         most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.linker + 1))
         chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
-        raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make {n} objects "
+        raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make "
+                                   f"{'up to ' if p.core_outline is not None else ''}{n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
 

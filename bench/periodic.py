@@ -1,6 +1,7 @@
 """The periodic cell against the 100-layer interior job, side by side; prints one table.
 
-    .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0] [--old CHECKOUT]
+    .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0] [--cell auto]
+                                       [--also-cell M] [--old CHECKOUT]
 
 Target (issue #12): a periodic job at the default model (`--periodic auto`) costs at most 1/4 of
 the wall time of the 100-layer `--layers 100 --score-layers 20` job. Each job is the whole
@@ -67,11 +68,16 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", default="0")
     ap.add_argument("--json", metavar="PATH", help="write every round's figures here")
     ap.add_argument("--old", metavar="CHECKOUT", help="also run the periodic job from here")
+    ap.add_argument("--cell", default="auto", help="the periodic job's M (default auto)")
+    ap.add_argument("--also-cell", metavar="M", help="also run a periodic job with this M")
     a = ap.parse_args(argv)
     extra = ["--linker", a.linker, "--seed", a.seed]
     jobs = {name: (args, str(ROOT)) for name, args in JOBS.items()}
+    jobs["periodic"] = (["--periodic", a.cell], str(ROOT))
+    if a.also_cell:
+        jobs[f"periodic M={a.also_cell}"] = (["--periodic", a.also_cell], str(ROOT))
     if a.old:
-        jobs["periodic (--old)"] = (JOBS["periodic"], str(pathlib.Path(a.old).resolve()))
+        jobs["periodic (--old)"] = (["--periodic", a.cell], str(pathlib.Path(a.old).resolve()))
     rounds = []
     for r in range(a.runs):
         row = {name: measure(args + extra, root) for name, (args, root) in jobs.items()}

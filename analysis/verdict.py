@@ -130,6 +130,11 @@ def check_model(model) -> dict:
         name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
         chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
                   "chain_clashes": chain_clash}
+    if p.periodic and p.periodic < screw.auto_cell_layers(p):
+        warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
+                        f"({screw.auto_cell_layers(p)}, 'auto'): near the edge of fitting, a short "
+                        f"cell fits fewer seeds than an infinite fibril (README, 'Agreement with "
+                        f"long fibrils')")
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
         chains["inside_core"] = members_inside_core(p, positions)
         if chains["inside_core"]:
@@ -164,7 +169,8 @@ def periodic_block(model, cells: int) -> dict:
     """The JSON's "periodic": the cell, the images simulated, and how far up the check looked."""
     images = model.root.get("fibrilfit_images")
     images = images.to_dict() if hasattr(images, "to_dict") else dict(images or {})
-    return {"cell_layers": model.params.periodic, "chains": len(model.chain),
+    return {"cell_layers": model.params.periodic,
+            "auto_cell_layers": screw.auto_cell_layers(model.params), "chains": len(model.chain),
             "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
                        "cells": [int(m) for m in images.get("cells", [])]},
             "check_cells": cells,

@@ -481,3 +481,17 @@ def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker,
     assert r["checks_agree"] and r["periodic"]["cell_layers"] == 50
     if not accommodated:
         assert r["verdict"] == "intersection" and r["max_bond_stretch"] > 0.05
+
+
+def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
+    """M below the measured margin is allowed (it is above the minimum) but the result says
+    what a short cell gets wrong; the auto cell carries no such warning."""
+    S = _screw(ff)
+    short = ff.params.make_params(periodic=13, frames=2, settle=False)
+    r = ff.pipeline.run(short, scene)
+    assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 50
+    assert any("shorter than the measured margin (50" in w for w in r["warnings"])
+    auto = ff.params.make_params(periodic="auto", frames=2, settle=False)
+    r = ff.pipeline.run(auto, scene)
+    assert r["periodic"]["cell_layers"] == 50
+    assert not any("measured margin" in w for w in r["warnings"])

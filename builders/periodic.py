@@ -144,10 +144,10 @@ class ImageFollower:
 
     Images are spheres, so only their centres matter to the physics: each gets its original's
     centre under S^m and the screw's turn (the check and the exports use exact matrices).
-    Only images that can touch a cell body now are handed to Blender's depsgraph (tagged): an
-    image whose place, old and new, lies farther along Z from every cell body than its radius
-    plus the largest cell body's plus twice this frame's largest move keeps its old place,
-    which nothing can reach (tagging every image cost 4 of 7 ms a frame, measured).
+    Only images that can touch a cell body now are moved for Bullet (their evaluated copies'
+    matrices written, see _write): an image whose place, old and new, lies farther along Z from
+    every cell body than its radius plus the largest cell body's plus twice this frame's largest
+    move keeps its old place, which nothing can reach.
     """
 
     def __init__(self, model):
@@ -172,13 +172,10 @@ class ImageFollower:
                        (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
                        + abs(self.p.pf_rise) * (self.p.protofilaments - 1))
         self.current = None  # the places Blender holds, (n, 3)
-        self.tagged: list[int] = []  # per frame: images handed to the depsgraph
+        self.tagged: list[int] = []  # per frame: images moved for Bullet
         self.prev = None
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
         self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
-
-    via_tag = False  # True: hand moved images to Bullet by update_tag (the old, slower way;
-    # bench/periodic.py --compare measures both)
 
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
@@ -250,9 +247,10 @@ class ImageFollower:
         # foreach_set tags nothing, so Bullet, which reads the evaluated copies, would never see
         # the move. Tagging an image costs ~30 us of depsgraph work a frame; writing the copy's
         # matrix costs ~2 us and Bullet reads it (the copy is rebuilt from the data above when
-        # anything tags it). bench/periodic.py measures both ("update_tag" keeps the old way).
+        # anything tags it). bench/periodic.py --old measures the difference against a checkout
+        # that tags.
         idx = np.flatnonzero(moving).tolist()
-        if self.via_tag or not self.depsgraphs:  # (before the bake: once, at build)
+        if not self.depsgraphs:  # before the bake (once, at build): no evaluated copies yet
             for k in idx:
                 self.objects[k].update_tag(refresh={"OBJECT"})
             return

@@ -55,8 +55,8 @@ def min_cell_layers(p) -> int:
 
 # `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured (README,
 # "Agreement with long fibrils", 30 Å globules): at linker 7, where the answer is a probability,
-# a cell of 2·D/rise (13) fits 38 % of seeds (n = 40) against 65-86 % for every cell of 14 to 104
-# layers; doubling 50 to 100 left it unchanged (68 %, n = 60; 65 %, n = 20).
+# a cell of 2·D/rise (13) fits 38 % of seeds (n = 40) against 65-89 % for every cell of 14 to 104
+# layers; doubling 50 to 100 left it unchanged (73 %, n = 90; 65 %, n = 20).
 AUTO_FACTOR = 8.0
 
 

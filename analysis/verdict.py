@@ -130,9 +130,10 @@ def check_model(model) -> dict:
         name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
         chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
                   "chain_clashes": chain_clash}
-    if p.periodic and p.periodic < screw.auto_cell_layers(p):
+    margin = screw.auto_cell_layers(p)
+    if p.periodic and p.periodic < margin:
         warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
-                        f"({screw.auto_cell_layers(p)}, 'auto'): near the edge of fitting, a short "
+                        f"({margin}, 'auto'): near the edge of fitting, a short "
                         f"cell fits fewer seeds than an infinite fibril (README, 'Agreement with "
                         f"long fibrils')")
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)

@@ -20,7 +20,6 @@ CELL = "fibrilfit_cell"    # on an image: m, the power of the screw
 COLLECTIONS = {MOVING: "FibrilFit images", STATIC: "FibrilFit static images"}
 FADE_TO, FADE = (0.3, 0.32, 0.36), 0.6  # images: their original's colour, 60 % of the way to the
 # render's backdrop (exports/dressing.BACKGROUND), so the cell stands out
-ONE_SIDED = False
 _RB_COPIED = ("friction", "restitution", "use_margin", "collision_margin")
 
 
@@ -75,8 +74,6 @@ def build_images(model, scene) -> dict:
         ob.matrix_world = _to_blender(screw.apply_matrices(p, m, _matrix(source)[None])[0])
         made[STATIC].append(ob)
         _copy_pieces(source, ob, colls[STATIC], bodies)
-    if ONE_SIDED:
-        todo["moving"] = [t for t in todo["moving"] if t[0] > 0]
     for m, c, i in todo["moving"]:
         ob = _copy(model.chain[c][i], MOVING, m, c, i, colls[MOVING], bodies)
         ob.rigid_body.kinematic = True
@@ -94,7 +91,6 @@ def _matrix(ob) -> np.ndarray:
 
 
 def _to_blender(m: np.ndarray):
-    from mathutils import Matrix
     return Matrix(m.tolist())
 
 
@@ -256,7 +252,7 @@ class ImageFollower:
             return
         for dg in self.depsgraphs:
             for k in idx:
-                self.objects[k].evaluated_get(dg).matrix_world = Matrix(mat[k].T.tolist())
+                self.objects[k].evaluated_get(dg).matrix_world = _to_blender(mat[k].T)
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they

@@ -1,7 +1,8 @@
 """The periodic cell against the 100-layer interior job, side by side; prints one table.
 
     .venv/bin/python bench/periodic.py [--runs 3] [--linker 6] [--seed 0] [--cell auto]
-                                       [--also-cell M] [--old CHECKOUT]
+                                       [--also-cell M] [--old CHECKOUT] [--floor]
+                                       [--also-one-update]
 
 Target (issue #12): a periodic job at the default model (`--periodic auto`) costs at most 1/4 of
 the wall time of the 100-layer `--layers 100 --score-layers 20` job. Each job is the whole
@@ -10,6 +11,15 @@ ratio is taken within a round (the machine may be shared: trust the ratio, not t
 Memory is each process's peak resident set (ru_maxrss of the child). "job" is the run's own
 build + bake + check (timings_s), without starting Python and importing bpy. `--old CHECKOUT` adds
 the periodic job run from another checkout (e.g. a git worktree of an older commit) in every round.
+
+`--floor` adds, in every round, two jobs that bound what any periodic cell of the same M could
+cost: "startup" (`--layers 1 --frames 1`: starting Python, importing bpy, building, one frame,
+checking, writing the JSON) and "M plain layers" (the cell's M layers with no images at all, one
+scene frame per frame, baked for exactly as many frames as the 100-layer job took this round, no
+settling). A cell has these M layers' bodies plus its images, so neither floor is reachable by
+any way of moving the images. `--also-one-update` adds the cell with one image update per frame
+(`--image-updates 1`): the cheapest way Blender can move the images, whose contacts across the
+ends bounce (README, "Periodic cell"); a cost, not a usable setting.
 """
 from __future__ import annotations
 
@@ -70,17 +80,35 @@ def main(argv=None) -> int:
     ap.add_argument("--old", metavar="CHECKOUT", help="also run the periodic job from here")
     ap.add_argument("--cell", default="auto", help="the periodic job's M (default auto)")
     ap.add_argument("--also-cell", metavar="M", help="also run a periodic job with this M")
+    ap.add_argument("--also-one-update", action="store_true",
+                    help="also run the cell with --image-updates 1")
+    ap.add_argument("--floor", action="store_true",
+                    help="also run the startup and M-plain-layers floors (see the docstring)")
     a = ap.parse_args(argv)
     extra = ["--linker", a.linker, "--seed", a.seed]
     jobs = {name: (args, str(ROOT)) for name, args in JOBS.items()}
     jobs["periodic"] = (["--periodic", a.cell], str(ROOT))
     if a.also_cell:
         jobs[f"periodic M={a.also_cell}"] = (["--periodic", a.also_cell], str(ROOT))
+    if a.also_one_update:
+        jobs["periodic, 1 image update per frame"] = (
+            ["--periodic", a.cell, "--image-updates", "1"], str(ROOT))
     if a.old:
         jobs["periodic (--old)"] = (["--periodic", a.cell], str(pathlib.Path(a.old).resolve()))
     rounds = []
     for r in range(a.runs):
         row = {name: measure(args + extra, root) for name, (args, root) in jobs.items()}
+        if a.floor:
+            frames = row["layers100"]["result"]["frames_simulated"]
+            cell = row["periodic"]["result"]["params"]["periodic"]
+            floors = {"startup (1 layer, 1 frame)": ["--layers", "1", "--frames", "1"],
+                      f"{cell} plain layers, no images, as many frames": [
+                          "--layers", str(cell), "--frames", str(frames), "--no-settle"]}
+            for name, args in floors.items():
+                row[name] = measure(args + extra)
+            names = list(jobs) + list(floors)
+        else:
+            names = list(jobs)
         for x in row.values():
             x["job_s"] = sum(x["result"]["timings_s"].values())
         row["ratio"] = row["periodic"]["wall_s"] / row["layers100"]["wall_s"]
@@ -98,7 +126,7 @@ def main(argv=None) -> int:
           f"{os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f})")
     print("| job | wall (s) | CPU (s) | peak memory (MiB) | job (s) | bake (s) | scene frames |")
     print("|---|---|---|---|---|---|---|")
-    for name in jobs:
+    for name in names:
         rs = [row[name] for row in rounds]
         print(f"| {name} | {med([x['wall_s'] for x in rs]):.2f} | "
               f"{med([x['cpu_s'] for x in rs]):.2f} | {med([x['peak_mib'] for x in rs]):.0f} | "
@@ -109,6 +137,11 @@ def main(argv=None) -> int:
     cpu = med([row["cpu_ratio"] for row in rounds])
     job = med([row["job_ratio"] for row in rounds])
     mem = med([row["periodic"]["peak_mib"] / row["layers100"]["peak_mib"] for row in rounds])
+    if a.floor:
+        for name in names[len(jobs):]:
+            fr = med([row[name]["wall_s"] / row["layers100"]["wall_s"] for row in rounds])
+            fj = med([row[name]["job_s"] / row["layers100"]["job_s"] for row in rounds])
+            print(f"floor {name} / 100 layers: wall {fr:.3f}, job {fj:.3f}")
     print(f"wall-time ratio periodic / 100 layers: {ratio:.3f} (target <= 0.25: "
           f"{'met' if ratio <= 0.25 else 'NOT met'}); CPU-time ratio {cpu:.3f}; job ratio "
           f"{job:.3f}; memory ratio {mem:.2f}")

@@ -133,9 +133,8 @@ def check_model(model) -> dict:
     margin = screw.auto_cell_layers(p)
     if p.periodic and p.periodic < margin:
         warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
-                        f"({margin}, 'auto'): near the edge of fitting, a short "
-                        f"cell fits fewer seeds than an infinite fibril (README, 'Agreement with "
-                        f"long fibrils')")
+                        f"({margin}, 'auto'): cells this short were not measured against long "
+                        f"fibrils (README, 'Agreement with long fibrils')")
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
         chains["inside_core"] = members_inside_core(p, positions)
         if chains["inside_core"]:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from .. import params as P
+from .. import params as P, screw
 from .hooks import frame_hooks, run_after, run_before
 from .readback import MatrixReader
 from .scene import WORLD_OWNED, is_ours
@@ -39,9 +39,10 @@ def ensure_world(scene: bpy.types.Scene) -> bpy.types.RigidBodyWorld:
 
 
 def draw_gravity(p: P.Params) -> tuple[float, float, float]:
-    """Gravity for this seed: each axis uniform in [-g, g], drawn x, y, z."""
+    """Gravity for this seed: each axis uniform in [-g, g], drawn x, y, z; in a periodic cell
+    under the tutorial protocol only the Z of that draw (screw.cell_gravity)."""
     rng = random.Random(p.seed)
-    return tuple(rng.uniform(-p.gravity, p.gravity) for _ in range(3))
+    return screw.cell_gravity(p, [rng.uniform(-p.gravity, p.gravity) for _ in range(3)])
 
 
 def frame_split(p: P.Params) -> int:

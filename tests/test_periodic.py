@@ -41,13 +41,31 @@ def test_screw_matrix_and_points_agree_and_compose(ff):
     assert np.allclose(S.apply_points(p, 1, pos[:9]), pos[9:], atol=1e-9)
 
 
+def test_a_cell_feels_only_the_gravity_its_images_share(ff):
+    """Under the tutorial protocol a cell's gravity is invariant under every S^m (only its axial
+    part survives), the Z of the same seed's draw outside a cell; inflate, which judges with
+    gravity off, and fibrils with ends keep the whole vector."""
+    S = _screw(ff)
+    for seed in range(6):
+        flat = ff.params.make_params(seed=seed)
+        cell = flat.replace(periodic=13)
+        g, gc = np.array(ff.builders.draw_gravity(flat)), np.array(ff.builders.draw_gravity(cell))
+        assert np.abs(g[:2]).max() > 0 and gc[2] == g[2]
+        for m in (-2, -1, 1, 2, 5):
+            turn = S.screw_matrix(cell, m)[:3, :3]
+            assert np.allclose(turn @ gc, gc, atol=1e-12)
+            assert not np.allclose(turn @ g, g)  # the sideways part would turn with the image
+        searching = cell.replace(protocol="inflate")
+        assert np.array_equal(ff.builders.draw_gravity(searching), g)
+
+
 def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
     S = _screw(ff)
     P = ff.params
     assert P.DEFAULTS.periodic == 0 and P.DEFAULTS.layers == 20
     p = P.make_params(periodic="auto")
     assert p.periodic == S.auto_cell_layers(p) and p.layers == p.periodic
-    assert p.periodic == 50  # ceil(8 · 30 Å / 4.8 Å): the measured margin (screw.AUTO_FACTOR)
+    assert p.periodic == 13  # ceil(2 · 30 Å / 4.8 Å): the measured margin (screw.AUTO_FACTOR)
     assert p.periodic * p.rise > p.globule_diameter
     assert P.make_params(periodic=" AUTO ", globule_diameter=60).periodic > p.periodic
     assert P.make_params(periodic=11).layers == 11
@@ -475,23 +493,25 @@ def test_a_cell_of_two_protofilaments(scene, ff):
 def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker, accommodated):
     """README, "Agreement with long fibrils": the interior of a 100-layer fibril at seed 0 is
     not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the
-    cell that `auto` picks (50 layers for 30 Å globules)."""
+    cell that `auto` picks (13 layers for 30 Å globules)."""
     r = ff.pipeline.run(ff.params.make_params(periodic="auto", linker=linker), scene)
     assert r["accommodated"] is accommodated
-    assert r["checks_agree"] and r["periodic"]["cell_layers"] == 50
+    assert r["checks_agree"] and r["periodic"]["cell_layers"] == 13
     if not accommodated:
         assert r["verdict"] == "intersection" and r["max_bond_stretch"] > 0.05
 
 
 def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
-    """M below the measured margin is allowed (it is above the minimum) but the result says
-    what a short cell gets wrong; the auto cell carries no such warning."""
+    """M below the measured margin is allowed (it is above the minimum) but the result says it
+    was not measured; the auto cell carries no such warning."""
     S = _screw(ff)
-    short = ff.params.make_params(periodic=13, frames=2, settle=False)
+    short = ff.params.make_params(periodic=10, frames=2, settle=False)
     r = ff.pipeline.run(short, scene)
-    assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 50
-    assert any("shorter than the measured margin (50" in w for w in r["warnings"])
+    assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 13
+    assert any("shorter than the measured margin (13" in w for w in r["warnings"])
+    assert r["gravity"][:2] == [0.0, 0.0]  # the cell's gravity (cell_gravity), as baked
+    assert r["gravity"][2] == pytest.approx(ff.builders.draw_gravity(short)[2], abs=1e-9)
     auto = ff.params.make_params(periodic="auto", frames=2, settle=False)
     r = ff.pipeline.run(auto, scene)
-    assert r["periodic"]["cell_layers"] == 50
+    assert r["periodic"]["cell_layers"] == 13
     assert not any("measured margin" in w for w in r["warnings"])

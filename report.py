@@ -66,6 +66,8 @@ def summary(r: dict, quiet: bool = False) -> str:
             f"pairs counted once, with images up to {per['check_cells']} cells above "
             f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
             f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
+            + ("; gravity: its axial part only (the screw turns the rest)"
+               if per.get("gravity") == "axial" else "")
             + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
                if lag else ""))
     lines += [f"warning: {w}" for w in r.get("warnings", [])]

@@ -45,9 +45,14 @@ def cell_gravity(p, gravity):
     layout it reaches is judged as it is, so it keeps the whole vector (README, "Gravity in a
     cell"). Outside a cell `gravity` is returned unchanged.
     """
-    if not p.periodic or p.protocol == "inflate":
+    if not axial_gravity(p):
         return tuple(float(g) for g in gravity)
     return (0.0, 0.0, float(gravity[2]))
+
+
+def axial_gravity(p) -> bool:
+    """Whether cell_gravity keeps only the axial part: a periodic cell judged with gravity on."""
+    return bool(p.periodic) and p.protocol != "inflate"
 
 
 def chain_reach(p) -> np.ndarray:

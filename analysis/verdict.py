@@ -174,7 +174,8 @@ def periodic_block(model, cells: int) -> dict:
             "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
                        "cells": [int(m) for m in images.get("cells", [])]},
             "check_cells": cells,
-            "scene_frames_per_frame": model.params.image_updates}
+            "scene_frames_per_frame": model.params.image_updates,
+            "gravity": "axial" if screw.axial_gravity(model.params) else "whole"}
 
 
 def clashing_layers(result: dict) -> list[int]:

@@ -1,4 +1,5 @@
 """The screw-periodic cell (`periodic`): the screw, its images, the check across the cell's ends."""
+import importlib
 import json
 import math
 import pathlib
@@ -57,6 +58,7 @@ def test_a_cell_feels_only_the_gravity_its_images_share(ff):
             assert not np.allclose(turn @ g, g)  # the sideways part would turn with the image
         searching = cell.replace(protocol="inflate")
         assert np.array_equal(ff.builders.draw_gravity(searching), g)
+        assert S.axial_gravity(cell) and not S.axial_gravity(searching) and not S.axial_gravity(flat)
 
 
 def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
@@ -510,6 +512,9 @@ def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
     assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 13
     assert any("shorter than the measured margin (13" in w for w in r["warnings"])
     assert r["gravity"][:2] == [0.0, 0.0]  # the cell's gravity (cell_gravity), as baked
+    assert r["periodic"]["gravity"] == "axial"
+    report = importlib.import_module(ff.__name__ + ".report")
+    assert "gravity: its axial part only" in report.summary(r)
     assert r["gravity"][2] == pytest.approx(ff.builders.draw_gravity(short)[2], abs=1e-9)
     auto = ff.params.make_params(periodic="auto", frames=2, settle=False)
     r = ff.pipeline.run(auto, scene)

@@ -14,12 +14,10 @@ REFERENCE = pathlib.Path(__file__).with_name("data") / "non_periodic_reference.j
 
 
 def _screw(ff):
-    import importlib
     return importlib.import_module(ff.__name__ + ".screw")
 
 
 def _periodic(ff):
-    import importlib
     return importlib.import_module(ff.__name__ + ".builders.periodic")
 
 

@@ -15,32 +15,35 @@ VENV_52 ?= .venv52
 PYTEST_ARGS ?=
 BENCH_ARGS ?=
 VALIDATE_ARGS ?=
-# rootdir=tests: the repository root is itself a package (the extension); without it pytest 8
-# imports that __init__.py under the clone folder's name, which fails for names like fibrilfit-main.
-PYTEST := -m pytest --rootdir=tests tests
+PYTEST := -m pytest tests
 
 # `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.
 TEST_MARK ?= not slow
 
 .PHONY: run test test-latest test-lts test-52 test-slow test-cluster extension bench validate clean
 
-$(VENV)/.installed: requirements-dev.txt Makefile
+# Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
+# tests, tools/ and bench/, with no path set-up of their own).
+$(VENV)/.installed: requirements-dev.txt pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
 	$(VENV)/bin/python -m pip install --quiet "bpy==$(BPY)" -r requirements-dev.txt
+	$(VENV)/bin/python -m pip install --quiet --no-deps -e .
 	touch $@
 
-$(VENV_LTS)/.installed: requirements-dev.txt Makefile
+$(VENV_LTS)/.installed: requirements-dev.txt pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV_LTS)
 	$(VENV_LTS)/bin/python -m pip install --quiet --upgrade pip
 	$(VENV_LTS)/bin/python -m pip install --quiet "bpy==$(BPY_LTS)" -r requirements-dev.txt
+	$(VENV_LTS)/bin/python -m pip install --quiet --no-deps -e .
 	touch $@
 
 # Blender 5.2 ships numpy 2: its own requirements (the others pin numpy<2).
-$(VENV_52)/.installed: requirements-dev-52.txt Makefile
+$(VENV_52)/.installed: requirements-dev-52.txt pyproject.toml Makefile
 	$(PYTHON_52) -m venv $(VENV_52)
 	$(VENV_52)/bin/python -m pip install --quiet --upgrade pip
 	$(VENV_52)/bin/python -m pip install --quiet "bpy==$(BPY_52)" -r requirements-dev-52.txt
+	$(VENV_52)/bin/python -m pip install --quiet --no-deps -e .
 	touch $@
 
 run: $(VENV)/.installed
@@ -74,13 +77,14 @@ test-cluster: $(VENV)/.installed
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
 
-# The gemmi wheels that blender_manifest.toml lists (every platform, Python 3.11 and 3.13) come
-# from PyPI with pip download (tools/fetch_wheels.py); wheels/ is not in git.
+# The zip is built from the package folder fibrilfit/, whose blender_manifest.toml lists the
+# gemmi wheels (every platform, Python 3.11 and 3.13); they come from PyPI with pip download
+# (tools/fetch_wheels.py) into fibrilfit/wheels/, which is not in git.
 extension: $(VENV)/.installed
 	$(VENV)/bin/python tools/fetch_wheels.py
-	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate .
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate fibrilfit
 	mkdir -p dist
-	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir . --output-dir dist
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir fibrilfit --output-dir $(CURDIR)/dist
 
 $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt

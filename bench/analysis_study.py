@@ -21,14 +21,12 @@ import sys
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 import bpy  # noqa: E402,F401  (first: makes mathutils importable)
 import numpy as np  # noqa: E402
 
-import _load  # noqa: E402
-
-ff = _load.load(ROOT)
-from fibrilfit import params as P, pipeline  # noqa: E402
+import fibrilfit as ff  # noqa: E402
+from fibrilfit.model import params as P
+from fibrilfit import pipeline  # noqa: E402
 from fibrilfit.analysis import check_model, sphere_clashes  # noqa: E402
 
 

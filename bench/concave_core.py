@@ -33,10 +33,9 @@ CASES = {
 
 
 def _fibrilfit():
-    sys.path.insert(0, str(ROOT))
     import bpy  # noqa: F401
-    import _load
-    return _load.load(ROOT)
+    import fibrilfit
+    return fibrilfit
 
 
 def probe(shape: str, case: str, frames: int = 120) -> dict:
@@ -44,7 +43,7 @@ def probe(shape: str, case: str, frames: int = 120) -> dict:
     import bpy
     import numpy as np
     ff = _fibrilfit()
-    from fibrilfit import geometry
+    from fibrilfit.geom import polygons
     from fibrilfit.builders import meshes
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -72,12 +71,12 @@ def probe(shape: str, case: str, frames: int = 120) -> dict:
     for f in range(1, frames + 1):
         scene.frame_set(f)
         xyz = np.array(bead.matrix_world.translation)
-        gap = float(geometry.edge_distance(U_CORE, xyz[None, :2])[0][0]) - RADIUS
-        now_inside = bool(geometry.inside(U_CORE, xyz[None, :2])[0])
+        gap = float(polygons.edge_distance(U_CORE, xyz[None, :2])[0][0]) - RADIUS
+        now_inside = bool(polygons.inside(U_CORE, xyz[None, :2])[0])
         inside |= now_inside
         worst = min(worst, -gap - 2 * RADIUS if now_inside else gap)
-    end_gap = float(geometry.edge_distance(U_CORE, xyz[None, :2])[0][0]) - RADIUS
-    if geometry.inside(U_CORE, xyz[None, :2])[0]:
+    end_gap = float(polygons.edge_distance(U_CORE, xyz[None, :2])[0][0]) - RADIUS
+    if polygons.inside(U_CORE, xyz[None, :2])[0]:
         end = "inside the core"
     elif end_gap < -0.1:
         end = "sunk in"

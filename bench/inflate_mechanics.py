@@ -16,13 +16,11 @@ import pathlib
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 import bpy  # noqa: E402
 import numpy as np  # noqa: E402
-import _load  # noqa: E402
 
-ff = _load.load(ROOT)
-P = ff.params
+import fibrilfit as ff  # noqa: E402
+P = ff.model.params
 FRAMES, GROW = 60, 40
 
 

@@ -37,9 +37,6 @@ def main() -> None:
                             str(target), "--json", str(pathlib.Path(tmp, "m.json"))],
                            check=True, capture_output=True)
             walls.append(time.perf_counter() - t)
-    sys.path.insert(0, str(ROOT))
-    import _load
-    _load.load(ROOT)
     from fibrilfit import structure
     structure.measure_fibril(target)  # warm: gemmi imported
     inner = []

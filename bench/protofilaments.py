@@ -24,12 +24,10 @@ TWO_ONE = {"pf_rotation": 3.1294, "pf_rise": 2.34}
 
 def worker(k: int, layers: int, frames: int) -> dict:
     """Build and bake one model of `layers` x `k`; seconds and CPU seconds of each."""
-    sys.path.insert(0, str(ROOT))
     import bpy
-    import _load
-    ff = _load.load(ROOT)
+    import fibrilfit as ff
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    p = ff.params.make_params(layers=layers, frames=frames, settle=False, protofilaments=k,
+    p = ff.model.params.make_params(layers=layers, frames=frames, settle=False, protofilaments=k,
                               **(TWO_ONE if k > 1 else {}))
     scene = bpy.context.scene
     t0, c0 = time.perf_counter(), time.process_time()

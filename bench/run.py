@@ -40,10 +40,9 @@ MEASUREMENTS = ("build100", "scaling", "job20", "bake", "analysis")
 # ---- workers: each runs in its own process and prints one line "BENCH {json}" -------------------
 
 def _fibrilfit():
-    sys.path.insert(0, str(ROOT))
     import bpy  # noqa: F401  (first: it makes mathutils and bmesh importable)
-    import _load
-    return _load.load(ROOT)
+    import fibrilfit
+    return fibrilfit
 
 
 def _peak_mib() -> float:
@@ -69,7 +68,7 @@ def worker_build(layers: int, frames: int = 0) -> dict:
     ff = _fibrilfit()
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    p = ff.params.make_params(layers=layers, frames=frames + 2, force=True)
+    p = ff.model.params.make_params(layers=layers, frames=frames + 2, force=True)
     out = {"rss_start_mib": _rss_mib()}
     t, c = time.perf_counter(), time.process_time()
     model = ff.pipeline.build(p, bpy.context.scene, force=True)
@@ -95,7 +94,7 @@ def worker_job(layers: int) -> dict:
     ff = _fibrilfit()
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    r = ff.pipeline.run(ff.params.make_params(layers=layers), bpy.context.scene)
+    r = ff.pipeline.run(ff.model.params.make_params(layers=layers), bpy.context.scene)
     t = r["timings_s"]
     return {**t, "total": t["build"] + t["bake"] + t["check"], "verdict": r["verdict"],
             "frames": r["frames_simulated"]}
@@ -108,7 +107,7 @@ def worker_bake(layers: int, dump: str = "") -> dict:
     import numpy as np
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    p = ff.params.make_params(layers=layers, force=True)
+    p = ff.model.params.make_params(layers=layers, force=True)
     model = ff.pipeline.build(p, scene, force=True)
     t = time.perf_counter()
     r = ff.pipeline.bake(model, scene)
@@ -136,7 +135,7 @@ def worker_analysis(layers: int, relaxed: str = "") -> dict:
     import numpy as np
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    p = ff.params.make_params(layers=layers, force=True)
+    p = ff.model.params.make_params(layers=layers, force=True)
     model = ff.pipeline.build(p, scene, force=True)
     out = {}
     t, c = time.perf_counter(), time.process_time()

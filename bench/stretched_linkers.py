@@ -2,13 +2,11 @@
 
     .venv/bin/python bench/stretched_linkers.py [--linkers 6 12 20 30] [--seeds 0]
         [--fibril tests/data/6cu7.pdb.gz] [--domain tests/data/1ubq.pdb.gz] [--set KEY=JSON ...]
-        [--root PATH]
 
 Runs build -> bake -> check for each linker and seed (the other parameters measured from the
 files, `--set` over them) and prints one row each: the verdict, the worst bond stretch, every
 chain over the tolerance as (layer, protofilament, its worst stretch, its globule's height), and
-the chain members whose centre ended inside a core (analysis.leaks). `--root` runs another
-checkout's FibrilFit (e.g. one from before the outline's convex pieces) for a side-by-side.
+the chain members whose centre ended inside a core (analysis.leaks).
 """
 from __future__ import annotations
 
@@ -28,14 +26,13 @@ def main(argv=None) -> int:
     ap.add_argument("--linkers", type=int, nargs="+", default=[6, 12, 20, 30])
     ap.add_argument("--seeds", type=int, nargs="+", default=[0])
     ap.add_argument("--set", nargs="*", default=[], metavar="KEY=JSON")
-    ap.add_argument("--root", default=str(ROOT))
     args = ap.parse_args(argv)
-    sys.path.insert(0, args.root)
     import bpy
     import numpy as np
-    import _load
-    ff = _load.load(pathlib.Path(args.root))
-    from fibrilfit import geometry, params as P, pipeline, structure
+    import fibrilfit as ff
+    from fibrilfit.geom import polygons
+    from fibrilfit.model import params as P
+    from fibrilfit import pipeline, structure
     from fibrilfit.analysis.stretch import bond_stretch
     from fibrilfit.analysis.verdict import chain_positions
     from fibrilfit.structure import mapping
@@ -62,7 +59,7 @@ def main(argv=None) -> int:
             print(f"| {linker} | {seed} | {r['verdict']} | {r['max_bond_stretch']:.1%} | "
                   f"{chains or '-'} | {inside or '-'} | {r['frames_simulated']} | "
                   f"{time.perf_counter() - t:.0f} |", flush=True)
-    print(f"bpy {bpy.app.version_string}, FibrilFit from {args.root}")
+    print(f"bpy {bpy.app.version_string}, FibrilFit from {pathlib.Path(ff.__file__).parent}")
     return 0
 
 
@@ -76,7 +73,7 @@ def _inside(p, pos, geometry):
         k = np.floor(z / p.rise + 0.5).astype(int)
         c, s = np.cos(-k * p.twist), np.sin(-k * p.twist)
         xy = np.stack([c * pos[..., 0] - s * pos[..., 1], s * pos[..., 0] + c * pos[..., 1]], -1)
-        ins = geometry.inside(p.outline(), xy.reshape(-1, 2)).reshape(z.shape)
+        ins = polygons.inside(p.outline(), xy.reshape(-1, 2)).reshape(z.shape)
         return np.argwhere(ins & (k >= 0) & (k < p.layers)).tolist()
     return members_inside_core(p, pos)
 

@@ -1,17 +1,11 @@
-"""Load the repository as the package `fibrilfit` and give each test a fresh, empty Blender."""
-import pathlib
-import sys
+"""Give each test the package `fibrilfit` (found through pyproject's pythonpath) and a fresh,
+empty Blender."""
+import os
 
+import bpy  # first: it makes mathutils and bmesh importable
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "tests"))  # helpers.py
-
-import os  # noqa: E402
-
-import bpy  # noqa: E402  (first: it makes mathutils and bmesh importable)
-import _load  # noqa: E402
+import fibrilfit
 
 # bpy 5.2 puts its own OCIO=<its config> into the process environment (os.environ does not show
 # it), and a child bpy or Blender that finds OCIO set logs "color_management | Using OCIO=..."
@@ -19,7 +13,6 @@ import _load  # noqa: E402
 if bpy.app.version >= (5, 2, 0) and "OCIO" not in os.environ:
     os.unsetenv("OCIO")
 
-fibrilfit = _load.load(ROOT)
 
 
 @pytest.fixture

@@ -10,18 +10,21 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 HEADLESS = ROOT / "headless.py"
-sys.path.insert(0, str(ROOT))
 
 mode, args = sys.argv[1], sys.argv[2:]
 if mode == "old":
-    import blender_check  # the module headless.py imports first
+    import importlib.util  # headless.py loads the check by path, as this module name
+    spec = importlib.util.spec_from_file_location("fibrilfit_blender_check",
+                                                  ROOT / "fibrilfit" / "blender_check.py")
+    blender_check = sys.modules[spec.name] = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(blender_check)
     blender_check.found = lambda: (3, 4, 1)
 elif mode == "crash":
-    import _load
+    import fibrilfit  # the installed checkout: headless.py finds it in sys.modules
 
     def broken(*_args, **_kwargs):
         raise ZeroDivisionError("float division by zero")
-    _load.load().pipeline.run = broken
+    fibrilfit.pipeline.run = broken
 else:
     raise SystemExit(f"unknown mode {mode!r}")
 sys.argv = [str(HEADLESS), *args]

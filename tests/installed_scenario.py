@@ -71,23 +71,23 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
     scene = bpy.context.scene
     out["user_objects"] = sorted(o.name for o in scene.objects)
     settings = scene.fibrilfit
-    ff.properties.write_params(settings, ff.params.make_params(**values))
+    ff.ui.properties.write_params(settings, ff.model.params.make_params(**values))
 
     def stored():
         root = ff.builders.scene.find_root(scene)
-        return json.loads(root[ff.operators.common.RESULT])
+        return json.loads(root[ff.ui.operators.common.RESULT])
 
     out["steps"] = {}
     for op in STEPS:
         state = sorted(getattr(bpy.ops.fibrilfit, op)())
         out["steps"][op] = [state, len(scene.objects), ff.builders.model_stage(scene)]
-    out["props"] = {k: getattr(settings, k) for k in ff.properties.RESULTS}
+    out["props"] = {k: getattr(settings, k) for k in ff.ui.properties.RESULTS}
     out["steps_result"] = stored()
     out["join"] = [sorted(bpy.ops.fibrilfit.join_globules()), len(scene.objects)]
     out["run_all"] = [sorted(bpy.ops.fibrilfit.run_all()), len(scene.objects), settings.verdict]
     out["run_all_result"] = stored()
     out["clear"] = [sorted(bpy.ops.fibrilfit.clear()), sorted(o.name for o in scene.objects)]
-    api = ff.run(ff.params.make_params(**values), scene)  # the API of the installed copy
+    api = ff.run(ff.model.params.make_params(**values), scene)  # the API of the installed copy
     out["api_result"] = {k: v for k, v in api.items() if k != "timings_s"}
     bpy.ops.fibrilfit.clear()
 

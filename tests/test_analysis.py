@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from mathutils import Matrix, Quaternion
 
-from fibrilfit import params as P, pipeline
-from fibrilfit.analysis import (StretchLog, bond_stretch, bvh_clashes, check_model,
-                                compare_checks, grazing_depth, sphere_clashes)
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
+from fibrilfit.analysis import StretchLog, bond_stretch, bvh_clashes, check_model, compare_checks, grazing_depth, sphere_clashes
 from fibrilfit.builders import meshes
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from helpers import snapshot_user
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 from fibrilfit.builders import build_model, clear_model, find_model
 
 

@@ -6,7 +6,8 @@ import pytest
 from helpers import ROOT, run_cli
 from hypothesis import given, settings, strategies as st
 
-from fibrilfit import cases, params as P, pipeline
+from fibrilfit.model import cases, params as P
+from fibrilfit import pipeline
 
 SMALL = {"layers": 6, "linker": 4, "globule_diameter": 20.0, "frames": 40, "seed": 3}
 

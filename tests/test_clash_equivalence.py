@@ -8,7 +8,7 @@ import pytest
 from mathutils import Euler, Matrix
 from mathutils.bvhtree import BVHTree
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 from fibrilfit.analysis import bvh_clashes
 from fibrilfit.analysis.clashes import candidate_pairs, facing_faces, mesh_arrays
 from fibrilfit.builders import meshes

@@ -4,7 +4,9 @@ import bpy
 import numpy as np
 import pytest
 
-from fibrilfit import geometry, params as P, pipeline
+from fibrilfit.geom import polygons
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 from fibrilfit.analysis.leaks import members_inside_core
 from fibrilfit.builders import build_model, meshes
 
@@ -17,15 +19,15 @@ def test_convex_pieces_cover_the_outline_exactly_with_convex_polygons(outline):
     pieces = meshes.convex_pieces(outline)
     assert 1 < len(pieces) < len(outline) - 1  # merged beyond the triangles
     for q in pieces:
-        assert geometry.signed_area(q) > 0
-        assert all(geometry._convex_at(q, i) for i in range(len(q)))
-    assert sum(geometry.signed_area(q) for q in pieces) == pytest.approx(
-        abs(geometry.signed_area(outline)))
+        assert polygons.signed_area(q) > 0
+        assert all(polygons._convex_at(q, i) for i in range(len(q)))
+    assert sum(polygons.signed_area(q) for q in pieces) == pytest.approx(
+        abs(polygons.signed_area(outline)))
     # a grid of points: inside the outline <=> inside exactly one piece
     g = np.stack(np.meshgrid(np.linspace(-21, 21, 43) + 0.31, np.linspace(-12, 12, 25) + 0.17),
                  -1).reshape(-1, 2)
-    hits = sum(geometry.inside(q, g).astype(int) for q in pieces)
-    assert np.array_equal(hits, geometry.inside(outline, g).astype(int))
+    hits = sum(polygons.inside(q, g).astype(int) for q in pieces)
+    assert np.array_equal(hits, polygons.inside(outline, g).astype(int))
 
 
 def _free_bead(scene, xyz):
@@ -48,7 +50,7 @@ def test_a_bead_pushed_into_an_outline_core_is_pushed_back_out(scene):
     bead = _free_bead(scene, (0.0, -10.0, p.rise))  # layer 1, 1 Å inside its outer face
     pipeline.bake(model, scene)
     xyz = np.array(bead.matrix_world.translation)
-    assert not geometry.inside(U_CORE, xyz[None, :2])[0], xyz
+    assert not polygons.inside(U_CORE, xyz[None, :2])[0], xyz
     assert xyz[1] < -11 - 1.75 + 0.1  # out through the face it went in by, resting on it
     assert members_inside_core(p, np.array([[xyz]])) == []
 

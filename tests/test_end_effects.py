@@ -4,7 +4,8 @@ import json
 import pytest
 from helpers import run_cli
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 
 
 def test_score_layers_parameter():

@@ -49,7 +49,7 @@ def test_register_adds_the_fibrilfit_command_and_unregister_removes_it(captured,
     commands, released = captured
     assert list(commands) == ["fibrilfit"]
     execute, handle = commands["fibrilfit"]
-    assert execute is ff.entry.command
+    assert execute is ff.cli.entry.command
     ff.unregister()
     assert released == [handle]
     ff.register()  # for the fixture's unregister; registering again works
@@ -99,14 +99,14 @@ def test_an_unexpected_error_is_one_line_and_exit_4(tmp_path):
 
 def test_entry_main_turns_any_exception_into_exit_4(ff, monkeypatch, capsys):
     monkeypatch.setattr(ff.cli, "main", lambda *a, **k: {}["missing"])
-    assert ff.entry.main(["run"]) == 4
+    assert ff.cli.entry.main(["run"]) == 4
     assert ONE_LINE.fullmatch(capsys.readouterr().err)
 
 
 # ---- an old Blender --------------------------------------------------------------------------
 
 def test_the_minimum_is_the_manifests(ff):
-    manifest = (ROOT / "blender_manifest.toml").read_text()
+    manifest = (ROOT / "fibrilfit" / "blender_manifest.toml").read_text()
     assert 'blender_version_min = "4.2.0"' in manifest
     assert ff.blender_check.minimum() == (4, 2, 0)
     assert not hasattr(ff, "bl_info")  # an extension has none on the Blender it supports
@@ -135,7 +135,7 @@ def test_a_faked_old_blender_is_refused_by_register_and_the_command(ff, monkeypa
     assert not [n for n in dir(bpy.types) if n.startswith("FIBRILFIT_")]
     assert not hasattr(bpy.types.Scene, "fibrilfit")
     ff.unregister()  # after a refusal: nothing to undo, no error
-    assert ff.entry.command(["run"]) == 2
+    assert ff.cli.entry.command(["run"]) == 2
     err = capsys.readouterr().err.splitlines()
     assert err == ["fibrilfit: error: FibrilFit needs Blender 4.2.0 or newer; "
                    "this is Blender 3.4.1"] * 2

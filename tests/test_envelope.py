@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from helpers import run_cli
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 from fibrilfit.analysis.envelope import envelope
 from fibrilfit.exits import UsageError
 from fibrilfit.exports import envelope_plot

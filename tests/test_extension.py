@@ -13,10 +13,7 @@ from helpers import ROOT
 
 SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
 VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
-# The repository's files that are not the extension (blender_manifest.toml excludes them).
-NOT_EXTENSION = {"tests", "bench", "tools", "docs", "examples", ".ci", ".git", ".github", "out", "dist", ".hypothesis",
-                 "headless.py", "conftest.py", "Makefile", "pyproject.toml",
-                 "BENCHMARKS.md", ".gitignore"}
+PACKAGE = ROOT / "fibrilfit"  # the extension: its manifest inside, the zip built from it
 
 
 def blender_ext() -> pathlib.Path:
@@ -38,9 +35,9 @@ def built_zip(tmp_path_factory):
     sys.path.insert(0, str(ROOT / "tools"))
     import fetch_wheels  # as `make extension`: the manifest's gemmi wheels from PyPI (cached)
     fetch_wheels.fetch()
-    checked = cli("validate", str(ROOT))
+    checked = cli("validate", str(PACKAGE))
     assert checked.returncode == 0, checked.stdout + checked.stderr
-    built = cli("build", "--source-dir", str(ROOT), "--output-dir", str(out))
+    built = cli("build", "--source-dir", str(PACKAGE), "--output-dir", str(out))
     assert built.returncode == 0, built.stdout + built.stderr
     (path,) = out.glob("fibrilfit-*.zip")
     return path
@@ -63,13 +60,11 @@ def installed(built_zip, tmp_path_factory):
 
 
 def extension_files() -> set:
-    """What the zip should hold: the repository's files minus NOT_EXTENSION and caches."""
+    """What the zip should hold: the package folder's files, less caches."""
     files = set()
-    for path in ROOT.rglob("*"):
-        rel = path.relative_to(ROOT)
-        if (path.is_dir() or rel.parts[0] in NOT_EXTENSION or rel.parts[0].startswith(".venv")
-                or "__pycache__" in rel.parts or rel.name.startswith("requirements")
-                or rel.suffix in (".pyc", ".zip", ".blend", ".blend1")):
+    for path in PACKAGE.rglob("*"):
+        rel = path.relative_to(PACKAGE)
+        if path.is_dir() or "__pycache__" in rel.parts or rel.suffix in (".pyc", ".blend1"):
             continue
         files.add(rel.as_posix())
     return files
@@ -79,12 +74,12 @@ def test_the_zip_holds_only_the_extension(built_zip):
     with zipfile.ZipFile(built_zip) as zf:
         names = set(zf.namelist())
         manifest = zf.read("blender_manifest.toml").decode()
-    assert {"blender_manifest.toml", "__init__.py", "registration.py", "panels/sidebar.py"} <= names
+    assert {"blender_manifest.toml", "__init__.py", "ui/registration.py", "ui/panels.py"} <= names
     assert names == extension_files()
     for name in names:
         assert name.endswith(".py") or name in ("blender_manifest.toml", "README.md", "LICENSE") \
             or name.startswith("wheels/") and name.endswith(".whl")
-    assert manifest == (ROOT / "blender_manifest.toml").read_text(encoding="utf-8")
+    assert manifest == (PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8")
 
 
 def test_installed_and_enabled_it_shows_the_panel_in_the_fibrilfit_tab(installed):
@@ -92,7 +87,7 @@ def test_installed_and_enabled_it_shows_the_panel_in_the_fibrilfit_tab(installed
     assert installed["enabled"] == ["bl_ext.user_default.fibrilfit"]
     # installed into the temporary user folder, not the user's own
     assert pathlib.Path(installed["module_file"]).is_relative_to(installed["home"])
-    assert installed["panel"] == ["bl_ext.user_default.fibrilfit.panels.sidebar", "VIEW_3D", "UI",
+    assert installed["panel"] == ["bl_ext.user_default.fibrilfit.ui.panels", "VIEW_3D", "UI",
                                   "FibrilFit"]
     assert installed["clone_imported"] == []  # everything ran from the installed copy
 
@@ -136,7 +131,7 @@ def test_disable_enable_three_times_without_error_or_leftover(installed):
 
 def test_the_installed_command_line_runs_like_headless(installed):
     """`blender -c fibrilfit ...`: the callback register() gave Blender, from the installed copy."""
-    module = "bl_ext.user_default.fibrilfit.entry.command"
+    module = "bl_ext.user_default.fibrilfit.cli.entry.command"
     assert installed["cli_registered"] == [["fibrilfit", module]] * 4  # install + 3 re-enables
     assert installed["cli_released"] == 3                             # 3 disables
     run = installed["cli_run"]
@@ -161,7 +156,7 @@ def test_the_installed_command_line_sweeps_with_the_installed_files(installed):
 
 def test_the_zip_carries_gemmi_wheels_for_every_platform_and_python(built_zip):
     import tomllib
-    manifest = tomllib.loads((ROOT / "blender_manifest.toml").read_text(encoding="utf-8"))
+    manifest = tomllib.loads((PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8"))
     assert manifest["platforms"] == ["linux-x64", "windows-x64", "macos-arm64", "macos-x64"]
     wheels = [w.removeprefix("./") for w in manifest["wheels"]]
     with zipfile.ZipFile(built_zip) as zf:

@@ -6,7 +6,7 @@ import math
 import numpy as np
 from hypothesis import HealthCheck, event, example, given, settings, strategies as st
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 from fibrilfit.builders import build_model
 
 FIELDS = {f.name: f.metadata for f in dataclasses.fields(P.Params)}

@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 from helpers import ROOT, run_cli
 
-from fibrilfit import geometry, params as P, pipeline
+from fibrilfit.geom import polygons
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 from fibrilfit.builders import build_model, find_model
 from fibrilfit.builders.model import chain_positions, stored_params
 
@@ -94,8 +96,8 @@ def _layer_frame(p, xyz):
     k = np.rint(xyz[:, 2] / p.rise)
     within = (k >= 0) & (k <= p.layers - 1)
     k = np.clip(k, 0, p.layers - 1)
-    return geometry.rotate(xyz[:, :2], 0.0) if p.twist == 0 else np.stack(
-        [geometry.rotate(q, -kk * p.twist) for q, kk in zip(xyz[:, :2], k)]), within
+    return polygons.rotate(xyz[:, :2], 0.0) if p.twist == 0 else np.stack(
+        [polygons.rotate(q, -kk * p.twist) for q, kk in zip(xyz[:, :2], k)]), within
 
 
 def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
@@ -110,14 +112,14 @@ def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
     start = chain_positions(p)
     for chain in start:
         xy, _ = _layer_frame(p, chain)
-        assert not geometry.blocked(U_CORE, xy[1:], radii[1:]).any()
-        assert not geometry.inside(U_CORE, xy[:1]).any()
+        assert not polygons.blocked(U_CORE, xy[1:], radii[1:]).any()
+        assert not polygons.inside(U_CORE, xy[:1]).any()
     result = pipeline.run(p, scene)
     end = np.array([[ob.matrix_world.translation for ob in c] for c in find_model(scene).chain])
     assert np.abs(end - start).max() > 1.0  # they did move
     for chain in end:
         xy, within = _layer_frame(p, chain)
-        assert not (geometry.inside(U_CORE, xy) & within).any()
+        assert not (polygons.inside(U_CORE, xy) & within).any()
     assert result["linker_intact"]
 
 

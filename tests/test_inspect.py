@@ -88,7 +88,7 @@ def test_bad_input_one_line_nothing_written(ff, capsys, tmp_path, args, names, s
     files = _bad_files(tmp_path)
     args = [a.format(tmp=tmp_path, data=DATA, **files) for a in args]
     out = tmp_path / "never.json"
-    assert ff.cli.main(["inspect", *args, "--json", str(out)]) == ff.cli.EXIT_USAGE
+    assert ff.cli.main(["inspect", *args, "--json", str(out)]) == ff.exits.EXIT_USAGE
     captured = capsys.readouterr()
     lines = captured.err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("fibrilfit: error: "), captured.err

@@ -8,7 +8,7 @@ import pytest
 from helpers import run_cli
 from PIL import Image
 
-from fibrilfit import cli
+from fibrilfit.cli import commands as cli
 from fibrilfit.exports import movie
 
 # 4 layers, linker 1: clashes at the end; 30 frames every 5th: 1, 6, ..., 26 and the last, 30

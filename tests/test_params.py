@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 
 
 def test_defaults_are_the_tutorials():

@@ -3,7 +3,8 @@ import gemmi
 import numpy as np
 import pytest
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 from fibrilfit.analysis.verdict import chain_positions as current_positions
 from fibrilfit.builders.model import chain_positions as rest_positions
 from fibrilfit.exports import pdb

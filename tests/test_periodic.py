@@ -14,7 +14,7 @@ REFERENCE = pathlib.Path(__file__).with_name("data") / "non_periodic_reference.j
 
 
 def _screw(ff):
-    return importlib.import_module(ff.__name__ + ".screw")
+    return importlib.import_module(ff.__name__ + ".model.helix")
 
 
 def _periodic(ff):
@@ -25,7 +25,7 @@ def _periodic(ff):
 
 def test_screw_matrix_and_points_agree_and_compose(ff):
     S = _screw(ff)
-    p = ff.params.make_params(periodic=9, twist=0.05, rise=4.0)
+    p = ff.model.params.make_params(periodic=9, twist=0.05, rise=4.0)
     pts = np.random.default_rng(0).normal(size=(7, 3)) * 20
     for m in (-2, -1, 1, 3):
         mat = S.screw_matrix(p, m)
@@ -46,7 +46,7 @@ def test_a_cell_feels_only_the_gravity_its_images_share(ff):
     gravity off, and fibrils with ends keep the whole vector."""
     S = _screw(ff)
     for seed in range(6):
-        flat = ff.params.make_params(seed=seed)
+        flat = ff.model.params.make_params(seed=seed)
         cell = flat.replace(periodic=13)
         g, gc = np.array(ff.builders.draw_gravity(flat)), np.array(ff.builders.draw_gravity(cell))
         assert np.abs(g[:2]).max() > 0 and gc[2] == g[2]
@@ -61,7 +61,7 @@ def test_a_cell_feels_only_the_gravity_its_images_share(ff):
 
 def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
     S = _screw(ff)
-    P = ff.params
+    P = ff.model.params
     assert P.DEFAULTS.periodic == 0 and P.DEFAULTS.layers == 20
     p = P.make_params(periodic="auto")
     assert p.periodic == S.auto_cell_layers(p) and p.layers == p.periodic
@@ -72,7 +72,7 @@ def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
 
 
 def test_too_short_a_cell_is_refused_with_the_minimum(ff):
-    P = ff.params
+    P = ff.model.params
     least = _screw(ff).min_cell_layers(P.DEFAULTS)
     assert least == 7  # 7 × 4.8 Å = 33.6 Å > 30 Å, 6 × 4.8 = 28.8 Å is not
     with pytest.raises(P.ParamError) as err:
@@ -103,7 +103,7 @@ def test_cli_refuses_a_short_cell(tmp_path):
 
 
 def test_sweep_refuses_layers_beside_periodic(ff):
-    P = ff.params
+    P = ff.model.params
     with pytest.raises(P.ParamError, match="layers"):
         P.refuse_beside_periodic({"periodic": ["0", "13"], "layers": ["100"]})
     P.refuse_beside_periodic({"periodic": ["0"], "layers": ["100"]})  # periodic off: fine
@@ -111,7 +111,7 @@ def test_sweep_refuses_layers_beside_periodic(ff):
 
 def test_images_come_from_the_reach_not_a_fixed_cell(ff):
     S, PB = _screw(ff), _periodic(ff)
-    P = ff.params
+    P = ff.model.params
     short, long_ = P.make_params(periodic=13, linker=6), P.make_params(periodic=13, linker=16)
     cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * S.body_reach(p))})  # noqa: E731
     assert cells(short) == [-2, -1, 1, 2]
@@ -132,7 +132,7 @@ def _images(ff, model, role="image"):
 
 
 def test_images_are_tagged_bodies_under_the_model(scene, ff):
-    p = ff.params.make_params(periodic=8)
+    p = ff.model.params.make_params(periodic=8)
     model = ff.pipeline.build(p, scene)
     PB = _periodic(ff)
     moving, static = _images(ff, model, PB.MOVING), _images(ff, model, PB.STATIC)
@@ -152,14 +152,14 @@ def test_images_are_tagged_bodies_under_the_model(scene, ff):
 def test_hooks_follow_the_params(scene, ff):
     from importlib import import_module
     hooks = import_module(ff.__name__ + ".builders.hooks")
-    assert hooks.frame_hooks(ff.pipeline.build(ff.params.make_params(layers=4), scene), scene) == []
-    model = ff.pipeline.build(ff.params.make_params(periodic=8), scene)
+    assert hooks.frame_hooks(ff.pipeline.build(ff.model.params.make_params(layers=4), scene), scene) == []
+    model = ff.pipeline.build(ff.model.params.make_params(periodic=8), scene)
     assert [type(h).__name__ for h in hooks.frame_hooks(model, scene)] == ["ImageFollower"]
 
 
 def test_images_sit_at_the_screw_of_their_originals_every_frame(scene, ff):
     S, PB = _screw(ff), _periodic(ff)
-    p = ff.params.make_params(periodic=8, frames=12, settle=False, image_updates=1)
+    p = ff.model.params.make_params(periodic=8, frames=12, settle=False, image_updates=1)
     model = ff.pipeline.build(p, scene)
     moving = _images(ff, model)
     statics = _images(ff, model, PB.STATIC)
@@ -210,7 +210,7 @@ def test_bullet_feels_the_images_and_their_moves(scene, ff):
     """The same short bake with following images, with frozen images, and with none differ:
     the images collide, and they collide where the follower put them."""
     PB = _periodic(ff)
-    p = ff.params.make_params(periodic=7, frames=25, settle=False, seed=3, image_updates=1)
+    p = ff.model.params.make_params(periodic=7, frames=25, settle=False, seed=3, image_updates=1)
 
     def bake(hooks_for, drop_images=False):
         model = ff.pipeline.build(p, scene)
@@ -233,7 +233,7 @@ def test_bullet_feels_the_images_and_their_moves(scene, ff):
 
 def test_a_periodic_frame_is_baked_as_image_updates_shorter_frames(scene, ff):
     """Same substep length, images moved `image_updates` times per frame of the model."""
-    p = ff.params.make_params(periodic=7, frames=4, settle=False, image_updates=5)
+    p = ff.model.params.make_params(periodic=7, frames=4, settle=False, image_updates=5)
     model = ff.pipeline.build(p, scene)
     result = ff.pipeline.bake(model, scene)
     rbw = scene.rigidbody_world
@@ -241,9 +241,9 @@ def test_a_periodic_frame_is_baked_as_image_updates_shorter_frames(scene, ff):
     assert rbw.substeps_per_frame == p.substeps // 5
     assert result["frames_simulated"] == 20 and scene.frame_end == 20
     assert len(result["image_lag"]) and result["image_lag"]["max"] > 0
-    with pytest.raises(ff.params.ParamError, match="image_updates: must divide substeps"):
-        ff.params.make_params(periodic=7, image_updates=3)
-    plain = ff.params.make_params(layers=3, frames=4, image_updates=5)  # ignored without a cell
+    with pytest.raises(ff.model.params.ParamError, match="image_updates: must divide substeps"):
+        ff.model.params.make_params(periodic=7, image_updates=3)
+    plain = ff.model.params.make_params(layers=3, frames=4, image_updates=5)  # ignored without a cell
     ff.pipeline.bake(ff.pipeline.build(plain, scene), scene)
     assert scene.rigidbody_world.substeps_per_frame == plain.substeps and scene.frame_end == 4
 
@@ -259,7 +259,7 @@ def _move(ob, where):
 def test_a_globule_on_its_neighbours_image_across_the_end_clashes_once(scene, ff):
     S = _screw(ff)
     M = 9
-    p = ff.params.make_params(periodic=M, linker=6)
+    p = ff.model.params.make_params(periodic=M, linker=6)
     model = ff.pipeline.build(p, scene)
     g = model.globules
     # spread the cell's globules far apart radially, so only the planted pair can touch
@@ -299,7 +299,7 @@ def test_non_periodic_results_are_unchanged(scene, ff):
     the periodic cell, recorded with the code before it on bpy 5.0.1, 4.2.0 and 5.2.3 (tests/data)."""
     reference = json.loads(REFERENCE.read_text())[bpy.app.version_string]
     for case in reference.values():
-        r = ff.pipeline.run(ff.params.make_params(**case["params"]), scene)
+        r = ff.pipeline.run(ff.model.params.make_params(**case["params"]), scene)
         assert "periodic" not in r and r["params"]["periodic"] == 0
         for key, want in case.items():
             if key != "params":
@@ -339,7 +339,7 @@ def test_periodic_inflate_start_layout_is_no_more_tangled_than_twenty_layers(ff)
     layout = import_module(ff.__name__ + ".builders.start_layout")
     growth = import_module(ff.__name__ + ".builders.growth")
     rest_of = import_module(ff.__name__ + ".builders.model").chain_positions
-    S, P = _screw(ff), ff.params
+    S, P = _screw(ff), ff.model.params
     for linker in (5, 7):
         flat = P.make_params(linker=linker, protocol="inflate")
         # as many chains as the flat model: the deepest of more pairs is deeper by itself
@@ -367,7 +367,7 @@ def test_periodic_inflate_images_start_at_the_screw_and_carry_the_scale(scene, f
     S, PB = _screw(ff), _periodic(ff)
     from importlib import import_module
     hooks_mod = import_module(ff.__name__ + ".builders.hooks")
-    p = ff.params.make_params(periodic=7, protocol="inflate", linker=4, grow_frames=2,
+    p = ff.model.params.make_params(periodic=7, protocol="inflate", linker=4, grow_frames=2,
                               hold_frames=2, regrow_cycles=1)
     model = ff.pipeline.build(p, scene)
     moving = _images(ff, model)
@@ -415,8 +415,8 @@ def ui(registered):
 
 
 def test_panel_checkbox_and_m(ui, ff):
-    from fibrilfit import properties
-    P = ff.params
+    from fibrilfit.ui import properties
+    P = ff.model.params
     assert properties.read_params(ui).periodic == 0  # off by default
     ui.use_periodic = True
     p = properties.read_params(ui)
@@ -436,7 +436,7 @@ def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path):
     import gemmi
     from fibrilfit.exports import pdb
     S = _screw(ff)
-    p = ff.params.make_params(periodic=8, linker=3)
+    p = ff.model.params.make_params(periodic=8, linker=3)
     model = ff.pipeline.build(p, scene)
     info = pdb.write_pdb(tmp_path / "cell.pdb", model, scene, images=1)
     st = gemmi.read_structure(str(tmp_path / "cell.pdb"))
@@ -455,7 +455,7 @@ def test_a_cell_of_two_protofilaments(scene, ff):
     """The cell holds every chain (layer-major); images and the check work over chains."""
     S, PB = _screw(ff), _periodic(ff)
     M, K = 8, 2
-    p = ff.params.make_params(periodic=M, protofilaments=K, pf_rise=2.4, frames=3, settle=False,
+    p = ff.model.params.make_params(periodic=M, protofilaments=K, pf_rise=2.4, frames=3, settle=False,
                               image_updates=1)
     model = ff.pipeline.build(p, scene)
     n = len(model.chain)
@@ -494,7 +494,7 @@ def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker,
     """README, "Agreement with long fibrils": the interior of a 100-layer fibril at seed 0 is
     not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the
     cell that `auto` picks (13 layers for 30 Å globules)."""
-    r = ff.pipeline.run(ff.params.make_params(periodic="auto", linker=linker), scene)
+    r = ff.pipeline.run(ff.model.params.make_params(periodic="auto", linker=linker), scene)
     assert r["accommodated"] is accommodated
     assert r["checks_agree"] and r["periodic"]["cell_layers"] == 13
     if not accommodated:
@@ -505,16 +505,16 @@ def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
     """M below the measured margin is allowed (it is above the minimum) but the result says it
     was not measured; the auto cell carries no such warning."""
     S = _screw(ff)
-    short = ff.params.make_params(periodic=10, frames=2, settle=False)
+    short = ff.model.params.make_params(periodic=10, frames=2, settle=False)
     r = ff.pipeline.run(short, scene)
     assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 13
     assert any("shorter than the measured margin (13" in w for w in r["warnings"])
     assert r["gravity"][:2] == [0.0, 0.0]  # the cell's gravity (cell_gravity), as baked
     assert r["periodic"]["gravity"] == "axial"
-    report = importlib.import_module(ff.__name__ + ".report")
+    report = importlib.import_module(ff.__name__ + ".exports.summary")
     assert "gravity: its axial part only" in report.summary(r)
     assert r["gravity"][2] == pytest.approx(ff.builders.draw_gravity(short)[2], abs=1e-9)
-    auto = ff.params.make_params(periodic="auto", frames=2, settle=False)
+    auto = ff.model.params.make_params(periodic="auto", frames=2, settle=False)
     r = ff.pipeline.run(auto, scene)
     assert r["periodic"]["cell_layers"] == 13
     assert not any("measured margin" in w for w in r["warnings"])

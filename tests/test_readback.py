@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from mathutils import Matrix
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 from fibrilfit.builders import build_model
 from fibrilfit.pipeline import bake
 from fibrilfit.builders.readback import MatrixReader

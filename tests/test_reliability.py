@@ -11,7 +11,8 @@ import pytest
 from bad_inputs import BAD_INPUTS
 from helpers import ROOT, run_cli, snapshot_user
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 
 
 @pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
@@ -167,7 +168,7 @@ def test_every_operator_spares_the_users_data_and_clear_removes_exactly_the_mode
 
 
 def test_every_scene_changing_operator_declares_undo(registered):
-    from fibrilfit.operators import CLASSES
+    from fibrilfit.ui.operators import CLASSES
     for cls in CLASSES:
         if cls.bl_idname.split(".")[1] not in ("render", "export_pdb", "save_case"):  # files only
             assert "UNDO" in cls.bl_options, cls.bl_idname

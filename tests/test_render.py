@@ -8,7 +8,9 @@ import pytest
 from bpy_extras.object_utils import world_to_camera_view
 from helpers import run_cli
 
-from fibrilfit import cli, params as P, pipeline
+from fibrilfit import exits as ff_exits, pipeline
+from fibrilfit.cli import commands as cli
+from fibrilfit.model import params as P
 from fibrilfit.analysis import clashing_layers
 from fibrilfit.analysis.verdict import chain_positions
 from fibrilfit.builders import clear_model
@@ -174,7 +176,7 @@ def test_a_failed_render_keeps_the_other_outputs(tmp_path, monkeypatch, capsys):
                      "--pdb-frames", "all", "--blend", str(tmp_path / "m.blend"), "--render", str(tmp_path / "m.png")])
     err = capsys.readouterr().err
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    assert code == cli.EXIT_OUTPUT_FAILED == 3
+    assert code == ff_exits.EXIT_OUTPUT_FAILED == 3
     assert err.strip().splitlines() == ["fibrilfit: error: --render failed: no memory for tiles"]
     assert not (tmp_path / "m.png").exists() and not list(tmp_path.glob(".*part*"))
     r = json.loads((tmp_path / "r.json").read_text())

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from helpers import run_cli
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 
 CONTRACT = {"fibrilfit_version", "blender_version", "params", "seed", "gravity", "verdict",
             "intersecting_faces", "clashing_pairs", "max_bond_stretch", "linker_intact",

@@ -20,7 +20,8 @@ import bpy
 import numpy as np
 import pytest
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 
 SEEDS = (0, 1, 2)
 

@@ -6,7 +6,7 @@ import sys
 import numpy as np
 import pytest
 
-from fibrilfit import params as P
+from fibrilfit.model import params as P
 from fibrilfit.builders.model import bond_pivots, chain_positions
 from fibrilfit.builders.start_layout import fan_frames, inflate_layout
 from fibrilfit.search import minimal, restarts
@@ -343,8 +343,9 @@ def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
 def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
     """The protocol is the panel's drop-down; the modal bake runs the same schedule as the API."""
     import bpy
-    from fibrilfit import pipeline, properties
-    from fibrilfit.operators import simulate
+    from fibrilfit import pipeline
+    from fibrilfit.ui import properties
+    from fibrilfit.ui.operators import simulate
     from test_ui import detached, event, stored_result
     small = dict(layers=4, linker=6, seed=1, **FAST)
     ff.register()
@@ -386,7 +387,7 @@ def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff,
 def test_restart_records_from_before_a_parameter_existed_are_found(tmp_path, ff):
     """runner.done_keys counts a record that predates a parameter as that parameter's default,
     so restarts.read must find it too (a resumed minimal-linker crashed on it)."""
-    base = ff.params.make_params(linker=6, seed=0).to_dict()
+    base = ff.model.params.make_params(linker=6, seed=0).to_dict()
     old = {k: v for k, v in base.items() if k not in ("periodic", "image_updates")}
     results = tmp_path / "results.jsonl"
     results.write_text(json.dumps({"params": old, "status": "ok", "accommodated": True}) + "\n")

@@ -1,7 +1,8 @@
 """Settling: the bake stops once every body has slowed down, and the verdict is the full bake's."""
 import pytest
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 
 SMALL = dict(layers=12, frames=250)
 

@@ -62,7 +62,7 @@ def test_bad_slurm_options_exit_2_with_one_line_and_write_nothing(ff, capsys, tm
 
 
 def test_sbatch_errors_are_reduced_to_their_line():
-    from fibrilfit.sweep.slurm import submit_error
+    from fibrilfit.batch.slurm import submit_error
     exc = RuntimeError("Command exited with non-zero exit code.\nExit code: 1\n"
                        "Command:\nsbatch /tmp/tmpx.sh\nstdout:\n\nstderr:\n"
                        "sbatch: error: invalid partition specified: nope\n"

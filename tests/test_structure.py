@@ -41,8 +41,6 @@ def path(name):
 
 @pytest.fixture(scope="module")
 def S():
-    import _load
-    _load.load()
     return importlib.import_module("fibrilfit.structure")
 
 

@@ -60,7 +60,7 @@ def test_an_explicit_option_wins_and_no_file_means_no_block(ff, scene, tmp_path)
 def test_run_with_a_bad_structure_writes_nothing(ff, scene, tmp_path, capsys):
     out = tmp_path / "r.json"
     code = ff.cli.main(["run", "--fibril", str(DATA / "1ubq.pdb.gz"), *FAST, "--json", str(out)])
-    assert code == ff.cli.EXIT_USAGE and not out.exists()
+    assert code == ff.exits.EXIT_USAGE and not out.exists()
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--fibril" in err[0] and "--rise" in err[0]
 

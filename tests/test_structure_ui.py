@@ -7,10 +7,11 @@ import bpy
 import numpy as np
 import pytest
 
-from fibrilfit import params as P, properties
+from fibrilfit.model import params as P
+from fibrilfit.ui import properties
 from fibrilfit.builders import structure_trace
 from fibrilfit.builders.scene import TAG
-from fibrilfit.panels import sidebar
+from fibrilfit.ui import panels
 
 DATA = pathlib.Path(__file__).with_name("data")
 
@@ -37,7 +38,7 @@ def test_import_fibril_fills_parameters_and_adds_the_trace(ui, scene):
     reach = max(p.chain_x()) + p.globule_radius
     xy = np.array([(v.co.x, v.co.y) for v in ob.data.vertices]) + np.array(ob.location[:2])
     assert (xy[:, 0] > reach).all()
-    lines = sidebar.structure_lines(structure_trace.measured(scene))
+    lines = panels.structure_lines(structure_trace.measured(scene))
     assert any("left-handed" in ln for ln in lines) and any("K97" in ln or "LYS97" in ln
                                                               for ln in lines)
     # importing again replaces the trace
@@ -49,7 +50,7 @@ def test_import_domain_sets_the_globule(ui, scene):
     assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1gfl.pdb.gz"), chain="A") == \
         {"FINISHED"}
     assert properties.read_params(ui).globule_diameter == pytest.approx(43.94, abs=0.01)
-    assert any("Rg 17.02" in ln for ln in sidebar.structure_lines(
+    assert any("Rg 17.02" in ln for ln in panels.structure_lines(
         structure_trace.measured(scene)))
 
 
@@ -66,7 +67,7 @@ def test_the_panel_draws_with_imports(ui, scene):
     from test_ui import FakeLayout
     bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "2n0a.pdb.gz"))
     log = []
-    sidebar.FIBRILFIT_PT_structures.draw(types.SimpleNamespace(layout=FakeLayout(log)),
+    panels.FIBRILFIT_PT_structures.draw(types.SimpleNamespace(layout=FakeLayout(log)),
                                          bpy.context)
     assert ("operator", "fibrilfit.import_fibril") in log
     labels = [t for kind, t in log if kind == "label"]

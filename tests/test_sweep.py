@@ -11,7 +11,8 @@ import time
 import pytest
 from helpers import ROOT, run_cli
 
-from fibrilfit import params as P, pipeline
+from fibrilfit.model import params as P
+from fibrilfit import pipeline
 from fibrilfit.sweep import gate, grid, runner, summary
 from fibrilfit.sweep.stats import wilson
 
@@ -253,7 +254,7 @@ def test_one_sweep_at_a_time_per_folder(done_when, tmp_path):
 
 
 def test_workers_that_cannot_start_stop_the_sweep_with_one_line():
-    from fibrilfit.sweep.executors import ProcessExecutor, SweepError
+    from fibrilfit.batch.executors import ProcessExecutor, SweepError
     ex = ProcessExecutor(2)
     ex.command = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
                                         "sys.exit(3)"]
@@ -395,7 +396,7 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
 
 def test_register_and_run_leave_the_sweep_dependencies_alone():
     code = "\n".join([
-        "import sys, bpy", "sys.path.insert(0, sys.argv[1])", "import _load", "ff = _load.load()",
+        "import sys, bpy", "import fibrilfit as ff",
         "ff.register()", "ff.unregister()",
         "assert ff.cli.main(['run', '--layers', '2', '--frames', '5', '--quiet']) == 0",
         "ff.cli.build_parser()",
@@ -465,7 +466,7 @@ def test_results_from_before_a_parameter_existed_resume_and_summarise(ff):
     """A record written before a parameter was added has no key for it: it was run at that
     parameter's default, so it keys, groups and prints as the same point as a new record."""
     from fibrilfit.sweep import grid, runner, summary
-    new = ff.params.make_params(linker=6, seed=0).to_dict()
+    new = ff.model.params.make_params(linker=6, seed=0).to_dict()
     old = {k: v for k, v in new.items() if k not in ("periodic", "protofilaments", "protocol")}
     records = [{"params": old, "accommodated": True, "verdict": "successful",
                 "max_bond_stretch": 0.0, "frames_simulated": 155},

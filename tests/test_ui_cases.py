@@ -5,8 +5,9 @@ import types
 import bpy
 import pytest
 
-from fibrilfit import cases, params as P, properties
-from fibrilfit.panels import sidebar
+from fibrilfit.model import cases, params as P
+from fibrilfit.ui import properties
+from fibrilfit.ui import panels
 
 
 @pytest.fixture
@@ -23,7 +24,7 @@ def test_load_then_save_keeps_parameters_and_metadata(ui, tmp_path):
     want = P.make_params(linker=12, twist=-0.0309, slab=(56.5, 22, 4.8))
     assert properties.read_params(ui) == want
     log = []
-    sidebar.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=_Layout(log)), bpy.context)
+    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=_Layout(log)), bpy.context)
     assert "Case: tdp" in log
     ui.globule_diameter = 40
     out = tmp_path / "out.toml"

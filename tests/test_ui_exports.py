@@ -4,7 +4,8 @@ import gemmi
 import numpy as np
 import pytest
 
-from fibrilfit import params as P, properties
+from fibrilfit.model import params as P
+from fibrilfit.ui import properties
 from fibrilfit.analysis.verdict import chain_positions
 from fibrilfit.builders import find_model
 

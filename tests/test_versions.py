@@ -2,7 +2,7 @@
 import bpy
 import numpy as np
 
-from fibrilfit.sweep import pool
+from fibrilfit.batch import pool
 
 OCIO = ("00:00.085  color_management | Using OCIO=/venv/lib/python3.13/site-packages/bpy/5.2/"
         "datafiles/colormanagement/config.ocio")
@@ -30,7 +30,7 @@ def test_the_version_check_does_not_import_bpy(ff):
     import subprocess
     import sys
     from helpers import ROOT
-    code = ("import sys; sys.path.insert(0, sys.argv[1]); import blender_check; "
+    code = ("import sys; from fibrilfit import blender_check; "
             "print(blender_check.found(), blender_check.refusal(), 'bpy' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code, str(ROOT)], capture_output=True, text=True,
                          timeout=120)

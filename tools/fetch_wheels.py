@@ -1,5 +1,5 @@
 """Fetch the wheels that blender_manifest.toml lists (gemmi, for every platform and Python of the
-supported Blenders) into wheels/, with pip download from PyPI. `make extension` runs it.
+supported Blenders) into fibrilfit/wheels/, with pip download from PyPI. `make extension` runs it.
 
     python tools/fetch_wheels.py          # missing ones only; other .whl files in wheels/ removed
 
@@ -11,11 +11,12 @@ import sys
 import tomllib
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "fibrilfit"  # the manifest and its wheels/ folder
 
 
 def listed() -> list:
-    manifest = tomllib.loads((ROOT / "blender_manifest.toml").read_text(encoding="utf-8"))
-    return [ROOT / w for w in manifest.get("wheels", [])]
+    manifest = tomllib.loads((PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8"))
+    return [PACKAGE / w for w in manifest.get("wheels", [])]
 
 
 def pip_args(wheel: pathlib.Path) -> list:
@@ -31,7 +32,7 @@ def pip_args(wheel: pathlib.Path) -> list:
 
 def fetch(quiet: bool = True) -> list:
     wheels = listed()
-    folder = ROOT / "wheels"
+    folder = PACKAGE / "wheels"
     folder.mkdir(exist_ok=True)
     for extra in set(folder.glob("*.whl")) - set(wheels):
         extra.unlink()  # the zip takes every file in wheels/: keep exactly the listed ones

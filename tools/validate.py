@@ -23,13 +23,9 @@ import sys
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-import _load  # noqa: E402
 
-ff = _load.load(ROOT)
-cases, P, runner, summary, stats = (
-    importlib.import_module(f"{ff.__name__}.{m}")
-    for m in ("cases", "params", "sweep.runner", "sweep.summary", "sweep.stats"))
+from fibrilfit.model import cases, params as P  # noqa: E402
+from fibrilfit.sweep import runner, stats, summary  # noqa: E402
 wilson = stats.wilson
 
 MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)

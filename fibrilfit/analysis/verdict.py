@@ -1,0 +1,190 @@
+"""The verdict at the current frame: clashes by both checks, linker stretch, accommodation."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..model import params as P, helix
+from ..builders.readback import MatrixReader
+from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
+from .envelope import envelope
+from .leaks import members_inside_core
+from .stretch import bond_stretch
+
+# A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
+# coordinates, BVH epsilon 1e-5).
+TOUCH_SLACK = 1e-4
+
+
+def chain_positions(model) -> np.ndarray:
+    """World centres of every chain member now, shape (chains, linker + 1, 3)."""
+    obs = [ob for members in model.chain for ob in members]
+    return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
+
+
+def world_matrices(objects, collections=()) -> np.ndarray:
+    """(n, 4, 4) world matrices, read with foreach_get from `collections` if they hold them all."""
+    return MatrixReader(objects, collections).matrices()
+
+
+def scored_range(p) -> tuple[int, int]:
+    """Layers [lo, hi) that count towards the verdict: all but `score_layers` at each end."""
+    return p.score_layers, p.layers - p.score_layers
+
+
+def scored_chains(p) -> tuple[int, int]:
+    """Chains [lo, hi) of the scored layers (chains are layer-major: every protofilament)."""
+    lo, hi = scored_range(p)
+    return lo * p.protofilaments, hi * p.protofilaments
+
+
+def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, list]:
+    """Match the BVH's pairs against the sphere check's (pairs deeper than `band`).
+
+    `depth(i, j)` is the spheres' overlap in Å. A pair only the BVH names is a grazing contact
+    when its depth lies in (0, band]: the faceted meshes may or may not cross there. Any other
+    difference contradicts geometry and is a disagreement. Returns (grazing, disagreements),
+    each a sorted list of (i, j, depth).
+    """
+    grazing, disagree = [], []
+    for i, j in sorted(set(bvh_pairs) ^ set(sphere_pairs)):
+        d = float(depth(i, j))
+        if (i, j) in bvh_pairs and -TOUCH_SLACK < d <= band:
+            grazing.append((i, j, d))
+        else:
+            disagree.append((i, j, d))
+    return grazing, disagree
+
+
+def with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
+    """The cell's globule matrices followed by their images S^m for m = 1 .. cells, each m as a
+    block, so that globule j of image m has index j + m·n (its chain in the infinite fibril).
+
+    Only m ≥ 1: a pair of the infinite fibril is one cell globule with a cell globule or with
+    an image above; the same pair seen from below (m < 0) is that pair shifted, counted once.
+    `cells` comes from where the globules stand now, so every image that can touch is there.
+    """
+    cells = helix.check_cells(p, matrices[:, 2, 3], mesh_radius)
+    blocks = [matrices] + [helix.apply_matrices(p, m, matrices) for m in range(1, cells + 1)]
+    return np.concatenate(blocks), cells
+
+
+def check_model(model) -> dict:
+    """Judge the model as it stands in the scene now (call at the last baked frame).
+
+    Layers outside the scored range are still simulated and still collide; only pairs with at
+    least one scored globule count, and only scored layers' linkers. A periodic cell counts
+    every pair of the infinite fibril once, recomputing the images from the originals now.
+    """
+    p = model.params
+    lo, hi = scored_range(p)
+    c_lo, c_hi = scored_chains(p)
+    layer_of, pf_of = P.chain_layers(p)
+    positions = chain_positions(model)
+    globules = model.globules
+    mesh = globules[0].data
+    band = grazing_depth(mesh)
+    matrices = world_matrices(globules, model.root.children)
+    n = len(matrices)
+    cells = 0
+    if p.periodic:
+        matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
+    everything = matrices[:, :3, 3]  # the cell's globules, then their images
+    centres = everything[:n]
+    scored = np.zeros(len(everything), dtype=bool)
+    scored[slice(0, n) if p.periodic else slice(c_lo, c_hi)] = True  # a cell has no ends
+
+    def depth(i, j):
+        return 2 * p.globule_radius - float(np.linalg.norm(everything[i] - everything[j]))
+
+    faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
+    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, p.globule_radius, band)
+               if scored[i] or scored[j]]
+    sphere_pairs = {(i, j) for i, j, _ in spheres}
+    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band)
+    warnings = []
+    if disagree:
+        warnings.append(
+            "checks disagree beyond the mesh's resolution: "
+            + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
+                        f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
+
+    clashing = [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]
+    stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
+    max_stretch = float(stretch.max()) if stretch.size else 0.0
+    chain_clash = [False if s else None for s in scored[:n].tolist()]  # None: not scored
+    for i, j, _ in clashing:
+        for c in (i % n, j % n):  # a periodic cell: an image's globule is its original's
+            if scored[c]:
+                chain_clash[c] = True
+    layer_clash = [None if not lo <= k < hi else False for k in range(p.layers)]
+    for c, hit in enumerate(chain_clash):
+        if hit:
+            layer_clash[int(layer_of[c])] = True
+
+    verdict = "intersection" if faces > 0 else "successful"
+    intact = max_stretch <= p.stretch_tolerance
+    periodic = {"periodic": periodic_block(model, cells)} if p.periodic else {}
+    chains = {}
+    if p.protofilaments > 1:  # pair indices are chains: name each globule's layer and pf too
+        # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
+        name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
+        chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
+                  "chain_clashes": chain_clash}
+    margin = helix.auto_cell_layers(p)
+    if p.periodic and p.periodic < margin:
+        warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
+                        f"({margin}, 'auto'): cells this short were not measured against long "
+                        f"fibrils (README, 'Agreement with long fibrils')")
+    if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
+        chains["inside_core"] = members_inside_core(p, positions)
+        if chains["inside_core"]:
+            warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
+                            f"([chain, member]: {chains['inside_core'][:5]})")
+    return {
+        "verdict": verdict,
+        "intersecting_faces": faces,
+        "clashing_pairs": clashing,
+        "max_overlap": max((d for *_, d in clashing), default=0.0),
+        "grazing_pairs": [[i, j, round(d, 4)] for i, j, d in grazing],
+        "sphere_check": {
+            "verdict": "intersection" if spheres else "successful",
+            "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in spheres],
+            "tolerance": round(band, 4),
+        },
+        "checks_agree": not disagree,
+        "warnings": warnings,
+        "max_bond_stretch": round(max_stretch, 6),
+        "linker_intact": bool(intact),
+        "accommodated": bool(verdict == "successful" and intact),
+        "scored_layers": [lo, hi - 1],
+        "layer_clashes": layer_clash,
+        **chains,
+        "globule_centres": np.round(centres, 4).tolist(),
+        "envelope": envelope(centres[scored[:n]], p.globule_radius),
+        **periodic,
+    }
+
+
+def periodic_block(model, cells: int) -> dict:
+    """The JSON's "periodic": the cell, the images simulated, and how far up the check looked."""
+    images = model.root.get("fibrilfit_images")
+    images = images.to_dict() if hasattr(images, "to_dict") else dict(images or {})
+    return {"cell_layers": model.params.periodic,
+            "auto_cell_layers": helix.auto_cell_layers(model.params), "chains": len(model.chain),
+            "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
+                       "cells": [int(m) for m in images.get("cells", [])]},
+            "check_cells": cells,
+            "scene_frames_per_frame": model.params.image_updates,
+            "gravity": "axial" if helix.axial_gravity(model.params) else "whole"}
+
+
+def clashing_layers(result: dict) -> list[int]:
+    """Chains (= layers with one protofilament) to show red: both globules of every pair in
+    `clashing_pairs` (the BVH's pairs, so none under a successful verdict), including an end
+    layer that clashes with a scored one.
+    """
+    if result.get("verdict") != "intersection":
+        return []
+    n = len(result.get("globule_centres") or []) if result.get("periodic") else 0
+    cell = (lambda k: k % n) if n else (lambda k: k)  # an image's globule is its original's
+    return sorted({cell(k) for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})

@@ -1,0 +1,212 @@
+"""Where the runs happen: local worker processes, or a Dask cluster.
+
+Both offer submit(job), pending() and wait() -> (job, reply), where reply is the worker's
+{"ok": True, "result": ...} or {"ok": False, "error": ...}. Retrying is the runner's business.
+"""
+from __future__ import annotations
+
+import collections
+import logging
+import os
+import pathlib
+import queue
+import threading
+import time
+import uuid
+
+from . import pool
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1]  # the fibrilfit folder, for Dask workers
+START_FAILURES = 3  # workers dying before they are ready, in a row, before the sweep gives up
+
+
+class SweepError(RuntimeError):
+    """The sweep cannot run at all (workers cannot start, scheduler unreachable)."""
+
+
+def cpu_count() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+class ProcessExecutor:
+    """`workers` long-lived worker processes on this machine, each running one job at a time.
+    A worker that dies (crash, SIGKILL, --timeout) fails its job and is replaced."""
+
+    def __init__(self, workers: int, *, timeout: float | None = None, log_path=None,
+                 blender_binary: str = ""):
+        self.size, self.timeout, self.log_path = workers, timeout, log_path
+        self.command = pool.worker_command(blender_binary)
+        self.events: queue.Queue = queue.Queue()
+        self.queue: collections.deque = collections.deque()
+        self.workers: list[pool.WorkerProcess] = []
+        self.start_failures = 0
+        self.log, self.log_lock = None, threading.Lock()
+
+    def __enter__(self):
+        if self.log_path:
+            self.log = open(self.log_path, "a", encoding="utf-8")
+        return self
+
+    def __exit__(self, *exc):
+        for w in self.workers:
+            if exc[0] is not None:
+                w.kill()  # interrupted or failing: do not wait for runs in flight
+            w.close()
+        self.workers.clear()
+        if self.log:
+            self.log.close()
+
+    def pending(self) -> int:
+        return len(self.queue) + sum(w.job is not None for w in self.workers)
+
+    def submit(self, job: dict) -> None:
+        self.queue.append(job)
+        self._fill()
+
+    def _dispatch(self, w: pool.WorkerProcess) -> None:
+        if w.ready and w.job is None and self.queue:
+            w.send(self.queue.popleft())
+
+    def _fill(self) -> None:
+        for w in self.workers:
+            self._dispatch(w)
+        starting = sum(not w.ready for w in self.workers)
+        while len(self.workers) < self.size and starting < len(self.queue):
+            self.workers.append(pool.WorkerProcess(self.command, self.events, self.log,
+                                                   self.log_lock))
+            starting += 1
+
+    def wait(self) -> tuple[dict, dict]:
+        while True:
+            for w in self.workers:  # checked every turn: a busy event queue must not hide a hang
+                if w.overdue(self.timeout):
+                    w.kill(self.timeout)
+            try:
+                w, message = self.events.get(timeout=0.5)
+            except queue.Empty:
+                continue
+            if message.get("ready"):
+                w.ready, self.start_failures = True, 0
+                self._dispatch(w)
+            elif "exit" in message:
+                self.workers.remove(w)
+                if not w.ready:
+                    self.start_failures += 1
+                    if self.start_failures >= START_FAILURES:
+                        raise SweepError(f"sweep workers cannot start: {w.death(message['exit'])}")
+                job = w.job
+                self._fill()
+                if job is not None:
+                    return job, {"id": job["id"], "ok": False, "error": w.death(message["exit"])}
+            elif "ok" in message and w.job is not None and message.get("id") == w.job["id"]:
+                job, w.job = w.job, None
+                self._dispatch(w)
+                return job, message
+
+
+class DaskExecutor:
+    """Jobs as Dask tasks: on the cluster at `scheduler`, or on a LocalCluster of `workers`
+    single-threaded processes. Each Dask worker process hands its jobs, one at a time, to a bpy
+    subprocess of its own (pool.run_here), so bpy never runs in Dask's threads."""
+
+    def __init__(self, workers: int, *, scheduler: str | None = None,
+                 timeout: float | None = None):
+        self.size, self.scheduler, self.timeout = workers, scheduler, timeout
+        self.client = self.cluster = None
+        self.futures: dict = {}
+
+    def __enter__(self):
+        import distributed
+        from .dask_task import make_task
+        self._task = make_task()
+        try:
+            self._connect(distributed)
+        except (OSError, TimeoutError, ValueError) as exc:
+            self.__exit__(None, None, None)
+            raise SweepError(f"cannot reach the Dask scheduler {self.scheduler or '(local)'}: "
+                             f"{exc}") from None
+        self.done = distributed.as_completed()
+        return self
+
+    def _connect(self, distributed) -> None:
+        if self.scheduler:
+            self.client = distributed.Client(self.scheduler, timeout="30s")
+        else:
+            self.cluster = distributed.LocalCluster(
+                n_workers=self.size, threads_per_worker=1, processes=True,
+                dashboard_address=None, silence_logs=logging.ERROR)
+            self.client = distributed.Client(self.cluster)
+
+    def __exit__(self, *exc):
+        for thing in (self.client, self.cluster):
+            if thing is not None:
+                thing.close()
+
+    def pending(self) -> int:
+        return len(self.futures)
+
+    def submit(self, job: dict) -> None:
+        key = f"fibrilfit-{job['id']}-{job['attempt']}-{uuid.uuid4().hex[:8]}"
+        future = self.client.submit(self._task, str(PACKAGE), job, self.timeout, key=key, pure=False)
+        self.futures[future.key] = job
+        self.done.add(future)
+
+    def wait(self) -> tuple[dict, dict]:
+        future = next(self.done)
+        job = self.futures.pop(future.key)
+        try:
+            reply = future.result()
+        except Exception as exc:  # KilledWorker, a lost connection, ...: the runner retries
+            reply = {"id": job["id"], "ok": False, "error": f"{type(exc).__name__}: {exc}"}
+        future.release()
+        return job, reply
+
+
+class SlurmExecutor(DaskExecutor):
+    """The DaskExecutor on a dask-jobqueue SLURMCluster: `workers` SLURM jobs, one single-threaded
+    Dask worker each (options: sweep/slurm.py). A job that ends early (scancel, walltime, a failed
+    node) loses its run in flight, which Dask runs again elsewhere; the job is replaced."""
+
+    KEEP_EVERY = 10.0  # seconds between asking the cluster to replace lost jobs
+
+    def __init__(self, workers: int, cluster_options: dict, *, timeout: float | None = None):
+        super().__init__(workers, timeout=timeout)
+        self.cluster_options = cluster_options
+        self.kept = 0.0
+
+    def _connect(self, distributed) -> None:
+        import shutil
+        from dask_jobqueue import SLURMCluster
+        if shutil.which("sbatch") is None:
+            raise SweepError("--executor slurm: sbatch is not on the PATH (run the sweep on a "
+                             "SLURM login node)")
+        self.cluster = SLURMCluster(**self.cluster_options)
+        self.client = distributed.Client(self.cluster)
+        # SpecCluster.scale(), but waited for: sbatch's refusal (a wrong partition or account)
+        # must stop the sweep, where scale() would only log it and leave the sweep waiting
+        while len(self.cluster.worker_spec) < self.size:
+            self.cluster.worker_spec.update(self.cluster.new_worker_spec())
+        try:
+            self.cluster.sync(self.cluster._correct_state)
+        except Exception as exc:
+            from .slurm import submit_error
+            from distributed.core import Status
+            for job in self.cluster.workers.values():
+                if job.job_id is None:  # never submitted; close() insists on a final state
+                    job.status = Status.failed
+            self.__exit__(None, None, None)
+            raise SweepError(f"SLURM refused the worker jobs: {submit_error(exc)}") from None
+        self.kept = time.monotonic()
+
+    def wait(self) -> tuple[dict, dict]:
+        while not self.done.has_ready():
+            if time.monotonic() - self.kept > self.KEEP_EVERY:
+                # a lost job leaves cluster.workers once Dask gives up on it (lost-worker-timeout);
+                # scale() then submits a replacement under the same name
+                self.cluster.scale(jobs=self.size)
+                self.kept = time.monotonic()
+            time.sleep(0.1)
+        return super().wait()

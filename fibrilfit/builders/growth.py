@@ -1,0 +1,180 @@
+"""The inflate protocol's schedule: grow the globules, hold at full size, judge; shrink a jammed
+layout and grow it again under a new gravity.
+
+One cycle: the globules' scale goes linearly from its start to 1 over `grow_frames` while the
+random gravity is annealed linearly to zero; then up to `hold_frames` at full size with the
+gravity off, until every body moves less than `settle_speed` per frame for `settle_frames`
+frames. The layout is then judged (by the model's check when the bake was given it, else by
+sphere depths and bond stretch). Accommodated, or no cycles left: the bake ends on that frame.
+Otherwise every globule is shrunk to `regrow_scale` and the next cycle grows it again under a
+new random gravity drawn from the seed, so the chains can leave the jam.
+
+Bullet re-reads each active body's scale every step (the collision sphere follows it), while a
+POINT constraint keeps the pivots it was built with in each body's frame, unscaled: the joint
+of the last bead stays on the globule's full-size surface, so a small globule never lends its
+linker extra reach (measured: README, "The inflate schedule").
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from ..model import helix
+from .scene import TAG
+
+GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
+OVERLAP_TOLERANCE = 0.05  # Å: sphere overlap the fallback judge lets pass (resting contacts)
+
+
+def cycle_gravity(p, cycle: int, first) -> np.ndarray:
+    """The gravity grown under in `cycle`: the seed's own (`first`) for cycle 0."""
+    if cycle == 0:
+        return np.asarray(first, dtype=float)
+    rng = np.random.default_rng([p.seed, cycle, GRAVITY_SALT])
+    return rng.uniform(-p.gravity, p.gravity, 3)
+
+
+def start_scale(p, centres: np.ndarray) -> float:
+    """`grow_start`, or less if the start layout's globules would overlap at that scale (in a
+    periodic cell, also with the images of the cell's globules)."""
+    d = _closest(with_images(p, centres)[0])
+    if d is None:
+        return p.grow_start
+    return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
+
+
+def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
+    """The globule centres and, in a periodic cell, their images above it as far as a globule
+    can reach (pairs with the images below are the same pairs shifted). Returns (centres, n):
+    the first n are the cell's; image-image pairs repeat cell pairs and must not be counted."""
+    centres = np.asarray(centres, dtype=float)
+    if not p.periodic or not len(centres):
+        return centres, len(centres)
+    cells = helix.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
+    m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
+    images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
+    return np.concatenate([centres, images]), len(centres)
+
+
+def _closest(centres: np.ndarray) -> float | None:
+    """The smallest distance between two of the points, found along Z-sorted neighbours."""
+    c = np.asarray(centres, dtype=float)
+    if len(c) < 2:
+        return None
+    c = c[np.argsort(c[:, 2])]
+    best = np.inf
+    for shift in range(1, len(c)):
+        dz = c[shift:, 2] - c[:-shift, 2]
+        if dz.min() >= best:
+            break
+        best = min(best, float(np.linalg.norm(c[shift:] - c[:-shift], axis=1).min()))
+    return best
+
+
+def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
+    """The fallback judgement: no scored globule pair overlapping by more than
+    OVERLAP_TOLERANCE and every scored bond within the stretch tolerance."""
+    rest = np.asarray(p.rest_lengths(), dtype=float)
+    stretch = np.linalg.norm(np.diff(positions[scored], axis=1), axis=-1) / rest - 1.0
+    worst = float(stretch.max()) if stretch.size else 0.0
+    centres = positions[:, -1]
+    keep = np.zeros(len(centres), dtype=bool)
+    keep[scored] = True
+    centres, _ = with_images(p, centres)
+    keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
+    deep = 0
+    order = np.argsort(centres[:, 2])
+    c, k = centres[order], keep[order]
+    for shift in range(1, len(c)):
+        dz = c[shift:, 2] - c[:-shift, 2]
+        if dz.min() >= p.globule_diameter:
+            break
+        d = np.linalg.norm(c[shift:] - c[:-shift], axis=1)
+        hit = (p.globule_diameter - d > OVERLAP_TOLERANCE) & (k[shift:] | k[:-shift])
+        deep += int(hit.sum())
+    return {"accommodated": deep == 0 and worst <= p.stretch_tolerance,
+            "max_bond_stretch": round(worst, 6), "clashing_pairs": deep}
+
+
+class Inflate:
+    """The schedule as a bake hook (builders/hooks.py). `judge(model)` -> the check's result
+    dict (with "accommodated"); None uses sphere_judge."""
+
+    busy = True  # the schedule, not the tutorial's settling, ends this bake
+
+    def __init__(self, model, scene, judge: Callable | None = None):
+        self.model, self.p, self.judge = model, model.params, judge
+        self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
+        n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
+        self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
+        self.cycle, self.grow_from, self.grow_start = 0, None, 1
+        self.holding, self.hold_start, self.quiet, self.prev = False, 0, 0, None
+        self.finished, self.gravity, self.scale = False, None, None
+        self.start = self.first = None
+        self.cycles: list[dict] = []
+        # scene frames per frame of the model (physics.frame_split): a periodic cell's frames
+        # are split, so the schedule's frames and speeds are counted in the shorter ones
+        self.k = self.p.image_updates if self.p.periodic else 1
+
+    def _set_scale(self, s: float) -> None:
+        if s == self.scale:
+            return
+        objects = self.globules.objects
+        objects.foreach_set("scale", np.full(3 * len(objects), s, dtype=np.float32))
+        # foreach_set tags nothing: without this the depsgraph keeps the old scale (measured:
+        # matrix_world and Bullet's shape stay at full size)
+        for ob in objects:
+            ob.update_tag(refresh={"OBJECT"})
+        self.scale = s
+
+    def before_frame(self, scene, frame: int) -> None:
+        p = self.p
+        if frame == 1:
+            centres = np.array([c[-1].matrix_world.translation[:] for c in self.model.chain])
+            self.grow_from = self.start = start_scale(p, centres)
+            self.first = tuple(scene.gravity)
+            self.gravity = cycle_gravity(p, 0, self.first)
+        if self.holding:
+            return
+        t = min(1.0, (frame - self.grow_start) / (p.grow_frames * self.k))
+        self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
+        scene.gravity = tuple(self.gravity * (1.0 - t))
+
+    def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:
+        p = self.p
+        if not self.holding:
+            if frame - self.grow_start >= p.grow_frames * self.k:
+                self.holding, self.hold_start, self.quiet, self.prev = True, frame + 1, 0, positions.copy()
+            return
+        speed = float(np.linalg.norm(positions - self.prev, axis=-1).max())
+        self.prev = positions.copy()
+        self.quiet = self.quiet + 1 if speed < p.settle_speed / self.k else 0
+        held = frame - self.hold_start + 1
+        if (self.quiet < min(p.settle_frames, p.hold_frames) * self.k
+                and held < p.hold_frames * self.k):
+            return
+        verdict = (self.judge(self.model) if self.judge is not None
+                   else sphere_judge(p, positions, self.scored))
+        pairs = verdict["clashing_pairs"]
+        self.cycles.append({
+            "cycle": self.cycle, "judged_at": frame, "grown_from": round(self.grow_from, 4),
+            "gravity": [round(float(g), 6) for g in self.gravity],
+            "accommodated": bool(verdict["accommodated"]),
+            "clashing_pairs": pairs if isinstance(pairs, int) else len(pairs),
+            "max_bond_stretch": verdict["max_bond_stretch"]})
+        if verdict["accommodated"] or self.cycle >= p.regrow_cycles:
+            self.finished, self.busy = True, False
+            return
+        self.cycle += 1  # jammed: shrink every globule and grow again under a new gravity
+        self.grow_from, self.grow_start, self.holding = p.regrow_scale, frame + 1, False
+        self.gravity = cycle_gravity(p, self.cycle, None)
+
+    def summary(self) -> dict:
+        """The result's `inflate` block, and `gravity` kept as the seed's (the scene ends with
+        none, annealed away)."""
+        out = {"inflate": {"start_scale": None if self.start is None else round(self.start, 4),
+                           "cycles": self.cycles}}
+        if self.start is not None:
+            out["gravity"] = [round(float(g), 9) for g in cycle_gravity(self.p, 0, self.first)]
+        return out

@@ -1,0 +1,439 @@
+"""The fibril: `layers` copies of a core (slab or outline) with `protofilaments` chains (anchor +
+linker + globule) each, every layer raised and twisted, every protofilament turned and raised."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+
+from ..model import params as P
+from . import meshes
+from .start_layout import inflate_layout
+from .physics import check_world_free, ensure_world, keep_bake
+from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
+                    tag)
+
+COLORS = {  # viewport/object colours; analysis recolours clashing globules
+    "slab": (0.55, 0.62, 0.75, 1.0),
+    "anchor": (0.25, 0.25, 0.3, 1.0),
+    "residue": (0.95, 0.75, 0.2, 1.0),
+    "globule": (0.7, 0.72, 0.7, 1.0),
+}
+CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
+# Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
+PF_COLORS = {
+    "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
+                (0.8, 0.6, 0.85, 1.0), (0.85, 0.75, 0.5, 1.0), (0.5, 0.8, 0.8, 1.0)),
+    "residue": ((0.95, 0.75, 0.2, 1.0), (0.95, 0.5, 0.15, 1.0), (0.75, 0.9, 0.2, 1.0),
+                (0.95, 0.6, 0.6, 1.0), (0.8, 0.8, 0.5, 1.0), (0.3, 0.85, 0.7, 1.0)),
+}
+chain_layers = P.chain_layers  # (layer, protofilament) of every chain index
+
+
+def part_colour(role: str, pf: int = 0) -> tuple:
+    """The colour of a part of protofilament `pf` (the same for every pf but globules, beads)."""
+    tints = PF_COLORS.get(role)
+    return COLORS[role] if tints is None else tints[pf % len(tints)]
+
+
+@dataclass
+class Model:
+    """Handles to a built model. `chain[c][i]`: chain c, member i (0 anchor .. linker globule).
+
+    Chains are layer-major: chain c is protofilament c % K of layer c // K (chain_layers);
+    with one protofilament, chain c is layer c. `slabs[k]`: layer k's core. `constraints[c]`:
+    chain c's bonds."""
+
+    root: bpy.types.Collection
+    params: P.Params
+    slabs: list
+    chain: list
+    constraints: list
+
+    @property
+    def globules(self) -> list:
+        return [c[-1] for c in self.chain]
+
+    @property
+    def active(self) -> list:
+        return [ob for c in self.chain for ob in c[1:]]
+
+
+def layer_transforms(p: P.Params, count: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Angle (rad) and height (Å) of each layer about/along the fibril axis Z."""
+    k = np.arange(p.layers if count is None else count, dtype=float)
+    return k * p.twist, k * p.rise
+
+
+def chain_positions(p: P.Params) -> np.ndarray:
+    """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
+
+    Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
+    (params.chain_transforms); for the tutorial's model the same floats as one chain per layer.
+    """
+    angle, height = P.chain_transforms(p)
+    layout = p.chain_layout
+    turn = angle[:, None] + layout.angle[None]
+    pos = np.empty((p.chains, layout.radius.size, 3))
+    pos[..., 0] = np.cos(turn) * layout.radius[None]
+    pos[..., 1] = np.sin(turn) * layout.radius[None]
+    pos[..., 2] = height[:, None]
+    return pos
+
+
+def bond_pivots(p: P.Params) -> np.ndarray:
+    """POINT-constraint pivots: where consecutive members touch, shape (chains, linker, 3)."""
+    pos = chain_positions(p)
+    a, b = pos[:, :-1], pos[:, 1:]
+    ra = np.asarray(p.chain_radii()[:-1])
+    frac = ra / np.asarray(p.rest_lengths())
+    return a + (b - a) * np.minimum(frac, 1.0)[None, :, None]
+
+
+def find_model(scene: bpy.types.Scene) -> Model | None:
+    """The model built in `scene`, reassembled from its tags, or None."""
+    root = find_root(scene)
+    if root is None:
+        return None
+    p = P.make_params(force=True, **{k: v for k, v in root["params"].to_dict().items()})
+    slabs, chain, cons = {}, {}, {}
+    # Not root.all_objects: Blender rebuilds that cache in O(n²) after any change (4.5 s for
+    # 14,000 objects, measured on 5.0.1); each collection's own objects are a plain list.
+    for ob in (ob for coll in (root, *root.children_recursive) for ob in coll.objects):
+        role, k = ob.get(TAG), ob.get(LAYER)
+        key = (k, ob.get(PROTOFILAMENT, 0))  # layer-major, as the builder numbers chains
+        if role == "slab":
+            slabs[k] = ob
+        elif role in ("anchor", "residue", "globule"):
+            chain.setdefault(key, {})[ob[INDEX]] = ob
+        elif role == "bond":
+            cons.setdefault(key, {})[ob[INDEX]] = ob
+    ordered = lambda d: [d[i] for i in sorted(d)]
+    return Model(root, p, ordered(slabs), [ordered(chain[k]) for k in sorted(chain)],
+                 [ordered(cons[k]) for k in sorted(cons)])
+
+
+PARTS = ("slab", "anchor", "linker", "globule")  # one layer's parts, in the tutorial's order
+STEPS = (*PARTS, "layers")  # the build steps; "layers" replicates layer 0 to every layer
+STAGE = "fibrilfit_stage"   # on the root collection: the last step done, then "baked", "checked"
+LAST_FRAME = "fibrilfit_last_frame"  # on the root collection: the last frame the bake reached
+STAGES = (*STEPS, "baked", "checked")
+IMAGES = "fibrilfit_images"  # on the root collection of a periodic cell: its images, by kind
+PART_COLLECTIONS = {"slab": "slabs", "anchor": "anchors", "residue": "linkers",
+                    "globule": "globules", "bond": "bonds"}  # role: title; tagged role + "s"
+
+
+def build_model(p: P.Params, scene: bpy.types.Scene | None = None, *, force: bool = False) -> Model:
+    """Build the model in `scene` (default: the context's), replacing any previous one.
+
+    Validates first (raising ParamError), so bad input leaves the scene as it was.
+    """
+    return build_steps(p, scene, upto="layers", force=force)
+
+
+def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str = "layers",
+                force: bool = False) -> Model:
+    """Build the steps of STEPS up to `upto` from scratch, replacing any previous model.
+
+    The parts go into layer 0 in the tutorial's order; the step "layers" then replicates them,
+    each layer raised by `rise` and turned by `twist`. The sidebar's step buttons call this.
+    """
+    if upto not in STEPS:
+        raise ValueError(f"upto must be one of {STEPS}")
+    scene = scene or bpy.context.scene
+    model = start_model(p, scene, force=force)
+    steps = STEPS[:STEPS.index(upto) + 1]
+    builder = _LayerBuilder(model, scene)
+    for part in steps:
+        if part in PARTS:
+            builder.add(part, 0)
+    if "layers" in steps:
+        for k in range(1, model.params.layers):
+            for part in PARTS:
+                builder.add(part, k)
+    builder.place()
+    if "layers" in steps and model.params.periodic:
+        from .periodic import build_images
+        model.root[IMAGES] = build_images(model, scene)
+    # No view_layer.update() here: place() sets valid world matrices, and the depsgraph is
+    # built once, on first use (the bake's first frame, or the viewport's next redraw).
+    set_stage(model, upto)
+    return model
+
+
+def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> Model:
+    """Validate `p`, remove any previous model, and make the model's empty collections and world."""
+    p = P.validate(p, force=force)
+    check_world_free(scene)
+    clear_model(scene)
+    rbw = ensure_world(scene)
+    root = new_collection("FibrilFit", ROOT, scene.collection)
+    root["params"] = stored_params(p)
+    for role, title in PART_COLLECTIONS.items():
+        new_collection(f"FibrilFit {title}", role + "s", root)
+    rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
+    rbw.constraints = tag(bpy.data.collections.new("FibrilFit constraints"), "rigid_constraints")
+    return Model(root, p, [], [], [])
+
+
+def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:
+    """Record how far the model got (see STAGES); a bake also records its last frame."""
+    if stage not in STAGES:
+        raise ValueError(f"stage must be one of {STAGES}")
+    model.root[STAGE] = stage
+    if last_frame is not None:
+        model.root[LAST_FRAME] = int(last_frame)
+
+
+def last_frame(model: Model) -> int:
+    """The frame the bake ended on (the tutorial's "last frame")."""
+    return int(model.root.get(LAST_FRAME, model.params.bake_frames()))
+
+
+def update_params(model: Model, p: P.Params) -> None:
+    """Give a built model new parameters that do not change what was built (bake, check)."""
+    model.params = p
+    model.root["params"] = stored_params(p)
+
+
+def stored_params(p: P.Params) -> dict:
+    """p.to_dict() as an ID property: derived parameters (None) are left out, and
+    make_params gives them back as their defaults."""
+    return {k: v for k, v in p.to_dict().items() if v is not None}
+
+
+def model_stage(scene: bpy.types.Scene) -> str:
+    """How far the scene's model got: "" (none), a step of STEPS, "baked" or "checked".
+
+    A bake counts only while its cache is kept (freeing it in Blender's physics panel undoes it).
+    Cheap enough for poll() and draw(): reads the root collection, not every object.
+    """
+    root = find_root(scene)
+    if root is None:
+        return ""
+    stage = root.get(STAGE, "layers")  # models from before stages were recorded were whole
+    if stage in ("baked", "checked"):
+        rbw = scene.rigidbody_world
+        if rbw is None or not rbw.point_cache.is_baked:
+            return "layers"
+    return stage
+
+
+class _LayerBuilder:
+    """Adds one part of one layer at a time; shares meshes and the precomputed layer geometry."""
+
+    def __init__(self, model: Model, scene: bpy.types.Scene):
+        self.model = model
+        p = self.p = model.params
+        rbw = scene.rigidbody_world
+        self.bodies, self.bonds = rbw.collection, rbw.constraints
+        tags = {c.get(TAG): c for c in model.root.children}
+        self.parts = {role: tags[role + "s"] for role in PART_COLLECTIONS}
+        self.angle, self.height = layer_transforms(p)  # per layer: the cores
+        self.chain_angle = P.chain_transforms(p)[0]     # per chain: its members
+        self.pos, self.pivots = chain_positions(p), bond_pivots(p)
+        self.pfs = p.protofilaments
+        if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
+            self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
+        self.mesh = {}
+        # Each object with its (layer, index), per part, in the order they were linked: place()
+        # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
+        self.placed = {role: [] for role in PART_COLLECTIONS}
+
+    def add(self, part: str, k: int) -> None:
+        getattr(self, "_" + part)(k)
+
+    def _shared_mesh(self, role):
+        if role not in self.mesh:
+            p = self.p
+            if role == "slab" and p.core_outline is not None:
+                self.mesh[role] = meshes.prism("FibrilFit core", p.outline(), p.rise)
+            elif role == "slab":
+                self.mesh[role] = meshes.box("FibrilFit slab", p.slab)
+            elif role == "globule":
+                self.mesh[role] = meshes.uv_sphere("FibrilFit globule", p.globule_radius,
+                                                   P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
+            else:  # the anchor and the linker's residues are the same bead
+                self.mesh[role] = meshes.uv_sphere("FibrilFit residue", p.residue_radius,
+                                                   P.RESIDUE_SEGMENTS, P.RESIDUE_RINGS)
+        return self.mesh[role]
+
+    def _slab(self, k):
+        # A concave outline: a convex hull would fill its notches (README, "Concave cores"), and
+        # Bullet's triangle-mesh shape is a hollow surface that traps a bead once it is pushed
+        # through (README, "Why real-fibril linkers stayed stretched"). So the core is a
+        # compound of solid convex prisms, children of the slab, which keeps the drawn prism.
+        shape = "BOX" if self.p.core_outline is None else "COMPOUND"
+        slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
+                     self.bodies, "PASSIVE", shape)
+        self.placed["slab"].append((slab, k, 0))
+        self.model.slabs.append(slab)
+        if shape == "COMPOUND":
+            self._core_pieces(slab, k)
+
+    def _core_pieces(self, slab, k):
+        """The convex prisms of layer k's core outline, parented to its slab (same frame)."""
+        if "pieces" not in self.mesh:
+            self.mesh["pieces"] = [meshes.prism(f"FibrilFit core piece {i}", piece, self.p.rise)
+                                   for i, piece in enumerate(meshes.convex_pieces(
+                                       self.p.outline()))]
+            self.pieces_coll = new_collection("FibrilFit core pieces", "core_pieces",
+                                              self.parts["slab"])
+        for i, mesh in enumerate(self.mesh["pieces"]):
+            ob = tag(bpy.data.objects.new(f"FF{k:04d} core piece {i}", mesh), "core_piece")
+            ob[LAYER], ob[INDEX] = k, i
+            ob.parent = slab
+            ob.hide_render = True
+            ob.display_type = "WIRE"
+            self.pieces_coll.objects.link(ob)
+            self.bodies.objects.link(ob)
+            ob.rigid_body.type = "PASSIVE"
+            ob.rigid_body.collision_shape = "CONVEX_HULL"
+            self.placed.setdefault("core_piece", []).append((ob, k, 0))
+
+    def _name(self, k, j):
+        return f"FF{k:04d}" if self.pfs == 1 else f"FF{k:04d}.{j}"
+
+    def _member(self, k, i):
+        """Member i of every protofilament's chain in layer k, protofilament 0 first."""
+        for j in range(self.pfs):
+            self._chain_member(k, j, i)
+
+    def _chain_member(self, k, j, i):
+        p = self.p
+        c = k * self.pfs + j
+        role = "anchor" if i == 0 else ("globule" if i == p.linker else "residue")
+        mesh = self._shared_mesh("globule" if role == "globule" else "residue")
+        ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
+                   "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
+        ob[INDEX], ob[PROTOFILAMENT] = i, j
+        self.placed[role].append((ob, c, i))
+        chain = self.model.chain
+        if i == 0:
+            chain.append([])
+            self.model.constraints.append([])
+        chain[c].append(ob)
+        if i > 0:
+            self._bond(k, j, i - 1)
+
+    def _bond(self, k, j, i):
+        """The POINT constraint between members i and i + 1 of protofilament j's chain in layer k."""
+        c = k * self.pfs + j
+        members = self.model.chain[c]
+        empty = tag(bpy.data.objects.new(f"{self._name(k, j)} bond {i}", None), "bond")
+        empty[LAYER], empty[INDEX], empty[PROTOFILAMENT] = k, i, j
+        self.placed["bond"].append((empty, c, i))
+        self.parts["bond"].objects.link(empty)
+        self.bonds.objects.link(empty)
+        rbc = empty.rigid_body_constraint
+        rbc.type = "POINT"
+        rbc.object1, rbc.object2 = members[i], members[i + 1]
+        rbc.disable_collisions = True
+        self.model.constraints[c].append(empty)
+
+    def _anchor(self, k):
+        self._member(k, 0)
+
+    def _linker(self, k):
+        for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
+            for i in range(1, self.p.linker):
+                self._chain_member(k, j, i)
+
+    def _globule(self, k):
+        self._member(k, self.p.linker)
+
+    def place(self) -> None:
+        """Location, rotation, world matrix and colour of every object, one foreach_set each.
+
+        The objects were linked in the order Bullet sees them (that order fixes the result for
+        a seed); only their transforms come later, with the same float32 values as one by one.
+        """
+        for role, placed in self.placed.items():
+            if role == "core_piece":  # children of their slab: the slab's frame
+                objects = _in_order(self.pieces_coll, [ob for ob, _, _ in placed])
+                k = np.array([ki for _, ki, _ in placed], dtype=np.intp)
+                loc = np.zeros((len(k), 3))
+                loc[:, 2] = self.height[k]
+                _place(objects, np.zeros((len(k), 3)), np.zeros(len(k)), loc, self.angle[k])
+                continue
+            objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
+            # (layer, 0) for slabs; (chain, member) for the rest
+            k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
+            if role == "slab":
+                loc = np.zeros((len(k), 3))
+                loc[:, 2] = self.height[k]
+            else:
+                loc = (self.pivots if role == "bond" else self.pos)[k, i]
+            rot_z = (np.zeros(len(k)) if role == "bond" else
+                     self.angle[k] if role == "slab" else self.chain_angle[k])
+            _place(objects, loc, rot_z)
+            if role == "bond":
+                objects.foreach_set("empty_display_size",
+                                    np.full(len(k), self.p.residue_radius, np.float32))
+            else:
+                pf = k % self.pfs if role != "slab" else np.zeros(len(k), dtype=np.intp)
+                tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
+                objects.foreach_set("color", tints[pf].ravel())
+
+
+def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
+    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), the
+    others their protofilament's colour, through ob.color. Returns the red.
+
+    ob.color is what the viewport shows with Color: Object, and what materials read through
+    an Object Info node, so one call recolours both after each check. Colouring edits simulated
+    objects, so the bake is kept first (physics.keep_bake).
+    """
+    keep_bake(scene or bpy.context.scene)
+    red = {int(k) for k in clashing_layers}
+    for k, members in enumerate(model.chain):
+        if members and members[-1].get(TAG) == "globule":
+            colour = (CLASH_COLOR if k in red else
+                      part_colour("globule", members[-1].get(PROTOFILAMENT, 0)))
+            if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
+                members[-1].color = colour
+    return sorted(red)
+
+
+def _in_order(coll, objects):
+    """`coll.objects`, checked (one foreach_get) to hold exactly `objects`, in that order."""
+    uids = np.empty(len(coll.objects), dtype=np.int64)
+    coll.objects.foreach_get("session_uid", uids)
+    if not np.array_equal(uids, [ob.session_uid for ob in objects]):
+        raise RuntimeError(f"collection '{coll.name}' changed while the model was being built")
+    return coll.objects
+
+
+def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
+           world_rot_z=None) -> None:
+    """Set location and Z rotation of a collection's objects, and a world matrix to match
+    (`world_loc`, `world_rot_z` for children: their parent's).
+
+    The world matrix makes the objects' matrix_world right before any depsgraph evaluation.
+    foreach_set writes Blender's float[4][4] as stored: column-major, translation in row 3.
+    """
+    n = len(loc)
+    rot = np.zeros((n, 3))
+    rot[:, 2] = rot_z
+    objects.foreach_set("location", loc.astype(np.float32).ravel())
+    objects.foreach_set("rotation_euler", rot.astype(np.float32).ravel())
+    loc = loc if world_loc is None else world_loc
+    rot_z = rot_z if world_rot_z is None else world_rot_z
+    mat = np.zeros((n, 4, 4))
+    c, s = np.cos(rot_z), np.sin(rot_z)
+    mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
+    mat[:, 2, 2] = mat[:, 3, 3] = 1.0
+    mat[:, 3, :3] = loc
+    objects.foreach_set("matrix_world", mat.astype(np.float32).ravel())
+
+
+def _body(name, mesh, role, k, parts, bodies, rb_type, shape):
+    ob = tag(bpy.data.objects.new(name, mesh), role)
+    ob[LAYER] = k
+    parts[role].objects.link(ob)
+    bodies.objects.link(ob)
+    rb = ob.rigid_body
+    rb.type = rb_type
+    rb.collision_shape = shape
+    return ob

@@ -1,0 +1,275 @@
+"""The screw-periodic cell's images: bodies that stand in for the rest of an infinite fibril.
+
+Only images that can reach the cell are built (from the linker's length, not a fixed ±1 cell):
+static passive copies of the cores and anchors, and kinematic ("Animated") copies of the linker
+beads and globules, which ImageFollower moves after every frame to S^m of their originals, all
+in one foreach_set. Every image is tagged under the model's "images" collection.
+"""
+from __future__ import annotations
+
+import bpy
+import numpy as np
+from mathutils import Matrix
+
+from ..model import helix
+from .scene import INDEX, LAYER, TAG, new_collection, tag
+
+MOVING, STATIC = "image", "image_static"  # roles of the two kinds of image
+CHAIN = "fibrilfit_chain"  # on an image: the chain (or core, for a static core image) it copies
+CELL = "fibrilfit_cell"    # on an image: m, the power of the screw
+COLLECTIONS = {MOVING: "FibrilFit images", STATIC: "FibrilFit static images"}
+FADE_TO, FADE = (0.3, 0.32, 0.36), 0.6  # images: their original's colour, 60 % of the way to the
+# render's backdrop (exports/dressing.BACKGROUND), so the cell stands out
+_RB_COPIED = ("friction", "restitution", "use_margin", "collision_margin")
+
+
+def plan(p, chain_layers, core_layers) -> dict:
+    """Which images to build: {"moving": [(m, chain, member)], "static": [(m, kind, index)]}.
+
+    A body of an image layer a height gap g beyond the cell is built when its own reach
+    (helix.chain_reach, or half the core's height) plus the farthest reach of any cell body
+    covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
+    """
+    # protofilaments rise from one to the next: the layer's chains spread over that much more
+    reach_cell = helix.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
+    member_reach = helix.chain_reach(p)
+    gaps = _gaps(p)
+    moving, static = [], []
+    for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
+        g = gaps[(m, k)]
+        for c in np.flatnonzero(np.asarray(chain_layers) == k).tolist():
+            for i in np.flatnonzero(member_reach + reach_cell >= g).tolist():
+                (static if i == 0 else moving).append((m, "anchor", c) if i == 0 else (m, c, i))
+    for m, k in helix.image_layers(p, reach_cell + p.slab[2] / 2.0):
+        for j in np.flatnonzero(np.asarray(core_layers) == k).tolist():
+            static.append((m, "core", j))
+    return {"moving": moving, "static": static}
+
+
+def _gaps(p) -> dict:
+    """Height gap between each image layer (m, k) and the nearest cell layer."""
+    M, top = p.periodic, (p.periodic - 1) * p.rise
+    out = {}
+    for m in range(-64, 65):
+        if m:
+            for k in range(M):
+                z = (k + m * M) * p.rise
+                out[(m, k)] = z - top if m > 0 else -z
+    return out
+
+
+def build_images(model, scene) -> dict:
+    """Build the images of a built cell (model.params.periodic > 0). Returns counts by kind."""
+    p = model.params
+    chain_layers = [members[0][LAYER] for members in model.chain]
+    core_layers = [ob[LAYER] for ob in model.slabs]
+    todo = plan(p, chain_layers, core_layers)
+    colls = {role: new_collection(title, role + "s", model.root)
+             for role, title in COLLECTIONS.items()}
+    bodies = scene.rigidbody_world.collection
+    made = {MOVING: [], STATIC: []}
+    for m, what, j in todo["static"]:
+        source = model.chain[j][0] if what == "anchor" else model.slabs[j]
+        ob = _copy(source, STATIC, m, j, 0, colls[STATIC], bodies)
+        ob.matrix_world = _to_blender(helix.apply_matrices(p, m, _matrix(source)[None])[0])
+        made[STATIC].append(ob)
+        _copy_pieces(source, ob, colls[STATIC], bodies)
+    for m, c, i in todo["moving"]:
+        ob = _copy(model.chain[c][i], MOVING, m, c, i, colls[MOVING], bodies)
+        ob.rigid_body.kinematic = True
+        made[MOVING].append(ob)
+    follower = ImageFollower(model)
+    rest = np.array([[np.array(ob.matrix_world.translation) for ob in members]
+                     for members in model.chain])
+    follower.place(rest)
+    return {"moving": len(made[MOVING]), "static": len(made[STATIC]),
+            "cells": sorted({m for m, *_ in todo["moving"] + todo["static"]})}
+
+
+def _matrix(ob) -> np.ndarray:
+    return np.array(ob.matrix_world, dtype=float)
+
+
+def _to_blender(m: np.ndarray):
+    return Matrix(m.tolist())
+
+
+def _copy(source, role, m, chain, index, coll, bodies):
+    """A new body sharing `source`'s mesh, shape and surface, tagged as image m of it."""
+    ob = tag(bpy.data.objects.new(f"FF image {m:+d} {source.name}", source.data), role)
+    ob[CELL], ob[CHAIN], ob[INDEX] = int(m), int(chain), int(index)
+    ob[LAYER] = source[LAYER]
+    coll.objects.link(ob)
+    bodies.objects.link(ob)
+    rb, src = ob.rigid_body, source.rigid_body
+    rb.type = "PASSIVE"
+    rb.collision_shape = src.collision_shape
+    for attr in _RB_COPIED:
+        setattr(rb, attr, getattr(src, attr))
+    ob.color = (*(c + FADE * (b - c) for c, b in zip(source.color[:3], FADE_TO)), 1.0)
+    return ob
+
+
+def _copy_pieces(source, image, coll, bodies) -> None:
+    """An outline core's solid convex pieces (children of its slab, builders.model) for its
+    image: a COMPOUND shape without them would collide with nothing."""
+    for child in source.children:
+        if child.get(TAG) != "core_piece":
+            continue
+        ob = tag(bpy.data.objects.new(f"FF image {image[CELL]:+d} {child.name}", child.data),
+                 "core_piece")
+        ob[LAYER], ob[INDEX] = child[LAYER], child[INDEX]
+        ob.parent = image
+        ob.hide_render, ob.display_type = True, "WIRE"
+        coll.objects.link(ob)
+        bodies.objects.link(ob)
+        ob.rigid_body.type = "PASSIVE"
+        ob.rigid_body.collision_shape = "CONVEX_HULL"
+        ob.matrix_world = image.matrix_world
+
+
+def image_collection(model, role: str = MOVING):
+    for coll in model.root.children:
+        if coll.get(TAG) == role + "s":
+            return coll
+    return None
+
+
+class ImageFollower:
+    """After each frame, moves every kinematic image to S^m of its original: one foreach_set.
+
+    Images are spheres, so only their centres matter to the physics: each gets its original's
+    centre under S^m and the screw's turn (the check and the exports use exact matrices).
+    Only images that can touch a cell body now are moved for Bullet (their evaluated copies'
+    matrices written, see _write): an image whose place, old and new, lies farther along Z from
+    every cell body than its radius plus the largest cell body's plus twice this frame's largest
+    move keeps its old place, which nothing can reach.
+    """
+
+    def __init__(self, model):
+        self.p = model.params
+        self.coll = image_collection(model, MOVING)
+        obs = self.objects = list(self.coll.objects) if self.coll is not None else []
+        self.m = np.array([ob[CELL] for ob in obs], dtype=float)
+        self.chain = np.array([ob[CHAIN] for ob in obs], dtype=np.intp)
+        self.member = np.array([ob[INDEX] for ob in obs], dtype=np.intp)
+        angle = self.m * self.p.periodic * self.p.twist
+        self.rotation = np.zeros((len(obs), 3), dtype=np.float32)
+        self.rotation[:, 2] = angle
+        self.count = len(obs)
+        self.imaged = (self.chain, self.member)
+        # each image's original: an image carries its scale (inflate grows and shrinks globules)
+        self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
+        self.scale = np.ones(len(obs), dtype=np.float32)
+        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        self.radius = radii[self.member] if len(obs) else np.zeros(0)
+        self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
+        self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
+                       (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
+                       + abs(self.p.pf_rise) * (self.p.protofilaments - 1))
+        self.current = None  # the places Blender holds, (n, 3)
+        self.tagged: list[int] = []  # per frame: images moved for Bullet
+        self.prev = None
+        self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
+        self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
+
+    def targets(self, positions: np.ndarray) -> np.ndarray:
+        """Where the images belong for chain positions (chains, members, 3)."""
+        return helix.apply_points(self.p, self.m, positions[self.chain, self.member])
+
+    def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
+        """Images whose new or old place can touch a cell body along Z (see the class)."""
+        z = positions[..., 2]
+        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
+        hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
+        out = np.zeros(self.count, dtype=bool)
+        for where in (loc, self.current):
+            out |= (where[:, 2] + self.radius >= lo) & (where[:, 2] - self.radius <= hi)
+        return out
+
+    def source_scales(self) -> np.ndarray:
+        """Each image's original's (uniform) scale now (only inflate scales them)."""
+        if self.p.protocol != "inflate":
+            return self.scale
+        return np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
+
+    def _know(self, scene) -> None:
+        if self.depsgraphs is None:  # every view layer's that exists: the active one steps Bullet
+            self.depsgraphs = [vl.depsgraph for vl in scene.view_layers if vl.depsgraph]
+
+    def before_frame(self, scene, frame) -> None:
+        """Give the images their originals' scale when it changed since they were placed (the
+        inflate hook, which runs first, grows or shrinks the originals before each frame)."""
+        self._know(scene)
+        if self.count and self.current is not None:
+            scale = self.source_scales()
+            changed = scale != self.scale
+            if changed.any():  # the images near the cell are handed to the depsgraph again
+                self.scale = scale
+                self._write(changed & self.near_now)
+
+    def place(self, positions: np.ndarray, margin: float | None = None) -> None:
+        """Move the images to S^m of `positions`, with their originals' scale; with `margin`
+        (Å), only those near the cell."""
+        if not self.count:
+            return
+        loc = self.targets(positions)
+        if margin is None or self.current is None:
+            moving = np.ones(self.count, dtype=bool)
+        else:
+            moving = self.near(positions, loc, margin)
+            loc = np.where(moving[:, None], loc, self.current)
+        self.current = loc
+        self.scale = self.source_scales()
+        self.tagged.append(int(moving.sum()))
+        self.near_now = moving
+        self._write(moving)
+
+    def _write(self, moving: np.ndarray) -> None:
+        """Set every image's place, turn and scale (one foreach_set each, on the data Blender
+        saves) and hand those `moving` to Bullet by writing their evaluated copies' matrices."""
+        loc, sc = self.current, self.scale
+        objects = self.coll.objects
+        objects.foreach_set("location", loc.astype(np.float32).ravel())
+        objects.foreach_set("rotation_euler", self.rotation.ravel())
+        objects.foreach_set("scale", np.repeat(sc, 3))
+        c, s = np.cos(self.rotation[:, 2]), np.sin(self.rotation[:, 2])
+        mat = np.zeros((self.count, 4, 4), dtype=np.float32)
+        mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c * sc, s * sc, -s * sc, c * sc
+        mat[:, 2, 2], mat[:, 3, 3] = sc, 1.0
+        mat[:, 3, :3] = loc
+        objects.foreach_set("matrix_world", mat.ravel())
+        # foreach_set tags nothing, so Bullet, which reads the evaluated copies, would never see
+        # the move. Tagging an image costs ~30 us of depsgraph work a frame; writing the copy's
+        # matrix costs ~2 us and Bullet reads it (the copy is rebuilt from the data above when
+        # anything tags it). bench/periodic.py --old measures the difference against a checkout
+        # that tags.
+        idx = np.flatnonzero(moving).tolist()
+        if not self.depsgraphs:  # before the bake (once, at build): no evaluated copies yet
+            for k in idx:
+                self.objects[k].update_tag(refresh={"OBJECT"})
+            return
+        for dg in self.depsgraphs:
+            for k in idx:
+                self.objects[k].evaluated_get(dg).matrix_world = _to_blender(mat[k].T)
+
+    def after_frame(self, scene, frame, positions) -> None:
+        """Move the images to where this frame left their originals. During the frame they
+        stood where the previous frame had left them: that distance is the frame's lag.
+        (Placing them where the last move would take them next instead was measured and is
+        worse: the images overshoot at every contact, and the cell blew apart.)"""
+        self._know(scene)
+        now = positions[self.imaged]
+        self.lag.append(float(np.linalg.norm(now - self.prev, axis=-1).max())
+                        if self.prev is not None and self.count else 0.0)
+        self.prev = now.copy()
+        self.place(positions, margin=2.0 * self.lag[-1] + 1.0)
+
+    def summary(self) -> dict:
+        """The bake result's "image_lag": the images' lag behind S^m of their originals."""
+        lag = np.asarray(self.lag or [0.0])
+        return {"image_lag": {"max": round(float(lag.max()), 4),
+                              "max_frame": int(lag.argmax()) + 1,
+                              "last": round(float(lag[-1]), 4)},
+                "images_moved_per_frame": round(float(np.mean(self.tagged or [0])), 1)}

@@ -1,0 +1,347 @@
+"""Arguments, the run command and its printed summary. headless.py calls main()."""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import sys
+
+from ..model import cases, params as P
+from ..exports import files
+from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
+                     EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
+from ..exports import options as export_options
+from ..structure.errors import StructureError
+from ..structure.inputs import add_structure_options, measure_structures, params_and_structure
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, no usage block, no traceback
+        raise UsageError(message)
+
+
+def option(name: str) -> str:
+    return "--" + name.replace("_", "-")
+
+
+def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False) -> None:
+    """One option per parameter, from the parameter definition. Values stay strings here:
+    params.make_params (or the sweep's grid) validates them, so every message names the range."""
+    group = parser.add_argument_group("model parameters (units: Å, rad, frames)")
+    for f in dataclasses.fields(P.Params):
+        meta = f.metadata
+        if not meta["cli"]:
+            continue
+        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}{_default_text(f)}]"
+        if meta["kind"] is bool:
+            group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
+                               default=None, help=help_)
+        elif f.name == "slab":
+            group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
+        elif "choices" in meta and not as_lists:
+            group.add_argument(option(f.name), choices=meta["choices"], help=help_)
+        elif meta["size"] == 2:
+            group.add_argument(option(f.name), nargs=2, metavar=("X", "Y"), help=help_)
+        elif meta["kind"] == "points":
+            group.add_argument(option(f.name), metavar="FILES" if as_lists else "FILE",
+                               help=help_ + ("; a JSON list of [x, y]; 'box' for the slab's box"
+                                             + ("; several: comma-separated" if as_lists else "")))
+        else:
+            group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
+    parser.add_argument("--force", action="store_true",
+                        help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
+
+
+def add_case_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--case", metavar="FILE.toml",
+                        help="start from this case file (README, Case files); options given "
+                             "beside it win")
+
+
+def _given(argv, name: str) -> bool:
+    flag = option(name)
+    return any(a == flag or a.startswith(flag + "=") for a in argv)
+
+
+def structure_options(args) -> dict:
+    """The --fibril/--domain options as they will run (for a case's [structure])."""
+    if not (getattr(args, "fibril", None) or getattr(args, "domain", None)):
+        return {}
+    out = {k: getattr(args, k) for k in cases.STRUCTURE_KEYS if getattr(args, k, None) is not None}
+    if not args.fibril:
+        out.pop("terminus", None)
+    return out
+
+
+SEARCHED = {"minimal-linker": ("linker",)}  # what a command finds, so a case cannot set it
+
+
+def apply_case(args, argv=()):
+    """Load args.case and fill every option the command line left unset from it (model
+    parameters, the [structure] options; for a sweep also its seeds). Returns the Case, or None
+    without --case."""
+    if not getattr(args, "case", None):
+        return None
+    case = cases.load(args.case)
+    for key, value in case.structure.items():
+        if not hasattr(args, key):
+            raise cases.CaseError(f"{cases.STRUCTURE}.{key}",
+                                  f"`{args.command}` takes no structure files")
+        if _given(argv, key):
+            case.overridden.append(key)
+        else:
+            setattr(args, key, value)
+    sweep = hasattr(args, "seed_list")  # a command that runs a list of seeds
+    seeds_given = sweep and any(getattr(args, o, None) is not None
+                                for o in ("seeds", "seed_list", "seed"))
+    overridden = []
+    searched = SEARCHED.get(args.command, ())
+    for name, value in case.params.items():
+        if name in searched:  # the command's answer, e.g. minimal-linker's linker
+            continue
+        if getattr(args, name, None) is not None:
+            overridden.append(name)
+        elif not (name == "seed" and sweep and (seeds_given or case.seeds is not None)):
+            setattr(args, name, value)
+    if sweep and case.seeds is not None and not seeds_given:
+        args.seed_list = ",".join(str(s) for s in case.seeds)
+    case.overridden = sorted(case.overridden + overridden)
+    return case
+
+
+def _default_text(f) -> str:
+    """'default 0.034 (1.95°)': the default, in degrees too for an angle; how a derived one
+    is worked out."""
+    meta, default = f.metadata, f.default
+    if meta["derived"]:
+        text = f"default {meta['derived']}"
+        return text + (": 180° for K = 2" if f.name == "pf_rotation" else "")
+    if f.name == "slab":
+        return "default " + " ".join(f"{v:g}" for v in default)
+    if meta["unit"] == "rad":
+        return f"default {default} ({math.degrees(default):.2f}°)"
+    return f"default {default}"
+
+
+def params_from(args) -> dict:
+    """The parameters given on the command line; an outline FILE is read into its points."""
+    out = {f.name: getattr(args, f.name) for f in dataclasses.fields(P.Params)
+           if getattr(args, f.name, None) is not None}
+    if isinstance(out.get("core_outline"), str):  # a case file may give the points inline
+        text = out["core_outline"]
+        out["core_outline"] = (None if text.strip().lower() in P.DERIVED_WORDS
+                               else P.read_outline(text))
+    return out
+
+
+def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
+    parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
+                                                     "on an amyloid fibril, headless.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    run = sub.add_parser("run", help="build, bake and check one model")
+    add_param_options(run)
+    add_case_option(run)
+    run.add_argument("--save-case", metavar="FILE.toml",
+                     help="write this run's case (every parameter, and the --case metadata)")
+    run.add_argument("--envelope-plot", metavar="PATH.png",
+                     help="draw the radial density of the domain centres (needs matplotlib)")
+    add_structure_options(run)
+    run.add_argument("--json", metavar="PATH", help="write the result as JSON")
+    run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
+    export_options.add_arguments(run)
+    run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
+    run.add_argument("--fail-on-intersection", action="store_true",
+                     help="exit 1 when the verdict is intersection")
+    run.add_argument("--quiet", action="store_true", help="print only the verdict line")
+    run.add_argument("--progress", action="store_true",
+                     help="print the bake's frame to stderr at its start and every 25 frames")
+    inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
+                                             "(PDB/mmCIF, .gz too) without building anything")
+    add_structure_options(inspect)
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
+    from ..search import command as search_command  # argparse only: nothing runs at import
+    search_command.add_restart_options(run)
+    sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
+                                         "processes or a Dask cluster and summarise it")
+    add_param_options(sweep, as_lists=True)
+    add_case_option(sweep)
+    add_structure_options(sweep)
+    from ..sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
+    sweep_options.add_arguments(sweep)
+    minimal = sub.add_parser(
+        "minimal-linker", help="for each globule diameter, the shortest linker with an "
+                               "accommodated layout, searched with restarts (protocol inflate "
+                               "unless --protocol says otherwise)")
+    add_param_options(minimal)
+    add_case_option(minimal)
+    add_structure_options(minimal)
+    for action in minimal._actions:
+        if action.dest == "globule_diameter":
+            action.metavar, action.help = "LIST", (
+                "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
+    search_command.add_minimal_arguments(minimal)
+    return parser
+
+
+OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES,
+           "save_case": cases.SUFFIXES, "envelope_plot": (".png",)}
+
+
+def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    try:
+        args = build_parser(prog).parse_args(argv)
+        args.loaded_case = apply_case(args, argv)
+        return COMMANDS[args.command](args)
+    except (UsageError, P.ParamError, files.OutputError, export_options.OptionError,
+            StructureError) as exc:
+        print(f"fibrilfit: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("fibrilfit: interrupted; no result written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def progress_printer(frames: int, every: int = 25):
+    """An on_frame callback that prints `fibrilfit: bake frame N/M` to stderr, flushed."""
+    started = False
+
+    def on_frame(frame, _positions):
+        nonlocal started
+        if not started or frame % every == 0:
+            started = True
+            print(f"fibrilfit: bake frame {frame}/{frames}", file=sys.stderr, flush=True)
+    return on_frame
+
+
+def fresh_scene() -> None:
+    """An empty factory scene to build in, unless a file of the user's is open. Run by the
+    enabled extension (`blender -c fibrilfit`), the preferences stay: resetting them would
+    disable FibrilFit itself in the middle of its own command."""
+    import bpy
+    if bpy.data.filepath:
+        return
+    if __package__.rpartition(".")[0] in bpy.context.preferences.addons:  # the extension's name
+        bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    else:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+
+
+def command_run(args) -> int:
+    from .. import pipeline
+    from ..exports import summary
+    from ..search import command as search_command
+    search_command.check_restart_options(args)
+    P.refuse_beside_periodic(params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    p = P.make_params(force=args.force, **values)
+    if args.envelope_plot:
+        from ..exports import envelope_plot
+        envelope_plot.available(args.stop_after)
+    look = export_options.render_options(args)
+    pdb_images = export_options.pdb_images(args, p)
+    if args.pdb:
+        export_options.pdb_fits(p)
+    step = export_options.movie_step(args)
+    paths = {key: files.check_writable(option(key), getattr(args, key), suffixes)
+             for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    if "movie" in paths:
+        from ..exports import movie  # imports bpy: only when a movie is asked for
+        movie.refuse_unsupported(paths["movie"], args.stop_after)
+    restarts = None
+    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
+        restarts = search_command.run_restarts(args, p, pipeline.version())
+        p = p.replace(seed=restarts["best_seed"])
+    import bpy
+    fresh_scene()
+    result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
+                          on_frame=progress_printer(p.bake_frames() * (p.image_updates if p.periodic else 1))
+                          if args.progress else None)
+    if structure_block:
+        result["structure"] = structure_block
+    if restarts is not None:
+        best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
+        restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
+            best.get("max_bond_stretch") == result.get("max_bond_stretch")
+        result["restarts"] = restarts
+    if args.loaded_case is not None:
+        result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
+                                                   structure_options(args))
+    from ..exports import writers
+    scene, problems = bpy.context.scene, []
+    if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
+        problems.append(writers.export(result, "dressing", "materials, camera and light",
+                                       writers.prepare, scene, result, aspect=look["aspect"]))
+    if "pdb" in paths:
+        problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
+                                       result, paths["pdb"], args.pdb_frames, pdb_images))
+    if "blend" in paths:
+        pipeline.save_blend(paths["blend"])
+        result["blend"] = str(paths["blend"])
+    if "save_case" in paths:
+        cases.save(paths["save_case"], result.get("case")
+                   or cases.Case({}, {}).resolved(p, structure=structure_options(args)))
+    if "envelope_plot" in paths and "envelope" in result:
+        problems.append(writers.export(result, "envelope_plot", "--envelope-plot",
+                                       envelope_plot.write, result, paths["envelope_plot"]))
+    if "json" in paths:
+        files.write_json(paths["json"], result)
+    if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
+        problems.append(writers.export(result, "render", "--render", writers.write_render,
+                                       scene, result, paths["render"], look))
+        if "json" in paths:
+            files.write_json(paths["json"], result)
+    if "movie" in paths:  # a movie of the whole bake: the slowest, so last
+        problems.append(writers.export(result, "movie", "--movie", writers.write_movie, scene,
+                                       result, paths["movie"], step=step, size=look["size"],
+                                       progress=not args.quiet))
+        if "json" in paths:
+            files.write_json(paths["json"], result)
+    if restarts is not None:
+        print(search_command.restarts_line(restarts))
+        if not restarts["reproduced"]:
+            print("fibrilfit: warning: the best seed, run again here, did not reproduce the "
+                  "worker's result", file=sys.stderr)
+    print(summary.summary(result, quiet=args.quiet))
+    problems = [msg for msg in problems if msg]
+    for problem in problems:
+        print(f"fibrilfit: error: {problem}", file=sys.stderr)
+    if problems:
+        return EXIT_OUTPUT_FAILED
+    if args.fail_on_intersection and result.get("verdict") == "intersection":
+        return EXIT_INTERSECTION
+    return EXIT_OK
+
+
+def command_inspect(args) -> int:
+    from .. import structure
+    from ..structure import summary
+    if not (args.fibril or args.domain):
+        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    path = files.check_writable("--json", args.json, (".json",)) if args.json else None
+    fib, dom = measure_structures(args)
+    values = structure.model_values(fib, dom)
+    if path:
+        import gemmi
+        files.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+                                 "model_values": values, "gemmi_version": gemmi.__version__})
+    print(summary.text(fib, dom, values))
+    return EXIT_OK
+
+
+def command_sweep(args) -> int:
+    from ..sweep import command
+    return command.run(args)
+
+
+def command_minimal_linker(args) -> int:
+    from ..search import command
+    explicit = params_from(args)
+    values, _ = params_and_structure(args, explicit)
+    if "linker" not in explicit:  # a fibril file's tail length: the very thing the map searches
+        values.pop("linker", None)
+    return command.run_minimal(args, values)
+
+
+COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
+            "minimal-linker": command_minimal_linker}

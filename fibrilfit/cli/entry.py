@@ -1,0 +1,56 @@
+"""The command line as Blender's entry points run it: headless.py and `blender -c fibrilfit`.
+
+Both call main(), which runs cli.main (the one parser and dispatcher) and makes sure that no
+failure ends in a traceback or, under Blender, in exit code 0: an unexpected exception becomes
+one line on stderr and exits.EXIT_FAILED (set FIBRILFIT_TRACEBACK=1 to see the traceback).
+"""
+from __future__ import annotations
+
+import os
+import sys
+import traceback
+
+from .. import blender_check
+from ..exits import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE
+
+CLI_ID = "fibrilfit"                       # blender -c fibrilfit ...
+CLI_PROG = f"blender -c {CLI_ID}"
+
+
+def main(argv: list[str], prog: str = "headless.py") -> int:
+    """Run the command line `argv` (without the program name); return the exit code."""
+    line = blender_check.refusal()
+    if line:
+        print(f"fibrilfit: error: {line}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        from .. import cli
+        return cli.main(list(argv), prog=prog)
+    except KeyboardInterrupt:
+        print("fibrilfit: interrupted; no result written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except SystemExit as exc:  # argparse's --help exits 0; anything else keeps its code
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_FAILED)
+    except Exception as exc:  # a bug: one line, never exit 0 (Blender's default after a raise)
+        if os.environ.get("FIBRILFIT_TRACEBACK"):
+            traceback.print_exc()
+        print(f"fibrilfit: error: unexpected {describe(exc)}; please report it "
+              "(FIBRILFIT_TRACEBACK=1 shows the traceback)", file=sys.stderr)
+        return EXIT_FAILED
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            stream.flush()
+
+
+def command(argv: list[str]) -> int:
+    """The callback of bpy.utils.register_cli_command: Blender passes the arguments after
+    `-c fibrilfit` and exits with the returned code."""
+    return main(argv, prog=CLI_PROG)
+
+
+def describe(exc: BaseException) -> str:
+    """`Type: message (at file.py:line)`, on one line."""
+    message = " ".join(str(exc).split()) or "(no message)"
+    where = traceback.extract_tb(exc.__traceback__)[-1:] if exc.__traceback__ else []
+    at = f" (at {os.path.basename(where[0].filename)}:{where[0].lineno})" if where else ""
+    return f"{type(exc).__name__}: {message}{at}"

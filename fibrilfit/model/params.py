@@ -1,0 +1,548 @@
+"""The model's parameters: one definition of their defaults, units, ranges and validation.
+
+Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this module.
+1 Blender unit = 1 Å. Plain Python: importable without bpy.
+"""
+from __future__ import annotations
+
+import dataclasses
+import functools
+import json
+import math
+import pathlib
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..geom import polygons
+
+# Above this many objects a build is refused unless forced: past it a bake takes hours and
+# the scene needs gigabytes.
+MAX_OBJECTS_UNFORCED = 60_000
+# Resident memory per object once built, evaluated and simulated for a frame: measured 31.6 KiB
+# (bpy 5.0.1, 200 -> 2000 layers; only 3.8 KiB right after the build, before the depsgraph
+# copies every object). `make bench`, see BENCHMARKS.md.
+MEMORY_PER_OBJECT_KIB = 32
+GLOBULE_SEGMENTS, GLOBULE_RINGS = 32, 16
+RESIDUE_SEGMENTS, RESIDUE_RINGS = 8, 4
+
+
+class ParamError(ValueError):
+    """A parameter value outside what the model accepts. `param` names the parameter."""
+
+    def __init__(self, param: str, message: str):
+        super().__init__(f"{param}: {message}")
+        self.param = param
+
+
+def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
+          derived=None, size=None, choices=None):
+    """`derived`: for a parameter whose default (None) is worked out from others, how (text).
+    `size`: a fixed number of values (a vector); kind "points" is a list of [x, y].
+    `choices`: kind str, one of these (CLI choices, the panel's enum)."""
+    meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
+            "section": section, "derived": derived, "size": size}
+    if choices is not None:
+        meta["choices"] = tuple(choices)
+    return field(default=default, metadata=meta)
+
+
+# Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
+DERIVED_WORDS = ("auto", "default", "none", "box", "")
+MAX_OUTLINE_POINTS = 10_000
+PROTOCOLS = ("tutorial", "inflate")
+
+
+@dataclass(frozen=True)
+class Params:
+    """One run of the model. Lengths in Å, angles in rad, time in Blender frames."""
+
+    slab: tuple = _spec((40.0, 22.0, 4.8), 0.1, 1000.0, "Å",
+                        "Size of the cross-β core slab of one layer: width × depth × height",
+                        section="Slab")
+    residue_radius: float = _spec(1.75, 0.1, 20.0, "Å",
+                                  "Radius of one linker residue (and of the anchor residue)",
+                                  section="Anchor")
+    residue_spacing: float = _spec(3.5, 0.1, 50.0, "Å",
+                                   "Distance between consecutive linker residues at rest, "
+                                   "3.5 Å for a stretched-out chain of 1.75 Å beads",
+                                   section="Linker")
+    linker: int = _spec(6, 1, 200, "residues",
+                        "Linker length in residues, counting the passive anchor",
+                        kind=int, section="Linker")
+    globule_diameter: float = _spec(30.0, 0.5, 500.0, "Å",
+                                    "Diameter of the tethered globular domain", section="Globule")
+    layers: int = _spec(20, 1, 100_000, "layers",
+                        "Number of stacked β-strand layers in the fibril", kind=int, section="Layers")
+    rise: float = _spec(4.8, 0.1, 100.0, "Å",
+                        "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
+                        section="Layers")
+    twist: float = _spec(0.034, -math.pi, math.pi, "rad",
+                         "Helical twist between consecutive layers about the fibril axis",
+                         section="Layers")
+    gravity: float = _spec(0.5, 0.0, 100.0, "Å/s²",
+                           "Bound of the random gravity: each axis is drawn uniform in [-g, g]")
+    seed: int = _spec(0, 0, 2**31 - 1, "", "Random seed fixing the gravity", kind=int)
+    time_scale: float = _spec(2.0, 0.01, 100.0, "×", "Rigid-body world speed (tutorial: 2)")
+    frames: int = _spec(250, 1, 100_000, "frames",
+                        "Frames to bake from frame 1 (the cap when settling is on)", kind=int)
+    # Substeps and iterations: measured (README, "Linker integrity"), 10 × 10 is the cheapest
+    # setting at which every linker that fits (6-32 residues) ends within 0.2 % of its length and
+    # the push-apart is over by frame ~50; 20 × 20 doubles the cost and changes no verdict.
+    substeps: int = _spec(10, 1, 1000, "per frame",
+                          "Physics substeps per frame: more keeps stiff chains from stretching",
+                          kind=int)
+    solver_iterations: int = _spec(10, 1, 1000, "",
+                                   "Constraint solver iterations per substep", kind=int)
+    stretch_tolerance: float = _spec(0.05, 0.0, 10.0, "fraction",
+                                     "Largest bond stretch for which the linker counts as intact",
+                                     section="Check")
+    # Settling: measured on 147 bakes (README, "Settling"), stopping once every body moves less
+    # than 0.3 Å/frame for 20 frames gave the 250-frame verdict every time and saved 21 % of the
+    # bake time (40 % on the default model). Under the weak random gravity nothing reaches true
+    # rest (< 0.01 Å/frame) within 250 frames.
+    settle: bool = _spec(True, None, None, "",
+                         "Stop the bake once every body has settled (--frames is then the cap)",
+                         kind=bool)
+    settle_speed: float = _spec(0.3, 0.0, 100.0, "Å/frame",
+                                "A body has settled when it moves less than this per frame")
+    settle_frames: int = _spec(20, 1, 100_000, "frames",
+                               "Frames every body must stay settled to stop the bake", kind=int)
+    score_layers: int = _spec(0, 0, 50_000, "layers",
+                              "Score interior layers only: leave out this many layers at each end "
+                              "of the fibril ('all' or 0 scores every layer)",
+                              kind=int, section="Check")
+    # ---- real fibril geometry (issue #14): protofilaments, core outline, anchor --------------
+    protofilaments: int = _spec(1, 1, 6, "chains per layer",
+                                "Protofilaments: chains (anchor, linker, globule) per layer, "
+                                "sharing the layer's core", kind=int, section="Layers")
+    pf_rotation: float | None = _spec(None, -2 * math.pi, 2 * math.pi, "rad",
+                                      "Turn about the fibril axis from one protofilament to the "
+                                      "next (a pseudo-2₁ fibril: about 179.3°)",
+                                      section="Layers", derived="2π/K")
+    pf_rise: float = _spec(0.0, -50.0, 50.0, "Å",
+                           "Rise along the fibril axis from one protofilament to the next "
+                           "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers")
+    core_outline: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "The core's cross-section: a closed polygon of [x, y] "
+                                       "points in the layer's frame (axis at the origin), "
+                                       "extruded by the rise; replaces the slab's box",
+                                       kind="points", section="Slab",
+                                       derived="the slab's X × Y box")
+    anchor: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                 "Where protofilament 0's anchor sits in the layer's frame: X Y",
+                                 section="Anchor", size=2,
+                                 derived="(slab X / 2 + residue radius, 0)")
+
+    # Search protocol (README, "Search: inflate, restarts and the minimal linker"). `tutorial`
+    # starts every globule at full size on a straight chain and lets Bullet push them apart;
+    # `inflate` starts the chains fanned out with small globules and grows them. It changes the
+    # start layout, so it sits with the build's parameters.
+    protocol: str = _spec("tutorial", None, None, "",
+                          "How the search starts: tutorial (straight chains, full-size globules "
+                          "pushed apart) or inflate (fanned chains, globules grown from small)",
+                          kind=str, choices=PROTOCOLS, section="Linker")
+    # The inflate schedule, measured (README, "The inflate schedule"): grow, hold at full size
+    # with the gravity off, judge; a jammed layout is shrunk and grown again under a new gravity.
+    grow_start: float = _spec(0.3, 0.01, 1.0, "fraction",
+                              "inflate: globule scale at the start (smaller if the fanned start "
+                              "layout would overlap)", section="Search")
+    grow_frames: int = _spec(100, 1, 100_000, "frames",
+                             "inflate: frames over which the globules grow to full size",
+                             kind=int, section="Search")
+    hold_frames: int = _spec(60, 1, 100_000, "frames",
+                             "inflate: most frames at full size (gravity off) before a layout "
+                             "is judged; it is judged earlier once every body has settled",
+                             kind=int, section="Search")
+    regrow_cycles: int = _spec(4, 0, 1000, "cycles",
+                               "inflate: times a jammed layout (clash or stretched linker) is "
+                               "shrunk and grown again under a new random gravity",
+                               kind=int, section="Search")
+    regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
+                                "inflate: globule scale a jammed layout is shrunk to",
+                                section="Search")
+
+    periodic: int = _spec(0, 0, 10_000, "layers",
+                          "Simulate an infinite fibril as a screw-periodic cell of this many layers "
+                          "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
+                          "--layers layers with two ends)",
+                          kind=int, section="Layers")
+
+    # Measured (README, "Periodic cell"): images one frame behind their originals make every
+    # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.
+    image_updates: int = _spec(5, 1, 1000, "per frame",
+                               "With periodic: move the images to their originals this many times "
+                               "per frame (each frame is baked as this many shorter frames, with "
+                               "the same substep length; must divide substeps)", kind=int)
+
+    # ---- derived geometry ---------------------------------------------------------------
+    @property
+    def globule_radius(self) -> float:
+        return self.globule_diameter / 2.0
+
+    @property
+    def anchor_x(self) -> float:
+        """Distance of the anchor's centre from the fibril axis (21.75 Å by default)."""
+        if self.anchor is None:
+            return self.slab[0] / 2.0 + self.residue_radius
+        return math.hypot(*self.anchor)
+
+    @property
+    def anchor_xy(self) -> tuple[float, float]:
+        """Protofilament 0's anchor in the layer's frame (default: (anchor_x, 0))."""
+        return (self.anchor_x, 0.0) if self.anchor is None else tuple(self.anchor)
+
+    @property
+    def pf_angle(self) -> float:
+        """The turn between protofilaments in rad: pf_rotation, or 2π/K by default."""
+        return 2 * math.pi / self.protofilaments if self.pf_rotation is None else self.pf_rotation
+
+    @property
+    def chains(self) -> int:
+        """Chains in the model: layers × protofilaments."""
+        return self.layers * self.protofilaments
+
+    def outline(self) -> np.ndarray:
+        """The core's cross-section as a polygon (n, 2): core_outline, or the slab's box."""
+        if self.core_outline is None:
+            return polygons.box_outline(self.slab[0], self.slab[1])
+        return np.array(self.core_outline, dtype=float)
+
+    @functools.cached_property
+    def chain_layout(self) -> "ChainLayout":
+        """Protofilament 0's chain in the layer's frame (see ChainLayout). Raises ParamError."""
+        return _chain_layout(self)
+
+    def chain_x(self) -> list[float]:
+        """Distance of each chain member (anchor, residues, globule) from the axis, for a
+        radial linker (the tutorial's); in general the anchor's distance plus the distance along
+        the chain."""
+        xs = [self.anchor_x + self.residue_spacing * i for i in range(self.linker)]
+        return xs + [xs[-1] + self.residue_radius + self.globule_radius]
+
+    def chain_radii(self) -> list[float]:
+        return [self.residue_radius] * self.linker + [self.globule_radius]
+
+    def rest_lengths(self) -> list[float]:
+        """Rest length of each bond along the chain (`linker` bonds)."""
+        xs = self.chain_x()
+        return [b - a for a, b in zip(xs, xs[1:])]
+
+    def bake_frames(self) -> int:
+        """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
+        if self.protocol == "inflate":
+            # each cycle: grow_frames + 1 frames from the start scale to full size inclusive,
+            # then at most hold_frames
+            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + self.hold_frames)
+        return self.frames
+
+    def estimated_objects(self) -> int:
+        """Objects a build makes: exact without an outline, at most this with one.
+
+        Per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
+        constraint empties. An outline's core adds its convex pieces per layer: the n - 2
+        triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
+        pieces = 0 if self.core_outline is None else len(self.core_outline) - 2
+        return self.layers * (1 + pieces + self.protofilaments * (2 * self.linker + 1))
+
+    # ---- conversion ---------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        d = {f.name: getattr(self, f.name) for f in fields()}
+        d["slab"] = list(self.slab)
+        if self.anchor is not None:
+            d["anchor"] = list(self.anchor)
+        if self.core_outline is not None:
+            d["core_outline"] = [list(xy) for xy in self.core_outline]
+        return d
+
+    def replace(self, **changes) -> "Params":
+        return make_params(**{**self.to_dict(), **changes})
+
+
+@dataclass(frozen=True)
+class ChainLayout:
+    """Protofilament 0's chain in the layer's frame: each member's centre (n, 2), the same in
+    polar form (radius, angle; exact for the tutorial's radial chain), the chain's direction
+    and the rule that chose it (polygons.linker_direction)."""
+
+    xy: np.ndarray
+    radius: np.ndarray
+    angle: np.ndarray
+    direction: np.ndarray
+    rule: str
+
+
+def chain_layers(p: "Params") -> tuple[np.ndarray, np.ndarray]:
+    """(layer, protofilament) of every chain: chain c = layer * K + protofilament."""
+    c = np.arange(p.chains)
+    return c // p.protofilaments, c % p.protofilaments
+
+
+def chain_transforms(p: "Params") -> tuple[np.ndarray, np.ndarray]:
+    """Turn (rad) and height (Å) of every chain: layer k's twist and rise, plus j times the
+    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0)."""
+    k, j = (a.astype(float) for a in chain_layers(p))
+    return k * p.twist + j * p.pf_angle, k * p.rise + j * p.pf_rise
+
+
+def _chain_layout(p: "Params") -> ChainLayout:
+    outline = p.outline()
+    anchor = np.array(p.anchor_xy, dtype=float)
+    offsets = polygons.chain_offsets(p.linker, p.residue_spacing, p.residue_radius,
+                                     p.globule_radius)
+    copies = [j * p.pf_angle for j in range(p.protofilaments)]
+    for j, a in enumerate(copies):
+        xy = polygons.rotate(anchor, a)
+        if polygons.inside(outline, xy[None])[0]:
+            where = "" if j == 0 else (f" (protofilament {j}'s copy, turned by "
+                                       f"{math.degrees(a):.1f}°, at ({xy[0]:.2f}, {xy[1]:.2f}))")
+            raise ParamError("anchor", f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
+                                       f"{where}; the linker must start outside it: put the "
+                                       f"anchor on or outside the core's outline")
+    try:
+        direction, rule = polygons.linker_direction(outline, anchor, offsets, p.chain_radii(),
+                                                    copies)
+    except polygons.GeometryError as exc:
+        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}") from None
+    if rule == "radial":
+        radius = np.asarray(p.chain_x())
+        angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))
+        xy = np.stack([np.cos(angle) * radius, np.sin(angle) * radius], axis=1)
+    else:
+        xy = anchor[None] + offsets[:, None] * direction[None]
+        radius, angle = np.hypot(xy[:, 0], xy[:, 1]), np.arctan2(xy[:, 1], xy[:, 0])
+    return ChainLayout(xy, radius, angle, direction, rule)
+
+
+def _check_anchors_apart(p: "Params") -> None:
+    """Anchors of different protofilaments must not start on top of each other (in 3-D,
+    over the first few layers: the model repeats layer by layer)."""
+    if p.protofilaments < 2:
+        return
+    k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * abs(p.pf_rise)
+                                             + 2 * p.residue_radius) / p.rise)) + 1)
+    q = dataclasses.replace(p, layers=k_max + 1)
+    angle, height = chain_transforms(q)
+    lay = q.chain_layout
+    xy = np.stack([np.cos(angle + lay.angle[0]), np.sin(angle + lay.angle[0])], 1) * lay.radius[0]
+    pts = np.column_stack([xy, height])
+    _, pf = chain_layers(q)
+    d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
+    clash = (d < 2 * p.residue_radius - 1e-9) & (pf[:, None] != pf[None, :])
+    if clash.any():
+        a, b = np.argwhere(clash)[0]
+        raise ParamError("pf_rotation", f"protofilaments {pf[a]} and {pf[b]} would start with "
+                                        f"their anchors {d[a, b]:.2f} Å apart, less than two "
+                                        f"residue radii ({2 * p.residue_radius:g} Å): change "
+                                        f"--pf-rotation, --pf-rise or --anchor")
+
+
+def read_outline(path) -> tuple:
+    """A core outline from a JSON file: a list of [x, y] in Å. Raises ParamError."""
+    try:
+        text = pathlib.Path(path).expanduser().read_text(encoding="utf-8")
+        data = json.loads(text)
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise ParamError("core_outline", f"cannot read '{path}' as a JSON list of [x, y] points "
+                                         f"({' '.join(str(reason).split())})") from None
+    return _outline_value(data, f" in '{path}'")
+
+
+def _outline_value(value, where: str = "") -> tuple:
+    meta = field_spec("core_outline")
+    try:
+        points = polygons.clean_outline(value)
+    except polygons.GeometryError as exc:
+        raise ParamError("core_outline", f"the outline{where} {exc}") from None
+    if len(points) > MAX_OUTLINE_POINTS:
+        raise ParamError("core_outline", f"the outline{where} has {len(points)} points; at most "
+                                         f"{MAX_OUTLINE_POINTS}")
+    if np.abs(points).max() > meta["max"]:
+        raise ParamError("core_outline", f"the outline{where} reaches {np.abs(points).max():g} Å "
+                                         f"from the axis; coordinates must be from "
+                                         f"{meta['min']:g} to {meta['max']:g} Å")
+    return tuple((float(x), float(y)) for x, y in points)
+
+
+def fields() -> tuple[dataclasses.Field, ...]:
+    return dataclasses.fields(Params)
+
+
+def field_spec(name: str) -> dict:
+    return Params.__dataclass_fields__[name].metadata
+
+
+def _describe_range(meta: dict) -> str:
+    if "choices" in meta:
+        return f"must be one of {', '.join(meta['choices'])}"
+    kind, lo, hi, unit = meta["kind"], meta["min"], meta["max"], meta["unit"]
+    what = "an integer" if kind is int else "a number"
+    suffix = f" {unit}" if unit and unit not in ("×", "fraction") else ""
+    return f"must be {what} from {lo:g} to {hi:g}{suffix}"
+
+
+def _coerce(name: str, value: Any, meta: dict):
+    kind = meta["kind"]
+    if kind is bool:
+        if isinstance(value, bool):
+            return value
+        if isinstance(value, str) and value.lower() in ("1", "true", "yes", "on", "0", "false", "no", "off"):
+            return value.lower() in ("1", "true", "yes", "on")
+        if isinstance(value, (int, float)) and value in (0, 1):
+            return bool(value)
+        raise ParamError(name, f"must be true or false (got {value!r})")
+    if "choices" in meta:
+        text = value.strip().lower() if isinstance(value, str) else value
+        if text not in meta["choices"]:
+            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+        return text
+    try:
+        if isinstance(value, bool):
+            raise TypeError
+        if isinstance(value, str):
+            number = float(value.strip())
+        else:
+            number = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})") from None
+    if not math.isfinite(number):
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+    if kind is int:
+        if number != int(number):
+            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+        number = int(number)
+    if not meta["min"] <= number <= meta["max"]:
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
+    return number
+
+
+def make_params(*, force: bool = False, **values) -> Params:
+    """Validate `values` (missing ones take their defaults) and return a Params.
+
+    Raises ParamError, naming the parameter and its allowed range, for any bad value,
+    an unknown name, or a combination the model cannot build.
+    """
+    known = {f.name for f in fields()}
+    for name in values:
+        if name not in known:
+            shown = name if str(name).isidentifier() else repr(name)  # keep the message one line
+            raise ParamError(shown, f"unknown parameter; known: {', '.join(sorted(known))}")
+    clean = {}
+    for f in fields():
+        if f.name not in values:
+            continue
+        value, meta = values[f.name], f.metadata
+        if f.name == "score_layers" and isinstance(value, str) and value.strip().lower() == "all":
+            value = 0
+        if f.name == "periodic" and isinstance(value, str) and value.strip().lower() == "auto":
+            continue  # resolved below, once the geometry it depends on is known
+        if meta["derived"] and (value is None or (isinstance(value, str)
+                                                  and value.strip().lower() in DERIVED_WORDS)):
+            clean[f.name] = None
+        elif meta["kind"] == "points":
+            if isinstance(value, str) and value.strip().startswith("["):
+                try:
+                    value = json.loads(value)
+                except ValueError:
+                    raise ParamError(f.name, f"is not a JSON list of [x, y] points "
+                                             f"(got {value[:40]!r})") from None
+            clean[f.name] = (read_outline(value) if isinstance(value, (str, pathlib.Path))
+                             else _outline_value(value))
+        elif f.name == "slab" or meta["size"]:
+            clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
+        else:
+            clean[f.name] = _coerce(f.name, value, meta)
+    if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
+        from .helix import auto_cell_layers
+        clean["periodic"] = auto_cell_layers(Params(**{**clean, "periodic": 1}))
+    if clean.get("periodic"):
+        clean["layers"] = clean["periodic"]  # the model is the cell: M layers
+    p = Params(**clean)
+    _check_combination(p, force)
+    return p
+
+
+def _vector(name: str, value, meta: dict, size: int) -> tuple:
+    what = {3: "three sizes X Y Z", 2: "two coordinates X Y"}.get(size, f"{size} numbers")
+    message = (f"must be {what}, each from {meta['min']:g} to {meta['max']:g} {meta['unit']} "
+               f"(got {value!r})")
+    if isinstance(value, str):
+        value = value.replace(",", " ").split()
+    try:
+        items = list(value)
+    except TypeError:
+        raise ParamError(name, message) from None
+    if len(items) != size:
+        raise ParamError(name, message)
+    return tuple(float(_coerce(name, v, meta)) for v in items)
+
+
+def _check_combination(p: Params, force: bool) -> None:
+    if p.residue_spacing < p.residue_radius:
+        raise ParamError("residue_spacing", f"must be at least the residue radius "
+                                            f"({p.residue_radius:g} Å) so that beads cannot pass "
+                                            f"through each other (got {p.residue_spacing:g})")
+    if p.periodic:
+        _check_periodic(p)
+    if 2 * p.score_layers >= p.layers:
+        raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
+                                         f"{(p.layers - 1) // 2} for {p.layers} layers "
+                                         f"(got {p.score_layers})")
+    p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
+    _check_anchors_apart(p)
+    n = p.estimated_objects()
+    if n > MAX_OBJECTS_UNFORCED and not force:
+        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.linker + 1))
+        chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
+        raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make "
+                                   f"{'up to ' if p.core_outline is not None else ''}{n} objects "
+                                   f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
+                                   f"--force")
+
+
+def _check_periodic(p: Params) -> None:
+    from .helix import min_cell_layers
+    if p.score_layers:
+        raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
+                                         "ends, every layer is interior")
+    if p.substeps % p.image_updates:
+        raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
+                                          f"frame's substeps split evenly between image updates "
+                                          f"(got {p.image_updates})")
+    least = min_cell_layers(p)
+    if p.periodic < least:
+        raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
+                                     f"{p.globule_diameter:g} Å globules at a rise of {p.rise:g} Å: "
+                                     f"at least {least} layers (cell × rise must exceed the "
+                                     f"globule diameter), or 'auto'")
+
+
+# Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).
+NOT_WITH_PERIODIC = {
+    "layers": "cannot be given with periodic: the model is then a cell of M = periodic layers of "
+              "an infinite fibril, which has no length to set",
+    "score_layers": "cannot be given with periodic: a periodic cell has no ends, so every layer "
+                    "is interior and scored",
+}
+
+
+def refuse_beside_periodic(given: dict) -> None:
+    """Raise ParamError when `given` (the options a user set: name -> value or list of values)
+    turns periodic on and also sets an option that a periodic cell replaces."""
+    values = given.get("periodic")
+    values = values if isinstance(values, (list, tuple)) else [values]
+    if not any(v is not None and str(v).strip() not in ("0", "0.0", "") for v in values):
+        return
+    for name, why in NOT_WITH_PERIODIC.items():
+        if given.get(name) is not None:
+            raise ParamError(name, why)
+
+
+def validate(p: Params, *, force: bool = False) -> Params:
+    """Validate an existing Params (e.g. one built directly) and return it."""
+    return make_params(force=force, **p.to_dict())
+
+
+DEFAULTS = Params()

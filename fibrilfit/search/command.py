@@ -1,0 +1,272 @@
+"""`headless.py minimal-linker` and `headless.py run --restarts`: argument handling and outputs.
+
+Exit codes as the sweep's: 0 done, 2 bad input or the search cannot run, 130 interrupted
+(finished runs stay in DIR/results.jsonl; continue with --resume).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import io
+import json
+import sys
+import tempfile
+
+from .. import exits
+from ..exports import files
+from ..model import params as P
+from ..sweep import command as sweep_command, grid, runner
+from ..batch.executors import DaskExecutor, ProcessExecutor, SweepError, cpu_count
+from . import minimal, restarts
+
+RESULTS, CSV, JSON, PNG, LOG = ("results.jsonl", "minimal_linker.csv", "minimal_linker.json",
+                                "minimal_linker.png", "workers.log")
+COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
+           "p_fit_below", "p_fit_below_high", "restarts", "linker_below")
+
+
+def add_executor_options(g) -> None:
+    g.add_argument("--executor", choices=("processes", "dask"), default="processes",
+                   help="local worker processes, or Dask [default processes]")
+    g.add_argument("--workers", type=int, metavar="N",
+                   help="worker processes (local, or a Dask LocalCluster) [default: CPU count]")
+    g.add_argument("--scheduler", metavar="ADDRESS",
+                   help="with --executor dask: an existing scheduler [default: a LocalCluster]")
+    g.add_argument("--timeout", type=float, metavar="SECONDS",
+                   help="stop a run after this long (recorded as failed, retried once)")
+
+
+def add_restart_options(parser: argparse.ArgumentParser) -> None:
+    """`run`'s restart options (they do nothing without --restarts)."""
+    g = parser.add_argument_group("restarts (independent seeds of this one model)")
+    g.add_argument("--restarts", type=int, metavar="R",
+                   help="run seeds SEED..SEED+R-1 in parallel; report how many were accommodated, "
+                        "P(fit) with its 95 %% Wilson interval, and keep the best layout (its "
+                        "--json/--blend/--pdb)")
+    g.add_argument("--stop-on-fit", action="store_true",
+                   help="with --restarts: start no more seeds once one is accommodated")
+    add_executor_options(g)
+
+
+def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
+    g = parser.add_argument_group("minimal-linker search")
+    g.add_argument("--restarts", type=int, default=5, metavar="R",
+                   help="seeds tried at every linker length (SEED..SEED+R-1) [default 5]")
+    g.add_argument("--max-linker", type=int, default=30, metavar="N",
+                   help="give up on a diameter when no length up to N fits [default 30]")
+    g.add_argument("--out", metavar="DIR", default="out/minimal_linker",
+                   help=f"{RESULTS}, {CSV}, {JSON}, {PNG} and {LOG} go here")
+    g.add_argument("--resume", action="store_true",
+                   help="continue the search in --out: runs already in results.jsonl are reused")
+    g.add_argument("--no-plot", action="store_true", help=f"do not draw {PNG}")
+    g.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_executor_options(g)
+
+
+def _check_executor_options(args) -> None:
+    if args.workers is not None and args.workers < 1:
+        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
+    if args.timeout is not None and not args.timeout > 0:
+        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
+                               f"(got {args.timeout:g})")
+    if args.scheduler and args.executor != "dask":
+        raise exits.UsageError("--scheduler: only with --executor dask")
+
+
+def make_executor(args, log_path=None):
+    workers = args.workers or cpu_count()
+    if args.executor == "dask":
+        sweep_command._need("distributed")
+        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
+    import bpy  # inside Blender's own executable, workers are that executable in background mode
+    return ProcessExecutor(workers, timeout=args.timeout, log_path=log_path,
+                           blender_binary=bpy.app.binary_path)
+
+
+# ---- run --restarts ----------------------------------------------------------------------------
+
+def check_restart_options(args) -> None:
+    if args.restarts is None:
+        if args.stop_on_fit:
+            raise exits.UsageError("--stop-on-fit: only with --restarts")
+        return
+    if args.restarts < 1:
+        raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
+    if args.stop_after != "check":
+        raise exits.UsageError("--restarts: judges every seed, so --stop-after must be check")
+    _check_executor_options(args)
+
+
+def run_restarts(args, p: P.Params, version: str) -> dict:
+    """Run seeds p.seed .. p.seed + R - 1 on the executor; the restarts summary."""
+    seeds = range(p.seed, p.seed + args.restarts)
+    if seeds[-1] > P.field_spec("seed")["max"]:
+        raise P.ParamError("seed", f"seed + restarts - 1 must be at most "
+                                   f"{P.field_spec('seed')['max']} (got {seeds[-1]})")
+    with tempfile.TemporaryDirectory(prefix="fibrilfit-restarts-") as tmp:
+        results = f"{tmp}/{RESULTS}"
+        try:
+            with make_executor(args, f"{tmp}/{LOG}") as executor:
+                records = restarts.run(executor, p.to_dict(), seeds, results,
+                                       stop_on_fit=args.stop_on_fit,
+                                       window=args.workers or cpu_count(), force=args.force,
+                                       progress=not args.quiet, version=version)
+        except SweepError as exc:
+            raise exits.UsageError(str(exc)) from None
+    summary = restarts.summarise(records)
+    summary["stop_on_fit"] = bool(args.stop_on_fit)
+    return summary
+
+
+def restarts_line(s: dict) -> str:
+    low, high = s["p_fit_interval"]
+    fit = "n/a" if s["p_fit"] is None else f"{s['p_fit']:.2f}"
+    return (f"restarts: {s['accommodated']}/{s['restarts']} accommodated, P(fit) {fit} "
+            f"(95 % Wilson {low:.2f}-{high:.2f})"
+            + (f", {s['failed']} failed" if s["failed"] else "")
+            + (", stopped at the first fit" if s["stop_on_fit"] and s["accommodated"] else "")
+            + f"; best layout: seed {s['best_seed']}"
+            + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
+               f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "
+               f"seeds" if s.get("outer_diameter") else ""))
+
+
+# ---- minimal-linker ----------------------------------------------------------------------------
+
+def kind_of(values: dict) -> str:
+    """The fibril kind a map line stands for: the model options given, besides the searched ones."""
+    skip = {"globule_diameter", "linker", "seed", "protocol"}
+    shown = [f"{k.replace('_', ' ')} " + (f"({len(v)} points)" if isinstance(v, (list, tuple))
+                                          and len(v) > 3 else str(v))
+             for k, v in values.items() if k not in skip]
+    return ", ".join(shown) if shown else f"{P.DEFAULTS.layers} layers"
+
+
+def run_minimal(args, values: dict) -> int:
+    """`values`: the model options given (strings, as cli.params_from returns them)."""
+    _check_executor_options(args)
+    if "linker" in values:
+        raise exits.UsageError("--linker: minimal-linker searches the linker length; leave it out")
+    if args.restarts < 1:
+        raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
+    lmax = P.field_spec("linker")["max"]
+    if not 1 <= args.max_linker <= lmax:
+        raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
+    values = dict(values)
+    diameters = grid.parse_spec("globule_diameter",
+                                values.pop("globule_diameter", P.DEFAULTS.globule_diameter))
+    values.setdefault("protocol", "inflate")
+    first = int(P.make_params(**values).seed)
+    seeds = range(first, first + args.restarts)
+    kind = kind_of({k: v for k, v in values.items()})
+    walks = []
+    for d in diameters:  # every bad value refused before anything runs
+        base = P.make_params(force=args.force, **values, globule_diameter=d, linker=1)
+        base.replace(linker=args.max_linker, seed=seeds[-1])
+        walks.append(minimal.Walk(base.globule_diameter,
+                                  min(minimal.first_guess(base.globule_diameter), args.max_linker),
+                                  args.max_linker))
+    _need_packages(args)
+    out = sweep_command._out_dir(args)
+    out.mkdir(parents=True, exist_ok=True)
+    lock = sweep_command._lock(out)  # noqa: F841 (held until this function returns)
+    results = out / RESULTS
+    runner.repair_tail(results)
+
+    def base_of(walk, linker):
+        return P.make_params(force=args.force, **values, globule_diameter=walk.diameter,
+                             linker=linker, seed=first).to_dict()
+
+    from .. import pipeline
+    try:
+        with contextlib.ExitStack() as stack:
+            executor = None
+            while True:
+                wanted = [(w, w.next_linker()) for w in walks]
+                wanted = [(w, L) for w, L in wanted if L is not None]
+                if not wanted:
+                    break
+                done = runner.done_keys(runner.read_lines(results)[0])
+                todo = [pt for w, L in wanted for pt in restarts.points(base_of(w, L), seeds)
+                        if pt.key not in done]
+                if todo:
+                    if executor is None:
+                        executor = stack.enter_context(make_executor(args, out / LOG))
+                    if not args.quiet:
+                        print("minimal-linker: trying " + ", ".join(
+                            f"{w.diameter:g} Å at linker {L}" for w, L in wanted), file=sys.stderr)
+                    runner.run(executor, todo, results, force=args.force,
+                               progress=not args.quiet, version=pipeline.version())
+                for w, L in wanted:
+                    recs = [r for r in restarts.read(results, base_of(w, L))
+                            if r["params"]["seed"] in seeds]
+                    ok = [r for r in recs if r.get("status") == "ok"]
+                    if not ok:
+                        w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
+                    w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
+    except SweepError as exc:
+        print(f"fibrilfit: error: {exc}", file=sys.stderr)
+        return exits.EXIT_USAGE
+    except KeyboardInterrupt:
+        print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
+              file=sys.stderr)
+        return exits.EXIT_INTERRUPTED
+
+    rows = [{"kind": kind, **w.row()} for w in walks]
+    import bpy
+    document = {
+        "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
+        "method": "walk: from a guess, up one residue from a miss, down one from a fit, until "
+                  "a fit at L and R missed restarts at L - 1 (search/minimal.py)",
+        "model": {**values, "seeds": list(seeds)}, "restarts": args.restarts,
+        "max_linker": args.max_linker, "rows": rows,
+    }
+    files.write_json(out / JSON, document)
+    files.write_text(out / CSV, csv_text(rows))
+    if not args.no_plot:
+        from . import plot
+        plot.write(out / PNG, rows)
+    print(table(rows))
+    print(f"minimal-linker: {out / CSV}, {out / JSON}"
+          + ("" if args.no_plot else f", {out / PNG}") + f"; every run in {results}")
+    errors = [r for r in rows if r.get("error")]
+    for r in errors:
+        print(f"warning: {r['globule_diameter']:g} Å: {r['error']}", file=sys.stderr)
+    return exits.EXIT_OK
+
+
+def _need_packages(args) -> None:
+    sweep_command._need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+                        *(["distributed"] if args.executor == "dask" else []))
+
+
+def csv_text(rows: list[dict]) -> str:
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(COLUMNS)
+    for r in rows:
+        lo, hi = r["p_fit_interval"] or (None, None)
+        below_hi = (r["p_fit_below_interval"] or (None, None))[1]
+        writer.writerow([_cell(v) for v in (r["kind"], r["globule_diameter"], r["minimal_linker"],
+                                            r["p_fit"], lo, hi, r["p_fit_below"], below_hi,
+                                            r["restarts"], r["linker_below"])])
+    return buf.getvalue()
+
+
+def _cell(v):
+    return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
+
+
+def table(rows: list[dict]) -> str:
+    lines = ["diameter (Å)  minimal linker  P(fit) [95 % CI]     P(fit) one below [95 % CI]"]
+    for r in rows:
+        m = r["minimal_linker"]
+        fit = (f"{r['p_fit']:.2f} [{r['p_fit_interval'][0]:.2f}-{r['p_fit_interval'][1]:.2f}]"
+               if m is not None else "-")
+        below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
+                 f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']}"
+                 if r["p_fit_below"] is not None else "-")
+        shown = str(m) if m is not None else f"> {r['linker_below']}" if r["linker_below"] else "?"
+        lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<19}  {below}")
+    return "\n".join(lines)

@@ -1,0 +1,326 @@
+"""Measure a fibril: layers, protofilaments, helical axis, rise and twist, core, outline, anchors.
+
+Everything from the coordinates; chain IDs and file order are never trusted.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+from functools import reduce
+
+import numpy as np
+
+from ..geom import rigid as G
+from . import outline as O
+from . import reading
+from .errors import StructureError
+
+STACK = (4.2, 5.6)  # Å: a residue is stacked when its CA sits this far over the same residue
+MIN_STACKED = 4  # stacked residues two chains need to count as neighbouring layers
+CORE_GAP = 4  # unstacked residues (turns) allowed inside the core
+EXACT_COPIES_RMSD = 0.5  # Å: below it a one-protofilament stack defines a screw axis
+BURIED_DEPTH = 6.0  # Å: atoms this much farther out in the anchor's sector bury it
+SECTOR = math.radians(15.0)
+MAX_AXIS_SPREAD = (5.0, 5.0)  # °, Å: how far the axes of protofilament pairs may disagree
+
+
+@dataclass
+class Anchor:
+    protofilament: int
+    chain: str
+    residue: int
+    residue_name: str
+    radius: float  # Å from the axis
+    position: list  # [x, y] Å in the layer frame
+    height: float  # Å along the axis, from the reference layer's plane
+    depth: float  # Å: largest radius of a core atom in its ±15° sector minus its own
+    buried: bool
+    tail_residues: list  # [first, last] outside the core beyond the anchor, or []
+
+
+@dataclass
+class FibrilGeometry:
+    """What `inspect --fibril` measures. to_dict() gives the JSON of the issue's key names."""
+
+    file: str
+    sha256: str
+    axis: dict  # file frame: {"point": layer frame origin, "direction": Z, "x": X}, Å
+    rise: float
+    rise_sd: float
+    twist: float  # rad, positive = right-handed looking along the rise
+    twist_sd: float
+    protofilaments: int
+    pf_rotation: float  # rad, protofilament 1 relative to 0 (0 when one protofilament)
+    pf_rise: float  # Å
+    layers: int  # chains of the longest protofilament
+    core_residues: list  # [first, last]
+    core_outline: list  # [[x, y], ...] Å, layer frame, counter-clockwise
+    anchors: list  # Anchor per protofilament
+    tail_residues: list  # protofilament 0's: [first, last] or []
+    terminus: str  # "N", "C" or "residue R"
+    layer_chains: list  # per protofilament, chain names from bottom to top
+    axis_exact: bool  # False when the axis is only approximate (no screw symmetry)
+    pf_offsets: list = field(default_factory=list)  # [[rotation, rise]] per protofilament
+    notes: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _stacked(a, b):
+    d = np.linalg.norm(a - b, axis=-1)
+    return (d >= STACK[0]) & (d <= STACK[1])
+
+
+def _paths(n_chains, edges, option):
+    """Connected components of the stacking graph, each a path (a protofilament's layers)."""
+    nbrs = {i: set() for i in range(n_chains)}
+    for i, j in edges:
+        nbrs[i].add(j)
+        nbrs[j].add(i)
+    seen, paths = set(), []
+    for start in range(n_chains):
+        if start in seen:
+            continue
+        comp, todo = set(), [start]
+        while todo:
+            i = todo.pop()
+            if i not in comp:
+                comp.add(i)
+                todo += list(nbrs[i] - comp)
+        seen |= comp
+        ends = [i for i in comp if len(nbrs[i]) <= 1]
+        if any(len(nbrs[i]) > 2 for i in comp) or (len(comp) > 1 and len(ends) != 2):
+            raise StructureError(option, "the layers do not stack into protofilaments "
+                                         "(a chain stacks on more than two others)")
+        path, prev = [min(ends)] if ends else [start], None
+        while len(path) < len(comp):
+            nxt = [j for j in nbrs[path[-1]] if j != prev]
+            prev = path[-1]
+            path.append(nxt[0])
+        paths.append(path)
+    return paths
+
+
+def _core_range(stacked_numbers):
+    """[first, last] of the longest run of stacked residues, gaps of up to CORE_GAP bridged."""
+    runs, run = [], [stacked_numbers[0]]
+    for r in stacked_numbers[1:]:
+        if r - run[-1] <= CORE_GAP + 1:
+            run.append(r)
+        else:
+            runs.append(run)
+            run = [r]
+    runs.append(run)
+    best = max(runs, key=len)
+    return [int(best[0]), int(best[-1])]
+
+
+def _stacking(chains, name, option):
+    """Common residues, their CA (chains, residues, 3), the stacked residues of each stacking
+    pair of chains, and the protofilaments as paths of chain indices."""
+    common = reduce(np.intersect1d, [c.residues for c in chains])
+    if len(common) < MIN_STACKED:
+        raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
+                                     "residues: the layers do not stack")
+    ca = np.array([c.ca_of(common) for c in chains])
+    pairs = {}
+    for i in range(len(chains)):
+        for j in range(i + 1, len(chains)):
+            s = _stacked(ca[i], ca[j])
+            if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
+                pairs[(i, j)] = s
+    return chains, common, ca, pairs, _paths(len(chains), pairs, option)
+
+
+def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
+            option: str = "--fibril") -> FibrilGeometry:
+    loaded = reading.load(path, option)
+    name = loaded.path.name
+    if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
+        raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
+                                     "give --rise and --twist instead")
+    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+    if max(len(q) for q in paths) < 2:  # no two chains stack: a symmetry may build the layers
+        if not reading.expand_symmetry(loaded):
+            raise StructureError(option, f"{name}: no two chains stack {STACK[0]}-{STACK[1]} Å "
+                                         "apart, the layers do not stack (fewer than 2 layers): "
+                                         "give --rise and --twist")
+        chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+        if max(len(q) for q in paths) < 2:
+            raise StructureError(option, f"{name}: even with its symmetry operators no two "
+                                         "chains stack: the layers do not stack")
+    stacked_all = np.logical_and.reduce([pairs[tuple(sorted((p[k], p[k + 1])))]
+                                         for p in paths for k in range(len(p) - 1)])
+    if stacked_all.sum() < MIN_STACKED:
+        raise StructureError(option, f"{name}: fewer than {MIN_STACKED} residues stack in every "
+                                     "layer: the layers do not stack")
+    core = _core_range(common[stacked_all])
+    in_core = (common >= core[0]) & (common <= core[1])
+    cca = ca[:, in_core]  # core CA
+    cen = cca.mean(axis=1)
+    paths.sort(key=len, reverse=True)
+    notes, warnings = list(loaded.notes), []
+
+    # ---- the helical axis ----------------------------------------------------------------
+    first = paths[0]
+    along = cen[first[-1]] - cen[first[0]]
+    exact = True
+    if len(paths) >= 2:  # a protofilament pair: its ~2-fold screw pins the axis
+        dirs, points = [], []
+        for a in first:
+            b = min(paths[1], key=lambda j: np.linalg.norm(cen[j] - cen[a]))
+            R, t, _ = G.superpose(cca[a], cca[b])
+            u, p, _, _ = G.screw_axis(R, t)
+            dirs.append(u if u @ along >= 0 else -u)
+            points.append(p)
+        u = np.mean(dirs, axis=0)
+        u /= np.linalg.norm(u)
+        ref = cen.mean(axis=0)
+        on_plane = [q + ((ref - q) @ d) * d for q, d in zip(points, dirs)]
+        p = np.mean(on_plane, axis=0)
+        spread = max(math.degrees(math.acos(min(1.0, d @ u))) for d in dirs)
+        off = max(np.linalg.norm(q - p) for q in on_plane)
+        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:
+            raise StructureError(option, f"{name}: the protofilaments share no common axis (the "
+                                         f"layer pairs' axes differ by up to {spread:.1f}° and "
+                                         f"{off:.1f} Å)")
+    else:
+        a = np.concatenate([cca[i] for i in first[:-1]])
+        b = np.concatenate([cca[i] for i in first[1:]])
+        R, t, rmsd = G.superpose(a, b)
+        u, p, angle, _ = G.screw_axis(R, t)
+        if rmsd > EXACT_COPIES_RMSD or angle < math.radians(0.1):
+            exact = False
+            steps = np.diff(cca[first], axis=0).reshape(-1, 3).mean(axis=0)
+            u, p = steps / np.linalg.norm(steps), cca[first].reshape(-1, 3).mean(axis=0)
+            warnings.append(f"the layers are not exact helical copies (superposition RMSD "
+                            f"{rmsd:.2f} Å): axis approximate, through the core's centroid; "
+                            "twist and radii depend on it")
+        u = u if u @ along >= 0 else -u
+    if u[np.argmax(np.abs(u))] < 0:  # a fixed sign: the file's dominant axis points up
+        u = -u
+    # order every protofilament along the axis; protofilament 0 holds the lowest layer
+    height = (cen - p) @ u
+    paths = [sorted(q, key=lambda i: height[i]) for q in paths]
+    paths.sort(key=lambda q: height[q[0]])
+    frame0 = G.frame(u)
+
+    def planar(xyz):
+        rel = (xyz - p) @ frame0.T
+        return rel[..., :2]
+
+    # ---- rise and twist over every consecutive layer pair ---------------------------------
+    rises, twists = [], []
+    for q in paths:
+        for i, j in zip(q, q[1:]):
+            rises.append((cen[j] - cen[i]) @ u)
+            twists.append(G.turn_angle(planar(cca[i]), planar(cca[j])))
+    rise, twist = float(np.mean(rises)), float(np.mean(twists))
+    if min(rises) <= 0.5 * rise or max(rises) >= 1.5 * rise:
+        raise StructureError(option, f"{name}: the layers do not stack on a common axis (steps "
+                                     f"along it from {min(rises):.2f} to {max(rises):.2f} Å)")
+    sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
+
+    # ---- protofilaments relative to protofilament 0 --------------------------------------
+    offsets = [[0.0, 0.0]]
+    for q in paths[1:]:
+        rots, dzs = [], []
+        for a in paths[0]:
+            for b in q:
+                dz = (cen[b] - cen[a]) @ u
+                m = math.floor((dz + 0.1 * rise) / rise)
+                if abs(m) <= 2:
+                    dzs.append(dz - m * rise)
+                    rots.append(G.wrap(G.turn_angle(planar(cca[a]), planar(cca[b])) - m * twist))
+        rot = math.atan2(np.mean(np.sin(rots)), np.mean(np.cos(rots)))
+        offsets.append([rot, float(np.mean(dzs))])
+    order = [0] + sorted(range(1, len(paths)), key=lambda k: offsets[k][0] % (2 * math.pi))
+    paths, offsets = [paths[k] for k in order], [offsets[k] for k in order]
+
+    # ---- the reference layer and its frame ------------------------------------------------
+    ref0 = paths[0][(len(paths[0]) - 1) // 2]
+    refs = [ref0]
+    for q in paths[1:]:
+        refs.append(min(q, key=lambda b: abs(((cen[b] - cen[ref0]) @ u) - 0.4 * rise)))
+    origin = p + height[ref0] * u
+    core_heavy = []
+    for i in refs:
+        c = chains[i]
+        keep = (c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])
+        core_heavy.append((c.heavy[keep], c.heavy_radius[keep]))
+    xyz = np.concatenate([h for h, _ in core_heavy])
+    radii = np.concatenate([r for _, r in core_heavy])
+    flat = planar(xyz)
+    centred = flat - flat.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    e1 = vt[0] @ frame0[:2]  # long principal axis, back in 3-D
+    if (planar(core_heavy[0][0]).mean(axis=0) @ vt[0]) < 0:
+        e1 = -e1
+    frame = G.frame(u, e1)
+
+    def layer(xyz):
+        return (xyz - origin) @ frame.T
+
+    section = layer(xyz)[:, :2]
+    poly, stray = O.polygon(section, radii)
+    if stray > 0.05:
+        warnings.append(f"the core section is in pieces: {stray:.0%} of its atoms lie outside "
+                        "the outline of the largest piece")
+
+    # ---- anchors ----------------------------------------------------------------------------
+    all_core = np.concatenate([c.heavy[(c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])]
+                               for c in chains])
+    all_core = layer(all_core)
+    all_r = np.hypot(all_core[:, 0], all_core[:, 1])
+    all_phi = np.arctan2(all_core[:, 1], all_core[:, 0])
+    anchors = []
+    for k, i in enumerate(refs):
+        c = chains[i]
+        if anchor_residue is not None:
+            if anchor_residue not in c.residues:
+                raise StructureError("--anchor-residue", f"residue {anchor_residue} is not in "
+                                     f"chain {c.name} of {name} (residues {c.residues[0]}-"
+                                     f"{c.residues[-1]})")
+            res = int(anchor_residue)
+        else:
+            present = c.residues[(c.residues >= core[0]) & (c.residues <= core[1])]
+            res = int(present[-1] if terminus == "C" else present[0])
+        x, y, z = layer(c.ca_of([res]))[0]
+        r = math.hypot(x, y)
+        phi = math.atan2(y, x)
+        near = (np.abs(all_core[:, 2] - z) <= rise) & \
+               (np.abs(np.angle(np.exp(1j * (all_phi - phi)))) <= SECTOR)
+        depth = max(0.0, float(all_r[near].max() - r)) if near.any() else 0.0
+        if terminus == "N" and anchor_residue is None:
+            tail = c.residues[(c.residues < res) & (c.residues < core[0])]
+        else:
+            tail = c.residues[(c.residues > res) & (c.residues > core[1])]
+        anchor = Anchor(k, c.name, res, c.names[int(np.searchsorted(c.residues, res))],
+                        round(r, 3), [round(float(x), 3), round(float(y), 3)],
+                        round(float(z), 3), round(depth, 2), depth > BURIED_DEPTH,
+                        [int(tail[0]), int(tail[-1])] if len(tail) else [])
+        if anchor.buried:
+            warnings.append(f"anchor {c.name} {anchor.residue_name}{res} (protofilament {k}) is "
+                            f"buried: core atoms reach {depth:.1f} Å farther out in its sector; "
+                            "not a free exit for a linker")
+        anchors.append(anchor)
+
+    return FibrilGeometry(
+        file=name, sha256=loaded.sha256,
+        axis={"point": [round(float(v), 3) for v in origin],
+              "direction": [round(float(v), 6) for v in u],
+              "x": [round(float(v), 6) for v in frame[0]]},
+        rise=round(rise, 4), rise_sd=round(sd(rises), 4),
+        twist=round(twist, 6), twist_sd=round(sd(twists), 6),
+        protofilaments=len(paths),
+        pf_rotation=round(offsets[1][0], 6) if len(paths) > 1 else 0.0,
+        pf_rise=round(offsets[1][1], 4) if len(paths) > 1 else 0.0,
+        layers=max(len(q) for q in paths), core_residues=core,
+        core_outline=[[round(float(a), 2), round(float(b), 2)] for a, b in poly],
+        anchors=[asdict(a) for a in anchors], tail_residues=anchors[0].tail_residues,
+        terminus=f"residue {anchor_residue}" if anchor_residue is not None else terminus,
+        layer_chains=[[chains[i].name for i in q] for q in paths], axis_exact=exact,
+        pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], notes=notes,
+        warnings=warnings)

@@ -1,0 +1,180 @@
+"""`headless.py sweep`: grid -> runs -> results.jsonl -> summary.csv, phase.png, table -> gate.
+
+Exit codes: 0 done (and every --require holds), 1 a requirement failed, 2 bad input or the sweep
+cannot run, 130 interrupted (finished runs stay in results.jsonl; continue with --resume).
+"""
+from __future__ import annotations
+
+import importlib
+import pathlib
+import sys
+
+from .. import exits
+from ..exports import files
+from ..structure import inputs
+from . import gate, grid, runner, summary
+from ..batch import slurm
+from ..batch.executors import DaskExecutor, ProcessExecutor, SlurmExecutor, SweepError, cpu_count
+
+RESULTS, SUMMARY, PHASE, LOG = "results.jsonl", "summary.csv", "phase.png", "workers.log"
+
+
+def _need(*modules: str) -> None:
+    for name in modules:
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            raise exits.UsageError(f"the sweep needs the Python package {name!r}: "
+                                 f"pip install -r requirements-dev.txt") from None
+
+
+def _check_options(args) -> None:
+    if args.workers is not None and args.workers < 1:
+        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
+    if not 0 < args.target <= 1:
+        raise exits.UsageError(f"--target: must be a fraction above 0 and at most 1 "
+                             f"(got {args.target:g})")
+    if args.timeout is not None and not args.timeout > 0:
+        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
+                             f"(got {args.timeout:g})")
+    if args.scheduler and args.executor != "dask":
+        raise exits.UsageError("--scheduler: only with --executor dask")
+    if args.retry_failed and not args.resume:
+        raise exits.UsageError("--retry-failed: only with --resume")
+    if args.seed is not None and args.seed_list is not None:
+        raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
+    slurm.check(args)
+
+
+def _out_dir(args) -> pathlib.Path:
+    results = files.check_writable("--out", pathlib.Path(args.out) / RESULTS, (".jsonl",))
+    if results.parent.exists() and not results.parent.is_dir():
+        raise files.OutputError("--out", f"must be a directory (got '{results.parent}')")
+    if results.exists() and not args.resume:
+        raise exits.UsageError(f"--out: '{results.parent}' already holds {RESULTS}; pass --resume "
+                             f"to continue that sweep, or choose another directory")
+    return results.parent
+
+
+def _lock(out: pathlib.Path):
+    """Hold DIR/.lock while the sweep runs: two sweeps appending to one results.jsonl would run
+    points twice. Returns the open lock file (or None where there is no fcntl, e.g. Windows)."""
+    try:
+        import fcntl
+    except ImportError:
+        return None
+    fh = open(out / ".lock", "w")
+    try:
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        fh.close()
+        raise exits.UsageError(f"--out: another sweep is writing to '{out}'") from None
+    return fh
+
+
+def _executor(args, out: pathlib.Path, runs: int):
+    if args.executor == "slurm":
+        return SlurmExecutor(slurm.jobs(args, runs), slurm.cluster_options(args, out.resolve()),
+                             timeout=args.timeout)
+    workers = args.workers or cpu_count()
+    if args.executor == "dask":
+        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
+    import bpy  # inside Blender's own executable, workers are that executable in background mode
+    return ProcessExecutor(workers, timeout=args.timeout, log_path=out / LOG,
+                           blender_binary=bpy.app.binary_path)
+
+
+def _case(args) -> dict | None:
+    """The --case as every record embeds it (its params are each point's own)."""
+    case = getattr(args, "loaded_case", None)
+    if case is None:
+        return None
+    from ..model import params as P
+    return case.resolved(P.DEFAULTS, case.overridden)
+
+
+def run(args) -> int:
+    _check_options(args)
+    specs = grid.specs_from(args)
+    seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
+                             else args.seed)
+    merged, structure_block = inputs.params_and_structure(args, specs)
+    base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
+    points = grid.build(specs, seeds, force=args.force, base=base)
+    requirements = [gate.parse(text) for text in args.require]
+    out = _out_dir(args)
+    results = out / RESULTS
+    records, _ = runner.read_lines(results)
+    known = [p.params for p in points] + [r["params"] for r in records]
+    for req in requirements:  # a typo in a selector should not cost hours of runs
+        if not any(req.matches(params) for params in known):
+            raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
+    with slurm.ctrl_c_kept():
+        _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+              *(["distributed"] if args.executor in ("dask", "slurm") else []),
+              *(["dask_jobqueue"] if args.executor == "slurm" else []))
+    if args.show_job_script:
+        print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
+        return exits.EXIT_OK
+
+    out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
+    lock = _lock(out)  # noqa: F841 (held until this function returns)
+    if runner.repair_tail(results):
+        print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
+    if args.retry_failed:
+        runner.drop_failed(results)
+    records, bad = runner.read_lines(results)
+    if bad:
+        print(f"fibrilfit: ignoring {bad} unreadable lines in {results}", file=sys.stderr)
+    done = runner.done_keys(records)
+    todo = [p for p in points if p.key not in done]
+    if not args.quiet:
+        kind = "Dask LocalCluster" if args.executor == "dask" else "local"
+        where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
+                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
+                 f"{out / slurm.JOB_LOGS})" if args.executor == "slurm" else
+                 f"{args.workers or cpu_count()} {kind} workers")
+        print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
+              f"{results}, {len(todo)} to run on {where}")
+
+    if todo:
+        from .. import pipeline
+        try:
+            with _executor(args, out, len(todo)) as executor:
+                runner.run(executor, todo, results, force=args.force,
+                           progress=not args.quiet, version=pipeline.version(),
+                           extra={"structure": structure_block} if structure_block else None,
+                           case=_case(args))
+        except SweepError as exc:
+            print(f"fibrilfit: error: {exc}", file=sys.stderr)
+            return exits.EXIT_USAGE
+        except KeyboardInterrupt:
+            kept, _ = runner.read_lines(results)
+            print(f"fibrilfit: interrupted; {len(kept)} results kept in {results}; "
+                  f"continue with --resume", file=sys.stderr)
+            return exits.EXIT_INTERRUPTED
+
+    records, _ = runner.read_lines(results)
+    rows = summary.rows(records)
+    files.write_text(out / SUMMARY, summary.csv_text(rows))
+    if not args.no_plot:
+        from . import plot
+        plot.write(out / PHASE, rows, args.target)
+    met, failed = gate.check(requirements, rows)
+
+    n_ok = sum(r.n for r in rows)
+    n_failed = sum(r.failed for r in rows)
+    head = (f"sweep: {len(records)} results in {results} ({n_ok} with a verdict, {n_failed} "
+            f"failed), {len(rows)} grid points; summary in {out / SUMMARY}"
+            + ("" if args.no_plot else f", plot in {out / PHASE}"))
+    if args.quiet:
+        print(head)
+        print("\n".join(summary.minimal_lines(rows, args.target)))
+    else:
+        print(summary.table(rows, args.target))
+        print(head)
+    if n_failed:
+        print(f"warning: {n_failed} runs failed twice; their errors are in {results}")
+    for line in met + failed:
+        print(line)
+    return exits.EXIT_INTERSECTION if failed else exits.EXIT_OK

@@ -1,0 +1,65 @@
+"""Load case / Save case: the sidebar's values from and to a case file (cases.py, the same
+functions as --case and --save-case)."""
+import json
+
+import bpy
+
+from ...model import cases
+from ...exports import files
+from .. import properties
+from . import common
+
+
+class _CaseFile:
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
+    filter_glob: bpy.props.StringProperty(default="*.toml", options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        if not self.filepath:
+            self.filepath = "case.toml"
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        return common.guarded(self, self._do, context)
+
+
+class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
+    bl_idname = "fibrilfit.load_case"
+    bl_label = "Load case"
+    bl_description = ("Set every parameter from a case file (.toml); parameters it leaves out "
+                      "take their defaults. The model is not rebuilt: Run all to use them")
+    bl_options = {"REGISTER", "UNDO"}
+
+    def _do(self, context):
+        case = cases.load(bpy.path.abspath(self.filepath))
+        p = case.make_params()
+        s = common.settings(context)
+        properties.write_params(s, p)
+        s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
+        name = case.meta.get("name", case.path.name)
+        self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
+                              f"file, the rest at their defaults")
+        return {"FINISHED"}
+
+
+class FIBRILFIT_OT_save_case(_CaseFile, bpy.types.Operator):
+    bl_idname = "fibrilfit.save_case"
+    bl_label = "Save case"
+    bl_description = ("Write the panel's parameters as a case file (.toml), with the metadata "
+                      "of the case loaded last")
+    bl_options = {"REGISTER"}
+
+    def _do(self, context):
+        path = files.check_writable("filepath", bpy.path.abspath(self.filepath),
+                                     cases.SUFFIXES)
+        s = common.settings(context)
+        p = properties.read_params(s)
+        meta = json.loads(s.case_metadata or "{}")
+        case = cases.from_dict(meta)  # checked again: the JSON is the user's file to edit
+        cases.save(path, case.resolved(p))
+        self.report({"INFO"}, f"Wrote {path}")
+        return {"FINISHED"}
+
+
+CLASSES = (FIBRILFIT_OT_load_case, FIBRILFIT_OT_save_case)

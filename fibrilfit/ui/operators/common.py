@@ -1,0 +1,127 @@
+"""What every FibrilFit operator shares: the panel's parameters, errors reported rather than
+raised, poll messages, and recording results in the scene."""
+from __future__ import annotations
+
+import json
+import traceback
+
+from ...model import params as P
+from ... import pipeline
+from .. import properties
+from ...analysis import clashing_layers
+from ...builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
+                               update_params)
+from ...builders.physics import SceneConflict
+from ...exports.pdb import PdbError
+from ...exports.render import RenderError
+from ...exports.files import OutputError
+
+RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
+
+
+class StaleModel(ValueError):
+    """The panel's values differ from those the model was built or baked with."""
+
+
+EXPECTED_ERRORS = (P.ParamError, SceneConflict, StaleModel, OutputError, PdbError, RenderError)
+
+
+def settings(context):
+    return context.scene.fibrilfit
+
+
+def reached(stage: str, needed: str) -> bool:
+    """Whether a model at `stage` (from STAGES, "" for none) has done `needed`."""
+    return bool(stage) and STAGES.index(stage) >= STAGES.index(needed)
+
+
+def poll_stage(cls, context, needed: str, why: str) -> bool:
+    """poll(): True once the scene's model reached `needed`; otherwise say `why` and grey out."""
+    if context.scene is None:
+        cls.poll_message_set("No scene")
+        return False
+    if not reached(model_stage(context.scene), needed):
+        cls.poll_message_set(why)
+        return False
+    return True
+
+
+def guarded(op, fn, *args) -> set:
+    """Run an operator's body: every error becomes one report and CANCELLED, never a traceback."""
+    try:
+        return fn(*args)
+    except EXPECTED_ERRORS as exc:
+        op.report({"ERROR"}, str(exc))
+    except Exception as exc:  # a bug: one line for the user, the details for a bug report
+        traceback.print_exc()
+        op.report({"ERROR"}, f"FibrilFit failed: {exc!r} (details in the system console)")
+    return {"CANCELLED"}
+
+
+def panel_params(context) -> P.Params:
+    return properties.read_params(settings(context))
+
+
+def _show(value) -> str:
+    if value is None:
+        return "its default"
+    if isinstance(value, tuple) and value and isinstance(value[0], (tuple, list)):
+        return f"an outline of {len(value)} points"
+    if isinstance(value, str):
+        return repr(value[:30])
+    if isinstance(value, tuple):
+        return " × ".join(f"{v:g}" for v in value)
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def model_for(context, kept_sections, doing: str):
+    """The scene's model, given the panel's values for what `doing` reads.
+
+    Values of `kept_sections` must still be those the model was made with; otherwise StaleModel
+    says which one changed and which step makes it take effect.
+    """
+    s = settings(context)
+    p = properties.read_params(s)
+    model = find_model(context.scene)
+    changed = properties.changed_fields(s, model.params, kept_sections)
+    if changed:
+        name, old, new = changed[0]
+        more = f" (and {len(changed) - 1} more)" if len(changed) > 1 else ""
+        built = any(properties.section_of(P.Params.__dataclass_fields__[n])
+                    in properties.BUILD_SECTIONS for n, _, _ in changed)
+        redo = "build the model again (Run all, or the steps)" if built else "Bake again"
+        raise StaleModel(f"{name} changed from {_show(old)} to {_show(new)}{more} since the model "
+                         f"was {'built' if built else 'baked'}; {redo} before you {doing}, or put "
+                         f"it back")
+    update_params(model, p)
+    return model
+
+
+def clear_results(context) -> None:
+    properties.clear_result(settings(context))
+
+
+def record_bake(context, model, bake: dict) -> None:
+    """After a bake: the old verdict and colours no longer apply."""
+    clear_results(context)
+    colour_globules(model, ())
+    model.root[RESULT] = json.dumps({**pipeline.describe(model.params), "stage": "bake", **bake})
+
+
+def record_check(context, model, result: dict) -> None:
+    """After a check: the verdict in scene.fibrilfit, clashing globules red, the JSON kept."""
+    properties.store_result(settings(context), result)
+    colour_globules(model, clashing_layers(result))
+    merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
+    model.root[RESULT] = json.dumps(merged)
+    set_stage(model, "checked")
+
+
+def percent(fraction: float) -> str:
+    return f"{round(100 * fraction, 1) or 0.0:.1f} %"  # "or": no "-0.0 %" for a tiny compression
+
+
+def verdict_line(result: dict) -> str:
+    return (f"{result['verdict']}: {len(result['clashing_pairs'])} clashing globule pairs, worst "
+            f"bond stretch {percent(result['max_bond_stretch'])}, "
+            f"{'accommodated' if result['accommodated'] else 'not accommodated'}")

@@ -1,0 +1,75 @@
+"""Render and Export PDB from the sidebar: the same writers the command line's --render/--pdb use."""
+import json
+
+import bpy
+
+from ...exports import files
+from ... import pipeline
+from ...exports import options, writers
+from . import common
+
+WHY = "Check the model first: the picture and the PDB show its verdict"
+
+
+class _ExportBase:
+    bl_options = {"REGISTER"}
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
+    suffix = ""
+
+    @classmethod
+    def poll(cls, context):
+        return common.poll_stage(cls, context, "checked", WHY)
+
+    def invoke(self, context, event):
+        if not self.filepath:
+            stem = bpy.path.display_name_from_filepath(bpy.data.filepath) or "fibrilfit"
+            self.filepath = bpy.path.abspath(f"//{stem}{self.suffix}") if bpy.data.filepath \
+                else f"{stem}{self.suffix}"
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        return common.guarded(self, self._export, context)
+
+    def _export(self, context):
+        path = files.check_writable("filepath", bpy.path.abspath(self.filepath), (self.suffix,))
+        model = pipeline.current_model(context.scene)
+        result = json.loads(model.root.get(common.RESULT, "{}"))
+        info = self.write(context.scene, result, path)
+        self.report({"INFO"}, f"Wrote {path}" + (f" ({info})" if info else ""))
+        return {"FINISHED"}
+
+
+class FIBRILFIT_OT_render(_ExportBase, bpy.types.Operator):
+    bl_idname = "fibrilfit.render"
+    bl_label = "Render"
+    bl_description = "Render the bake's last frame to a PNG, clashing globules red (Cycles, CPU)"
+    suffix = ".png"
+    filter_glob: bpy.props.StringProperty(default="*.png", options={"HIDDEN"})
+
+    def write(self, scene, result, path):
+        size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
+        opts = {"size": size, "samples": options.DEFAULT_SAMPLES, "engine": "cycles"}
+        writers.prepare(scene, result, aspect=size[0] / size[1])
+        info = writers.write_render(scene, result, path, opts) or {}
+        return f"{info['seconds']:.1f} s" if "seconds" in info else ""
+
+
+class FIBRILFIT_OT_export_pdb(_ExportBase, bpy.types.Operator):
+    bl_idname = "fibrilfit.export_pdb"
+    bl_label = "Export PDB"
+    bl_description = ("Write a coarse-grained PDB of the model (one pseudo-atom per sphere, one "
+                      "chain per layer) for PyMOL or ChimeraX")
+    suffix = ".pdb"
+    filter_glob: bpy.props.StringProperty(default="*.pdb", options={"HIDDEN"})
+    frames: bpy.props.EnumProperty(
+        name="Frames", items=(("last", "Last frame", "The frame the verdict describes"),
+                              ("all", "Keyframes", "Frames 1, 51, 101, ... and the last: a "
+                                                  "multi-model PDB to play the relaxation")))
+
+    def write(self, scene, result, path):
+        writers.write_pdb(scene, result, path, frames=self.frames)
+        return ""
+
+
+CLASSES = (FIBRILFIT_OT_render, FIBRILFIT_OT_export_pdb)

@@ -1,0 +1,97 @@
+"""Import fibril… / Import domain…: file browsers over structure.measure_* that fill the panel's
+parameters, keep the measurements and put the fibril's CA trace beside the model."""
+import bpy
+import numpy as np
+
+from ...model import params as P
+from .. import properties
+from ...builders import structure_trace
+from ...structure import StructureError, from_files, measure_domain, measure_fibril, trace
+from . import common
+
+GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
+
+
+def _fill(context, fib, dom) -> list:
+    """Write the measured values into the panel. Returns the names written."""
+    current = common.panel_params(context)
+    applied, block = from_files.split(fib, dom, explicit=set(),
+                                      known={f.name for f in P.fields()},
+                                      residue_radius=current.residue_radius)
+    properties.write_params(common.settings(context), current.replace(**applied))
+    return sorted(applied), block["not_in_model"]
+
+
+def _beside(p: P.Params, outline) -> tuple:
+    """Where the trace goes: along +X, clear of the model's chains and globules."""
+    reach = max(p.chain_x()) + p.globule_radius
+    width = float(np.hypot(*np.asarray(outline, float).T).max()) if outline else reach
+    return (reach + width + 20.0, 0.0, 0.0)
+
+
+class _ImportBase:
+    bl_options = {"REGISTER", "UNDO"}
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
+    filter_glob: bpy.props.StringProperty(default=GLOB, options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        try:
+            return common.guarded(self, self._import, context)
+        except StructureError as exc:  # not in common's list: report it the same way
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+
+
+class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
+    bl_idname = "fibrilfit.import_fibril"
+    bl_label = "Import fibril…"
+    bl_description = ("Measure a fibril structure (PDB/mmCIF): rise, twist, protofilaments, core "
+                      "outline and anchor fill the parameters; its CA trace goes beside the model")
+    terminus: bpy.props.EnumProperty(name="Terminus", items=(
+        ("C", "C-terminus", "The linker leaves the core's last residue"),
+        ("N", "N-terminus", "The linker leaves the core's first residue")), default="C")
+    anchor_residue: bpy.props.IntProperty(name="Anchor residue", default=0,
+                                          description="Anchor on this residue (0: the terminus)")
+
+    def _import(self, context):
+        path = bpy.path.abspath(self.filepath)
+        fib = measure_fibril(path, terminus=self.terminus,
+                             anchor_residue=self.anchor_residue or None)
+        names, missing = _fill(context, fib, None)
+        p = common.panel_params(context)
+        structure_trace.add_trace(context.scene, trace.ca_trace(path, fib), fib.file,
+                                  _beside(p, fib.core_outline))
+        summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
+        summary["outline_points"] = len(fib.core_outline)
+        structure_trace.store(context.scene, "fibril", summary)
+        for w in fib.warnings:
+            self.report({"WARNING"}, w)
+        self.report({"INFO"}, f"{fib.file}: set {', '.join(names)}"
+                    + (f"; not in this model: {', '.join(missing)}" if missing else ""))
+        return {"FINISHED"}
+
+
+class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
+    bl_idname = "fibrilfit.import_domain"
+    bl_label = "Import domain…"
+    bl_description = ("Measure a globular domain (PDB/mmCIF): the globule's diameter from its "
+                      "radius of gyration, 2·√(5/3)·Rg")
+    chain: bpy.props.StringProperty(name="Chain", default="",
+                                    description="The domain's chain (empty: the first)")
+    residues: bpy.props.StringProperty(name="Residues", default="",
+                                       description="a-b (empty: all)")
+
+    def _import(self, context):
+        dom = measure_domain(bpy.path.abspath(self.filepath), chain=self.chain or None,
+                             residues=self.residues or None)
+        names, _ = _fill(context, None, dom)
+        structure_trace.store(context.scene, "domain", dom.to_dict())
+        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}")
+        return {"FINISHED"}
+
+
+CLASSES = (FIBRILFIT_OT_import_fibril, FIBRILFIT_OT_import_domain)

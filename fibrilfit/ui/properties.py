@@ -1,0 +1,238 @@
+"""scene.fibrilfit: the sidebar's parameters, made from the one parameter definition, and the
+results of the last check.
+
+One property per field of params.Params, with the same name, its default, min/max and doc.
+1 Blender unit = 1 Å. Blender has no Ångström unit: its length unit would show "30 m" under the
+default Metric system, so lengths are plain numbers with the unit in the label, and the twist
+shows in degrees.
+"""
+import json
+import math
+
+import bpy
+import numpy as np
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, PointerProperty, StringProperty)
+
+from ..model import params as P
+
+# The sidebar's sections, in the tutorial's order. A field goes where its metadata says;
+# a section this list does not know goes to "Simulation", so a new field is never hidden.
+SECTIONS = ("Slab", "Anchor", "Linker", "Globule", "Layers", "Simulation", "Check")
+BUILD_SECTIONS = SECTIONS[:5]  # what the build steps read; the bake and the check read the rest
+
+# How a unit of the parameter definition shows in Blender; the ones named in labels have none.
+_FLOAT_UNITS = {
+    "rad": {"subtype": "ANGLE", "unit": "ROTATION"},
+    "fraction": {"subtype": "FACTOR"},
+}
+_LABEL_UNITS = ("Å", "Å/frame", "Å/s²")
+_UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "Å/s²": "Å/s²",
+               "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %"}
+
+
+def section_of(field) -> str:
+    section = field.metadata.get("section", "Simulation")
+    return section if section in SECTIONS else "Simulation"
+
+
+def fields_in(section: str) -> list:
+    """Fields shown in `section`, in the definition's order."""
+    return [f for f in P.fields() if f.metadata.get("ui", True) and section_of(f) == section]
+
+
+def label(field) -> str:
+    name = field.name.replace("_", " ").capitalize()
+    unit = field.metadata["unit"]
+    return f"{name} ({unit})" if unit in _LABEL_UNITS else name
+
+
+def _description(field) -> str:
+    meta = field.metadata
+    if meta["kind"] == "points":
+        return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
+                f"Load one from a file with Load outline")
+    note = _UNIT_NOTES.get(meta["unit"], meta["unit"])
+    text = f"{meta['doc']} ({note})" if note and meta["kind"] is not bool else meta["doc"]
+    return text + (f". Used when its switch is on; off: {meta['derived']}" if meta.get("derived")
+                   else "")
+
+
+# What a derived parameter (default None: worked out from others) shows until the user turns
+# its "use_" switch on. The switch off means None.
+_SHOWN_DEFAULTS = {"pf_rotation": math.pi, "anchor": (21.75, 0.0)}
+
+
+def switch_name(name: str) -> str:
+    """The BoolProperty that says a derived parameter is set by hand (off: its default)."""
+    return "use_" + name
+
+
+def derived_fields() -> list:
+    return [f for f in P.fields() if f.metadata.get("derived") and f.metadata["kind"] != "points"]
+
+
+def _param_property(field):
+    meta, default = field.metadata, field.default
+    common = {"name": label(field), "description": _description(field)}
+    if meta["kind"] == "points":
+        return StringProperty(default="", **common)
+    if default is None:
+        default = _SHOWN_DEFAULTS[field.name]
+    if meta["kind"] is bool:
+        return BoolProperty(default=default, **common)
+    if "choices" in meta:  # a choice: the panel's drop-down, its items the choices
+        return EnumProperty(items=[(c, c.capitalize(), "") for c in meta["choices"]],
+                            default=default, name=common["name"], description=meta["doc"])
+    if meta["kind"] is int:
+        return IntProperty(default=default, min=meta["min"], max=meta["max"], **common)
+    units = _FLOAT_UNITS.get(meta["unit"], {})
+    limits = {"min": meta["min"], "max": meta["max"], "precision": 3}
+    if isinstance(default, tuple):
+        return FloatVectorProperty(default=default, size=len(default), subtype="XYZ",
+                                   unit=units.get("unit", "NONE"), **limits, **common)
+    return FloatProperty(default=default, **units, **limits, **common)
+
+
+class FIBRILFIT_PG_settings(bpy.types.PropertyGroup):
+    """The model's parameters (one per params.Params field) and the last check's result."""
+
+    verdict: StringProperty(
+        name="Verdict",
+        description='"successful" when no two globules intersect at the last frame, '
+                    '"intersection" otherwise; empty before a check')
+    clash_count: IntProperty(
+        name="Clashing pairs", min=0,
+        description="Number of globule pairs that intersect at the last frame")
+    max_bond_stretch: FloatProperty(
+        name="Worst bond stretch", precision=3,
+        description="Worst linker bond at the last frame: (distance - rest length) / rest length")
+    linker_intact: BoolProperty(
+        name="Linker intact", description="Every bond within the stretch tolerance")
+    accommodated: BoolProperty(
+        name="Accommodated",
+        description="No intersection and every linker intact: the domains fit on the fibril")
+
+
+RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
+_clash = set(RESULTS) & {f.name for f in P.fields()}
+assert not _clash, f"result properties shadow parameters: {_clash}"
+FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
+FIBRILFIT_PG_settings.__annotations__.update({
+    switch_name(f.name): BoolProperty(name=f"Set {label(f).lower()}",
+                                      description=f"Set by hand; off: {f.metadata['derived']}")
+    for f in derived_fields()})
+FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
+    name="Outline file", description="The file the core outline was last loaded from")
+# The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
+# Not a result: a bake or check leaves it alone.
+FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
+    name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
+# The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
+FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
+    name="Periodic cell",
+    description="Simulate the interior of an infinite fibril: a screw-periodic cell of M layers "
+                "whose images stand in for the rest (Layers and Score layers are then unused)")
+
+CLASSES = (FIBRILFIT_PG_settings,)
+
+
+def attach():
+    bpy.types.Scene.fibrilfit = PointerProperty(type=FIBRILFIT_PG_settings)
+
+
+def detach():
+    del bpy.types.Scene.fibrilfit
+
+
+# ---- reading and writing -----------------------------------------------------------------
+
+def _plain(value):
+    """A property's value as the decimal the user typed: Blender keeps floats in 32 bits,
+    so 4.8 reads back as 4.800000190734863; the shortest float32 repr gives 4.8 again."""
+    if isinstance(value, float):
+        return float(str(np.float32(value)))
+    if isinstance(value, (bool, int, str)):
+        return value
+    return tuple(_plain(v) for v in value)
+
+
+def _value(settings, field):
+    if field.metadata["kind"] == "points":  # JSON text, read exactly: no float32 rounding
+        text = getattr(settings, field.name).strip()
+        if not text:
+            return None
+        try:
+            return tuple(tuple(xy) for xy in json.loads(text))
+        except (ValueError, TypeError):
+            return text  # make_params refuses it, naming core_outline
+    if field.metadata.get("derived") and not getattr(settings, switch_name(field.name)):
+        return None
+    return _plain(getattr(settings, field.name))
+
+
+def values(settings) -> dict:
+    out = {f.name: _value(settings, f) for f in P.fields()}
+    if not settings.use_periodic:
+        out["periodic"] = 0
+    else:  # the cell replaces the fibril's length and its ends
+        out["periodic"] = out["periodic"] or "auto"
+        out["layers"], out["score_layers"] = P.DEFAULTS.layers, 0
+    return out
+
+
+def read_params(settings) -> P.Params:
+    """The panel's values as Params, validated (raises ParamError naming the parameter)."""
+    return P.make_params(**values(settings))
+
+
+def write_params(settings, p: P.Params) -> None:
+    derived = {f.name for f in derived_fields()}
+    for name, value in p.to_dict().items():
+        if name == "core_outline":
+            settings.core_outline = "" if value is None else json.dumps(value)
+        elif name in derived:
+            setattr(settings, switch_name(name), value is not None)
+            if value is not None:
+                setattr(settings, name, value)
+        else:
+            setattr(settings, name, value)
+    settings.use_periodic = bool(p.periodic)
+
+
+def changed_fields(settings, p: P.Params, sections=SECTIONS) -> list[tuple[str, object, object]]:
+    """Fields of `sections` whose panel value differs from `p`: (name, value in p, panel value)."""
+    now, then = values(settings), p.to_dict()
+    if now["periodic"] == "auto":
+        try:
+            now["periodic"] = P.make_params(**now).periodic
+        except P.ParamError:
+            pass
+    if then.get("periodic"):
+        now["layers"] = then["layers"]  # a cell's layers follow from periodic
+    out = []
+    for f in P.fields():
+        if section_of(f) in sections:
+            old = then[f.name]
+            if f.metadata["kind"] == "points":
+                old = None if old is None else tuple(map(tuple, old))
+                if old != now[f.name]:
+                    out.append((f.name, old, now[f.name]))
+                continue
+            old = tuple(old) if isinstance(old, list) else old
+            if (None if old is None else _plain(old)) != now[f.name]:
+                out.append((f.name, old, now[f.name]))
+    return out
+
+
+def store_result(settings, result: dict) -> None:
+    settings.verdict = result["verdict"]
+    settings.clash_count = len(result["clashing_pairs"])
+    settings.max_bond_stretch = result["max_bond_stretch"]
+    settings.linker_intact = result["linker_intact"]
+    settings.accommodated = result["accommodated"]
+
+
+def clear_result(settings) -> None:
+    for name in RESULTS:
+        settings.property_unset(name)

@@ -1,4 +1,0 @@
-"""The sidebar's panels."""
-from .sidebar import CLASSES
-
-__all__ = ["CLASSES"]

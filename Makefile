@@ -20,7 +20,8 @@ PYTEST := -m pytest tests
 # `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.
 TEST_MARK ?= not slow
 
-.PHONY: run test test-latest test-lts test-52 test-slow test-cluster extension bench validate clean
+.PHONY: run test test-unit test-latest test-lts test-52 test-slow test-cluster extension bench \
+	validate docs clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -90,14 +91,23 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt
 	touch $@
 
-# Speed and memory side by side with ../shared/bench's baselines; see BENCHMARKS.md.
+# Speed and memory side by side with ../shared/bench's baselines; see docs/benchmarks.md.
 bench: $(VENV)/.bench-installed
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
 
 # The gallery (examples/*.toml): P(fit), minimal linker and envelope per case; rewrites the
-# README's validation table. Results stay in out/validate, so running it again resumes.
+# table in docs/validation.md. Results stay in out/validate, so running it again resumes.
 validate: $(VENV)/.installed
 	$(VENV)/bin/python tools/validate.py $(VALIDATE_ARGS)
+
+$(VENV)/.docs-installed: $(VENV)/.installed requirements-docs.txt
+	$(VENV)/bin/python -m pip install --quiet -r requirements-docs.txt
+	touch $@
+
+# The documentation site (MkDocs, Material theme) into out/site. --strict: a broken link or
+# anchor fails the build; the command-line reference is generated from the parser at build time.
+docs: $(VENV)/.docs-installed
+	$(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
 
 clean:
 	rm -rf out dist .pytest_cache

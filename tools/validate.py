@@ -1,4 +1,5 @@
-"""`make validate`: run the gallery (examples/*.toml) and write the README's validation table.
+"""`make validate`: run the gallery (examples/*.toml) and write the validation table of the docs
+(docs/validation.md, between its markers).
 
 For every case: its seeds at the real linker (P(fit) = the accommodated fraction, with its 95 %
 Wilson interval, and the envelope's outer diameter over the seeds), then the minimal linker from
@@ -8,7 +9,7 @@ Runs go through `headless.py sweep` (results kept in out/validate/, so running a
 A case that cannot run in this build (e.g. a parameter from an issue not merged yet) gets a row
 saying why. Nothing is filled in by hand.
 
-    python tools/validate.py [--out out/validate] [--workers 2] [--restarts 3] [--no-readme]
+    python tools/validate.py [--out out/validate] [--workers 2] [--restarts 3] [--no-docs]
                              [CASE.toml ...]
 """
 from __future__ import annotations
@@ -177,13 +178,15 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def write_readme(text: str) -> None:
-    readme = ROOT / "README.md"
-    body = readme.read_text(encoding="utf-8")
+PAGE = ROOT / "docs" / "validation.md"  # the page whose table this writes
+
+
+def write_page(text: str, page: pathlib.Path = PAGE) -> None:
+    body = page.read_text(encoding="utf-8")
     if START not in body or END not in body:
-        raise SystemExit(f"README.md has no {START} ... {END} markers")
+        raise SystemExit(f"{page.relative_to(ROOT)} has no {START} ... {END} markers")
     a, b = body.index(START) + len(START), body.index(END)
-    readme.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
+    page.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
 
 
 def main(argv=None) -> int:
@@ -198,7 +201,8 @@ def main(argv=None) -> int:
                          "still running then (its runs are kept for the next make validate)")
     ap.add_argument("--skip", action="append", default=[], metavar="CASE",
                     help="leave this case out (its row says so); repeatable")
-    ap.add_argument("--no-readme", action="store_true")
+    ap.add_argument("--no-docs", action="store_true",
+                    help="print the table only; leave docs/validation.md as it is")
     args = ap.parse_args(argv)
     if args.until:
         hh, mm = (int(x) for x in args.until.split(":"))
@@ -233,8 +237,8 @@ def main(argv=None) -> int:
         save()
     text = table(rows)
     print(text)
-    if not args.no_readme:
-        write_readme(text)
+    if not args.no_docs:
+        write_page(text)
     return 0
 
 

@@ -1,7 +1,7 @@
-"""Exit codes and the usage error, shared by every command (cli.py, sweep/, search/, ...).
+"""Exit codes and the usage error, shared by every command (cli/, sweep/, search/, ...).
 
 Plain Python with no package imports, so any command module can import it without importing
-cli.py (which imports the commands).
+cli/commands.py (which imports the commands).
 """
 
 EXIT_OK, EXIT_INTERSECTION, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130

@@ -65,7 +65,7 @@ def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
     assert P.DEFAULTS.periodic == 0 and P.DEFAULTS.layers == 20
     p = P.make_params(periodic="auto")
     assert p.periodic == S.auto_cell_layers(p) and p.layers == p.periodic
-    assert p.periodic == 13  # ceil(2 · 30 Å / 4.8 Å): the measured margin (screw.AUTO_FACTOR)
+    assert p.periodic == 13  # ceil(2 · 30 Å / 4.8 Å): the measured margin (helix.AUTO_FACTOR)
     assert p.periodic * p.rise > p.globule_diameter
     assert P.make_params(periodic=" AUTO ", globule_diameter=60).periodic > p.periodic
     assert P.make_params(periodic=11).layers == 11

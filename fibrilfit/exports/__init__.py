@@ -1,2 +1,3 @@
-"""Outputs people look at: a rendered PNG, a coarse-grained PDB, and the dressing (materials,
+"""How results are written: atomic file writes (files), the text summary (summary), the output
+writers (writers), a rendered PNG, a movie, a coarse-grained PDB, and the dressing (materials,
 camera, light) that a saved .blend and a render share."""

@@ -46,7 +46,7 @@ METADATA = {
 }
 SEEDS = "seeds"
 STRUCTURE = "structure"
-# [structure]: the options of --fibril/--domain (structure_inputs.py); files are relative to
+# [structure]: the options of --fibril/--domain (structure/inputs.py); files are relative to
 # the case file. Measured values fill the parameters the case and the command line leave unset.
 STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "terminus": ("N", "C"),
                   "anchor_residue": int, "domain_chain": str, "domain_residues": str}

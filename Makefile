@@ -107,7 +107,7 @@ $(VENV)/.docs-installed: $(VENV)/.installed requirements-docs.txt
 # The documentation site (MkDocs, Material theme) into out/site. --strict: a broken link or
 # anchor fails the build; the command-line reference is generated from the parser at build time.
 docs: $(VENV)/.docs-installed
-	$(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
+	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
 
 clean:
 	rm -rf out dist .pytest_cache

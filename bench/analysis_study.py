@@ -1,5 +1,6 @@
-"""The measurements behind the analysis defaults (README: checks, linker integrity, settling,
-end effects, what the default model predicts). Each study prints a Markdown table.
+"""The measurements behind the analysis defaults (docs/model/verdict.md#two-checks,
+docs/model/linker-integrity.md, docs/model/settling.md, docs/model/end-effects.md,
+docs/model/default-model.md). Each study prints a Markdown table.
 
     .venv/bin/python bench/analysis_study.py spheres            # analytic check, 1k-100k globules
     .venv/bin/python bench/analysis_study.py quality  [--seeds 5]

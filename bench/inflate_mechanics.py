@@ -1,4 +1,4 @@
-"""Measurements behind the inflate schedule's mechanics (README, "The inflate schedule").
+"""Measurements behind the inflate schedule's mechanics (docs/model/search.md#inflate-schedule).
 
     .venv/bin/python bench/inflate_mechanics.py
 

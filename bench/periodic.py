@@ -19,7 +19,7 @@ scene frame per frame, baked for exactly as many frames as the 100-layer job too
 settling). A cell has these M layers' bodies plus its images, so neither floor is reachable by
 any way of moving the images. `--also-one-update` adds the cell with one image update per frame
 (`--image-updates 1`): the cheapest way Blender can move the images, whose contacts across the
-ends bounce (README, "Periodic cell"); a cost, not a usable setting.
+ends bounce (docs/model/periodic-cell.md#periodic-cell); a cost, not a usable setting.
 """
 from __future__ import annotations
 

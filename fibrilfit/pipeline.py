@@ -121,7 +121,7 @@ def describe(p: P.Params) -> dict:
 
 def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", force: bool = False,
         on_frame: Callable | None = None) -> dict:
-    """Build, bake and check; return the JSON-ready result (see README, "The result")."""
+    """Build, bake and check; return the JSON-ready result (docs/guide/headless.md#result-json)."""
     if stop_after not in STAGES:
         raise ValueError(f"stop_after must be one of {STAGES}")
     p = P.validate(p or P.DEFAULTS, force=force)

@@ -1,5 +1,4 @@
-"""An outline's core is solid: a bead pushed into it comes back out (README, "Why real-fibril
-linkers stayed stretched"); the verdict names any chain member left inside a core."""
+"""An outline's core is solid: a bead pushed into it comes back out (docs/model/protofilaments.md#stretched-linkers); the verdict names any chain member left inside a core."""
 import bpy
 import numpy as np
 import pytest

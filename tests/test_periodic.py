@@ -491,7 +491,7 @@ def test_a_cell_of_two_protofilaments(scene, ff):
 @pytest.mark.slow
 @pytest.mark.parametrize("linker, accommodated", [(6, False), (8, True)])
 def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker, accommodated):
-    """README, "Agreement with long fibrils": the interior of a 100-layer fibril at seed 0 is
+    """docs/notebook/periodic-cell.md#agreement: the interior of a 100-layer fibril at seed 0 is
     not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the
     cell that `auto` picks (13 layers for 30 Å globules)."""
     r = ff.pipeline.run(ff.model.params.make_params(periodic="auto", linker=linker), scene)

@@ -1,6 +1,6 @@
 """Physical sanity of the default model over several seeds: verdicts move the right way.
 
-Thresholds come from measurement (README, "Physical sanity"; 12 layers, 250 frames, seeds 0-4,
+Thresholds come from measurement (docs/model/default-model.md#default-model; 12 layers, 250 frames, seeds 0-4,
 bpy 5.0.1 and 4.2.0 identical): accommodated seeds per globule size × linker length were
 
     globule \\ linker   1    2    3    4    6    8

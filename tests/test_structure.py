@@ -12,7 +12,7 @@ DEG = math.radians(1.0)
 
 # file: rise Å, twist °, K, (pf rotation °, pf rise Å), core, layer order per protofilament by
 # increasing z along the axis, C-terminal anchor (residue, r range Å), N-terminal anchor
-# (residue, r range Å) and which of N / C are buried (README "depth" 7.2-22.7 Å; free ones
+# (residue, r range Å) and which of N / C are buried (tests/data/README.md "depth" 7.2-22.7 Å; free ones
 # ≤ 4.6 Å).
 FIBRILS = {
     "2beg_model1": dict(rise=4.61, twist=-0.54, K=1, pf=None, core=[18, 42], chains=["EDCBA"],
@@ -128,7 +128,7 @@ SECTIONS = {"2beg_model1": (43.1, 22.7, 23.8), "2n0a": (87.9, 44.9, 58.8),
 
 @pytest.mark.parametrize("name", FIBRILS)
 def test_core_outline_is_tight(measured, name, S):
-    """The outline spans the README's one-layer box plus the atoms' radii (1.5-1.8 Å each side),
+    """The outline spans tests/data/README.md's one-layer box plus the atoms' radii (1.5-1.8 Å each side),
     and is much smaller than that box (it follows the folds)."""
     g = measured[(name, "C")]
     pts = np.array(g.core_outline)

@@ -145,7 +145,7 @@ def _agreement(row) -> str:
         verdict = "agrees" + (" (a clash-free layout exists)" if fits else "")
     elif expected == "fits":
         verdict = ("disagrees: no seed found room; a failed search is not proof that none "
-                   "exists (README, What a verdict proves), or an estimate is off")
+                   "exists (docs/model/verdict.md#proves), or an estimate is off")
     else:
         verdict = "disagrees: the model finds room the literature says is missing"
     width = meta.get("envelope_width")

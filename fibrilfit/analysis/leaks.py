@@ -1,5 +1,5 @@
 """Chain members whose centre lies inside a core prism: a bead or globule that got through the
-core's collision shape (README, "Why real-fibril linkers stayed stretched")."""
+core's collision shape (docs/model/protofilaments.md#stretched-linkers)."""
 from __future__ import annotations
 
 import numpy as np

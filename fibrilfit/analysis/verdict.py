@@ -134,7 +134,7 @@ def check_model(model) -> dict:
     if p.periodic and p.periodic < margin:
         warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
                         f"({margin}, 'auto'): cells this short were not measured against long "
-                        f"fibrils (README, 'Agreement with long fibrils')")
+                        f"fibrils (docs/notebook/periodic-cell.md#agreement)")
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
         chains["inside_core"] = members_inside_core(p, positions)
         if chains["inside_core"]:

@@ -12,7 +12,7 @@ new random gravity drawn from the seed, so the chains can leave the jam.
 Bullet re-reads each active body's scale every step (the collision sphere follows it), while a
 POINT constraint keeps the pivots it was built with in each body's frame, unscaled: the joint
 of the last bead stays on the globule's full-size surface, so a small globule never lends its
-linker extra reach (measured: README, "The inflate schedule").
+linker extra reach (measured: docs/model/search.md#inflate-schedule).
 """
 from __future__ import annotations
 

@@ -260,9 +260,9 @@ class _LayerBuilder:
         return self.mesh[role]
 
     def _slab(self, k):
-        # A concave outline: a convex hull would fill its notches (README, "Concave cores"), and
+        # A concave outline: a convex hull would fill its notches (docs/model/protofilaments.md#concave-cores), and
         # Bullet's triangle-mesh shape is a hollow surface that traps a bead once it is pushed
-        # through (README, "Why real-fibril linkers stayed stretched"). So the core is a
+        # through (docs/model/protofilaments.md#stretched-linkers). So the core is a
         # compound of solid convex prisms, children of the slab, which keeps the drawn prism.
         shape = "BOX" if self.p.core_outline is None else "COMPOUND"
         slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,

@@ -54,7 +54,7 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
 
 def add_case_option(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--case", metavar="FILE.toml",
-                        help="start from this case file (README, Case files); options given "
+                        help="start from this case file (docs/guide/cases.md); options given "
                              "beside it win")
 
 

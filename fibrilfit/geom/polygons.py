@@ -3,7 +3,7 @@
 Plain Python and numpy (no bpy), so params.py can validate with it. Everything is in the
 layer's frame: Å, the fibril axis at the origin, X/Y across the fibril.
 
-The linker's direction (README, "Protofilaments, outlines and anchors"): the chain leaves the
+The linker's direction (docs/model/protofilaments.md#protofilaments): the chain leaves the
 anchor in a straight line, radially away from the axis as in the tutorial. If a bead or the
 globule would then start overlapping the core, it runs along the outward normal of the core's
 edge nearest the anchor instead; if that is blocked too, along the free direction closest to

@@ -301,7 +301,7 @@ def _value(v) -> str:
 def dumps(case: dict, where=None) -> str:
     """A case dict (as Case.resolved gives it) as TOML text, metadata first, then [params] and
     [structure], whose files are written relative to the folder `where` (the file's)."""
-    lines = ["# FibrilFit case: headless.py run --case THIS.toml (see README, Case files)"]
+    lines = ["# FibrilFit case: headless.py run --case THIS.toml (see docs/guide/cases.md#case-files)"]
     for key in ORDER:
         if key in case:
             lines.append(f"{key} = {_value(case[key])}")

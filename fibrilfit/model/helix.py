@@ -42,8 +42,9 @@ def cell_gravity(p, gravity):
     field, and not an infinite fibril. Only the axial part is the same in every image. This
     matters where gravity is still on when the layout is judged (the tutorial protocol). Inflate
     anneals its gravity to zero before it judges: there gravity is only a way to search, any
-    layout it reaches is judged as it is, so it keeps the whole vector (README, "Gravity in a
-    cell"). Outside a cell `gravity` is returned unchanged.
+    layout it reaches is judged as it is, so it keeps the whole vector
+    (docs/model/periodic-cell.md#gravity-in-a-cell). Outside a cell `gravity` is returned
+    unchanged.
     """
     if not axial_gravity(p):
         return tuple(float(g) for g in gravity)
@@ -75,9 +76,9 @@ def min_cell_layers(p) -> int:
     return int(math.floor(p.globule_diameter / p.rise)) + 1
 
 
-# `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured (README,
-# "Agreement with long fibrils", 30 Å globules, the cell feeling only gravity's axial part,
-# cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100 seeds,
+# `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured
+# (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only gravity's
+# axial part, cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100 seeds,
 # the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82 of 100 (p = 0.10;
 # why longer cells may fit less is not known); linkers 6, 8 and 12 give the same verdict at 13,
 # 26 and 50.

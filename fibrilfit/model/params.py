@@ -87,7 +87,7 @@ class Params:
     time_scale: float = _spec(2.0, 0.01, 100.0, "×", "Rigid-body world speed (tutorial: 2)")
     frames: int = _spec(250, 1, 100_000, "frames",
                         "Frames to bake from frame 1 (the cap when settling is on)", kind=int)
-    # Substeps and iterations: measured (README, "Linker integrity"), 10 × 10 is the cheapest
+    # Substeps and iterations: measured (docs/model/linker-integrity.md#linker-integrity), 10 × 10 is the cheapest
     # setting at which every linker that fits (6-32 residues) ends within 0.2 % of its length and
     # the push-apart is over by frame ~50; 20 × 20 doubles the cost and changes no verdict.
     substeps: int = _spec(10, 1, 1000, "per frame",
@@ -98,7 +98,7 @@ class Params:
     stretch_tolerance: float = _spec(0.05, 0.0, 10.0, "fraction",
                                      "Largest bond stretch for which the linker counts as intact",
                                      section="Check")
-    # Settling: measured on 147 bakes (README, "Settling"), stopping once every body moves less
+    # Settling: measured on 147 bakes (docs/model/settling.md#settling), stopping once every body moves less
     # than 0.3 Å/frame for 20 frames gave the 250-frame verdict every time and saved 21 % of the
     # bake time (40 % on the default model). Under the weak random gravity nothing reaches true
     # rest (< 0.01 Å/frame) within 250 frames.
@@ -135,7 +135,7 @@ class Params:
                                  section="Anchor", size=2,
                                  derived="(slab X / 2 + residue radius, 0)")
 
-    # Search protocol (README, "Search: inflate, restarts and the minimal linker"). `tutorial`
+    # Search protocol (docs/model/search.md#search). `tutorial`
     # starts every globule at full size on a straight chain and lets Bullet push them apart;
     # `inflate` starts the chains fanned out with small globules and grows them. It changes the
     # start layout, so it sits with the build's parameters.
@@ -143,7 +143,7 @@ class Params:
                           "How the search starts: tutorial (straight chains, full-size globules "
                           "pushed apart) or inflate (fanned chains, globules grown from small)",
                           kind=str, choices=PROTOCOLS, section="Linker")
-    # The inflate schedule, measured (README, "The inflate schedule"): grow, hold at full size
+    # The inflate schedule, measured (docs/model/search.md#inflate-schedule): grow, hold at full size
     # with the gravity off, judge; a jammed layout is shrunk and grown again under a new gravity.
     grow_start: float = _spec(0.3, 0.01, 1.0, "fraction",
                               "inflate: globule scale at the start (smaller if the fanned start "
@@ -169,7 +169,7 @@ class Params:
                           "--layers layers with two ends)",
                           kind=int, section="Layers")
 
-    # Measured (README, "Periodic cell"): images one frame behind their originals make every
+    # Measured (docs/model/periodic-cell.md#periodic-cell): images one frame behind their originals make every
     # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.
     image_updates: int = _spec(5, 1, 1000, "per frame",
                                "With periodic: move the images to their originals this many times "

@@ -79,7 +79,7 @@ def summarise(records: list[dict]) -> dict:
                       "outer_diameter": (r.get("envelope") or {}).get("outer_diameter")}
                      if r.get("status") == "ok" else {"error": r.get("error")})}
                  for r in records],
-        # the envelope's outer diameter over the seeds, Å (README, The envelope)
+        # the envelope's outer diameter over the seeds, Å (docs/model/envelope.md#envelope)
         "outer_diameter": ({"median": statistics.median(outer), "min": min(outer),
                             "max": max(outer)} if outer else None),
     }

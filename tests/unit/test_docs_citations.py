@@ -1,0 +1,70 @@
+"""Code and case files cite the documentation as `docs/<page>.md#<anchor>`: every cited page
+and anchor exists, and nothing cites a README section title (the README is a front page)."""
+import pathlib
+import re
+import unicodedata
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CITE = re.compile(r"docs/([\w./-]+\.md)(?:#([\w-]+))?")
+README_TITLE = re.compile(r"README[,:]? *[\"'“A-Z]")  # (README, "Settling") and the like
+SOURCES = [ROOT / "headless.py", ROOT / "Makefile",
+           *[p for d in ("fibrilfit", "tests", "tools", "bench", "examples")
+             for p in (ROOT / d).rglob("*") if p.suffix in (".py", ".toml")]]
+HEADING = re.compile(r"^#{1,6}\s+(.*?)\s*(?:\{#([\w-]+)[^}]*\})?\s*$")
+
+
+def slug(title: str) -> str:
+    """Python-Markdown's toc slugify: what an anchor without an explicit {#id} is called."""
+    text = unicodedata.normalize("NFKD", title).encode("ascii", "ignore").decode("ascii")
+    text = re.sub(r"[^\w\s-]", "", text).strip().lower()
+    return re.sub(r"[-\s]+", "-", text)
+
+
+def anchors(page: pathlib.Path) -> set:
+    found, fenced = set(), False
+    for line in page.read_text(encoding="utf-8").splitlines():
+        if line.lstrip().startswith("```"):
+            fenced = not fenced
+        m = None if fenced else HEADING.match(line)
+        if m:
+            found.add(m.group(2) or slug(m.group(1)))
+    return found
+
+
+def citations():
+    for path in SOURCES:
+        if path.name == pathlib.Path(__file__).name:
+            continue
+        for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            for m in CITE.finditer(line):
+                yield f"{path.relative_to(ROOT)}:{n}", m.group(1), m.group(2)
+
+
+def test_code_cites_the_docs():
+    assert len(list(citations())) >= 10  # the code's measured numbers point at their pages
+
+
+def test_every_cited_page_and_anchor_exists():
+    missing = []
+    for where, page, anchor in citations():
+        path = ROOT / "docs" / page
+        if not path.is_file():
+            missing.append(f"{where}: docs/{page} does not exist")
+        elif anchor and anchor not in anchors(path):
+            missing.append(f"{where}: docs/{page} has no #{anchor}")
+    assert not missing, "\n".join(missing)
+
+
+def test_nothing_cites_a_readme_section():
+    cited = [f"{p.relative_to(ROOT)}:{n}: {line.strip()}" for p in SOURCES
+             if p.name != pathlib.Path(__file__).name and "data" not in p.parts
+             for n, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+             if README_TITLE.search(line) and "tests/data/README" not in line]
+    assert not cited, "\n".join(cited)
+
+
+def test_the_slug_is_python_markdowns():
+    assert slug("Linker integrity over the bake") == "linker-integrity-over-the-bake"
+    assert slug("Search: inflate, restarts and the minimal linker") == \
+        "search-inflate-restarts-and-the-minimal-linker"
+    assert slug("`run` and `sweep` from files") == "run-and-sweep-from-files"

@@ -41,3 +41,14 @@ def test_rows():
     assert "= the stretched linker (upper bound)" in lines[6] and "65 nm" in lines[6]
     assert "width 1.5x the measured (the model's width is the linker's full extension" in lines[6]
     assert "none up to 24 (3 restarts each) | - |" in lines[6]
+
+
+def test_the_table_goes_between_the_docs_pages_markers(tmp_path):
+    assert validate.PAGE == ROOT / "docs" / "validation.md"
+    assert validate.START in validate.PAGE.read_text(encoding="utf-8")
+    page = tmp_path / "validation.md"
+    page.write_text(f"# V\n\nbefore\n{validate.START}\nold rows\n{validate.END}\nafter\n",
+                    encoding="utf-8")
+    validate.write_page("| new | rows |", page)
+    assert page.read_text(encoding="utf-8") == (
+        f"# V\n\nbefore\n{validate.START}\n| new | rows |\n{validate.END}\nafter\n")

@@ -53,6 +53,11 @@ run: $(VENV)/.installed
 
 test: test-latest test-lts test-52
 
+# The pure logic (tests/unit: parameters, case files, structures, geometry, sweep statistics, the
+# linker walk): no bpy is imported (a guard fails any test that does), so it runs in seconds.
+test-unit: $(VENV)/.installed
+	$(VENV)/bin/python -m pytest tests/unit $(PYTEST_ARGS)
+
 test-latest: $(VENV)/.installed
 	$(VENV)/bin/python $(PYTEST) -m "$(TEST_MARK)" $(PYTEST_ARGS)
 

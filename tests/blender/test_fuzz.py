@@ -66,36 +66,6 @@ def value_for(name):
 
 known_sets = st.fixed_dictionaries({}, optional={name: value_for(name) for name in FIELDS})
 unknown_sets = st.dictionaries(st.text(min_size=1, max_size=8), junk, min_size=1, max_size=2)
-param_sets = st.one_of(known_sets, known_sets, known_sets,
-                       st.builds(lambda a, b: {**a, **b}, known_sets, unknown_sets))
-
-
-@settings(max_examples=1500, deadline=None)
-@given(param_sets)
-def test_validation_accepts_or_refuses_with_paramerror_only(values):
-    try:
-        p = P.make_params(**values)
-    except P.ParamError as exc:
-        assert exc.param and "\n" not in str(exc)
-        event("refused")
-        return
-    event("accepted")
-    for f in dataclasses.fields(P.Params):
-        v = getattr(p, f.name)
-        if v is None:
-            assert f.metadata["derived"]
-            continue
-        if "choices" in f.metadata:
-            assert v in f.metadata["choices"]
-            continue
-        if f.metadata["kind"] == "points":
-            v = [x for xy in v for x in xy]
-            assert len(v) >= 6
-        for x in (v if isinstance(v, (tuple, list)) else (v,)):
-            assert isinstance(x, (int, float)) and math.isfinite(x)
-            if f.metadata["kind"] is not bool:
-                assert f.metadata["min"] <= x <= f.metadata["max"]
-    assert P.validate(p) == p
 
 
 small_models = st.fixed_dictionaries({}, optional={

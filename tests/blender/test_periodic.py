@@ -2,15 +2,14 @@
 import importlib
 import json
 import math
-import pathlib
 
 import bpy
 import numpy as np
 import pytest
 
-from helpers import run_cli
+from helpers import ROOT, run_cli
 
-REFERENCE = pathlib.Path(__file__).with_name("data") / "non_periodic_reference.json"
+REFERENCE = ROOT / "tests" / "data" / "non_periodic_reference.json"
 
 
 def _screw(ff):

@@ -61,12 +61,3 @@ def test_bad_slurm_options_exit_2_with_one_line_and_write_nothing(ff, capsys, tm
     assert len(stderr.strip().splitlines()) == 1 and not (tmp_path / "s").exists()
 
 
-def test_sbatch_errors_are_reduced_to_their_line():
-    from fibrilfit.batch.slurm import submit_error
-    exc = RuntimeError("Command exited with non-zero exit code.\nExit code: 1\n"
-                       "Command:\nsbatch /tmp/tmpx.sh\nstdout:\n\nstderr:\n"
-                       "sbatch: error: invalid partition specified: nope\n"
-                       "sbatch: error: Batch job submission failed: Invalid partition name "
-                       "specified\n\n")
-    assert submit_error(exc) == "sbatch: error: invalid partition specified: nope"
-    assert submit_error(ValueError("no sbatch here")) == "no sbatch here"

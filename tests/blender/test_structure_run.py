@@ -2,13 +2,12 @@
 winning, and a `structure` block in every result."""
 import importlib
 import json
-import pathlib
 
 import numpy as np
 import pytest
-from helpers import run_cli
+from helpers import ROOT, run_cli
 
-DATA = pathlib.Path(__file__).with_name("data")
+DATA = ROOT / "tests" / "data"
 FAST = ["--layers", "4", "--linker", "3", "--frames", "10"]
 
 

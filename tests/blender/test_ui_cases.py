@@ -1,5 +1,4 @@
 """The sidebar's Load case and Save case: the same files as --case and --save-case."""
-import json
 import types
 
 import bpy

@@ -8,7 +8,7 @@ import pathlib
 import runpy
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 HEADLESS = ROOT / "headless.py"
 
 mode, args = sys.argv[1], sys.argv[2:]

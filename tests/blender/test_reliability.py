@@ -1,7 +1,6 @@
 """Bad input refused cleanly, runs that are killed or interrupted leave no result, and the same
 seed gives the same result across processes."""
 import json
-import os
 import signal
 import subprocess
 import sys

@@ -1,19 +1,17 @@
 """The sidebar's Import fibril… / Import domain…: parameters filled, measurements shown, the CA
 trace beside the model under a tagged collection; bad files reported, nothing changed."""
-import json
-import pathlib
 
 import bpy
 import numpy as np
 import pytest
 
-from fibrilfit.model import params as P
 from fibrilfit.ui import properties
 from fibrilfit.builders import structure_trace
 from fibrilfit.builders.scene import TAG
 from fibrilfit.ui import panels
+from helpers import ROOT
 
-DATA = pathlib.Path(__file__).with_name("data")
+DATA = ROOT / "tests" / "data"
 
 
 @pytest.fixture

@@ -2,12 +2,11 @@
 exit 2, nothing written. No scene needed."""
 import gzip
 import json
-import pathlib
 
 import pytest
-from helpers import run_cli
+from helpers import ROOT, run_cli
 
-DATA = pathlib.Path(__file__).with_name("data")
+DATA = ROOT / "tests" / "data"
 KEYS = {"axis", "rise", "rise_sd", "twist", "twist_sd", "protofilaments", "pf_rotation", "pf_rise",
         "layers", "core_residues", "core_outline", "anchors", "tail_residues"}
 

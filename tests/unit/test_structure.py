@@ -2,18 +2,18 @@
 tests/data/README.md (copied from shared/structures/README.md): every file there is read."""
 import importlib
 import math
-import pathlib
 
 import numpy as np
 import pytest
+from helpers import ROOT
 
-DATA = pathlib.Path(__file__).with_name("data")
+DATA = ROOT / "tests" / "data"
 DEG = math.radians(1.0)
 
 # file: rise Å, twist °, K, (pf rotation °, pf rise Å), core, layer order per protofilament by
 # increasing z along the axis, C-terminal anchor (residue, r range Å), N-terminal anchor
-# (residue, r range Å) and which of N / C are buried (tests/data/README.md "depth" 7.2-22.7 Å; free ones
-# ≤ 4.6 Å).
+# (residue, r range Å) and which of N / C are buried (tests/data/README.md "depth" 7.2-22.7 Å;
+# free ones ≤ 4.6 Å).
 FIBRILS = {
     "2beg_model1": dict(rise=4.61, twist=-0.54, K=1, pf=None, core=[18, 42], chains=["EDCBA"],
                         C=(42, 21.7, 22.8), N=(17, 15.7, 17.3), buried=set()),
@@ -62,7 +62,7 @@ def test_importing_structure_needs_no_gemmi_and_no_bpy():
     code = ("import sys, types; pkg = types.ModuleType('fibrilfit'); pkg.__path__ = [sys.argv[1]];"
             "sys.modules['fibrilfit'] = pkg; import fibrilfit.structure;"
             "print(sorted(m for m in ('gemmi', 'bpy') if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code, str(DATA.parents[1])], capture_output=True,
+    out = subprocess.run([sys.executable, "-c", code, str(ROOT / "fibrilfit")], capture_output=True,
                          text=True, check=True).stdout
     assert out.strip() == "[]"
 

@@ -13,8 +13,7 @@ from helpers import ROOT, run_cli
 
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
-from fibrilfit.sweep import gate, grid, runner, summary
-from fibrilfit.sweep.stats import wilson
+from fibrilfit.sweep import grid, summary
 
 # The issue's done-when sweep.
 DONE_WHEN = ("--linker", "1,12", "--layers", "8", "--seeds", "3", "--workers", "2")
@@ -29,70 +28,9 @@ def keys(records):
 
 
 # ---- grid specs ---------------------------------------------------------------------------
-def test_lists_and_inclusive_ranges():
-    assert grid.parse_spec("linker", "2,4,6") == ["2", "4", "6"]
-    assert grid.parse_spec("linker", "1:12") == [str(i) for i in range(1, 13)]
-    # Decimal steps: exactly four values, each as typed (no 0.030000000000000002)
-    assert grid.parse_spec("twist", "0.02:0.05:0.01") == ["0.02", "0.03", "0.04", "0.05"]
-    assert grid.parse_spec("linker", "1:3, 8,2") == ["1", "2", "3", "8"]
-    assert grid.parse_spec("twist", "-0.05:-0.03:0.01") == ["-0.05", "-0.04", "-0.03"]
-    assert grid.parse_spec("layers", "10:20:4") == ["10", "14", "18"]
-
-
-@pytest.mark.parametrize("spec, says", [
-    ("2,,4", "empty item"), ("", "empty value"), ("12:1", "grid would be empty"),
-    ("1:3:0", "positive step"), ("1:3:-1", "positive step"), ("1:2:3:4", "is not a list"),
-    ("a:3", "is not a list"), ("1:nan", "is not a list"), ("0:1:0.000001", "at most"),
-])
-def test_malformed_specs_name_the_parameter(spec, says):
-    with pytest.raises(P.ParamError) as e:
-        grid.parse_spec("linker", spec)
-    assert e.value.param == "linker" and says in str(e.value) and "\n" not in str(e.value)
-
-
-def test_every_grid_point_goes_through_make_params():
-    pts = grid.build({"linker": ["1", "12"], "globule_diameter": ["30", "45"]}, ["0", "1"])
-    assert len(pts) == 8
-    assert [p.point["seed"] for p in pts] == [0] * 4 + [1] * 4  # seed-major: even coverage
-    assert {(p.params["linker"], p.params["globule_diameter"]) for p in pts} == {
-        (1, 30.0), (1, 45.0), (12, 30.0), (12, 45.0)}
-    assert pts[0].params == P.make_params(linker=1, globule_diameter=30, seed=0).to_dict()
-    # "6" and "6.0" are one point
-    assert len(grid.build({"linker": ["6", "6.0"]}, ["0"])) == 1
-    with pytest.raises(P.ParamError, match=r"^linker: must be an integer from 1 to 200"):
-        grid.build({"linker": ["0", "5"]}, ["0"])
-    with pytest.raises(P.ParamError, match=r"^score_layers: .* for 2 layers"):
-        grid.build({"layers": ["2", "8"], "score_layers": ["1"]}, ["0"])
-
-
-def test_seeds():
-    assert grid.seed_values(None, None) == ["0"]
-    assert grid.seed_values(3, None) == ["0", "1", "2"]
-    assert grid.seed_values(None, "5:7,11") == ["5", "6", "7", "11"]
-    with pytest.raises(P.ParamError, match="grid would be empty"):
-        grid.seed_values(0, None)
-    with pytest.raises(P.ParamError, match="not both"):
-        grid.seed_values(2, "1,2")
 
 
 # ---- statistics, summary and gate -----------------------------------------------------------
-@pytest.mark.parametrize("k, n, low, high", [
-    # Newcombe RG (1998) Stat Med 17:857-872, Table I, method 3 (Wilson score, no continuity
-    # correction); the same values as statsmodels' proportion_confint(k, n, method="wilson").
-    (81, 263, 0.2553, 0.3662), (15, 148, 0.0624, 0.1605), (0, 20, 0.0, 0.1611),
-    (1, 29, 0.0061, 0.1718),
-])
-def test_wilson_interval_matches_published_values(k, n, low, high):
-    lo, hi = wilson(k, n)
-    assert lo == pytest.approx(low, abs=5e-5) and hi == pytest.approx(high, abs=5e-5)
-
-
-def test_wilson_interval_edges():
-    assert wilson(0, 3)[0] == 0.0 and wilson(3, 3)[1] == 1.0
-    lo, hi = wilson(3, 3)
-    assert lo == pytest.approx(3 / (3 + 1.959963984540054 ** 2))  # k = n: n / (n + z²)
-    with pytest.raises(ValueError):
-        wilson(1, 0)
 
 
 def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, status="ok"):
@@ -102,77 +40,6 @@ def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, 
     return {"params": p, "seed": seed, "status": "ok", "accommodated": accommodated,
             "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames,
             "envelope": {"outer_diameter": 100.0 + 10 * seed}}
-
-
-SYNTHETIC = [
-    _record(2, 30, 0, False, "intersection", 1.5), _record(2, 30, 1, False, "successful", 0.9),
-    _record(4, 30, 0, True, "successful", 0.01), _record(4, 30, 1, False, "intersection", 0.02),
-    _record(6, 30, 0, True, "successful", 0.0, 200), _record(6, 30, 1, True, "successful", 0.02),
-    _record(6, 30, 2, None, None, None, status="failed"),
-    _record(6, 45, 0, False, "intersection", 0.03), _record(6, 45, 1, True, "successful", 0.01),
-]
-
-
-def test_summary_pools_seeds_per_grid_point():
-    rows = summary.rows(SYNTHETIC)
-    assert [(r.values["globule_diameter"], r.values["linker"]) for r in rows] == [
-        (30.0, 2), (30.0, 4), (30.0, 6), (45.0, 6)]
-    r2, r4, r6, r6b = rows
-    assert (r2.n, r2.accommodated, r2.clash_fraction, r2.median_stretch) == (2, 0, 0.5, 1.2)
-    assert (r4.fraction, r4.interval) == (0.5, wilson(1, 2))
-    assert (r6.n, r6.failed, r6.fraction, r6.median_frames) == (2, 1, 1.0, 225)
-    assert summary.varied(rows) == ["linker", "globule_diameter"]
-    csv = summary.csv_text(rows).splitlines()
-    assert csv[0].startswith("linker,globule_diameter,n,failed,accommodated,accommodated_fraction,"
-                             "wilson95_low,wilson95_high,clash_fraction,median_stretch")
-    assert csv[3] == (f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225,"
-                      f"105.0,100.0,110.0")  # the envelope's outer diameter: median, min, max
-    assert r6.metric("outer_diameter") == 105.0
-    minimal = {m.group["globule_diameter"]: m for m in summary.minimal_linkers(rows, 0.95)}
-    assert minimal[30.0].row is r6 and minimal[45.0].row is None and minimal[45.0].best is r6b
-    text = summary.table(rows, 0.95)
-    assert "globule_diameter 30: linker 6 (2/2" in text
-    assert "globule_diameter 45: none in this sweep (best: linker 6, 1/2" in text
-    assert "fraction of seeds whose relaxation found a clash-free layout" in text
-
-
-def test_gate_requirements():
-    rows = summary.rows(SYNTHETIC)
-    ok = gate.parse("linker=6,globule_diameter=30:accommodated>=0.9")
-    assert ok.selector == {"linker": 6.0, "globule_diameter": 30.0}
-    bad = gate.parse("globule-diameter=45 : accommodated >= 0.9")
-    everywhere = gate.parse("failed==0")
-    met, failed = gate.check([ok, bad, everywhere], rows)
-    assert met == ["requirement met: linker=6,globule_diameter=30:accommodated>=0.9: "
-                   "accommodated 1 (2/2)"]
-    assert failed[0] == ("requirement failed: globule-diameter=45 : accommodated >= 0.9: "
-                         "globule_diameter=45: accommodated 0.5 (1/2), needs >= 0.9")
-    assert failed[1:] == ["requirement failed: failed==0: linker=6, globule_diameter=30: "
-                          "failed 1, needs == 0"]
-    assert gate.check([gate.parse("linker=8:n>=1")], rows)[1] == [
-        "requirement failed: linker=8:n>=1: no grid point has linker=8"]
-    for text, says in [("linker=6", "METRIC OP NUMBER"), ("x>=1", "unknown metric"),
-                       ("seed=1:n>=1", "pooled"), ("linker=a:n>=1", "not a number"),
-                       ("colour=1:n>=1", "not a parameter"), ("n>=lots", "not a number")]:
-        with pytest.raises(P.ParamError, match=says):
-            gate.parse(text)
-
-
-def test_phase_plot_layouts(tmp_path):
-    from fibrilfit.sweep import plot
-    rows = summary.rows(SYNTHETIC)
-    assert plot.layout(rows) == ("lines", "linker", ["globule_diameter"])
-    two = summary.rows([
-        {**r, "params": {**r["params"], "twist": tw}} for r in SYNTHETIC[:6]
-        for tw in (0.02, 0.04)])
-    assert plot.layout(two) == ("heatmap", "linker", ["twist"])
-    assert plot.layout(summary.rows([
-        {**r, "params": {**r["params"], "twist": 0.01 * r["seed"]}} for r in SYNTHETIC
-        if r["params"]["linker"] == 6])) == ("lines", "twist", ["globule_diameter"])
-    for name, rs in (("lines.png", rows), ("heatmap.png", two)):
-        plot.write(tmp_path / name, rs, 0.95)
-        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["heatmap.png", "lines.png"]
 
 
 # ---- real sweeps ---------------------------------------------------------------------------
@@ -253,17 +120,6 @@ def test_one_sweep_at_a_time_per_folder(done_when, tmp_path):
     assert cp.returncode == 2 and "another sweep is writing to" in cp.stderr
 
 
-def test_workers_that_cannot_start_stop_the_sweep_with_one_line():
-    from fibrilfit.batch.executors import ProcessExecutor, SweepError
-    ex = ProcessExecutor(2)
-    ex.command = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
-                                        "sys.exit(3)"]
-    with ex, pytest.raises(SweepError, match="cannot start: worker pid .* exited with code 3: "
-                                             "no bpy here"):
-        ex.submit({"id": 0, "attempt": 1, "params": {}, "force": False})
-        ex.wait()
-
-
 def test_gate_exit_codes(done_when, tmp_path):
     out = tmp_path / "s"
     shutil.copytree(done_when[0], out)
@@ -320,35 +176,6 @@ def _worker_pids(parent: int) -> list[int]:
     return [c.pid for c in children if any("worker.py" in a for a in c.cmdline())]
 
 
-def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path):
-    out = tmp_path / "s"
-    # six runs on two workers: after the first result both are busy (a worker is idle only for
-    # the microseconds between sending a reply and receiving its next job)
-    proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "sweep", "--linker",
-                             "2,6", "--layers", "8", "--seeds", "3", "--workers", "2", "--out",
-                             str(out), "--quiet"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, cwd=ROOT)
-    try:
-        deadline = time.monotonic() + 120
-        while time.monotonic() < deadline and not (
-                (out / "results.jsonl").exists() and (out / "results.jsonl").read_text()):
-            time.sleep(0.05)
-        victim = _worker_pids(proc.pid)[0]
-        os.kill(victim, signal.SIGKILL)
-        stdout, stderr = proc.communicate(timeout=300)
-    finally:
-        proc.kill()
-    assert proc.returncode == 0, stderr
-    records = lines(out / "results.jsonl")
-    assert len(records) == 6 and len(set(keys(records))) == 6
-    assert all(r["status"] == "ok" for r in records)
-    hit = [r for r in records if r.get("errors")]
-    assert len(hit) == 1, "the killed worker was between runs; nothing to recover"
-    assert hit[0]["errors"] == [f"worker pid {victim} killed by SIGKILL"]
-    assert hit[0]["attempts"] == 2 and hit[0]["worker"]["pid"] != victim
-    assert "6 with a verdict, 0 failed" in stdout
-
-
 def test_a_killed_sweep_takes_its_workers_along_and_resumes(tmp_path):
     import psutil
     out = tmp_path / "s"
@@ -394,58 +221,6 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert record["status"] == "ok"
 
 
-def test_register_and_run_leave_the_sweep_dependencies_alone():
-    code = "\n".join([
-        "import sys, bpy", "import fibrilfit as ff",
-        "ff.register()", "ff.unregister()",
-        "assert ff.cli.main(['run', '--layers', '2', '--frames', '5', '--quiet']) == 0",
-        "ff.cli.build_parser()",
-        "print('HEAVY', [m for m in ('tqdm', 'matplotlib', 'distributed', 'dask') "
-        "if m in sys.modules])"])
-    cp = subprocess.run([sys.executable, "-c", code, str(ROOT)], capture_output=True, text=True,
-                        timeout=300, cwd=ROOT)
-    assert cp.returncode == 0, cp.stderr
-    assert "HEAVY []" in cp.stdout
-
-
-# ---- geometry axes (issue #14) --------------------------------------------------------------
-U_CORE = [[-20, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11], [-20, 11]]
-
-
-def test_geometry_parameters_are_sweep_axes(tmp_path):
-    (tmp_path / "u.json").write_text(json.dumps(U_CORE))
-    from fibrilfit import cli
-    args = cli.build_parser().parse_args([
-        "sweep", "--protofilaments", "1,2", "--pf-rotation", "auto,3.1294", "--pf-rise", "0:2:2",
-        "--core-outline", f"box,{tmp_path / 'u.json'}", "--anchor", "0,21.75", "-12.75",
-        "--out", str(tmp_path / "s")])
-    specs = grid.specs_from(args)
-    assert specs["protofilaments"] == ["1", "2"] and specs["pf_rise"] == ["0", "2"]
-    assert specs["anchor"] == ["0 -12.75", "21.75 -12.75"]
-    points = grid.build(specs, ["0"])
-    # every point is validated before any run: an anchor inside the U's base is refused
-    with pytest.raises(P.ParamError, match="^anchor: .*inside the core"):
-        grid.build({**specs, "anchor": ["0 -5"]}, ["0"])
-    seen = {(p.params["protofilaments"], p.params["pf_rotation"], p.params["pf_rise"],
-             p.params["core_outline"] is None, tuple(p.params["anchor"])) for p in points}
-    assert len(seen) == len(points) == 32
-    assert all(p.point["core_outline"] in (None, [[float(x), float(y)] for x, y in U_CORE])
-               for p in points)
-
-
-def test_summary_names_outlines_and_derived_values():
-    rows = summary.rows([
-        {"params": P.make_params(linker=6).to_dict(), "accommodated": True, "verdict": "successful",
-         "max_bond_stretch": 0.0, "frames_simulated": 100},
-        {"params": P.make_params(linker=6, core_outline=U_CORE, anchor=(0, -1)).to_dict(),
-         "accommodated": False, "verdict": "intersection", "max_bond_stretch": 0.0,
-         "frames_simulated": 100}])
-    assert [r.values["core_outline"] is None for r in rows] == [True, False]  # None sorts first
-    text = summary.table(rows, 0.95)
-    assert "8-point outline" in text and "auto" in text
-    assert summary.csv_text(rows).splitlines()[0].startswith("linker,globule_diameter,core_outline,")
-
-
 def test_a_sweep_over_protofilaments_runs(tmp_path):
     (tmp_path / "box.json").write_text(json.dumps([[-20, -11], [20, -11], [20, 11], [-20, 11]]))
     out = tmp_path / "s"
@@ -476,3 +251,46 @@ def test_results_from_before_a_parameter_existed_resume_and_summarise(ff):
     (row,) = summary.rows(records)
     assert (row.n, row.accommodated) == (2, 1)
     assert summary.csv_text([row]).splitlines()[1].startswith("6,30,2,0,1,0.5000,")
+
+
+def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path):
+    out = tmp_path / "s"
+    # six runs on two workers: after the first result both are busy (a worker is idle only for
+    # the microseconds between sending a reply and receiving its next job)
+    proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "sweep", "--linker",
+                             "2,6", "--layers", "8", "--seeds", "3", "--workers", "2", "--out",
+                             str(out), "--quiet"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, cwd=ROOT)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and not (
+                (out / "results.jsonl").exists() and (out / "results.jsonl").read_text()):
+            time.sleep(0.05)
+        victim = _worker_pids(proc.pid)[0]
+        os.kill(victim, signal.SIGKILL)
+        stdout, stderr = proc.communicate(timeout=300)
+    finally:
+        proc.kill()
+    assert proc.returncode == 0, stderr
+    records = lines(out / "results.jsonl")
+    assert len(records) == 6 and len(set(keys(records))) == 6
+    assert all(r["status"] == "ok" for r in records)
+    hit = [r for r in records if r.get("errors")]
+    assert len(hit) == 1, "the killed worker was between runs; nothing to recover"
+    assert hit[0]["errors"] == [f"worker pid {victim} killed by SIGKILL"]
+    assert hit[0]["attempts"] == 2 and hit[0]["worker"]["pid"] != victim
+    assert "6 with a verdict, 0 failed" in stdout
+
+
+def test_register_and_run_leave_the_sweep_dependencies_alone():
+    code = "\n".join([
+        "import sys, bpy", "import fibrilfit as ff",
+        "ff.register()", "ff.unregister()",
+        "assert ff.cli.main(['run', '--layers', '2', '--frames', '5', '--quiet']) == 0",
+        "ff.cli.build_parser()",
+        "print('HEAVY', [m for m in ('tqdm', 'matplotlib', 'distributed', 'dask') "
+        "if m in sys.modules])"])
+    cp = subprocess.run([sys.executable, "-c", code, str(ROOT)], capture_output=True, text=True,
+                        timeout=300, cwd=ROOT)
+    assert cp.returncode == 0, cp.stderr
+    assert "HEAVY []" in cp.stdout

@@ -1,0 +1,90 @@
+"""Property-based fuzzing of the parameter validation: any input either builds a valid model or
+is refused with ParamError, never anything else."""
+import dataclasses
+import math
+from hypothesis import event, given, settings, strategies as st
+from fibrilfit.model import params as P
+
+FIELDS = {f.name: f.metadata for f in dataclasses.fields(P.Params)}
+
+junk = st.one_of(
+    st.none(), st.booleans(), st.text(max_size=6), st.binary(max_size=4),
+    st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**12, 10**12),
+    st.lists(st.floats(-1e3, 1e3), max_size=4), st.dictionaries(st.text(max_size=2), st.integers()),
+)
+
+def near_range(meta):
+    lo, hi = meta["min"], meta["max"]
+    if "choices" in meta:
+        return st.sampled_from([*meta["choices"], "", "Tutorial ", "other"])
+    if meta["kind"] is bool:
+        return st.booleans()
+    if meta["kind"] is int:
+        return st.integers(int(lo) - 3, min(int(hi) + 3, 10**7))
+    return st.floats(lo - 1.0, hi + 1.0, allow_nan=False) | st.sampled_from([lo, hi, 0.0, -0.0])
+
+SMALLER = {"layers": (1, 3000), "score_layers": (0, 5)}  # keeps combination limits reachable
+
+def in_range(meta, name=None):
+    if name in SMALLER:
+        return st.integers(*SMALLER[name])
+    if "choices" in meta:
+        return st.sampled_from(meta["choices"])
+    if meta["kind"] is bool:
+        return st.booleans()
+    if meta["kind"] is int:
+        return st.integers(int(meta["min"]), min(int(meta["max"]), 10**7))
+    return st.floats(meta["min"], meta["max"])
+
+def polygons(coord):
+    """Any list of points: valid outlines, too few points, crossings, repeats."""
+    return st.lists(st.tuples(coord, coord), min_size=0, max_size=8)
+
+def value_for(name):
+    meta = FIELDS[name]
+    good, edge = in_range(meta, name), near_range(meta)
+    if name == "slab":
+        good, edge = st.tuples(good, good, good), st.tuples(edge, edge, edge)
+    elif meta["size"]:
+        good, edge = st.tuples(*[good] * meta["size"]), st.tuples(*[edge] * meta["size"])
+    elif meta["kind"] == "points":
+        good, edge = polygons(st.floats(-60, 60)), polygons(near_range({**meta, "kind": float}))
+    if meta["derived"]:
+        good = st.one_of(good, st.none(), st.just("auto"))
+    # mostly valid values, so that accepted sets are common too, with every kind of bad one
+    return st.one_of(*[good] * 24, edge, edge.map(str), junk)
+
+known_sets = st.fixed_dictionaries({}, optional={name: value_for(name) for name in FIELDS})
+
+unknown_sets = st.dictionaries(st.text(min_size=1, max_size=8), junk, min_size=1, max_size=2)
+
+param_sets = st.one_of(known_sets, known_sets, known_sets,
+                       st.builds(lambda a, b: {**a, **b}, known_sets, unknown_sets))
+
+
+@settings(max_examples=1500, deadline=None)
+@given(param_sets)
+def test_validation_accepts_or_refuses_with_paramerror_only(values):
+    try:
+        p = P.make_params(**values)
+    except P.ParamError as exc:
+        assert exc.param and "\n" not in str(exc)
+        event("refused")
+        return
+    event("accepted")
+    for f in dataclasses.fields(P.Params):
+        v = getattr(p, f.name)
+        if v is None:
+            assert f.metadata["derived"]
+            continue
+        if "choices" in f.metadata:
+            assert v in f.metadata["choices"]
+            continue
+        if f.metadata["kind"] == "points":
+            v = [x for xy in v for x in xy]
+            assert len(v) >= 6
+        for x in (v if isinstance(v, (tuple, list)) else (v,)):
+            assert isinstance(x, (int, float)) and math.isfinite(x)
+            if f.metadata["kind"] is not bool:
+                assert f.metadata["min"] <= x <= f.metadata["max"]
+    assert P.validate(p) == p

@@ -1,0 +1,118 @@
+"""Issue #13: the inflate protocol, restarts and the minimal-linker map."""
+import subprocess
+import sys
+import pytest
+from fibrilfit.model import params as P
+from fibrilfit.search import minimal, restarts
+from helpers import ROOT
+
+PY = sys.executable
+
+
+def test_protocol_is_a_choice_named_in_its_error():
+    assert P.make_params(protocol="Inflate ").protocol == "inflate"
+    with pytest.raises(P.ParamError, match="protocol: must be one of tutorial, inflate"):
+        P.make_params(protocol="anneal")
+    p = P.make_params(protocol="inflate", grow_frames=10, hold_frames=5, regrow_cycles=2)
+    assert p.bake_frames() == 3 * 16
+
+
+def test_sweeps_take_the_protocol_as_an_axis():
+    from fibrilfit.sweep import grid
+    points = grid.build({"protocol": grid.parse_spec("protocol", "tutorial,inflate")}, ["0"])
+    assert [pt.point["protocol"] for pt in points] == ["tutorial", "inflate"]
+    with pytest.raises(P.ParamError, match="protocol"):
+        grid.build({"protocol": grid.parse_spec("protocol", "tutorial,grow")}, ["0"])
+
+
+def test_cli_refuses_a_bad_protocol_in_one_line(tmp_path):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "run", "--protocol", "anneal"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert proc.stderr.strip().count("\n") == 0 and "--protocol" in proc.stderr
+
+def _record(seed, fits, pairs=0, stretch=0.0):
+    return {"params": {"seed": seed}, "status": "ok", "accommodated": fits, "verdict":
+            "successful" if not pairs else "intersection", "clashing_pairs": [[0, 1, 1.0]] * pairs,
+            "max_overlap": float(pairs), "max_bond_stretch": stretch, "frames_simulated": 100}
+
+
+def test_restarts_summary_has_p_fit_its_wilson_interval_and_the_best_seed():
+    recs = [_record(0, False, 2, 0.1), _record(1, True), _record(2, False, 1, 0.02),
+            {"params": {"seed": 3}, "status": "failed", "error": "boom"}]
+    s = restarts.summarise(recs)
+    assert (s["restarts"], s["failed"], s["accommodated"], s["best_seed"]) == (3, 1, 1, 1)
+    assert s["p_fit"] == pytest.approx(1 / 3, abs=1e-4)
+    lo, hi = s["p_fit_interval"]
+    assert 0 < lo < 1 / 3 < hi < 1
+    none = restarts.summarise([_record(0, False, 1), _record(1, False, 3)])
+    assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
+
+class FakeExecutor:
+    """The executor interface (submit, pending, wait) answering from a table, no Blender."""
+
+    def __init__(self, fits):
+        self.fits, self.queue, self.ran = fits, [], []
+
+    def submit(self, job):
+        self.queue.append(job)
+
+    def pending(self):
+        return len(self.queue)
+
+    def wait(self):
+        job = self.queue.pop(0)
+        seed = job["params"]["seed"]
+        self.ran.append(seed)
+        return job, {"id": job["id"], "ok": True, "result": {
+            **_record(seed, seed in self.fits), "params": job["params"]}}
+
+
+@pytest.mark.parametrize("stop, window, ran", [(False, 1, [0, 1, 2, 3, 4]), (True, 1, [0, 1, 2]),
+                                               (True, 2, [0, 1, 2, 3])])
+def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
+    base = P.make_params(linker=5).to_dict()
+    ex = FakeExecutor(fits={2, 4})
+    recs = restarts.run(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop, window=window)
+    assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
+    assert restarts.summarise(recs)["best_seed"] == 2
+
+
+@pytest.mark.parametrize("start", [1, 3, 5, 9])
+def test_walk_finds_the_minimum_with_a_miss_just_below_it(start):
+    w = minimal.Walk(30.0, start, max_linker=20)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 2 if L >= 5 else 0, 5)
+    row = w.row()
+    assert row["minimal_linker"] == 5 and row["linker_below"] == 4
+    assert row["p_fit"] == 0.4 and row["p_fit_below"] == 0.0 and row["p_fit_below_interval"][1] < 0.5
+    assert set(w.tried) == set(range(min(start, 4), max(start, 5) + 1))
+
+
+def test_walk_gives_up_at_the_cap_and_at_one_needs_no_miss():
+    w = minimal.Walk(60.0, 3, max_linker=6)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 0, 5)
+    assert w.minimal is None and max(w.tried) == 6 and w.row()["linker_below"] == 6
+    w = minimal.Walk(5.0, 3, max_linker=6)
+    while (L := w.next_linker()) is not None:
+        w.record(L, 5, 5)
+    assert w.minimal == 1 and w.row()["p_fit_below"] is None
+
+
+def test_minimal_linker_passes_model_options_through(tmp_path):
+    """--periodic reaches the model (inflate in a cell is allowed; a too-short cell is refused
+    in one line), nothing written."""
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--periodic", "3",
+                           "--out", str(tmp_path / "x")], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "periodic" in proc.stderr and "at least" in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and not (tmp_path / "x").exists()
+
+
+def test_minimal_linker_refuses_a_given_linker(tmp_path):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), "minimal-linker", "--linker", "5",
+                           "--out", str(tmp_path / "x")], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "--linker" in proc.stderr
+    assert not (tmp_path / "x").exists()

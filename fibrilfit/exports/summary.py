@@ -2,8 +2,9 @@
 from __future__ import annotations
 
 
-def _pct(x: float) -> str:
-    text = f"{100 * x:.1f} %"
+def percent(fraction: float) -> str:
+    """A fraction as a percentage with one decimal, as every summary, panel and report shows it."""
+    text = f"{100 * fraction:.1f} %"
     return "0.0 %" if text == "-0.0 %" else text  # a bond compressed by 0.001 % is not "-0.0"
 
 
@@ -46,15 +47,15 @@ def summary(r: dict, quiet: bool = False) -> str:
             lines.append(f"  {n} of them only graze (overlap at most {band:.2f} Å, the globule "
                          f"mesh's resolution)")
     lines.append(
-        f"linker: worst bond stretch {_pct(r['max_bond_stretch'])} at the end "
+        f"linker: worst bond stretch {percent(r['max_bond_stretch'])} at the end "
         f"({'intact' if r['linker_intact'] else 'STRETCHED'}, tolerance "
-        f"{_pct(p['stretch_tolerance'])})")
+        f"{percent(p['stretch_tolerance'])})")
     if r.get("max_bond_stretch_bake") is not None:
         after = r.get("max_bond_stretch_after_push")
         lines.append(
-            f"  during the bake: {_pct(r['max_bond_stretch_bake'])} at worst (frame "
+            f"  during the bake: {percent(r['max_bond_stretch_bake'])} at worst (frame "
             f"{r['max_bond_stretch_bake_frame']}, the push-apart of the overlapping start); "
-            + (f"{_pct(after)} at worst once back within tolerance (frame "
+            + (f"{percent(after)} at worst once back within tolerance (frame "
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")

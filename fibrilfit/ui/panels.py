@@ -9,7 +9,8 @@ from ..model import params as P
 from . import properties
 from ..builders import model_stage, structure_trace
 from ..builders.scene import find_root
-from .operators.common import percent, reached
+from ..exports.summary import percent
+from .operators.common import reached
 
 STATUS = {
     "": ("No model yet: run the steps below in order, or Run all", "INFO"),

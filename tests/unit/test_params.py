@@ -70,3 +70,11 @@ def test_strings_from_the_command_line_are_accepted():
 def test_validate_catches_params_made_directly():
     with pytest.raises(P.ParamError):
         P.validate(P.Params(linker=0))
+
+
+def test_one_percent_format_for_every_display():
+    from fibrilfit.exports.summary import percent
+    assert percent(0.05) == "5.0 %"
+    assert percent(-0.00001) == "0.0 %"  # a tiny compression is not "-0.0 %"
+    assert percent(-0.0123) == "-1.2 %"
+    assert percent(7.971) == "797.1 %"

@@ -15,6 +15,7 @@ from ...builders.physics import SceneConflict
 from ...exports.pdb import PdbError
 from ...exports.render import RenderError
 from ...exports.files import OutputError
+from ...exports.summary import percent
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
 
@@ -115,10 +116,6 @@ def record_check(context, model, result: dict) -> None:
     merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
     model.root[RESULT] = json.dumps(merged)
     set_stage(model, "checked")
-
-
-def percent(fraction: float) -> str:
-    return f"{round(100 * fraction, 1) or 0.0:.1f} %"  # "or": no "-0.0 %" for a tiny compression
 
 
 def verdict_line(result: dict) -> str:

@@ -8,6 +8,7 @@ import bpy
 from ... import pipeline
 from .. import properties
 from . import common
+from ...exports.summary import percent
 
 # Events a running bake lets through, so the view can still be turned and zoomed.
 NAVIGATION = {"MIDDLEMOUSE", "WHEELUPMOUSE", "WHEELDOWNMOUSE", "TRACKPADPAN", "TRACKPADZOOM",
@@ -136,7 +137,7 @@ class FIBRILFIT_OT_bake(ModalBake, bpy.types.Operator):
         # The worst over the whole bake is the push-apart of the overlapping start (hundreds of
         # per cent even when the linkers fit), so report what came after it.
         stretch = (f"after the start's push-apart (to frame {r['push_apart_end_frame']}) the worst "
-                   f"bond stretch was {common.percent(after)}" if after is not None else
+                   f"bond stretch was {percent(after)}" if after is not None else
                    "the linkers never came back within the stretch tolerance")
         self.report({"INFO"}, f"Baked {r['frames_simulated']} frames"
                               + (" (settled)" if r.get("settled_at") else "") + f"; {stretch}")

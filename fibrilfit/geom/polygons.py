@@ -109,8 +109,9 @@ def clean_outline(points) -> np.ndarray:
     return p
 
 
-def inside(points, xy) -> np.ndarray:
-    """Whether each point of `xy` (m, 2) lies strictly inside the polygon (even-odd rule)."""
+def even_odd(points, xy) -> np.ndarray:
+    """Whether each point of `xy` (m, 2) is inside the polygon by the even-odd rule (a point on
+    the boundary may fall either way: `inside` excludes it)."""
     poly = np.asarray(points, dtype=float)
     q = np.atleast_2d(np.asarray(xy, dtype=float))
     a, b = poly, np.roll(poly, -1, axis=0)
@@ -118,22 +119,42 @@ def inside(points, xy) -> np.ndarray:
     straddles = (a[:, 1] > qy) != (b[:, 1] > qy)
     dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
     x_cross = a[:, 0] + (qy - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
-    result = (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
-    return result & (edge_distance(poly, q)[0] > 1e-9)
+    return (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
+
+
+def inside(points, xy) -> np.ndarray:
+    """Whether each point of `xy` (m, 2) lies strictly inside the polygon (even-odd rule)."""
+    poly = np.asarray(points, dtype=float)
+    q = np.atleast_2d(np.asarray(xy, dtype=float))
+    return even_odd(poly, q) & (edge_distance(poly, q)[0] > 1e-9)
+
+
+def _nearest_points(poly: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each point of q (m, 2), the nearest point on every edge (m, n, 2) and its distance."""
+    a, b = poly, np.roll(poly, -1, axis=0)
+    ab = b - a
+    t = ((q[:, None, :] - a[None]) * ab[None]).sum(-1) / (ab * ab).sum(-1)[None]
+    t = np.clip(t, 0.0, 1.0)
+    nearest = a[None] + t[..., None] * ab[None]
+    return nearest, np.linalg.norm(q[:, None, :] - nearest, axis=-1)
 
 
 def edge_distance(points, xy) -> tuple[np.ndarray, np.ndarray]:
     """Distance from each point of `xy` (m, 2) to the polygon's boundary, and the nearest edge."""
     poly = np.asarray(points, dtype=float)
     q = np.atleast_2d(np.asarray(xy, dtype=float))
-    a, b = poly, np.roll(poly, -1, axis=0)
-    ab = b - a
-    t = ((q[:, None, :] - a[None]) * ab[None]).sum(-1) / (ab * ab).sum(-1)[None]
-    t = np.clip(t, 0.0, 1.0)
-    nearest = a[None] + t[..., None] * ab[None]
-    dist = np.linalg.norm(q[:, None, :] - nearest, axis=-1)
+    _, dist = _nearest_points(poly, q)
     edge = dist.argmin(axis=1)
     return dist[np.arange(len(q)), edge], edge
+
+
+def nearest_on_boundary(points, xy) -> tuple[np.ndarray, np.ndarray]:
+    """The point of the polygon's boundary nearest to one point `xy`, and the outward unit
+    normal of the edge it lies on."""
+    poly = np.asarray(points, dtype=float)
+    nearest, dist = _nearest_points(poly, np.atleast_2d(np.asarray(xy, dtype=float)))
+    edge = int(dist[0].argmin())
+    return nearest[0, edge], outward_normal(poly, edge)
 
 
 def outward_normal(points, edge: int) -> np.ndarray:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import outline as O
+from ..geom import polygons
 from .domain import DomainSize
 from .fibril import FibrilGeometry
 
@@ -21,14 +21,14 @@ def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
     anchor touches the slab). The CA itself lies inside the outline (it is core)."""
     poly = np.asarray(outline, float)
     ca = np.asarray(ca, float)
-    point, normal = O.nearest_on_boundary(poly, ca)
+    point, normal = polygons.nearest_on_boundary(poly, ca)
     out = point - ca
     direction = out / np.linalg.norm(out) if np.linalg.norm(out) > 1e-6 else normal
     if direction @ normal < 0:  # the CA outside already (not core): out along the normal
         direction = normal
     xy = point + residue_radius * direction
     for _ in range(100):  # a concave corner: step out until clear of the outline
-        if not O.contains(poly, xy)[0]:
+        if not polygons.even_odd(poly, xy)[0]:
             break
         xy = xy + 0.25 * direction
     return [round(float(xy[0]), 3), round(float(xy[1]), 3)]

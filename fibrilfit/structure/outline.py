@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geom import polygons
+
 STEP = 0.5  # Å per raster cell
 CLOSE = 2.5  # Å: crevices narrower than about twice this are closed
 SIMPLIFY = 0.5  # Å: largest distance of a dropped outline point from the polygon
@@ -127,35 +129,5 @@ def polygon(xy: np.ndarray, radii: np.ndarray, *, step: float = STEP, close: flo
     stray = 1.0 - best / len(xy) if len(xy) else 0.0
     cells = np.array(_trace(piece), float)
     pts = _simplify(cells * step + lo, tol)
-    x, y = pts[:, 0], pts[:, 1]
-    if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) < 0:
-        pts = pts[::-1]
-    return pts, stray
+    return polygons.counter_clockwise(pts), stray
 
-
-def area(points: np.ndarray) -> float:
-    x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-
-
-def contains(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    """Whether each point (m, 2) lies inside the polygon (even-odd rule)."""
-    a, b = points, np.roll(points, -1, axis=0)
-    q = np.atleast_2d(xy)
-    qx, qy = q[:, 0:1], q[:, 1:2]
-    straddles = (a[:, 1] > qy) != (b[:, 1] > qy)
-    dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
-    x_cross = a[:, 0] + (qy - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
-    return (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
-
-
-def nearest_on_boundary(points: np.ndarray, xy) -> tuple:
-    """The point of the polygon's boundary nearest to xy, and the outward unit normal there
-    (of the nearest edge; the polygon counter-clockwise)."""
-    a, b = points, np.roll(points, -1, axis=0)
-    ab = b - a
-    t = np.clip(((np.asarray(xy) - a) * ab).sum(1) / (ab * ab).sum(1), 0.0, 1.0)
-    near = a + t[:, None] * ab
-    k = int(np.argmin(np.linalg.norm(near - xy, axis=1)))
-    d = ab[k] / np.linalg.norm(ab[k])
-    return near[k], np.array([d[1], -d[0]])

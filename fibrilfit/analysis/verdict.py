@@ -78,7 +78,7 @@ def check_model(model) -> dict:
     p = model.params
     lo, hi = scored_range(p)
     c_lo, c_hi = scored_chains(p)
-    layer_of, pf_of = P.chain_layers(p)
+    layer_of, pf_of = helix.chain_layers(p)
     positions = chain_positions(model)
     globules = model.globules
     mesh = globules[0].data

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..model import params as P
+from ..model import helix, params as P
 from . import meshes
 from .start_layout import inflate_layout
 from .physics import check_world_free, ensure_world, keep_bake
@@ -28,7 +28,7 @@ PF_COLORS = {
     "residue": ((0.95, 0.75, 0.2, 1.0), (0.95, 0.5, 0.15, 1.0), (0.75, 0.9, 0.2, 1.0),
                 (0.95, 0.6, 0.6, 1.0), (0.8, 0.8, 0.5, 1.0), (0.3, 0.85, 0.7, 1.0)),
 }
-chain_layers = P.chain_layers  # (layer, protofilament) of every chain index
+chain_layers = helix.chain_layers  # (layer, protofilament) of every chain index
 
 
 def part_colour(role: str, pf: int = 0) -> tuple:
@@ -60,19 +60,13 @@ class Model:
         return [ob for c in self.chain for ob in c[1:]]
 
 
-def layer_transforms(p: P.Params, count: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Angle (rad) and height (Å) of each layer about/along the fibril axis Z."""
-    k = np.arange(p.layers if count is None else count, dtype=float)
-    return k * p.twist, k * p.rise
-
-
 def chain_positions(p: P.Params) -> np.ndarray:
     """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
 
     Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
-    (params.chain_transforms); for the tutorial's model the same floats as one chain per layer.
+    (helix.chain_transforms); for the tutorial's model the same floats as one chain per layer.
     """
-    angle, height = P.chain_transforms(p)
+    angle, height = helix.chain_transforms(p)
     layout = p.chain_layout
     turn = angle[:, None] + layout.angle[None]
     pos = np.empty((p.chains, layout.radius.size, 3))
@@ -230,8 +224,8 @@ class _LayerBuilder:
         self.bodies, self.bonds = rbw.collection, rbw.constraints
         tags = {c.get(TAG): c for c in model.root.children}
         self.parts = {role: tags[role + "s"] for role in PART_COLLECTIONS}
-        self.angle, self.height = layer_transforms(p)  # per layer: the cores
-        self.chain_angle = P.chain_transforms(p)[0]     # per chain: its members
+        self.angle, self.height = helix.layer_transforms(p)  # per layer: the cores
+        self.chain_angle = helix.chain_transforms(p)[0]     # per chain: its members
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
         self.pfs = p.protofilaments
         if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout

@@ -153,7 +153,7 @@ class ImageFollower:
         self.m = np.array([ob[CELL] for ob in obs], dtype=float)
         self.chain = np.array([ob[CHAIN] for ob in obs], dtype=np.intp)
         self.member = np.array([ob[INDEX] for ob in obs], dtype=np.intp)
-        angle = self.m * self.p.periodic * self.p.twist
+        angle, _ = helix.screw_turn(self.p, self.m)
         self.rotation = np.zeros((len(obs), 3), dtype=np.float32)
         self.rotation[:, 2] = angle
         self.count = len(obs)

@@ -1,7 +1,11 @@
-"""The fibril's screw symmetry, for the periodic cell: plain numpy, importable without bpy.
+"""The fibril's helix, the one place that places anything along it: plain numpy, no bpy.
 
-A cell of M layers repeats under S (turn M·twist about Z, raise M·rise); S^m is its m-th power.
-A point of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril.
+Layer k is turned k·twist about Z and raised k·rise; protofilament j of a layer adds j times the
+protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A periodic cell of M
+layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
+of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
+(`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`). `layer_frame_xy` is the
+inverse: a point's layer and its position in that layer's own frame.
 """
 from __future__ import annotations
 
@@ -10,9 +14,54 @@ import math
 import numpy as np
 
 
+def layer_turn(p, k):
+    """Turn (rad) and height (Å) of layer k (an int or a float array): k·twist, k·rise."""
+    return k * p.twist, k * p.rise
+
+
+def layer_transforms(p, count: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Angle (rad) and height (Å) of each layer about/along the fibril axis Z."""
+    return layer_turn(p, np.arange(p.layers if count is None else count, dtype=float))
+
+
+def chain_layers(p) -> tuple[np.ndarray, np.ndarray]:
+    """(layer, protofilament) of every chain: chain c = layer * K + protofilament."""
+    c = np.arange(p.chains)
+    return c // p.protofilaments, c % p.protofilaments
+
+
+def chain_transforms(p) -> tuple[np.ndarray, np.ndarray]:
+    """Turn (rad) and height (Å) of every chain: layer k's twist and rise, plus j times the
+    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0)."""
+    k, j = (a.astype(float) for a in chain_layers(p))
+    angle, height = layer_turn(p, k)
+    return angle + j * p.pf_angle, height + j * p.pf_rise
+
+
+def layer_frame_xy(p, positions) -> tuple[np.ndarray, np.ndarray]:
+    """The inverse of the layer transform, for positions (..., 3): the layer k whose slice
+    (k·rise ± rise/2) holds each height, and the position's x, y turned back by k·twist into that
+    layer's own frame (..., 2)."""
+    pos = np.asarray(positions, dtype=float)
+    k = np.floor(pos[..., 2] / p.rise + 0.5).astype(int)
+    back, _ = layer_turn(p, -k)
+    return k, turn_xy(pos[..., 0], pos[..., 1], back)
+
+
+def turn_xy(x, y, angle) -> np.ndarray:
+    """x, y turned by `angle` (rad; arrays broadcast) about Z, stacked (..., 2)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * x - s * y, s * x + c * y], -1)
+
+
+def screw_turn(p, m):
+    """Turn (rad) and height (Å) of S^m (m an int or a float array): m·M·twist, m·M·rise."""
+    return m * p.periodic * p.twist, m * p.periodic * p.rise
+
+
 def screw_matrix(p, m: int) -> np.ndarray:
     """S^m as a 4 × 4 matrix (row-major, column vectors): turn m·M·twist, raise m·M·rise."""
-    angle, height = m * p.periodic * p.twist, m * p.periodic * p.rise
+    angle, height = screw_turn(p, m)
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, height],
                      [0.0, 0.0, 0.0, 1.0]])
@@ -21,8 +70,7 @@ def screw_matrix(p, m: int) -> np.ndarray:
 def apply_points(p, m, points: np.ndarray) -> np.ndarray:
     """S^m of points (..., 3); `m` an int or an array broadcasting against points[..., 0]."""
     points = np.asarray(points, dtype=float)
-    m = np.asarray(m, dtype=float)
-    angle, height = m * p.periodic * p.twist, m * p.periodic * p.rise
+    angle, height = screw_turn(p, np.asarray(m, dtype=float))
     c, s = np.cos(angle), np.sin(angle)
     x, y, z = points[..., 0], points[..., 1], points[..., 2]
     return np.stack([c * x - s * y, s * x + c * y, z + height], axis=-1)

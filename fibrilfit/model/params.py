@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..geom import polygons
+from . import helix
 
 # Above this many objects a build is refused unless forced: past it a bake takes hours and
 # the scene needs gigabytes.
@@ -273,19 +274,6 @@ class ChainLayout:
     rule: str
 
 
-def chain_layers(p: "Params") -> tuple[np.ndarray, np.ndarray]:
-    """(layer, protofilament) of every chain: chain c = layer * K + protofilament."""
-    c = np.arange(p.chains)
-    return c // p.protofilaments, c % p.protofilaments
-
-
-def chain_transforms(p: "Params") -> tuple[np.ndarray, np.ndarray]:
-    """Turn (rad) and height (Å) of every chain: layer k's twist and rise, plus j times the
-    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0)."""
-    k, j = (a.astype(float) for a in chain_layers(p))
-    return k * p.twist + j * p.pf_angle, k * p.rise + j * p.pf_rise
-
-
 def _chain_layout(p: "Params") -> ChainLayout:
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
@@ -323,11 +311,11 @@ def _check_anchors_apart(p: "Params") -> None:
     k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * abs(p.pf_rise)
                                              + 2 * p.residue_radius) / p.rise)) + 1)
     q = dataclasses.replace(p, layers=k_max + 1)
-    angle, height = chain_transforms(q)
+    angle, height = helix.chain_transforms(q)
     lay = q.chain_layout
     xy = np.stack([np.cos(angle + lay.angle[0]), np.sin(angle + lay.angle[0])], 1) * lay.radius[0]
     pts = np.column_stack([xy, height])
-    _, pf = chain_layers(q)
+    _, pf = helix.chain_layers(q)
     d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
     clash = (d < 2 * p.residue_radius - 1e-9) & (pf[:, None] != pf[None, :])
     if clash.any():
@@ -455,8 +443,7 @@ def make_params(*, force: bool = False, **values) -> Params:
         else:
             clean[f.name] = _coerce(f.name, value, meta)
     if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
-        from .helix import auto_cell_layers
-        clean["periodic"] = auto_cell_layers(Params(**{**clean, "periodic": 1}))
+        clean["periodic"] = helix.auto_cell_layers(Params(**{**clean, "periodic": 1}))
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
@@ -503,7 +490,6 @@ def _check_combination(p: Params, force: bool) -> None:
 
 
 def _check_periodic(p: Params) -> None:
-    from .helix import min_cell_layers
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
                                          "ends, every layer is interior")
@@ -511,7 +497,7 @@ def _check_periodic(p: Params) -> None:
         raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
                                           f"frame's substeps split evenly between image updates "
                                           f"(got {p.image_updates})")
-    least = min_cell_layers(p)
+    least = helix.min_cell_layers(p)
     if p.periodic < least:
         raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
                                      f"{p.globule_diameter:g} Å globules at a rise of {p.rise:g} Å: "

@@ -12,7 +12,8 @@ from fibrilfit.model import params as P
 from fibrilfit.analysis import bvh_clashes
 from fibrilfit.analysis.clashes import candidate_pairs, facing_faces, mesh_arrays
 from fibrilfit.builders import meshes
-from fibrilfit.builders.model import chain_positions, layer_transforms
+from fibrilfit.builders.model import chain_positions
+from fibrilfit.model.helix import layer_transforms
 
 
 def reference(mesh, matrices):

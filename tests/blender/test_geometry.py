@@ -8,7 +8,7 @@ import pytest
 from helpers import ROOT, run_cli
 
 from fibrilfit.geom import polygons
-from fibrilfit.model import params as P
+from fibrilfit.model import helix, params as P
 from fibrilfit import pipeline
 from fibrilfit.builders import build_model, find_model
 from fibrilfit.builders.model import chain_positions, stored_params
@@ -59,7 +59,7 @@ def test_two_protofilaments_build_two_chains_per_layer_179_3_deg_and_2_34_A_apar
     model = build_model(p, scene)
     assert len(model.chain) == 10 and len(model.slabs) == 5 and len(model.constraints) == 10
     assert model.slabs[0].rigid_body.collision_shape == "BOX"
-    layer, pf = P.chain_layers(p)
+    layer, pf = helix.chain_layers(p)
     for c, members in enumerate(model.chain):
         assert len(members) == 4
         assert {ob["fibrilfit_layer"] for ob in members} == {layer[c]}
@@ -116,7 +116,7 @@ def test_k2_clashes_name_both_globules_by_layer_and_protofilament(scene):
     p = P.make_params(layers=3, linker=2, frames=1, **TWO_ONE)
     r = pipeline.run(p, scene)
     assert r["verdict"] == "intersection" and r["clashing_pairs"]
-    layer, pf = P.chain_layers(p)
+    layer, pf = helix.chain_layers(p)
     assert r["clashing_chains"] == [[[int(layer[i]), int(pf[i])], [int(layer[j]), int(pf[j])], d]
                                     for i, j, d in r["clashing_pairs"]]
     hit = {c for i, j, _ in r["clashing_pairs"] for c in (i, j)}
@@ -209,6 +209,6 @@ def test_k2_scores_every_protofilament_of_the_scored_layers(scene):
     assert [v is None for v in r["layer_clashes"]] == [True, False, False, True]
     assert [v is None for v in r["chain_clashes"]] == [True, True, False, False, False, False,
                                                        True, True]
-    layer, _ = P.chain_layers(p)
+    layer, _ = helix.chain_layers(p)
     assert all(1 <= layer[i] <= 2 or 1 <= layer[j] <= 2 for i, j, _ in r["clashing_pairs"])
     assert r["clashing_pairs"]  # frame 1: the overlapping start

@@ -1,7 +1,7 @@
 """Real fibril geometry (issue #14): protofilaments, a core outline, anchors anywhere."""
 import math
 import pytest
-from fibrilfit.model import params as P
+from fibrilfit.model import helix, params as P
 
 U_CORE = [[-20, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11], [-20, 11]]
 
@@ -14,7 +14,7 @@ def test_derived_defaults_follow_the_other_parameters():
 
 
 def test_chain_layers_are_layer_major():
-    layer, pf = P.chain_layers(P.make_params(layers=3, protofilaments=2))
+    layer, pf = helix.chain_layers(P.make_params(layers=3, protofilaments=2))
     assert layer.tolist() == [0, 0, 1, 1, 2, 2] and pf.tolist() == [0, 1, 0, 1, 0, 1]
 
 BAD_GEOMETRY = [

@@ -448,6 +448,7 @@ def make_params(*, force: bool = False, **values) -> Params:
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
     _check_combination(p, force)
+    object.__setattr__(p, VALIDATED, force)  # trusted from here on: see validate()
     return p
 
 
@@ -526,8 +527,19 @@ def refuse_beside_periodic(given: dict) -> None:
             raise ParamError(name, why)
 
 
+# make_params marks what it made with the `force` it checked under. A Params is validated once
+# and trusted after: validate() returns a marked one as it is, unless it was checked with
+# force and is now asked for without (force lifts the object-count limit). A Params built
+# directly, or copied with dataclasses.replace, carries no mark and is checked in full.
+VALIDATED = "validated_with_force"
+
+
 def validate(p: Params, *, force: bool = False) -> Params:
-    """Validate an existing Params (e.g. one built directly) and return it."""
+    """An existing Params, validated: as it is if make_params made it (under a `force` at least as
+    strict), else checked in full (e.g. one built directly)."""
+    checked = p.__dict__.get(VALIDATED)
+    if checked is False or (checked is True and force):
+        return p
     return make_params(force=force, **p.to_dict())
 
 

@@ -78,3 +78,20 @@ def test_one_percent_format_for_every_display():
     assert percent(-0.00001) == "0.0 %"  # a tiny compression is not "-0.0 %"
     assert percent(-0.0123) == "-1.2 %"
     assert percent(7.971) == "797.1 %"
+
+
+def test_a_params_is_validated_once_and_trusted_after(monkeypatch):
+    p = P.make_params(linker=4)
+    calls = []
+    real = P.make_params
+    monkeypatch.setattr(P, "make_params", lambda **kw: calls.append(kw) or real(**kw))
+    assert P.validate(p) is p and P.validate(p, force=True) is p and not calls
+    forced = real(force=True, layers=20000, linker=1)  # over the object limit: force lifts it
+    with pytest.raises(P.ParamError, match="layers"):
+        P.validate(forced)  # asked again without force: checked in full
+    import dataclasses
+    copied = dataclasses.replace(p, linker=-3)  # no mark: checked in full
+    with pytest.raises(P.ParamError, match="linker"):
+        P.validate(copied)
+    with pytest.raises(P.ParamError, match="linker"):
+        P.validate(P.Params(linker=0))

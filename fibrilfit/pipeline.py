@@ -147,10 +147,3 @@ def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", for
 def current_model(scene=None):
     return find_model(scene or bpy.context.scene)
 
-
-def save_blend(path, scene=None) -> None:
-    """Save the whole file with the bake kept, so it reopens ready to scrub."""
-    from .exports.files import atomic_write
-    keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too: its frames can still be scrubbed
-    atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
-        filepath=str(tmp), copy=True, compress=True, check_existing=False))

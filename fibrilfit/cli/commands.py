@@ -228,8 +228,30 @@ def fresh_scene() -> None:
 
 
 def command_run(args) -> int:
-    from .. import pipeline
-    from ..exports import summary
+    p, structure_block, outputs = _checked_run(args)  # everything refused before the bake
+    restarts = None
+    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
+        from .. import pipeline
+        from ..search import command as search_command
+        restarts = search_command.run_restarts(args, p, pipeline.version())
+        p = p.replace(seed=restarts["best_seed"])
+    result = _run_here(args, p)
+    _annotate(args, p, result, structure_block, restarts)
+    problems = _write_outputs(args, p, result, outputs)
+    _report(args, result, restarts)
+    for problem in problems:
+        print(f"fibrilfit: error: {problem}", file=sys.stderr)
+    if problems:
+        return EXIT_OUTPUT_FAILED
+    if args.fail_on_intersection and result.get("verdict") == "intersection":
+        return EXIT_INTERSECTION
+    return EXIT_OK
+
+
+def _checked_run(args) -> tuple:
+    """The run's Params, its structure block and its output paths and options, every one
+    checked: a bad value or an unwritable path is refused here, before anything runs."""
+    from .. import pipeline  # noqa: F401 (imports bpy first: the checks below import mathutils)
     from ..search import command as search_command
     search_command.check_restart_options(args)
     P.refuse_beside_periodic(params_from(args))
@@ -238,25 +260,31 @@ def command_run(args) -> int:
     if args.envelope_plot:
         from ..exports import envelope_plot
         envelope_plot.available(args.stop_after)
-    look = export_options.render_options(args)
-    pdb_images = export_options.pdb_images(args, p)
+    outputs = {"look": export_options.render_options(args),
+               "pdb_images": export_options.pdb_images(args, p)}
     if args.pdb:
         export_options.pdb_fits(p)
-    step = export_options.movie_step(args)
-    paths = {key: files.check_writable(option(key), getattr(args, key), suffixes)
-             for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
-    if "movie" in paths:
+    outputs["movie_step"] = export_options.movie_step(args)
+    outputs["paths"] = {key: files.check_writable(option(key), getattr(args, key), suffixes)
+                        for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+    if "movie" in outputs["paths"]:
         from ..exports import movie  # imports bpy: only when a movie is asked for
-        movie.refuse_unsupported(paths["movie"], args.stop_after)
-    restarts = None
-    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
-        restarts = search_command.run_restarts(args, p, pipeline.version())
-        p = p.replace(seed=restarts["best_seed"])
+        movie.refuse_unsupported(outputs["paths"]["movie"], args.stop_after)
+    return p, structure_block, outputs
+
+
+def _run_here(args, p) -> dict:
+    """Build, bake and check `p` in a fresh scene of this process."""
     import bpy
+    from .. import pipeline
     fresh_scene()
-    result = pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
-                          on_frame=progress_printer(p.bake_frames() * (p.image_updates if p.periodic else 1))
-                          if args.progress else None)
+    frames = p.bake_frames() * (p.image_updates if p.periodic else 1)
+    return pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
+                        on_frame=progress_printer(frames) if args.progress else None)
+
+
+def _annotate(args, p, result: dict, structure_block, restarts) -> None:
+    """What the result records beside the run: its structures, restarts and case."""
     if structure_block:
         result["structure"] = structure_block
     if restarts is not None:
@@ -267,50 +295,31 @@ def command_run(args) -> int:
     if args.loaded_case is not None:
         result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
                                                    structure_options(args))
+
+
+def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
+    """Every output asked for, through the one writer table (exports.writers.OUTPUTS)."""
+    import bpy
     from ..exports import writers
-    scene, problems = bpy.context.scene, []
-    if paths.keys() & {"blend", "render"}:  # materials, camera, light; clashes red
-        problems.append(writers.export(result, "dressing", "materials, camera and light",
-                                       writers.prepare, scene, result, aspect=look["aspect"]))
-    if "pdb" in paths:
-        problems.append(writers.export(result, "pdb", "--pdb", writers.write_pdb, scene,
-                                       result, paths["pdb"], args.pdb_frames, pdb_images))
-    if "blend" in paths:
-        pipeline.save_blend(paths["blend"])
-        result["blend"] = str(paths["blend"])
-    if "save_case" in paths:
-        cases.save(paths["save_case"], result.get("case")
-                   or cases.Case({}, {}).resolved(p, structure=structure_options(args)))
-    if "envelope_plot" in paths and "envelope" in result:
-        problems.append(writers.export(result, "envelope_plot", "--envelope-plot",
-                                       envelope_plot.write, result, paths["envelope_plot"]))
-    if "json" in paths:
-        files.write_json(paths["json"], result)
-    if "render" in paths:  # last: the slowest, and the JSON is already safe on disk
-        problems.append(writers.export(result, "render", "--render", writers.write_render,
-                                       scene, result, paths["render"], look))
-        if "json" in paths:
-            files.write_json(paths["json"], result)
-    if "movie" in paths:  # a movie of the whole bake: the slowest, so last
-        problems.append(writers.export(result, "movie", "--movie", writers.write_movie, scene,
-                                       result, paths["movie"], step=step, size=look["size"],
-                                       progress=not args.quiet))
-        if "json" in paths:
-            files.write_json(paths["json"], result)
+    case = None
+    if "save_case" in outputs["paths"]:
+        case = result.get("case") or cases.Case({}, {}).resolved(
+            p, structure=structure_options(args))
+    return writers.write_all(writers.Job(
+        bpy.context.scene, result, outputs["paths"], look=outputs["look"],
+        pdb_frames=args.pdb_frames, pdb_images=outputs["pdb_images"],
+        movie_step=outputs["movie_step"], progress=not args.quiet, case=case))
+
+
+def _report(args, result: dict, restarts) -> None:
+    from ..exports import summary
     if restarts is not None:
+        from ..search import command as search_command
         print(search_command.restarts_line(restarts))
         if not restarts["reproduced"]:
             print("fibrilfit: warning: the best seed, run again here, did not reproduce the "
                   "worker's result", file=sys.stderr)
     print(summary.summary(result, quiet=args.quiet))
-    problems = [msg for msg in problems if msg]
-    for problem in problems:
-        print(f"fibrilfit: error: {problem}", file=sys.stderr)
-    if problems:
-        return EXIT_OUTPUT_FAILED
-    if args.fail_on_intersection and result.get("verdict") == "intersection":
-        return EXIT_INTERSECTION
-    return EXIT_OK
 
 
 def command_inspect(args) -> int:

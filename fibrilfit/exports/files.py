@@ -83,3 +83,10 @@ def append_line(path, line: str) -> None:
         fh.write(line.rstrip("\n") + "\n")
         fh.flush()
         os.fsync(fh.fileno())
+
+
+def write_case(path, case: dict) -> pathlib.Path:
+    """Write `case` (model.cases.Case.resolved) as a case file, whole or not at all."""
+    from ..model import cases
+    path = pathlib.Path(path).expanduser()
+    return write_text(path, cases.dumps(case, path.parent))

@@ -1,12 +1,20 @@
-"""The run command's pictures and structures, written after the run; a failure here is
-reported and never costs the run's other outputs."""
+"""Every output of a run, in one table (OUTPUTS) that write_all walks after the run.
+
+A failure of a picture or structure writer is reported and never costs the run's other outputs.
+The result JSON is written once after the quick writers and rewritten once after each slow one
+(render, movie), so whatever stops a slow writer leaves a JSON that says what was written.
+"""
 from __future__ import annotations
+
+import pathlib
+from dataclasses import dataclass, field
+from typing import Callable
 
 import bpy
 
 from ..analysis import clashing_layers
-from ..builders import find_model
-from . import dressing, movie, pdb, render
+from ..builders import find_model, keep_bake
+from . import dressing, envelope_plot, files, movie, pdb, render
 
 
 def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> None:
@@ -52,3 +60,94 @@ def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | 
         message = " ".join(str(exc).split()) or type(exc).__name__
         result[key] = {"error": message}
         return f"{label} failed: {message}"
+
+
+def save_blend(path, scene: bpy.types.Scene | None = None) -> None:
+    """--blend: the whole file with the bake kept, so it reopens ready to scrub."""
+    keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too
+    files.atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
+        filepath=str(tmp), copy=True, compress=True, check_existing=False))
+
+
+@dataclass
+class Job:
+    """What the writers of one run need: the scene and result, the checked output paths by
+    option (json, pdb, blend, ...), and the options of the pictures."""
+    scene: bpy.types.Scene
+    result: dict
+    paths: dict
+    look: dict = field(default_factory=dict)  # exports.options.render_options
+    pdb_frames: str = "last"
+    pdb_images: int = 0
+    movie_step: int = 1
+    progress: bool = False
+    case: dict | None = None                  # what --save-case writes
+
+
+@dataclass(frozen=True)
+class Output:
+    """One output: the result key it stores under, its label in a failure's message, when it is
+    wanted, what writes it, whether it is slow (the JSON is rewritten after it) and whether a
+    failure is only reported (guarded) or ends the command."""
+    key: str
+    label: str
+    wanted: Callable[[Job], bool]
+    write: Callable[[Job], dict | None]
+    slow: bool = False
+    guarded: bool = True
+
+
+def _blend(job: Job) -> None:
+    save_blend(job.paths["blend"])
+    job.result["blend"] = str(job.paths["blend"])
+
+
+def _asked(key: str) -> Callable[[Job], bool]:
+    return lambda job: key in job.paths
+
+
+OUTPUTS = (  # in the order they run: the slow ones last
+    Output("dressing", "materials, camera and light",  # for --blend and --render; clashes red
+           lambda j: bool(j.paths.keys() & {"blend", "render"}),
+           lambda j: prepare(j.scene, j.result, aspect=j.look["aspect"])),
+    Output("pdb", "--pdb", _asked("pdb"), lambda j: write_pdb(
+        j.scene, j.result, j.paths["pdb"], j.pdb_frames, j.pdb_images)),
+    Output("blend", "--blend", _asked("blend"), _blend, guarded=False),
+    Output("save_case", "--save-case", _asked("save_case"),
+           lambda j: files.write_case(j.paths["save_case"], j.case) and None, guarded=False),
+    Output("envelope_plot", "--envelope-plot",
+           lambda j: "envelope_plot" in j.paths and "envelope" in j.result,
+           lambda j: envelope_plot.write(j.result, j.paths["envelope_plot"])),
+    Output("render", "--render", _asked("render"), lambda j: write_render(
+        j.scene, j.result, j.paths["render"], j.look), slow=True),
+    Output("movie", "--movie", _asked("movie"), lambda j: write_movie(
+        j.scene, j.result, j.paths["movie"], step=j.movie_step, size=j.look["size"],
+        progress=j.progress), slow=True),
+)
+
+
+def write_all(job: Job, outputs=OUTPUTS) -> list[str]:
+    """Write every wanted output of `outputs` in order, and the JSON (if asked for) once the
+    quick ones are done and again after each slow one; return the failures' messages."""
+    problems, json_written = [], False
+
+    def write_json():
+        if "json" in job.paths:
+            files.write_json(job.paths["json"], job.result)
+
+    for out in outputs:
+        if not out.wanted(job):
+            continue
+        if out.slow and not json_written:
+            write_json()
+            json_written = True
+        if out.guarded:
+            problems.append(export(job.result, out.key, out.label, out.write, job))
+        else:
+            out.write(job)
+        if out.slow:
+            write_json()
+    if not json_written:
+        write_json()
+    return [p for p in problems if p]
+

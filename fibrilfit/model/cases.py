@@ -338,13 +338,6 @@ def _plain(x):
     return x
 
 
-def save(path, case: dict) -> pathlib.Path:
-    """Write `case` (Case.resolved) as a case file, whole or not at all."""
-    from ..exports.files import write_text
-    path = pathlib.Path(path).expanduser()
-    return write_text(path, dumps(case, path.parent))
-
-
 def metadata_of(resolved: dict) -> dict:
     """The metadata and seeds of a resolved case (what the panel keeps beside its values)."""
     return {k: resolved[k] for k in ORDER if k in resolved}

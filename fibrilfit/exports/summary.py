@@ -9,35 +9,54 @@ def percent(fraction: float) -> str:
 
 
 def summary(r: dict, quiet: bool = False) -> str:
+    """The summary a run prints: the model, the bake, the verdict and what it proves."""
+    head = "\n".join([_head_line(r), *_case_lines(r.get("case"))])
+    if "verdict" not in r:
+        return head + f"\nstopped after {r['stage']}; no verdict"
+    if quiet:
+        return f"verdict: {r['verdict']}" + (
+            "  (accommodated)" if r["accommodated"] else "  (not accommodated)")
+    lines = [head, _bake_line(r), *_clash_lines(r), *_linker_lines(r), *_periodic_lines(r)]
+    lines += [f"warning: {w}" for w in r.get("warnings", [])]
+    env = r.get("envelope") or {}
+    if env.get("n"):
+        lines.append(f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; "
+                     f"95 % within {env['r95']:.1f} Å), outer diameter "
+                     f"{env['outer_diameter']:.0f} Å")
+    lines += _export_lines(r)
+    lines.append(_answer_line(r))
+    return "\n".join(lines)
+
+
+def _head_line(r: dict) -> str:
     p = r["params"]
     size = (f"periodic cell of {p['periodic']} layers (an infinite fibril)" if p.get("periodic")
             else f"{p['layers']} layers")
-    head = (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
+    return (f"FibrilFit {r['fibrilfit_version']} on Blender {r['blender_version']}: "
             f"{size}"
             + (f" × {p['protofilaments']} protofilaments" if p.get("protofilaments", 1) > 1
                else "")
             + f", linker {p['linker']}, globule {p['globule_diameter']:g} Å, "
             f"seed {r['seed']}")
-    head = "\n".join([head, *_case_lines(r.get("case"))])
-    if "verdict" not in r:
-        return head + f"\nstopped after {r['stage']}; no verdict"
-    verdict = f"verdict: {r['verdict']}"
-    if quiet:
-        return verdict + ("  (accommodated)" if r["accommodated"] else "  (not accommodated)")
+
+
+def _bake_line(r: dict) -> str:
+    p, t = r["params"], r["timings_s"]
     g = ", ".join(f"{v:+.3f}" for v in r["gravity"])
-    t = r["timings_s"]
     settled = (f" (settled: every body under {p['settle_speed']:g} Å/frame for "
                f"{p['settle_frames']} frames)" if r.get("settled_at") else "")
+    return (f"gravity ({g}); baked {r['frames_simulated']} frames{settled}; "
+            f"build {t['build']:.2f} s, bake {t['bake']:.2f} s, check {t['check']:.2f} s")
+
+
+def _clash_lines(r: dict) -> list[str]:
+    p = r["params"]
     lines = [
-        head,
-        f"gravity ({g}); baked {r['frames_simulated']} frames{settled}; "
-        f"build {t['build']:.2f} s, bake {t['bake']:.2f} s, check {t['check']:.2f} s",
-        f"{verdict} at frame {r['frames_simulated']}: {r['intersecting_faces']} intersecting faces, "
-        f"{len(r['clashing_pairs'])} clashing globule pairs"
+        f"verdict: {r['verdict']} at frame {r['frames_simulated']}: {r['intersecting_faces']} "
+        f"intersecting faces, {len(r['clashing_pairs'])} clashing globule pairs"
         + (f" (deepest overlap {r['max_overlap']:.2f} Å)" if r.get("clashing_pairs") else "")
         + (f" in layers {r['scored_layers'][0]}-{r['scored_layers'][1]}"
-           if p.get("score_layers") else ""),
-    ]
+           if p.get("score_layers") else "")]
     if r.get("grazing_pairs"):
         n, band = len(r["grazing_pairs"]), r["sphere_check"]["tolerance"]
         if n == len(r["clashing_pairs"]):
@@ -46,10 +65,14 @@ def summary(r: dict, quiet: bool = False) -> str:
         else:
             lines.append(f"  {n} of them only graze (overlap at most {band:.2f} Å, the globule "
                          f"mesh's resolution)")
-    lines.append(
+    return lines
+
+
+def _linker_lines(r: dict) -> list[str]:
+    lines = [
         f"linker: worst bond stretch {percent(r['max_bond_stretch'])} at the end "
         f"({'intact' if r['linker_intact'] else 'STRETCHED'}, tolerance "
-        f"{percent(p['stretch_tolerance'])})")
+        f"{percent(r['params']['stretch_tolerance'])})"]
     if r.get("max_bond_stretch_bake") is not None:
         after = r.get("max_bond_stretch_after_push")
         lines.append(
@@ -59,38 +82,37 @@ def summary(r: dict, quiet: bool = False) -> str:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
-    if r.get("periodic"):
-        per, lag = r["periodic"], r.get("image_lag") or {}
-        lines.append(
-            f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
-            f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
-            f"pairs counted once, with images up to {per['check_cells']} cells above "
-            f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
-            f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
-            + ("; gravity: its axial part only (the screw turns the rest)"
-               if per.get("gravity") == "axial" else "")
-            + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
-               if lag else ""))
-    lines += [f"warning: {w}" for w in r.get("warnings", [])]
-    env = r.get("envelope") or {}
-    if env.get("n"):
-        lines.append(f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; "
-                     f"95 % within {env['r95']:.1f} Å), outer diameter "
-                     f"{env['outer_diameter']:.0f} Å")
-    lines += _export_lines(r)
+    return lines
+
+
+def _periodic_lines(r: dict) -> list[str]:
+    if not r.get("periodic"):
+        return []
+    per, lag = r["periodic"], r.get("image_lag") or {}
+    return [
+        f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
+        f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
+        f"pairs counted once, with images up to {per['check_cells']} cells above "
+        f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
+        f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
+        + ("; gravity: its axial part only (the screw turns the rest)"
+           if per.get("gravity") == "axial" else "")
+        + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
+           if lag else "")]
+
+
+def _answer_line(r: dict) -> str:
     if r["accommodated"]:
-        lines.append("accommodated: yes. This relaxation found a clash-free layout with intact "
-                     "linkers, which proves that one exists for this model.")
-    elif r["verdict"] == "successful":
-        lines.append("accommodated: no. No globules intersect, but only because the linkers "
-                     "stretched beyond tolerance: the domains do not fit at this length.")
-    else:
-        lines.append("accommodated: no. This relaxation ended with clashes"
-                     + ("" if r["linker_intact"] else ", even with linkers stretched")
-                     + ". That does not prove "
-                     "that no clash-free layout exists: one bake is one random search, not an "
-                     "exhaustive one. Sweep seeds to see how often one is found.")
-    return "\n".join(lines)
+        return ("accommodated: yes. This relaxation found a clash-free layout with intact "
+                "linkers, which proves that one exists for this model.")
+    if r["verdict"] == "successful":
+        return ("accommodated: no. No globules intersect, but only because the linkers "
+                "stretched beyond tolerance: the domains do not fit at this length.")
+    return ("accommodated: no. This relaxation ended with clashes"
+            + ("" if r["linker_intact"] else ", even with linkers stretched")
+            + ". That does not prove "
+            "that no clash-free layout exists: one bake is one random search, not an "
+            "exhaustive one. Sweep seeds to see how often one is found.")
 
 
 def _case_lines(case: dict | None) -> list[str]:

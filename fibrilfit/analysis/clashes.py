@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import contextlib
 import gc
-import itertools
 
 import numpy as np
 from mathutils.bvhtree import BVHTree

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import params as P, helix
+from ..model import helix
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
 from .envelope import envelope

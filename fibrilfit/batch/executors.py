@@ -210,3 +210,19 @@ class SlurmExecutor(DaskExecutor):
                 self.kept = time.monotonic()
             time.sleep(0.1)
         return super().wait()
+
+
+def make_executor(args, *, out=None, runs: int = 0, log_path=None):
+    """The executor a batch command's options ask for: --executor slurm (jobs sized for `runs`,
+    their files under `out`), dask (--scheduler, or a local cluster), or worker processes on
+    this machine (their stderr in `log_path`)."""
+    if args.executor == "slurm":
+        from . import slurm
+        return SlurmExecutor(slurm.jobs(args, runs), slurm.cluster_options(args, out.resolve()),
+                             timeout=args.timeout)
+    workers = args.workers or cpu_count()
+    if args.executor == "dask":
+        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
+    import bpy  # inside Blender's own executable, workers are that executable in background mode
+    return ProcessExecutor(workers, timeout=args.timeout, log_path=log_path,
+                           blender_binary=bpy.app.binary_path)

@@ -6,7 +6,6 @@ The result JSON is written once after the quick writers and rewritten once after
 """
 from __future__ import annotations
 
-import pathlib
 from dataclasses import dataclass, field
 from typing import Callable
 

@@ -9,18 +9,18 @@ import argparse
 import contextlib
 import csv
 import io
-import json
 import sys
 import tempfile
 
 from .. import exits
 from ..exports import files
 from ..model import params as P
-from ..sweep import command as sweep_command, grid, runner
-from ..batch.executors import DaskExecutor, ProcessExecutor, SweepError, cpu_count
+from ..sweep import grid, runner
+from ..batch import outdir
+from ..batch.executors import SweepError, cpu_count, make_executor
 from . import minimal, restarts
 
-RESULTS, CSV, JSON, PNG, LOG = ("results.jsonl", "minimal_linker.csv", "minimal_linker.json",
+RESULTS, CSV, JSON, PNG, LOG = (outdir.RESULTS, "minimal_linker.csv", "minimal_linker.json",
                                 "minimal_linker.png", "workers.log")
 COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
            "p_fit_below", "p_fit_below_high", "restarts", "linker_below")
@@ -74,16 +74,6 @@ def _check_executor_options(args) -> None:
         raise exits.UsageError("--scheduler: only with --executor dask")
 
 
-def make_executor(args, log_path=None):
-    workers = args.workers or cpu_count()
-    if args.executor == "dask":
-        sweep_command._need("distributed")
-        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
-    import bpy  # inside Blender's own executable, workers are that executable in background mode
-    return ProcessExecutor(workers, timeout=args.timeout, log_path=log_path,
-                           blender_binary=bpy.app.binary_path)
-
-
 # ---- run --restarts ----------------------------------------------------------------------------
 
 def check_restart_options(args) -> None:
@@ -107,7 +97,9 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
     with tempfile.TemporaryDirectory(prefix="fibrilfit-restarts-") as tmp:
         results = f"{tmp}/{RESULTS}"
         try:
-            with make_executor(args, f"{tmp}/{LOG}") as executor:
+            if args.executor == "dask":
+                outdir.need("distributed")
+            with make_executor(args, log_path=f"{tmp}/{LOG}") as executor:
                 records = restarts.run(executor, p.to_dict(), seeds, results,
                                        stop_on_fit=args.stop_on_fit,
                                        window=args.workers or cpu_count(), force=args.force,
@@ -168,9 +160,9 @@ def run_minimal(args, values: dict) -> int:
                                   min(minimal.first_guess(base.globule_diameter), args.max_linker),
                                   args.max_linker))
     _need_packages(args)
-    out = sweep_command._out_dir(args)
+    out = outdir.out_dir(args)
     out.mkdir(parents=True, exist_ok=True)
-    lock = sweep_command._lock(out)  # noqa: F841 (held until this function returns)
+    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / RESULTS
     runner.repair_tail(results)
 
@@ -192,7 +184,7 @@ def run_minimal(args, values: dict) -> int:
                         if pt.key not in done]
                 if todo:
                     if executor is None:
-                        executor = stack.enter_context(make_executor(args, out / LOG))
+                        executor = stack.enter_context(make_executor(args, log_path=out / LOG))
                     if not args.quiet:
                         print("minimal-linker: trying " + ", ".join(
                             f"{w.diameter:g} Å at linker {L}" for w, L in wanted), file=sys.stderr)
@@ -237,8 +229,8 @@ def run_minimal(args, values: dict) -> int:
 
 
 def _need_packages(args) -> None:
-    sweep_command._need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-                        *(["distributed"] if args.executor == "dask" else []))
+    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+                *(["distributed"] if args.executor == "dask" else []))
 
 
 def csv_text(rows: list[dict]) -> str:

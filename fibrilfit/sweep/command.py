@@ -5,7 +5,6 @@ cannot run, 130 interrupted (finished runs stay in results.jsonl; continue with 
 """
 from __future__ import annotations
 
-import importlib
 import pathlib
 import sys
 
@@ -14,18 +13,10 @@ from ..exports import files
 from ..structure import inputs
 from . import gate, grid, runner, summary
 from ..batch import slurm
-from ..batch.executors import DaskExecutor, ProcessExecutor, SlurmExecutor, SweepError, cpu_count
+from ..batch import outdir
+from ..batch.executors import SweepError, cpu_count, make_executor
 
-RESULTS, SUMMARY, PHASE, LOG = "results.jsonl", "summary.csv", "phase.png", "workers.log"
-
-
-def _need(*modules: str) -> None:
-    for name in modules:
-        try:
-            importlib.import_module(name)
-        except ImportError:
-            raise exits.UsageError(f"the sweep needs the Python package {name!r}: "
-                                 f"pip install -r requirements-dev.txt") from None
+RESULTS, SUMMARY, PHASE, LOG = outdir.RESULTS, "summary.csv", "phase.png", "workers.log"
 
 
 def _check_options(args) -> None:
@@ -46,44 +37,6 @@ def _check_options(args) -> None:
     slurm.check(args)
 
 
-def _out_dir(args) -> pathlib.Path:
-    results = files.check_writable("--out", pathlib.Path(args.out) / RESULTS, (".jsonl",))
-    if results.parent.exists() and not results.parent.is_dir():
-        raise files.OutputError("--out", f"must be a directory (got '{results.parent}')")
-    if results.exists() and not args.resume:
-        raise exits.UsageError(f"--out: '{results.parent}' already holds {RESULTS}; pass --resume "
-                             f"to continue that sweep, or choose another directory")
-    return results.parent
-
-
-def _lock(out: pathlib.Path):
-    """Hold DIR/.lock while the sweep runs: two sweeps appending to one results.jsonl would run
-    points twice. Returns the open lock file (or None where there is no fcntl, e.g. Windows)."""
-    try:
-        import fcntl
-    except ImportError:
-        return None
-    fh = open(out / ".lock", "w")
-    try:
-        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
-        fh.close()
-        raise exits.UsageError(f"--out: another sweep is writing to '{out}'") from None
-    return fh
-
-
-def _executor(args, out: pathlib.Path, runs: int):
-    if args.executor == "slurm":
-        return SlurmExecutor(slurm.jobs(args, runs), slurm.cluster_options(args, out.resolve()),
-                             timeout=args.timeout)
-    workers = args.workers or cpu_count()
-    if args.executor == "dask":
-        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
-    import bpy  # inside Blender's own executable, workers are that executable in background mode
-    return ProcessExecutor(workers, timeout=args.timeout, log_path=out / LOG,
-                           blender_binary=bpy.app.binary_path)
-
-
 def _case(args) -> dict | None:
     """The --case as every record embeds it (its params are each point's own)."""
     case = getattr(args, "loaded_case", None)
@@ -102,7 +55,7 @@ def run(args) -> int:
     base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
     points = grid.build(specs, seeds, force=args.force, base=base)
     requirements = [gate.parse(text) for text in args.require]
-    out = _out_dir(args)
+    out = outdir.out_dir(args)
     results = out / RESULTS
     records, _ = runner.read_lines(results)
     known = [p.params for p in points] + [r["params"] for r in records]
@@ -110,15 +63,15 @@ def run(args) -> int:
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
     with slurm.ctrl_c_kept():
-        _need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-              *(["distributed"] if args.executor in ("dask", "slurm") else []),
-              *(["dask_jobqueue"] if args.executor == "slurm" else []))
+        outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
+                    *(["distributed"] if args.executor in ("dask", "slurm") else []),
+                    *(["dask_jobqueue"] if args.executor == "slurm" else []))
     if args.show_job_script:
         print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
         return exits.EXIT_OK
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
-    lock = _lock(out)  # noqa: F841 (held until this function returns)
+    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     if runner.repair_tail(results):
         print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
     if args.retry_failed:
@@ -140,7 +93,7 @@ def run(args) -> int:
     if todo:
         from .. import pipeline
         try:
-            with _executor(args, out, len(todo)) as executor:
+            with make_executor(args, out=out, runs=len(todo), log_path=out / LOG) as executor:
                 runner.run(executor, todo, results, force=args.force,
                            progress=not args.quiet, version=pipeline.version(),
                            extra={"structure": structure_block} if structure_block else None,

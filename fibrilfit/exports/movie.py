@@ -108,20 +108,20 @@ def _render_frames(scene, model, result, frames, folder, width, height, progress
     dressing.frame_camera(dressed.camera, np.concatenate(points), width / height,
                           dressing.view_azimuth(model))
     dressing.aim_light(dressed.light, dressed.camera)
-    settings = render._render_settings(scene, dressed.camera, ENGINE, width, height, 1, False)
+    settings = render.render_settings(scene, dressed.camera, ENGINE, width, height, 1, False)
     pngs = []
-    with _progress(len(frames), progress) as tick, render._settings(scene, settings):
+    with _progress(len(frames), progress) as tick, render.applied_settings(scene, settings):
         for frame in frames:
             scene.frame_set(frame)
             if frame == frames[-1]:
                 colour_globules(model, clashing_layers(result), scene)
             png = folder / f"frame{frame:06d}.png"
-            with render._captured_output() as log:
+            with render.captured_output() as log:
                 try:
-                    render._render(scene, png)
+                    render.render_frame(scene, png)
                 except Exception as exc:
-                    raise MovieError(f"frame {frame}: {render._one_line(exc)}"
-                                     f"{render._last_words(log())}") from exc
+                    raise MovieError(f"frame {frame}: {render.one_line(exc)}"
+                                     f"{render.last_words(log())}") from exc
             pngs.append(png)
             tick()
     return pngs
@@ -160,12 +160,12 @@ def _join_mp4(pngs, out: pathlib.Path, width, height) -> None:
         movie.view_settings.view_transform = "Standard"
         movie.view_settings.look = "None"
         r.filepath = str(out)
-        with render._captured_output() as log:
+        with render.captured_output() as log:
             with bpy.context.temp_override(scene=movie):
                 done = bpy.ops.render.render(animation=True, scene=movie.name)
         if "FINISHED" not in done or not out.is_file() or out.stat().st_size == 0:
             raise MovieError(f"Blender's movie writer returned {sorted(done)} and wrote no "
-                             f"file{render._last_words(log())}")
+                             f"file{render.last_words(log())}")
     finally:
         bpy.data.scenes.remove(movie)
 

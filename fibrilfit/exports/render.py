@@ -63,20 +63,21 @@ def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None
     t = time.perf_counter()
     # Blender's C code prints device probes and per-tile progress on fds 1 and 2: keep them
     # off the terminal, and quote them only if the render fails.
-    with _captured_output() as log:
+    with captured_output() as log:
         try:
-            with _settings(scene, _render_settings(scene, dressing.camera, engine, width,
+            with applied_settings(scene, render_settings(scene, dressing.camera, engine, width,
                                                    height, samples, denoise)):
-                files.atomic_write(path, lambda tmp: _render(scene, tmp))
+                files.atomic_write(path, lambda tmp: render_frame(scene, tmp))
         except Exception as exc:  # Blender reports render failures as RuntimeError
-            raise RenderError(_one_line(exc) + _last_words(log())) from exc
+            raise RenderError(one_line(exc) + last_words(log())) from exc
     return {"path": str(path), "engine": engine, "width": width, "height": height,
             "samples": samples if engine == "cycles" else None,
             "denoiser": "OpenImageDenoise" if denoise else None,
             "frame": scene.frame_current, "seconds": round(time.perf_counter() - t, 3)}
 
 
-def _render(scene, tmp: pathlib.Path) -> None:
+def render_frame(scene, tmp: pathlib.Path) -> None:
+    """Render the scene's current frame to `tmp` as it is set up (shared with exports.movie)."""
     scene.render.filepath = str(tmp)
     with bpy.context.temp_override(scene=scene):
         done = bpy.ops.render.render(write_still=True)
@@ -85,7 +86,7 @@ def _render(scene, tmp: pathlib.Path) -> None:
 
 
 @contextlib.contextmanager
-def _captured_output():
+def captured_output():
     """Send fds 1 and 2 to a temporary file; yields a function returning what was written."""
     with tempfile.TemporaryFile(mode="w+b") as sink:
         for stream in (sys.stdout, sys.stderr):
@@ -106,7 +107,7 @@ def _captured_output():
                 os.close(copy)
 
 
-def _last_words(log: str) -> str:
+def last_words(log: str) -> str:
     """The last error-looking line Blender printed, to explain a failure."""
     lines = [ln.strip() for ln in log.splitlines() if ln.strip()]
     errors = [ln for ln in lines if "error" in ln.lower()]
@@ -114,7 +115,7 @@ def _last_words(log: str) -> str:
     return f" ({pick[0][:200]})" if pick else ""
 
 
-def _render_settings(scene, camera, engine, width, height, samples, denoise) -> list:
+def render_settings(scene, camera, engine, width, height, samples, denoise) -> list:
     """(owner, attribute, value) triples to apply for the render and restore after it."""
     r = scene.render
     s = [(scene, "camera", camera), (r, "engine", ENGINES[engine]),
@@ -145,7 +146,8 @@ def _render_settings(scene, camera, engine, width, height, samples, denoise) -> 
 
 
 @contextlib.contextmanager
-def _settings(scene, triples):
+def applied_settings(scene, triples):
+    """The (owner, attribute, value) triples applied while the block runs, then restored."""
     saved = [(owner, attr, getattr(owner, attr)) for owner, attr, _ in triples]
     try:
         for owner, attr, value in triples:
@@ -156,6 +158,7 @@ def _settings(scene, triples):
             setattr(owner, attr, value)
 
 
-def _one_line(exc: BaseException) -> str:
+def one_line(exc: BaseException) -> str:
+    """An exception's message on one line (Blender's render errors span several)."""
     lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
     return "; ".join(lines) or type(exc).__name__

@@ -170,7 +170,7 @@ def test_workbench_renders_headless(tmp_path):
 def test_a_failed_render_keeps_the_other_outputs(tmp_path, monkeypatch, capsys):
     def broken(scene, tmp):
         raise render.RenderError("no memory for tiles")
-    monkeypatch.setattr(render, "_render", broken)
+    monkeypatch.setattr(render, "render_frame", broken)
     code = cli.main(["run", "--layers", "2", "--linker", "2", "--frames", "5",
                      "--json", str(tmp_path / "r.json"), "--pdb", str(tmp_path / "m.pdb"),
                      "--pdb-frames", "all", "--blend", str(tmp_path / "m.blend"), "--render", str(tmp_path / "m.png")])

@@ -59,11 +59,13 @@ def run_job(args: list[str], root: str = str(ROOT)) -> dict:
 
 def measure(args: list[str], root: str = str(ROOT)) -> dict:
     """run_job in a wrapper process, so the peak RSS reported is this job's alone."""
-    code = ("import json, resource, sys; sys.path.insert(0, %r); import periodic as b; "
+    code = ("import importlib.util, json, resource; "
+            "s = importlib.util.spec_from_file_location('periodic_bench', %r); "
+            "b = importlib.util.module_from_spec(s); s.loader.exec_module(b); "
             "r = b.run_job(%r, %r); "
             "u = resource.getrusage(resource.RUSAGE_CHILDREN); "
             "r['peak_mib'] = u.ru_maxrss / 1024.0; r['cpu_s'] = u.ru_utime + u.ru_stime; "
-            "print('BENCH ' + json.dumps(r))") % (str(ROOT / "bench"), args, root)
+            "print('BENCH ' + json.dumps(r))") % (str(pathlib.Path(__file__).resolve()), args, root)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     line = next((ln for ln in out.stdout.splitlines() if ln.startswith("BENCH ")), None)
     if line is None:

@@ -150,7 +150,8 @@ class DaskExecutor:
 
     def submit(self, job: dict) -> None:
         key = f"fibrilfit-{job['id']}-{job['attempt']}-{uuid.uuid4().hex[:8]}"
-        future = self.client.submit(self._task, str(PACKAGE), job, self.timeout, key=key, pure=False)
+        future = self.client.submit(self._task, str(PACKAGE), job, self.timeout, key=key,
+                                    pure=False)
         self.futures[future.key] = job
         self.done.add(future)
 

@@ -2,9 +2,10 @@
 
 Started by pool.py as `python fibrilfit/batch/worker.py` (bpy module), or inside Blender as
 `blender -b --factory-startup -P fibrilfit/batch/worker.py`. It imports the package it belongs
-to from its own folder (found from __file__), as `fibrilfit`, whatever the installed name. Protocol: one JSON object per line, jobs on stdin, replies on the original
-stdout; everything else printed (by Blender, Bullet or Python) goes to stderr, so it can never
-corrupt a reply. It exits when its input ends.
+to from its own folder (found from __file__), as `fibrilfit`, whatever the installed name.
+Protocol: one JSON object per line, jobs on stdin, replies on the original stdout; everything
+else printed (by Blender, Bullet or Python) goes to stderr, so it can never corrupt a reply. It
+exits when its input ends.
 """
 import importlib.util
 import json

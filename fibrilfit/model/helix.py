@@ -125,12 +125,12 @@ def min_cell_layers(p) -> int:
 
 
 # `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured
-# (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only gravity's
-# axial part, cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100 seeds,
-# the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82 of 100 (p = 0.10;
-# why longer cells may fit less is not known); linkers 6, 8 and 12 give the same verdict at 13,
-# 26 and 50.
-# (Under the sideways gravity cells felt before, 13 fitted 38 % and `auto` was 8·D/rise = 50.)
+# (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only gravity's axial
+# part, cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100
+# seeds, the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82 of 100 (p =
+# 0.10; why longer cells may fit less is not known); linkers 6, 8 and 12 give the same verdict at
+# 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 % and `auto` was
+# 8·D/rise = 50.)
 AUTO_FACTOR = 2.0
 
 

@@ -1,0 +1,132 @@
+"""The house rules of CONTRIBUTING.md, read from the code itself (ast; nothing is imported):
+arrows point down the rooms, no private name crosses a package wall, no path games."""
+import ast
+import pathlib
+import re
+
+from helpers import ROOT
+
+PACKAGE = ROOT / "fibrilfit"
+# The rooms, lowest first: a module may import its own room and the rooms before it.
+ROOMS = ["exits", "blender_check", "geom", "model", "structure", "builders", "analysis",
+         "pipeline", "exports", "batch", "sweep", "search", "cli", "ui", "__init__"]
+
+
+def modules():
+    """(path, dotted name of its package as a list, its room) for every module of fibrilfit/."""
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(PACKAGE).with_suffix("").parts)
+        package = parts[:-1]
+        room = parts[0] if len(parts) > 1 or parts[0] != "__init__" else "__init__"
+        yield path, package, room
+
+
+def relative_imports(path, package):
+    """(line, target as a list of names, imported names) of every relative import, also those
+    inside functions."""
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = package[:len(package) - (node.level - 1)]
+            target = base + (node.module.split(".") if node.module else [])
+            yield node.lineno, target, [a.name for a in node.names]
+
+
+def test_every_room_is_listed():
+    found = {room for _, _, room in modules()}
+    assert found == set(ROOMS), found ^ set(ROOMS)
+
+
+def test_arrows_point_down():
+    wrong = []
+    for path, package, room in modules():
+        for line, target, names in relative_imports(path, package):
+            # `from .. import pipeline, exits`: each name is a room; `from ..model import x`: one
+            rooms = [target[0]] if target else names
+            for to in rooms:
+                if to in ROOMS and ROOMS.index(to) > ROOMS.index(room):
+                    wrong.append(f"{path.relative_to(ROOT)}:{line}: {room} imports {to}")
+    assert not wrong, "\n".join(wrong)
+
+
+def _imported_modules(tree, package):
+    """Local name -> the package (as a list) it was imported from, for FibrilFit modules."""
+    names = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = package[:len(package) - (node.level - 1)]
+            target = base + (node.module.split(".") if node.module else [])
+            for a in node.names:
+                names[a.asname or a.name] = target + [a.name]
+    return names
+
+
+def test_no_private_name_crosses_a_package_wall():
+    crossing = []
+    for path, package, _ in modules():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        imported = _imported_modules(tree, package)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.level:
+                base = package[:len(package) - (node.level - 1)]
+                target = base + (node.module.split(".") if node.module else [])
+                for a in node.names:
+                    if a.name.startswith("_") and not a.name.startswith("__") \
+                            and target[:len(package)] != package:
+                        crossing.append(f"{path.relative_to(ROOT)}:{node.lineno}: {a.name}")
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
+                    and node.attr.startswith("_") and not node.attr.startswith("__"):
+                source = imported.get(node.value.id)
+                if source is not None and source[:-1] != package:
+                    crossing.append(f"{path.relative_to(ROOT)}:{node.lineno}: "
+                                    f"{node.value.id}.{node.attr}")
+    assert not crossing, "\n".join(crossing)
+
+
+# The one exemption: the installed-extension scenario reproduces what Blender itself does to
+# sys.path for an extension's bundled wheels (puts its site-packages first), to test the wheel.
+PATH_EXEMPT = {"tests/blender/installed_scenario.py"}
+PATH_CODE = re.compile(r"sys\.path\.(insert|append|extend|remove|pop|clear)\(|sys\.path\s*(\[[^]]*\]\s*)?=[^=]")
+
+
+def _changes_sys_path(tree) -> list[int]:
+    """Lines that change sys.path: a call of one of its list methods, or an assignment to it."""
+    def is_sys_path(node):
+        return isinstance(node, ast.Attribute) and node.attr == "path" \
+            and isinstance(node.value, ast.Name) and node.value.id == "sys"
+    lines = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                and is_sys_path(node.func.value) and node.func.attr in (
+                    "insert", "append", "extend", "remove", "pop", "clear"):
+            lines.append(node.lineno)
+        if isinstance(node, (ast.Assign, ast.AugAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            for t in targets:
+                if is_sys_path(t) or isinstance(t, ast.Subscript) and is_sys_path(t.value):
+                    lines.append(node.lineno)
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) \
+                and PATH_CODE.search(node.value):  # code run in a subprocess
+            lines.append(node.lineno)
+    return lines
+
+
+def test_no_path_games():
+    """No sys.path changes and no import-by-path loader module: `make` installs the checkout
+    into each venv. Only headless.py and the sweep worker load the package from where they
+    are (by importlib, from their own __file__), because Blender's -P runs them as scripts."""
+    files = [ROOT / "headless.py", *[p for d in ("fibrilfit", "tests", "tools", "bench")
+                                     for p in (ROOT / d).rglob("*.py")]]
+    found = [f"{path.relative_to(ROOT)}:{line}" for path in files
+             if path.relative_to(ROOT).as_posix() not in PATH_EXEMPT
+             and path != pathlib.Path(__file__).resolve()
+             for line in _changes_sys_path(ast.parse(path.read_text(encoding="utf-8")))]
+    assert not found, "\n".join(found)
+    assert not list(ROOT.glob("**/_load.py"))
+
+
+def test_the_path_check_sees_each_kind_of_change():
+    for code in ("import sys\nsys.path.insert(0, 'x')", "import sys\nsys.path[:0] = ['x']",
+                 "import sys\nsys.path = ['x']", "import sys\nsys.path.remove('x')",
+                 "code = 'import sys; sys.path.append(1)'"):
+        assert _changes_sys_path(ast.parse(code)), code
+    assert not _changes_sys_path(ast.parse("import sys\nprint(sys.path[0])"))

@@ -138,6 +138,50 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             option: str = "--fibril") -> FibrilGeometry:
     loaded = reading.load(path, option)
     name = loaded.path.name
+    chains, paths, core, cca, cen = _stacked_core(loaded, name, option)
+    notes, warnings = list(loaded.notes), []
+    u, p, exact = _axis(paths, cca, cen, name, option, warnings)
+    # order every protofilament along the axis; protofilament 0 holds the lowest layer
+    height = (cen - p) @ u
+    paths = [sorted(q, key=lambda i: height[i]) for q in paths]
+    paths.sort(key=lambda q: height[q[0]])
+    frame0 = G.frame(u)
+    rises, twists = _rise_twist(paths, cca, cen, u, p, frame0, name, option)
+    rise, twist = float(np.mean(rises)), float(np.mean(twists))
+    paths, offsets = _protofilament_offsets(paths, cca, cen, u, p, frame0, rise, twist)
+    refs, origin, frame, poly = _reference_layer(chains, paths, core, cen, u, p, frame0, height,
+                                                 rise, warnings)
+    anchors = _anchors(chains, refs, core, origin, frame, rise, terminus, anchor_residue, name,
+                       warnings)
+    sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
+    return FibrilGeometry(
+        file=name, sha256=loaded.sha256,
+        axis={"point": [round(float(v), 3) for v in origin],
+              "direction": [round(float(v), 6) for v in u],
+              "x": [round(float(v), 6) for v in frame[0]]},
+        rise=round(rise, 4), rise_sd=round(sd(rises), 4),
+        twist=round(twist, 6), twist_sd=round(sd(twists), 6),
+        protofilaments=len(paths),
+        pf_rotation=round(offsets[1][0], 6) if len(paths) > 1 else 0.0,
+        pf_rise=round(offsets[1][1], 4) if len(paths) > 1 else 0.0,
+        layers=max(len(q) for q in paths), core_residues=core,
+        core_outline=[[round(float(a), 2), round(float(b), 2)] for a, b in poly],
+        anchors=[asdict(a) for a in anchors], tail_residues=anchors[0].tail_residues,
+        terminus=f"residue {anchor_residue}" if anchor_residue is not None else terminus,
+        layer_chains=[[chains[i].name for i in q] for q in paths], axis_exact=exact,
+        pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], notes=notes,
+        warnings=warnings)
+
+
+def _planar(xyz, p, frame0):
+    """Points in the plane across the axis through p (frame0's first two axes)."""
+    rel = (xyz - p) @ frame0.T
+    return rel[..., :2]
+
+
+def _stacked_core(loaded, name: str, option: str) -> tuple:
+    """The chains, their stacks (paths of chain indices, one per protofilament, longest first),
+    the core's residue range, and each chain's core CA (chains, residues, 3) and centroid."""
     if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
         raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
                                      "give --rise and --twist instead")
@@ -159,11 +203,13 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     core = _core_range(common[stacked_all])
     in_core = (common >= core[0]) & (common <= core[1])
     cca = ca[:, in_core]  # core CA
-    cen = cca.mean(axis=1)
     paths.sort(key=len, reverse=True)
-    notes, warnings = list(loaded.notes), []
+    return chains, paths, core, cca, cca.mean(axis=1)
 
-    # ---- the helical axis ----------------------------------------------------------------
+
+def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
+    """The helical axis: its direction u (pointing up the file's dominant axis), a point p on
+    it, and whether it is exact (a screw of the layers) or only approximate (warned)."""
     first = paths[0]
     along = cen[first[-1]] - cen[first[0]]
     exact = True
@@ -201,29 +247,26 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
         u = u if u @ along >= 0 else -u
     if u[np.argmax(np.abs(u))] < 0:  # a fixed sign: the file's dominant axis points up
         u = -u
-    # order every protofilament along the axis; protofilament 0 holds the lowest layer
-    height = (cen - p) @ u
-    paths = [sorted(q, key=lambda i: height[i]) for q in paths]
-    paths.sort(key=lambda q: height[q[0]])
-    frame0 = G.frame(u)
+    return u, p, exact
 
-    def planar(xyz):
-        rel = (xyz - p) @ frame0.T
-        return rel[..., :2]
 
-    # ---- rise and twist over every consecutive layer pair ---------------------------------
+def _rise_twist(paths, cca, cen, u, p, frame0, name: str, option: str) -> tuple:
+    """Rise and twist of every consecutive layer pair of every protofilament."""
     rises, twists = [], []
     for q in paths:
         for i, j in zip(q, q[1:]):
             rises.append((cen[j] - cen[i]) @ u)
-            twists.append(G.turn_angle(planar(cca[i]), planar(cca[j])))
-    rise, twist = float(np.mean(rises)), float(np.mean(twists))
+            twists.append(G.turn_angle(_planar(cca[i], p, frame0), _planar(cca[j], p, frame0)))
+    rise = float(np.mean(rises))
     if min(rises) <= 0.5 * rise or max(rises) >= 1.5 * rise:
         raise StructureError(option, f"{name}: the layers do not stack on a common axis (steps "
                                      f"along it from {min(rises):.2f} to {max(rises):.2f} Å)")
-    sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
+    return rises, twists
 
-    # ---- protofilaments relative to protofilament 0 --------------------------------------
+
+def _protofilament_offsets(paths, cca, cen, u, p, frame0, rise: float, twist: float) -> tuple:
+    """Each protofilament's turn and rise relative to protofilament 0, the protofilaments
+    ordered by that turn."""
     offsets = [[0.0, 0.0]]
     for q in paths[1:]:
         rots, dzs = [], []
@@ -233,13 +276,18 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
                 m = math.floor((dz + 0.1 * rise) / rise)
                 if abs(m) <= 2:
                     dzs.append(dz - m * rise)
-                    rots.append(G.wrap(G.turn_angle(planar(cca[a]), planar(cca[b])) - m * twist))
+                    rots.append(G.wrap(G.turn_angle(_planar(cca[a], p, frame0),
+                                                    _planar(cca[b], p, frame0)) - m * twist))
         rot = math.atan2(np.mean(np.sin(rots)), np.mean(np.cos(rots)))
         offsets.append([rot, float(np.mean(dzs))])
     order = [0] + sorted(range(1, len(paths)), key=lambda k: offsets[k][0] % (2 * math.pi))
-    paths, offsets = [paths[k] for k in order], [offsets[k] for k in order]
+    return [paths[k] for k in order], [offsets[k] for k in order]
 
-    # ---- the reference layer and its frame ------------------------------------------------
+
+def _reference_layer(chains, paths, core, cen, u, p, frame0, height, rise: float,
+                     warnings: list) -> tuple:
+    """The reference layer (one chain per protofilament), the model's frame at it (origin on
+    the axis, x along the core's long principal axis) and the core section's outline."""
     ref0 = paths[0][(len(paths[0]) - 1) // 2]
     refs = [ref0]
     for q in paths[1:]:
@@ -252,24 +300,28 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
         core_heavy.append((c.heavy[keep], c.heavy_radius[keep]))
     xyz = np.concatenate([h for h, _ in core_heavy])
     radii = np.concatenate([r for _, r in core_heavy])
-    flat = planar(xyz)
+    flat = _planar(xyz, p, frame0)
     centred = flat - flat.mean(axis=0)
     _, _, vt = np.linalg.svd(centred, full_matrices=False)
     e1 = vt[0] @ frame0[:2]  # long principal axis, back in 3-D
-    if (planar(core_heavy[0][0]).mean(axis=0) @ vt[0]) < 0:
+    if (_planar(core_heavy[0][0], p, frame0).mean(axis=0) @ vt[0]) < 0:
         e1 = -e1
     frame = G.frame(u, e1)
-
-    def layer(xyz):
-        return (xyz - origin) @ frame.T
-
-    section = layer(xyz)[:, :2]
+    section = ((xyz - origin) @ frame.T)[:, :2]
     poly, stray = O.polygon(section, radii)
     if stray > 0.05:
         warnings.append(f"the core section is in pieces: {stray:.0%} of its atoms lie outside "
                         "the outline of the largest piece")
+    return refs, origin, frame, poly
 
-    # ---- anchors ----------------------------------------------------------------------------
+
+def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
+             anchor_residue: int | None, name: str, warnings: list) -> list:
+    """Each protofilament's anchor residue in the model's frame, with its depth below the
+    core's surface in its sector (warned when buried) and the tail beyond it."""
+    def layer(xyz):
+        return (xyz - origin) @ frame.T
+
     all_core = np.concatenate([c.heavy[(c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])]
                                for c in chains])
     all_core = layer(all_core)
@@ -306,21 +358,4 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
                             f"buried: core atoms reach {depth:.1f} Å farther out in its sector; "
                             "not a free exit for a linker")
         anchors.append(anchor)
-
-    return FibrilGeometry(
-        file=name, sha256=loaded.sha256,
-        axis={"point": [round(float(v), 3) for v in origin],
-              "direction": [round(float(v), 6) for v in u],
-              "x": [round(float(v), 6) for v in frame[0]]},
-        rise=round(rise, 4), rise_sd=round(sd(rises), 4),
-        twist=round(twist, 6), twist_sd=round(sd(twists), 6),
-        protofilaments=len(paths),
-        pf_rotation=round(offsets[1][0], 6) if len(paths) > 1 else 0.0,
-        pf_rise=round(offsets[1][1], 4) if len(paths) > 1 else 0.0,
-        layers=max(len(q) for q in paths), core_residues=core,
-        core_outline=[[round(float(a), 2), round(float(b), 2)] for a, b in poly],
-        anchors=[asdict(a) for a in anchors], tail_residues=anchors[0].tail_residues,
-        terminus=f"residue {anchor_residue}" if anchor_residue is not None else terminus,
-        layer_chains=[[chains[i].name for i in q] for q in paths], axis_exact=exact,
-        pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], notes=notes,
-        warnings=warnings)
+    return anchors

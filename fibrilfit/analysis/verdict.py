@@ -78,8 +78,55 @@ def check_model(model) -> dict:
     p = model.params
     lo, hi = scored_range(p)
     c_lo, c_hi = scored_chains(p)
-    layer_of, pf_of = helix.chain_layers(p)
     positions = chain_positions(model)
+    clashes = _clash_checks(model)
+    n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
+    warnings = list(clashes["warnings"])
+    stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
+    max_stretch = float(stretch.max()) if stretch.size else 0.0
+    chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n], lo, hi)
+    verdict = "intersection" if clashes["faces"] > 0 else "successful"
+    intact = max_stretch <= p.stretch_tolerance
+    periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
+    chains = _chain_blocks(p, clashing, chain_clash, n)
+    warnings += _cell_warnings(p)
+    if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
+        chains["inside_core"] = members_inside_core(p, positions)
+        if chains["inside_core"]:
+            warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
+                            f"([chain, member]: {chains['inside_core'][:5]})")
+    centres = clashes["centres"]
+    return {
+        "verdict": verdict,
+        "intersecting_faces": clashes["faces"],
+        "clashing_pairs": clashing,
+        "max_overlap": max((d for *_, d in clashing), default=0.0),
+        "grazing_pairs": [[i, j, round(d, 4)] for i, j, d in clashes["grazing"]],
+        "sphere_check": {
+            "verdict": "intersection" if clashes["spheres"] else "successful",
+            "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in clashes["spheres"]],
+            "tolerance": round(clashes["band"], 4),
+        },
+        "checks_agree": not clashes["disagree"],
+        "warnings": warnings,
+        "max_bond_stretch": round(max_stretch, 6),
+        "linker_intact": bool(intact),
+        "accommodated": bool(verdict == "successful" and intact),
+        "scored_layers": [lo, hi - 1],
+        "layer_clashes": layer_clash,
+        **chains,
+        "globule_centres": np.round(centres, 4).tolist(),
+        "envelope": envelope(centres[scored[:n]], p.globule_radius),
+        **periodic,
+    }
+
+
+def _clash_checks(model) -> dict:
+    """Both clash checks over the scored globules (and, in a periodic cell, their images): the
+    BVH's intersecting faces and pairs, the spheres' pairs, the pairs that only graze, and any
+    disagreement beyond the mesh's resolution (warned)."""
+    p = model.params
+    c_lo, c_hi = scored_chains(p)
     globules = model.globules
     mesh = globules[0].data
     band = grazing_depth(mesh)
@@ -89,7 +136,6 @@ def check_model(model) -> dict:
     if p.periodic:
         matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
-    centres = everything[:n]
     scored = np.zeros(len(everything), dtype=bool)
     scored[slice(0, n) if p.periodic else slice(c_lo, c_hi)] = True  # a cell has no ends
 
@@ -107,11 +153,17 @@ def check_model(model) -> dict:
             "checks disagree beyond the mesh's resolution: "
             + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
+    return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces,
+            "centres": everything[:n], "spheres": spheres, "grazing": grazing,
+            "disagree": disagree, "warnings": warnings,
+            "clashing": [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]}
 
-    clashing = [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]
-    stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
-    max_stretch = float(stretch.max()) if stretch.size else 0.0
-    chain_clash = [False if s else None for s in scored[:n].tolist()]  # None: not scored
+
+def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int) -> tuple[list, list]:
+    """Whether each chain's globule clashes (None: not scored), and each layer's."""
+    n = len(scored)
+    layer_of, _ = helix.chain_layers(p)
+    chain_clash = [False if s else None for s in scored.tolist()]  # None: not scored
     for i, j, _ in clashing:
         for c in (i % n, j % n):  # a periodic cell: an image's globule is its original's
             if scored[c]:
@@ -120,49 +172,28 @@ def check_model(model) -> dict:
     for c, hit in enumerate(chain_clash):
         if hit:
             layer_clash[int(layer_of[c])] = True
+    return chain_clash, layer_clash
 
-    verdict = "intersection" if faces > 0 else "successful"
-    intact = max_stretch <= p.stretch_tolerance
-    periodic = {"periodic": periodic_block(model, cells)} if p.periodic else {}
-    chains = {}
-    if p.protofilaments > 1:  # pair indices are chains: name each globule's layer and pf too
-        # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
-        name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
-        chains = {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
-                  "chain_clashes": chain_clash}
+
+def _chain_blocks(p, clashing, chain_clash, n: int) -> dict:
+    """With several protofilaments, pair indices are chains: each clashing globule's layer and
+    protofilament, and each chain's clash."""
+    if p.protofilaments <= 1:
+        return {}
+    layer_of, pf_of = helix.chain_layers(p)
+    # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
+    name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
+    return {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
+            "chain_clashes": chain_clash}
+
+
+def _cell_warnings(p) -> list[str]:
     margin = helix.auto_cell_layers(p)
     if p.periodic and p.periodic < margin:
-        warnings.append(f"a cell of {p.periodic} layers is shorter than the measured margin "
-                        f"({margin}, 'auto'): cells this short were not measured against long "
-                        f"fibrils (docs/notebook/periodic-cell.md#agreement)")
-    if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
-        chains["inside_core"] = members_inside_core(p, positions)
-        if chains["inside_core"]:
-            warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
-                            f"([chain, member]: {chains['inside_core'][:5]})")
-    return {
-        "verdict": verdict,
-        "intersecting_faces": faces,
-        "clashing_pairs": clashing,
-        "max_overlap": max((d for *_, d in clashing), default=0.0),
-        "grazing_pairs": [[i, j, round(d, 4)] for i, j, d in grazing],
-        "sphere_check": {
-            "verdict": "intersection" if spheres else "successful",
-            "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in spheres],
-            "tolerance": round(band, 4),
-        },
-        "checks_agree": not disagree,
-        "warnings": warnings,
-        "max_bond_stretch": round(max_stretch, 6),
-        "linker_intact": bool(intact),
-        "accommodated": bool(verdict == "successful" and intact),
-        "scored_layers": [lo, hi - 1],
-        "layer_clashes": layer_clash,
-        **chains,
-        "globule_centres": np.round(centres, 4).tolist(),
-        "envelope": envelope(centres[scored[:n]], p.globule_radius),
-        **periodic,
-    }
+        return [f"a cell of {p.periodic} layers is shorter than the measured margin "
+                f"({margin}, 'auto'): cells this short were not measured against long "
+                f"fibrils (docs/notebook/periodic-cell.md#agreement)"]
+    return []
 
 
 def periodic_block(model, cells: int) -> dict:

@@ -137,6 +137,33 @@ def kind_of(values: dict) -> str:
 
 def run_minimal(args, values: dict) -> int:
     """`values`: the model options given (strings, as cli.params_from returns them)."""
+    values, seeds, walks = _minimal_plan(args, values)
+    _need_packages(args)
+    out = outdir.out_dir(args)
+    out.mkdir(parents=True, exist_ok=True)
+    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
+    results = out / RESULTS
+    runner.repair_tail(results)
+    try:
+        _walk(args, values, seeds, walks, out)
+    except SweepError as exc:
+        print(f"fibrilfit: error: {exc}", file=sys.stderr)
+        return exits.EXIT_USAGE
+    except KeyboardInterrupt:
+        print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
+              file=sys.stderr)
+        return exits.EXIT_INTERRUPTED
+    rows = [{"kind": kind_of(dict(values)), **w.row()} for w in walks]
+    _write_minimal(args, values, seeds, rows, out)
+    errors = [r for r in rows if r.get("error")]
+    for r in errors:
+        print(f"warning: {r['globule_diameter']:g} Å: {r['error']}", file=sys.stderr)
+    return exits.EXIT_OK
+
+
+def _minimal_plan(args, values: dict) -> tuple:
+    """The model options (protocol inflate unless given), the restarts' seeds and one walk per
+    diameter, every bad value refused before anything runs."""
     _check_executor_options(args)
     if "linker" in values:
         raise exits.UsageError("--linker: minimal-linker searches the linker length; leave it out")
@@ -151,62 +178,57 @@ def run_minimal(args, values: dict) -> int:
     values.setdefault("protocol", "inflate")
     first = int(P.make_params(**values).seed)
     seeds = range(first, first + args.restarts)
-    kind = kind_of({k: v for k, v in values.items()})
     walks = []
-    for d in diameters:  # every bad value refused before anything runs
+    for d in diameters:
         base = P.make_params(force=args.force, **values, globule_diameter=d, linker=1)
         base.replace(linker=args.max_linker, seed=seeds[-1])
         walks.append(minimal.Walk(base.globule_diameter,
                                   min(minimal.first_guess(base.globule_diameter), args.max_linker),
                                   args.max_linker))
-    _need_packages(args)
-    out = outdir.out_dir(args)
-    out.mkdir(parents=True, exist_ok=True)
-    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
+    return values, seeds, walks
+
+
+def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
+    """Step every walk until each has its minimum: the restarts of each wanted length run on
+    one executor (started only if something is left to run), recorded in RESULTS."""
+    from .. import pipeline
     results = out / RESULTS
-    runner.repair_tail(results)
 
     def base_of(walk, linker):
         return P.make_params(force=args.force, **values, globule_diameter=walk.diameter,
-                             linker=linker, seed=first).to_dict()
+                             linker=linker, seed=seeds[0]).to_dict()
 
-    from .. import pipeline
-    try:
-        with contextlib.ExitStack() as stack:
-            executor = None
-            while True:
-                wanted = [(w, w.next_linker()) for w in walks]
-                wanted = [(w, L) for w, L in wanted if L is not None]
-                if not wanted:
-                    break
-                done = runner.done_keys(runner.read_lines(results)[0])
-                todo = [pt for w, L in wanted for pt in restarts.points(base_of(w, L), seeds)
-                        if pt.key not in done]
-                if todo:
-                    if executor is None:
-                        executor = stack.enter_context(make_executor(args, log_path=out / LOG))
-                    if not args.quiet:
-                        print("minimal-linker: trying " + ", ".join(
-                            f"{w.diameter:g} Å at linker {L}" for w, L in wanted), file=sys.stderr)
-                    runner.run(executor, todo, results, force=args.force,
-                               progress=not args.quiet, version=pipeline.version())
-                for w, L in wanted:
-                    recs = [r for r in restarts.read(results, base_of(w, L))
-                            if r["params"]["seed"] in seeds]
-                    ok = [r for r in recs if r.get("status") == "ok"]
-                    if not ok:
-                        w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
-                    w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
-    except SweepError as exc:
-        print(f"fibrilfit: error: {exc}", file=sys.stderr)
-        return exits.EXIT_USAGE
-    except KeyboardInterrupt:
-        print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
-              file=sys.stderr)
-        return exits.EXIT_INTERRUPTED
+    with contextlib.ExitStack() as stack:
+        executor = None
+        while True:
+            wanted = [(w, w.next_linker()) for w in walks]
+            wanted = [(w, L) for w, L in wanted if L is not None]
+            if not wanted:
+                return
+            done = runner.done_keys(runner.read_lines(results)[0])
+            todo = [pt for w, L in wanted for pt in restarts.points(base_of(w, L), seeds)
+                    if pt.key not in done]
+            if todo:
+                if executor is None:
+                    executor = stack.enter_context(make_executor(args, log_path=out / LOG))
+                if not args.quiet:
+                    print("minimal-linker: trying " + ", ".join(
+                        f"{w.diameter:g} Å at linker {L}" for w, L in wanted), file=sys.stderr)
+                runner.run(executor, todo, results, force=args.force,
+                           progress=not args.quiet, version=pipeline.version())
+            for w, L in wanted:
+                recs = [r for r in restarts.read(results, base_of(w, L))
+                        if r["params"]["seed"] in seeds]
+                ok = [r for r in recs if r.get("status") == "ok"]
+                if not ok:
+                    w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
+                w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
 
-    rows = [{"kind": kind, **w.row()} for w in walks]
+
+def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
+    """minimal_linker.json, .csv and .png, and the table on stdout."""
     import bpy
+    from .. import pipeline
     document = {
         "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
         "method": "walk: from a guess, up one residue from a miss, down one from a fit, until "
@@ -221,11 +243,7 @@ def run_minimal(args, values: dict) -> int:
         plot.write(out / PNG, rows)
     print(table(rows))
     print(f"minimal-linker: {out / CSV}, {out / JSON}"
-          + ("" if args.no_plot else f", {out / PNG}") + f"; every run in {results}")
-    errors = [r for r in rows if r.get("error")]
-    for r in errors:
-        print(f"warning: {r['globule_diameter']:g} Å: {r['error']}", file=sys.stderr)
-    return exits.EXIT_OK
+          + ("" if args.no_plot else f", {out / PNG}") + f"; every run in {out / RESULTS}")
 
 
 def _need_packages(args) -> None:

@@ -47,21 +47,8 @@ def _case(args) -> dict | None:
 
 
 def run(args) -> int:
-    _check_options(args)
-    specs = grid.specs_from(args)
-    seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
-                             else args.seed)
-    merged, structure_block = inputs.params_and_structure(args, specs)
-    base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
-    points = grid.build(specs, seeds, force=args.force, base=base)
-    requirements = [gate.parse(text) for text in args.require]
-    out = outdir.out_dir(args)
+    points, requirements, structure_block, out = _plan(args)
     results = out / RESULTS
-    records, _ = runner.read_lines(results)
-    known = [p.params for p in points] + [r["params"] for r in records]
-    for req in requirements:  # a typo in a selector should not cost hours of runs
-        if not any(req.matches(params) for params in known):
-            raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
     with slurm.ctrl_c_kept():
         outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
                     *(["distributed"] if args.executor in ("dask", "slurm") else []),
@@ -72,24 +59,7 @@ def run(args) -> int:
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
-    if runner.repair_tail(results):
-        print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
-    if args.retry_failed:
-        runner.drop_failed(results)
-    records, bad = runner.read_lines(results)
-    if bad:
-        print(f"fibrilfit: ignoring {bad} unreadable lines in {results}", file=sys.stderr)
-    done = runner.done_keys(records)
-    todo = [p for p in points if p.key not in done]
-    if not args.quiet:
-        kind = "Dask LocalCluster" if args.executor == "dask" else "local"
-        where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
-                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
-                 f"{out / slurm.JOB_LOGS})" if args.executor == "slurm" else
-                 f"{args.workers or cpu_count()} {kind} workers")
-        print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
-              f"{results}, {len(todo)} to run on {where}")
-
+    todo = _todo(args, points, results)
     if todo:
         from .. import pipeline
         try:
@@ -106,7 +76,55 @@ def run(args) -> int:
             print(f"fibrilfit: interrupted; {len(kept)} results kept in {results}; "
                   f"continue with --resume", file=sys.stderr)
             return exits.EXIT_INTERRUPTED
+    return _summarise(args, requirements, out)
 
+
+def _plan(args) -> tuple:
+    """The grid's points, the --require gates and the structure block, every one checked
+    against the grid and the results already in --out before anything runs."""
+    _check_options(args)
+    specs = grid.specs_from(args)
+    seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
+                             else args.seed)
+    merged, structure_block = inputs.params_and_structure(args, specs)
+    base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
+    points = grid.build(specs, seeds, force=args.force, base=base)
+    requirements = [gate.parse(text) for text in args.require]
+    out = outdir.out_dir(args)
+    records, _ = runner.read_lines(out / RESULTS)
+    known = [p.params for p in points] + [r["params"] for r in records]
+    for req in requirements:  # a typo in a selector should not cost hours of runs
+        if not any(req.matches(params) for params in known):
+            raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
+    return points, requirements, structure_block, out
+
+
+def _todo(args, points: list, results: pathlib.Path) -> list:
+    """The points not yet in `results` (a torn last line repaired, failed runs dropped with
+    --retry-failed), said on stdout with where they will run."""
+    if runner.repair_tail(results):
+        print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
+    if args.retry_failed:
+        runner.drop_failed(results)
+    records, bad = runner.read_lines(results)
+    if bad:
+        print(f"fibrilfit: ignoring {bad} unreadable lines in {results}", file=sys.stderr)
+    done = runner.done_keys(records)
+    todo = [p for p in points if p.key not in done]
+    if not args.quiet:
+        kind = "Dask LocalCluster" if args.executor == "dask" else "local"
+        where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
+                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
+                 f"{results.parent / slurm.JOB_LOGS})" if args.executor == "slurm" else
+                 f"{args.workers or cpu_count()} {kind} workers")
+        print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
+              f"{results}, {len(todo)} to run on {where}")
+    return todo
+
+
+def _summarise(args, requirements: list, out: pathlib.Path) -> int:
+    """summary.csv, the phase plot, the table and the gates; the exit code the gates give."""
+    results = out / RESULTS
     records, _ = runner.read_lines(results)
     rows = summary.rows(records)
     files.write_text(out / SUMMARY, summary.csv_text(rows))

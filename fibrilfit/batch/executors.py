@@ -16,7 +16,7 @@ import uuid
 
 from . import pool
 
-PACKAGE = pathlib.Path(__file__).resolve().parents[1]  # the fibrilfit folder, for Dask workers
+POOL_FILE = str(pathlib.Path(pool.__file__).resolve())  # what Dask workers load (dask_task.py)
 START_FAILURES = 3  # workers dying before they are ready, in a row, before the sweep gives up
 
 
@@ -150,7 +150,7 @@ class DaskExecutor:
 
     def submit(self, job: dict) -> None:
         key = f"fibrilfit-{job['id']}-{job['attempt']}-{uuid.uuid4().hex[:8]}"
-        future = self.client.submit(self._task, str(PACKAGE), job, self.timeout, key=key,
+        future = self.client.submit(self._task, POOL_FILE, job, self.timeout, key=key,
                                     pure=False)
         self.futures[future.key] = job
         self.done.add(future)

@@ -1,6 +1,5 @@
-"""Property-based fuzzing of the parameter validation: any input either builds a valid model or
-is refused with ParamError, never anything else."""
-import dataclasses
+"""Property-based fuzzing of the build: any parameter set the validation accepts builds a valid
+model, and a refused one builds nothing (the validation's own fuzzing: tests/unit/test_fuzz.py)."""
 import math
 
 import numpy as np
@@ -9,63 +8,10 @@ from hypothesis import HealthCheck, event, example, given, settings, strategies 
 from fibrilfit.model import params as P
 from fibrilfit.builders import build_model
 
-FIELDS = {f.name: f.metadata for f in dataclasses.fields(P.Params)}
-
-junk = st.one_of(
-    st.none(), st.booleans(), st.text(max_size=6), st.binary(max_size=4),
-    st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**12, 10**12),
-    st.lists(st.floats(-1e3, 1e3), max_size=4), st.dictionaries(st.text(max_size=2), st.integers()),
-)
-
-
-def near_range(meta):
-    lo, hi = meta["min"], meta["max"]
-    if "choices" in meta:
-        return st.sampled_from([*meta["choices"], "", "Tutorial ", "other"])
-    if meta["kind"] is bool:
-        return st.booleans()
-    if meta["kind"] is int:
-        return st.integers(int(lo) - 3, min(int(hi) + 3, 10**7))
-    return st.floats(lo - 1.0, hi + 1.0, allow_nan=False) | st.sampled_from([lo, hi, 0.0, -0.0])
-
-
-SMALLER = {"layers": (1, 3000), "score_layers": (0, 5)}  # keeps combination limits reachable
-
-
-def in_range(meta, name=None):
-    if name in SMALLER:
-        return st.integers(*SMALLER[name])
-    if "choices" in meta:
-        return st.sampled_from(meta["choices"])
-    if meta["kind"] is bool:
-        return st.booleans()
-    if meta["kind"] is int:
-        return st.integers(int(meta["min"]), min(int(meta["max"]), 10**7))
-    return st.floats(meta["min"], meta["max"])
-
 
 def polygons(coord):
     """Any list of points: valid outlines, too few points, crossings, repeats."""
     return st.lists(st.tuples(coord, coord), min_size=0, max_size=8)
-
-
-def value_for(name):
-    meta = FIELDS[name]
-    good, edge = in_range(meta, name), near_range(meta)
-    if name == "slab":
-        good, edge = st.tuples(good, good, good), st.tuples(edge, edge, edge)
-    elif meta["size"]:
-        good, edge = st.tuples(*[good] * meta["size"]), st.tuples(*[edge] * meta["size"])
-    elif meta["kind"] == "points":
-        good, edge = polygons(st.floats(-60, 60)), polygons(near_range({**meta, "kind": float}))
-    if meta["derived"]:
-        good = st.one_of(good, st.none(), st.just("auto"))
-    # mostly valid values, so that accepted sets are common too, with every kind of bad one
-    return st.one_of(*[good] * 24, edge, edge.map(str), junk)
-
-
-known_sets = st.fixed_dictionaries({}, optional={name: value_for(name) for name in FIELDS})
-unknown_sets = st.dictionaries(st.text(min_size=1, max_size=8), junk, min_size=1, max_size=2)
 
 
 small_models = st.fixed_dictionaries({}, optional={

@@ -101,9 +101,6 @@ def test_rest_layout_helpers_are_unchanged_for_the_tutorial():
     assert pos.shape == (20, 7, 3) and piv.shape == (20, 6, 3)
 
 
-# ---- the protocol parameter ---------------------------------------------------------------------
-
-
 # ---- the schedule in Blender -------------------------------------------------------------------
 
 def test_inflate_grows_with_the_pivot_on_the_full_size_surface(scene, ff):

@@ -27,21 +27,6 @@ def keys(records):
     return [grid.point_key(r["params"]) for r in records]
 
 
-# ---- grid specs ---------------------------------------------------------------------------
-
-
-# ---- statistics, summary and gate -----------------------------------------------------------
-
-
-def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, status="ok"):
-    p = P.make_params(linker=linker, globule_diameter=diameter, seed=seed).to_dict()
-    if status != "ok":
-        return {"params": p, "seed": seed, "status": status, "error": "boom"}
-    return {"params": p, "seed": seed, "status": "ok", "accommodated": accommodated,
-            "verdict": verdict, "max_bond_stretch": stretch, "frames_simulated": frames,
-            "envelope": {"outer_diameter": 100.0 + 10 * seed}}
-
-
 # ---- real sweeps ---------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def done_when(tmp_path_factory):

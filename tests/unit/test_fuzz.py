@@ -13,6 +13,7 @@ junk = st.one_of(
     st.lists(st.floats(-1e3, 1e3), max_size=4), st.dictionaries(st.text(max_size=2), st.integers()),
 )
 
+
 def near_range(meta):
     lo, hi = meta["min"], meta["max"]
     if "choices" in meta:
@@ -25,6 +26,7 @@ def near_range(meta):
 
 SMALLER = {"layers": (1, 3000), "score_layers": (0, 5)}  # keeps combination limits reachable
 
+
 def in_range(meta, name=None):
     if name in SMALLER:
         return st.integers(*SMALLER[name])
@@ -36,9 +38,11 @@ def in_range(meta, name=None):
         return st.integers(int(meta["min"]), min(int(meta["max"]), 10**7))
     return st.floats(meta["min"], meta["max"])
 
+
 def polygons(coord):
     """Any list of points: valid outlines, too few points, crossings, repeats."""
     return st.lists(st.tuples(coord, coord), min_size=0, max_size=8)
+
 
 def value_for(name):
     meta = FIELDS[name]

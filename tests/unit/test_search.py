@@ -31,6 +31,7 @@ def test_cli_refuses_a_bad_protocol_in_one_line(tmp_path):
     assert proc.returncode == 2
     assert proc.stderr.strip().count("\n") == 0 and "--protocol" in proc.stderr
 
+
 def _record(seed, fits, pairs=0, stretch=0.0):
     return {"params": {"seed": seed}, "status": "ok", "accommodated": fits, "verdict":
             "successful" if not pairs else "intersection", "clashing_pairs": [[0, 1, 1.0]] * pairs,
@@ -47,6 +48,7 @@ def test_restarts_summary_has_p_fit_its_wilson_interval_and_the_best_seed():
     assert 0 < lo < 1 / 3 < hi < 1
     none = restarts.summarise([_record(0, False, 1), _record(1, False, 3)])
     assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
+
 
 class FakeExecutor:
     """The executor interface (submit, pending, wait) answering from a table, no Blender."""

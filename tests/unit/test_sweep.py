@@ -7,6 +7,7 @@ from fibrilfit.model import params as P
 from fibrilfit.sweep import gate, grid, summary
 from fibrilfit.sweep.stats import wilson
 
+
 def lines(path):
     return [json.loads(line) for line in path.read_text().splitlines()]
 
@@ -74,6 +75,7 @@ def test_wilson_interval_edges():
     assert lo == pytest.approx(3 / (3 + 1.959963984540054 ** 2))  # k = n: n / (n + z²)
     with pytest.raises(ValueError):
         wilson(1, 0)
+
 
 def _record(linker, diameter, seed, accommodated, verdict, stretch, frames=250, status="ok"):
     p = P.make_params(linker=linker, globule_diameter=diameter, seed=seed).to_dict()

@@ -8,6 +8,7 @@ import bpy
 from ..model import params as P
 from . import properties
 from ..builders import model_stage, structure_trace
+from ..builders.model import params_of
 from ..builders.scene import find_root
 from ..exports.summary import percent
 from .operators.common import reached
@@ -82,7 +83,7 @@ def _case_name(s) -> str:
 
 def _draw_changes(layout, s, root, stage):
     """Warn when the panel no longer matches the model a bake or check would use."""
-    built = P.make_params(force=True, **root["params"].to_dict())
+    built = params_of(root)
     changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS)
     if changed:
         names = ", ".join(name for name, _, _ in changed)

@@ -68,3 +68,20 @@ def test_the_slug_is_python_markdowns():
     assert slug("Search: inflate, restarts and the minimal linker") == \
         "search-inflate-restarts-and-the-minimal-linker"
     assert slug("`run` and `sweep` from files") == "run-and-sweep-from-files"
+
+
+def test_the_front_pages_links_exist():
+    """README.md and CONTRIBUTING.md are not in the site (mkdocs --strict does not see them):
+    every relative link of theirs names a file that exists, and an anchor its page has."""
+    missing = []
+    for page in ("README.md", "CONTRIBUTING.md"):
+        text = (ROOT / page).read_text(encoding="utf-8")
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if "://" in target:
+                continue
+            path, _, anchor = target.partition("#")
+            if not (ROOT / path).exists():
+                missing.append(f"{page}: {target}")
+            elif anchor and anchor not in anchors(ROOT / path):
+                missing.append(f"{page}: {target} (no such anchor)")
+    assert not missing, "\n".join(missing)

@@ -60,32 +60,70 @@ def _imported_modules(tree, package):
     return names
 
 
-def test_no_private_name_crosses_a_package_wall():
+def _is_package(target) -> bool:
+    return PACKAGE.joinpath(*target).is_dir()
+
+
+def _private_crossings(tree, package, is_package=_is_package) -> list[str]:
+    """'line: name' for each private name this module takes from another package: `from X
+    import _name`, or `module._name` on a FibrilFit module it imported. A module's own package
+    and the packages inside it are home; a top-level module (package []) is home only at the
+    top level, since each subpackage is a room of its own."""
+    def home(package_of_name):
+        inside = package_of_name[:len(package)] == package
+        return package_of_name == package or (inside and bool(package))
+
+    def private(name):
+        return name.startswith("_") and not name.startswith("__")
+
     crossing = []
-    for path, package, _ in modules():
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        imported = _imported_modules(tree, package)
-        for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom) and node.level:
-                base = package[:len(package) - (node.level - 1)]
-                target = base + (node.module.split(".") if node.module else [])
-                for a in node.names:
-                    if a.name.startswith("_") and not a.name.startswith("__") \
-                            and target[:len(package)] != package:
-                        crossing.append(f"{path.relative_to(ROOT)}:{node.lineno}: {a.name}")
-            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
-                    and node.attr.startswith("_") and not node.attr.startswith("__"):
-                source = imported.get(node.value.id)
-                if source is not None and source[:-1] != package:
-                    crossing.append(f"{path.relative_to(ROOT)}:{node.lineno}: "
-                                    f"{node.value.id}.{node.attr}")
+    imported = _imported_modules(tree, package)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = package[:len(package) - (node.level - 1)]
+            target = base + (node.module.split(".") if node.module else [])
+            # `from ..batch import _x` takes it from batch/__init__; `from ..batch.pool` from batch
+            owner = target if is_package(target) else target[:-1]
+            crossing += [f"{node.lineno}: {a.name}" for a in node.names
+                         if private(a.name) and not home(owner)]
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
+                and private(node.attr):
+            source = imported.get(node.value.id)
+            if source is not None and source[:-1] != package:
+                crossing.append(f"{node.lineno}: {node.value.id}.{node.attr}")
+    return crossing
+
+
+def test_no_private_name_crosses_a_package_wall():
+    crossing = [f"{path.relative_to(ROOT)}:{found}" for path, package, _ in modules()
+                for found in _private_crossings(ast.parse(path.read_text(encoding="utf-8")),
+                                                package)]
     assert not crossing, "\n".join(crossing)
+
+
+def test_the_private_check_sees_each_kind_of_crossing():
+    def found(code, package):
+        return _private_crossings(ast.parse(code), package, lambda t: t in (["batch"], []))
+    # from another subpackage, from a subpackage into a top-level module, from the package root
+    assert found("from ..batch.pool import _x", ["sweep"])
+    assert found("from .builders.model import _x", [])
+    assert found("from ..batch import _x", ["sweep"])
+    assert found("from .. import _x", ["sweep"])
+    assert found("from ..builders import model\nmodel._x()", ["sweep"])
+    assert found("from .builders import model\nmodel._x()", [])
+    # at home: its own package, a package inside it, the top level among its own modules
+    assert not found("from .runner import _x", ["sweep"])
+    assert not found("from .operators.common import _x", ["ui"])
+    assert not found("from .exits import _x", [])
+    assert not found("from . import runner\nrunner._x()", ["sweep"])
+    assert not found("from ..batch import pool\npool.__file__", ["sweep"])
 
 
 # The one exemption: the installed-extension scenario reproduces what Blender itself does to
 # sys.path for an extension's bundled wheels (puts its site-packages first), to test the wheel.
 PATH_EXEMPT = {"tests/blender/installed_scenario.py"}
-PATH_CODE = re.compile(r"sys\.path\.(insert|append|extend|remove|pop|clear)\(|sys\.path\s*(\[[^]]*\]\s*)?=[^=]")
+PATH_CODE = re.compile(r"sys\.path\.(insert|append|extend|remove|pop|clear)\("
+                       r"|sys\.path\s*(\[[^]]*\]\s*)?=[^=]")
 
 
 def _changes_sys_path(tree) -> list[int]:

@@ -155,6 +155,7 @@ def worker_analysis(layers: int, relaxed: str = "") -> dict:
 def _stacked(path: str, p, count: int):
     """Raw world matrices of a baked model's bodies, repeated up the screw axis to `count`."""
     import numpy as np
+    from fibrilfit.model import helix
     data = np.load(path)
     block = int(data["layers"])
     raw = data["raw"].reshape(-1, 4, 4).astype(float)  # column-major: translation in row 3
@@ -162,9 +163,7 @@ def _stacked(path: str, p, count: int):
     copies = -(-count // len(raw))
     out = []
     for b in range(copies):
-        a, h = b * block * p.twist, b * block * p.rise
-        screw = np.array([[np.cos(a), -np.sin(a), 0, 0], [np.sin(a), np.cos(a), 0, 0],
-                          [0, 0, 1, h], [0, 0, 0, 1]])
+        screw = helix.turn_matrix(*helix.layer_turn(p, b * block))  # b·block layers up
         out.append(np.einsum("ij,njk->nik", screw, raw.transpose(0, 2, 1)).transpose(0, 2, 1))
     stacked = np.concatenate(out)[:count]
     assert count % per_layer == 0

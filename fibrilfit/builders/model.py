@@ -28,7 +28,6 @@ PF_COLORS = {
     "residue": ((0.95, 0.75, 0.2, 1.0), (0.95, 0.5, 0.15, 1.0), (0.75, 0.9, 0.2, 1.0),
                 (0.95, 0.6, 0.6, 1.0), (0.8, 0.8, 0.5, 1.0), (0.3, 0.85, 0.7, 1.0)),
 }
-chain_layers = helix.chain_layers  # (layer, protofilament) of every chain index
 
 
 def part_colour(role: str, pf: int = 0) -> tuple:
@@ -41,7 +40,7 @@ def part_colour(role: str, pf: int = 0) -> tuple:
 class Model:
     """Handles to a built model. `chain[c][i]`: chain c, member i (0 anchor .. linker globule).
 
-    Chains are layer-major: chain c is protofilament c % K of layer c // K (chain_layers);
+    Chains are layer-major: chain c is protofilament c % K of layer c // K (helix.chain_layers);
     with one protofilament, chain c is layer c. `slabs[k]`: layer k's core. `constraints[c]`:
     chain c's bonds."""
 

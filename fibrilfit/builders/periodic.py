@@ -33,10 +33,9 @@ def plan(p, chain_layers, core_layers) -> dict:
     # protofilaments rise from one to the next: the layer's chains spread over that much more
     reach_cell = helix.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
     member_reach = helix.chain_reach(p)
-    gaps = _gaps(p)
     moving, static = [], []
     for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
-        g = gaps[(m, k)]
+        g = helix.image_gap(p, m, k)
         for c in np.flatnonzero(np.asarray(chain_layers) == k).tolist():
             for i in np.flatnonzero(member_reach + reach_cell >= g).tolist():
                 (static if i == 0 else moving).append((m, "anchor", c) if i == 0 else (m, c, i))
@@ -44,18 +43,6 @@ def plan(p, chain_layers, core_layers) -> dict:
         for j in np.flatnonzero(np.asarray(core_layers) == k).tolist():
             static.append((m, "core", j))
     return {"moving": moving, "static": static}
-
-
-def _gaps(p) -> dict:
-    """Height gap between each image layer (m, k) and the nearest cell layer."""
-    M, top = p.periodic, (p.periodic - 1) * p.rise
-    out = {}
-    for m in range(-64, 65):
-        if m:
-            for k in range(M):
-                z = (k + m * M) * p.rise
-                out[(m, k)] = z - top if m > 0 else -z
-    return out
 
 
 def build_images(model, scene) -> dict:

@@ -183,10 +183,6 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     return parser
 
 
-OUTPUTS = {"json": (".json",), "blend": (".blend",), **export_options.SUFFIXES,
-           "save_case": cases.SUFFIXES, "envelope_plot": (".png",)}
-
-
 def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     argv = sys.argv[1:] if argv is None else argv
     try:
@@ -252,6 +248,7 @@ def _checked_run(args) -> tuple:
     """The run's Params, its structure block and its output paths and options, every one
     checked: a bad value or an unwritable path is refused here, before anything runs."""
     from .. import pipeline  # noqa: F401 (imports bpy first: the checks below import mathutils)
+    from ..exports import writers
     from ..search import command as search_command
     search_command.check_restart_options(args)
     P.refuse_beside_periodic(params_from(args))
@@ -266,7 +263,8 @@ def _checked_run(args) -> tuple:
         export_options.pdb_fits(p)
     outputs["movie_step"] = export_options.movie_step(args)
     outputs["paths"] = {key: files.check_writable(option(key), getattr(args, key), suffixes)
-                        for key, suffixes in OUTPUTS.items() if getattr(args, key, None)}
+                        for key, suffixes in writers.path_suffixes().items()
+                        if getattr(args, key, None)}
     if "movie" in outputs["paths"]:
         from ..exports import movie  # imports bpy: only when a movie is asked for
         movie.refuse_unsupported(outputs["paths"]["movie"], args.stop_after)

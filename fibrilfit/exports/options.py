@@ -10,7 +10,6 @@ import argparse
 import re
 
 MOVIE_FORMATS = (".mp4", ".gif")
-SUFFIXES = {"pdb": (".pdb",), "render": (".png",), "movie": MOVIE_FORMATS}
 ENGINES = ("cycles", "workbench")     # exports.render.ENGINES, without importing bpy
 SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
 DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8

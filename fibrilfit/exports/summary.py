@@ -14,18 +14,16 @@ def summary(r: dict, quiet: bool = False) -> str:
     if "verdict" not in r:
         return head + f"\nstopped after {r['stage']}; no verdict"
     if quiet:
-        return f"verdict: {r['verdict']}" + (
-            "  (accommodated)" if r["accommodated"] else "  (not accommodated)")
-    lines = [head, _bake_line(r), *_clash_lines(r), *_linker_lines(r), *_periodic_lines(r)]
-    lines += [f"warning: {w}" for w in r.get("warnings", [])]
-    env = r.get("envelope") or {}
-    if env.get("n"):
-        lines.append(f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; "
-                     f"95 % within {env['r95']:.1f} Å), outer diameter "
-                     f"{env['outer_diameter']:.0f} Å")
-    lines += _export_lines(r)
-    lines.append(_answer_line(r))
-    return "\n".join(lines)
+        return _quiet_line(r)
+    return "\n".join([head, _bake_line(r), *_clash_lines(r), *_linker_lines(r),
+                      *_periodic_lines(r), *[f"warning: {w}" for w in r.get("warnings", [])],
+                      *_envelope_lines(r), *_export_lines(r), _answer_line(r)])
+
+
+def _quiet_line(r: dict) -> str:
+    """--quiet: the verdict alone."""
+    return f"verdict: {r['verdict']}" + (
+        "  (accommodated)" if r["accommodated"] else "  (not accommodated)")
 
 
 def _head_line(r: dict) -> str:
@@ -99,6 +97,15 @@ def _periodic_lines(r: dict) -> list[str]:
            if per.get("gravity") == "axial" else "")
         + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
            if lag else "")]
+
+
+def _envelope_lines(r: dict) -> list[str]:
+    """Where the domains ended up (analysis/envelope.py), when there are any."""
+    env = r.get("envelope") or {}
+    if not env.get("n"):
+        return []
+    return [f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; 95 % "
+            f"within {env['r95']:.1f} Å), outer diameter {env['outer_diameter']:.0f} Å"]
 
 
 def _answer_line(r: dict) -> str:

@@ -13,7 +13,9 @@ import bpy
 
 from ..analysis import clashing_layers
 from ..builders import find_model, keep_bake
+from ..model import cases
 from . import dressing, envelope_plot, files, movie, pdb, render
+from .options import MOVIE_FORMATS
 
 
 def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> None:
@@ -85,11 +87,13 @@ class Job:
 
 @dataclass(frozen=True)
 class Output:
-    """One output: the result key it stores under, its label in a failure's message, when it is
-    wanted, what writes it, whether it is slow (the JSON is rewritten after it) and whether a
-    failure is only reported (guarded) or ends the command."""
+    """One output: the result key it stores under (and the option naming its file, --key), its
+    label in a failure's message, the suffixes its file may end in (none: it writes no file of
+    its own), when it is wanted, what writes it, whether it is slow (the JSON is rewritten after
+    it) and whether a failure is only reported (guarded) or ends the command."""
     key: str
     label: str
+    suffixes: tuple[str, ...]
     wanted: Callable[[Job], bool]
     write: Callable[[Job], dict | None]
     slow: bool = False
@@ -106,23 +110,34 @@ def _asked(key: str) -> Callable[[Job], bool]:
 
 
 OUTPUTS = (  # in the order they run: the slow ones last
-    Output("dressing", "materials, camera and light",  # for --blend and --render; clashes red
+    Output("dressing", "materials, camera and light", (),  # for --blend and --render; clashes red
            lambda j: bool(j.paths.keys() & {"blend", "render"}),
            lambda j: prepare(j.scene, j.result, aspect=j.look["aspect"])),
-    Output("pdb", "--pdb", _asked("pdb"), lambda j: write_pdb(
+    Output("pdb", "--pdb", (".pdb",), _asked("pdb"), lambda j: write_pdb(
         j.scene, j.result, j.paths["pdb"], j.pdb_frames, j.pdb_images)),
-    Output("blend", "--blend", _asked("blend"), _blend, guarded=False),
-    Output("save_case", "--save-case", _asked("save_case"),
+    Output("blend", "--blend", (".blend",), _asked("blend"), _blend, guarded=False),
+    Output("save_case", "--save-case", cases.SUFFIXES, _asked("save_case"),
            lambda j: files.write_case(j.paths["save_case"], j.case) and None, guarded=False),
-    Output("envelope_plot", "--envelope-plot",
+    Output("envelope_plot", "--envelope-plot", (".png",),
            lambda j: "envelope_plot" in j.paths and "envelope" in j.result,
            lambda j: envelope_plot.write(j.result, j.paths["envelope_plot"])),
-    Output("render", "--render", _asked("render"), lambda j: write_render(
+    Output("render", "--render", (".png",), _asked("render"), lambda j: write_render(
         j.scene, j.result, j.paths["render"], j.look), slow=True),
-    Output("movie", "--movie", _asked("movie"), lambda j: write_movie(
+    Output("movie", "--movie", MOVIE_FORMATS, _asked("movie"), lambda j: write_movie(
         j.scene, j.result, j.paths["movie"], step=j.movie_step, size=j.look["size"],
         progress=j.progress), slow=True),
 )
+BY_KEY = {out.key: out for out in OUTPUTS}
+JSON_SUFFIXES = (".json",)  # --json: the result, which write_all writes itself
+# The order the command line checks the output paths in, so that of two bad paths the one named
+# is the one it always named (--json and --blend first, then the pictures and structures).
+CHECK_ORDER = ("json", "blend", "pdb", "render", "movie", "save_case", "envelope_plot")
+
+
+def path_suffixes() -> dict[str, tuple[str, ...]]:
+    """Every output option that names a file (key: suffixes), in CHECK_ORDER."""
+    given = {"json": JSON_SUFFIXES, **{out.key: out.suffixes for out in OUTPUTS if out.suffixes}}
+    return {key: given[key] for key in sorted(given, key=CHECK_ORDER.index)}
 
 
 def write_all(job: Job, outputs=OUTPUTS) -> list[str]:

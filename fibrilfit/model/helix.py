@@ -4,8 +4,9 @@ Layer k is turned k·twist about Z and raised k·rise; protofilament j of a laye
 protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A periodic cell of M
 layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
-(`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`). `layer_frame_xy` is the
-inverse: a point's layer and its position in that layer's own frame.
+(`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
+any turn and rise). `layer_frame_xy` is the inverse: a point's layer and its position in that
+layer's own frame.
 """
 from __future__ import annotations
 
@@ -61,7 +62,12 @@ def screw_turn(p, m):
 
 def screw_matrix(p, m: int) -> np.ndarray:
     """S^m as a 4 × 4 matrix (row-major, column vectors): turn m·M·twist, raise m·M·rise."""
-    angle, height = screw_turn(p, m)
+    return turn_matrix(*screw_turn(p, m))
+
+
+def turn_matrix(angle: float, height: float) -> np.ndarray:
+    """A turn by `angle` (rad) about Z and a rise by `height` (Å) as a 4 × 4 matrix (row-major,
+    column vectors)."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, height],
                      [0.0, 0.0, 0.0, 1.0]])
@@ -138,18 +144,22 @@ def auto_cell_layers(p) -> int:
     return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.globule_diameter / p.rise - 1e-9)))
 
 
+def image_gap(p, m: int, k: int) -> float:
+    """Height gap (Å) between layer k of image cell m (m ≠ 0: k·rise plus S^m's rise) and the
+    nearest layer of the cell (its top layer for m > 0, layer 0 for m < 0)."""
+    z = layer_turn(p, k)[1] + screw_turn(p, m)[1]
+    return z - (p.periodic - 1) * p.rise if m > 0 else -z
+
+
 def image_layers(p, reach: float) -> list[tuple[int, int]]:
     """(m, layer) of every image layer, m ≠ 0, lying within `reach` along Z of some cell layer."""
     M = p.periodic
-    top = (M - 1) * p.rise
     out = []
     m = 1
     while (m * M - (M - 1)) * p.rise <= reach:  # the nearest layer of image cell m
         for sign in (1, -1):
             for k in range(M):
-                z = k * p.rise + sign * m * M * p.rise
-                gap = z - top if sign > 0 else -z
-                if gap <= reach:
+                if image_gap(p, sign * m, k) <= reach:
                     out.append((sign * m, k))
         m += 1
     return sorted(out)

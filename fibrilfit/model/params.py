@@ -543,4 +543,4 @@ def validate(p: Params, *, force: bool = False) -> Params:
     return make_params(force=force, **p.to_dict())
 
 
-DEFAULTS = Params()
+DEFAULTS = make_params()  # validated, so a run of the defaults trusts it like any other

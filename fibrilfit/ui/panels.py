@@ -83,13 +83,14 @@ def _case_name(s) -> str:
 
 def _draw_changes(layout, s, root, stage):
     """Warn when the panel no longer matches the model a bake or check would use."""
-    built = params_of(root)
-    changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS)
+    built, now = params_of(root), properties.compared_values(s)
+    changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS, now=now)
     if changed:
         names = ", ".join(name for name, _, _ in changed)
         layout.label(text=f"Changed since the build: {names}", icon="ERROR")
         layout.label(text="Build again (Run all, or the steps) to apply")
-    elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",)):
+    elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",),
+                                                                now=now):
         layout.label(text="Simulation settings changed: Bake again to apply", icon="ERROR")
 
 

@@ -200,14 +200,26 @@ def write_params(settings, p: P.Params) -> None:
     settings.use_periodic = bool(p.periodic)
 
 
-def changed_fields(settings, p: P.Params, sections=SECTIONS) -> list[tuple[str, object, object]]:
-    """Fields of `sections` whose panel value differs from `p`: (name, value in p, panel value)."""
-    now, then = values(settings), p.to_dict()
+def compared_values(settings, panel: P.Params | None = None) -> dict:
+    """The panel's values (values()) with a cell of "auto" layers resolved: from `panel`, the
+    panel's values already validated (read_params), else by validating them here (left "auto"
+    when they are not valid)."""
+    now = values(settings)
     if now["periodic"] == "auto":
         try:
-            now["periodic"] = P.make_params(**now).periodic
+            now["periodic"] = (panel or P.make_params(**now)).periodic
         except P.ParamError:
             pass
+    return now
+
+
+def changed_fields(settings, p: P.Params, sections=SECTIONS, *,
+                   now: dict | None = None) -> list[tuple[str, object, object]]:
+    """Fields of `sections` whose panel value differs from `p`: (name, value in p, panel value).
+    `now`: compared_values(settings), when the caller already has them (they are validated once
+    per draw or operator, not once per comparison)."""
+    now = dict(compared_values(settings) if now is None else now)
+    then = p.to_dict()
     if then.get("periodic"):
         now["layers"] = then["layers"]  # a cell's layers follow from periodic
     out = []

@@ -109,3 +109,13 @@ def test_cli_unwritable_output_refused_before_work(tmp_path):
     blocker.write_text("not a directory")
     out = run_cli("run", "--json", str(blocker / "r.json"))
     assert out.returncode == 2 and "--json" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_cli_names_the_first_bad_output_path_in_the_check_order(tmp_path):
+    """Paths are checked in exports.writers.CHECK_ORDER: --blend before --pdb, --movie before
+    --save-case, whatever order the writers run in."""
+    for given, named in ((["--pdb", "p.txt", "--blend", "b.txt"], "--blend"),
+                         (["--save-case", "c.txt", "--movie", "m.avi"], "--movie")):
+        out = run_cli("run", *given, "--json", str(tmp_path / "r.json"))
+        assert out.returncode == 2 and out.stderr.startswith(f"fibrilfit: error: {named}: ")
+        assert not (tmp_path / "r.json").exists()

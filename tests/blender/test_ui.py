@@ -101,6 +101,21 @@ def test_panel_values_read_back_as_the_decimals_typed(ui):
     assert properties.changed_fields(ui, p) == [("linker", 6, 4)]
 
 
+def test_a_step_validates_the_panel_once_with_an_auto_cell(ui, scene, monkeypatch):
+    """model_for reads the panel's Params (one validation) and compares with the 'auto' cell
+    resolved from them, not validated a second time."""
+    ui.use_periodic, ui.periodic, ui.linker = True, 0, 3
+    built = pipeline.build(properties.read_params(ui), scene).params
+    calls = []
+    real = P.make_params
+    monkeypatch.setattr(P, "make_params", lambda **kw: calls.append(kw) or real(**kw))
+    model = common.model_for(types.SimpleNamespace(scene=scene), properties.BUILD_SECTIONS,
+                             "bake")
+    assert len(calls) == 1 and model.params == built and built.periodic == 13
+    ui.linker = 4
+    assert [n for n, _, _ in properties.changed_fields(ui, model.params)] == ["linker"]
+
+
 def test_every_field_has_one_section():
     shown = [f.name for sec in properties.SECTIONS for f in properties.fields_in(sec)]
     assert sorted(shown) == sorted(f.name for f in P.fields() if f.metadata.get("ui", True))

@@ -95,3 +95,11 @@ def test_a_params_is_validated_once_and_trusted_after(monkeypatch):
         P.validate(copied)
     with pytest.raises(P.ParamError, match="linker"):
         P.validate(P.Params(linker=0))
+
+
+def test_the_defaults_are_validated_once_at_import(monkeypatch):
+    calls = []
+    real = P.make_params
+    monkeypatch.setattr(P, "make_params", lambda **kw: calls.append(kw) or real(**kw))
+    assert P.validate(P.DEFAULTS) is P.DEFAULTS and not calls
+    assert P.DEFAULTS == P.Params()

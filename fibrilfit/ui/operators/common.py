@@ -84,7 +84,8 @@ def model_for(context, kept_sections, doing: str):
     s = settings(context)
     p = properties.read_params(s)
     model = find_model(context.scene)
-    changed = properties.changed_fields(s, model.params, kept_sections)
+    changed = properties.changed_fields(s, model.params, kept_sections,
+                                        now=properties.compared_values(s, p))
     if changed:
         name, old, new = changed[0]
         more = f" (and {len(changed) - 1} more)" if len(changed) > 1 else ""

@@ -44,8 +44,8 @@ class FIBRILFIT_OT_render(_ExportBase, bpy.types.Operator):
     bl_idname = "fibrilfit.render"
     bl_label = "Render"
     bl_description = "Render the bake's last frame to a PNG, clashing globules red (Cycles, CPU)"
-    suffix = ".png"
-    filter_glob: bpy.props.StringProperty(default="*.png", options={"HIDDEN"})
+    suffix = writers.BY_KEY["render"].suffixes[0]
+    filter_glob: bpy.props.StringProperty(default="*" + suffix, options={"HIDDEN"})
 
     def write(self, scene, result, path):
         size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
@@ -60,8 +60,8 @@ class FIBRILFIT_OT_export_pdb(_ExportBase, bpy.types.Operator):
     bl_label = "Export PDB"
     bl_description = ("Write a coarse-grained PDB of the model (one pseudo-atom per sphere, one "
                       "chain per layer) for PyMOL or ChimeraX")
-    suffix = ".pdb"
-    filter_glob: bpy.props.StringProperty(default="*.pdb", options={"HIDDEN"})
+    suffix = writers.BY_KEY["pdb"].suffixes[0]
+    filter_glob: bpy.props.StringProperty(default="*" + suffix, options={"HIDDEN"})
     frames: bpy.props.EnumProperty(
         name="Frames", items=(("last", "Last frame", "The frame the verdict describes"),
                               ("all", "Keyframes", "Frames 1, 51, 101, ... and the last: a "

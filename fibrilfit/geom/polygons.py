@@ -221,6 +221,12 @@ def _convex_at(poly: np.ndarray, i: int) -> bool:
     return float(_cross(b - a, c - b)) >= -1e-9
 
 
+def is_convex(poly) -> bool:
+    """Whether a counter-clockwise polygon turns left (or goes straight) at every corner."""
+    poly = np.asarray(poly, float)
+    return all(_convex_at(poly, i) for i in range(len(poly)))
+
+
 def convex_pieces(points, triangles) -> list[np.ndarray]:
     """Cover a polygon with convex pieces: the triangles of its triangulation (index triples
     into `points`, e.g. from mathutils.geometry.tessellate_polygon), merged across shared edges
@@ -241,8 +247,7 @@ def convex_pieces(points, triangles) -> list[np.ndarray]:
         for a in range(len(pieces)):
             for b in range(a + 1, len(pieces)):
                 joined = _join(pieces[a], pieces[b])
-                if joined is not None and all(_convex_at(pts[joined], i)
-                                              for i in range(len(joined))):
+                if joined is not None and is_convex(pts[joined]):
                     pieces[a] = joined
                     del pieces[b]
                     merged = True

@@ -19,7 +19,7 @@ def test_convex_pieces_cover_the_outline_exactly_with_convex_polygons(outline):
     assert 1 < len(pieces) < len(outline) - 1  # merged beyond the triangles
     for q in pieces:
         assert polygons.signed_area(q) > 0
-        assert all(polygons._convex_at(q, i) for i in range(len(q)))
+        assert polygons.is_convex(q)
     assert sum(polygons.signed_area(q) for q in pieces) == pytest.approx(
         abs(polygons.signed_area(outline)))
     # a grid of points: inside the outline <=> inside exactly one piece

@@ -1,5 +1,5 @@
 """Run headless.py as `python headless.py ...` would, after faking one thing; for
-tests/test_entry_points.py.
+tests/blender/test_entry_points.py.
 
     python entry_scenario.py old ARGS...     this Blender claims to be 3.4.1
     python entry_scenario.py crash ARGS...   the pipeline raises an unexpected error

@@ -1,4 +1,4 @@
-"""Drive the installed extension in a fresh interpreter; tests/test_extension.py runs this.
+"""Drive the installed extension in a fresh interpreter; tests/blender/test_extension.py runs this.
 
     BLENDER_USER_RESOURCES=<tmp> python installed_scenario.py <zip> '<params as JSON>' [fibril]
 

@@ -1,7 +1,7 @@
 """The sidebar: scene.fibrilfit, the operators (through bpy.ops), the modal bake, the panels' draw().
 
-The repository is loaded as `fibrilfit` and registered here; tests/test_extension.py runs the same
-operators through the installed zip.
+The repository is loaded as `fibrilfit` and registered here; tests/blender/test_extension.py
+runs the same operators through the installed zip.
 """
 import ast
 import json

@@ -16,7 +16,7 @@ def test_numpy_is_the_one_this_blender_ships():
 
 def test_blender_info_log_lines_are_not_a_workers_last_words():
     """Blender 5.2 logs its OCIO config on stderr at start-up; a killed worker's error must not
-    quote it (tests/test_sweep.py's killed-worker test checks the whole message)."""
+    quote it (tests/blender/test_sweep.py's killed-worker test checks the whole message)."""
     assert pool.last_words([OCIO]) == ""
     assert pool.last_words(["Traceback (most recent call last):", "MemoryError", OCIO, ""]) == (
         "MemoryError")

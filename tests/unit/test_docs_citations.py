@@ -85,3 +85,37 @@ def test_the_front_pages_links_exist():
             elif anchor and anchor not in anchors(ROOT / path):
                 missing.append(f"{page}: {target} (no such anchor)")
     assert not missing, "\n".join(missing)
+
+
+
+# A path into the repository, as text names it: `tests/blender/test_ui.py`, fibrilfit/ui/ ...
+NAMED_PATH = re.compile(r"(?<![\w/.-])((?:fibrilfit|tests|tools|bench|docs|examples|\.ci)/"
+                        r"[\w/.-]*\w)")
+
+
+def missing_paths(where: str, text: str) -> list[str]:
+    """The repository paths `text` names that are neither a file nor a folder (a page may be
+    named without its .md); globs and placeholders are skipped."""
+    return [f"{where}:{n}: {m.group(1)}"
+            for n, line in enumerate(text.splitlines(), 1) for m in NAMED_PATH.finditer(line)
+            if line[m.end():m.end() + 1] not in ("*", "{", "<")
+            and not (ROOT / m.group(1)).exists() and not (ROOT / (m.group(1) + ".md")).exists()]
+
+
+def test_the_files_the_text_names_exist():
+    """The move left no text naming a file where it used to be (tests/test_search.py and the
+    like): every repository path named in the docs, the front pages, the code and the tests
+    is a file or folder that exists."""
+    texts = [*SOURCES, ROOT / "README.md", ROOT / "CONTRIBUTING.md",
+             *(ROOT / "docs").rglob("*.md"), *(ROOT / "tests" / "data").glob("*.md")]
+    texts = [p for p in texts if p.name != pathlib.Path(__file__).name]
+    assert sum(len(NAMED_PATH.findall(p.read_text(encoding="utf-8"))) for p in texts) > 50
+    missing = [m for p in texts
+               for m in missing_paths(str(p.relative_to(ROOT)), p.read_text(encoding="utf-8"))]
+    assert not missing, "\n".join(missing)
+
+
+def test_a_stale_path_is_caught():
+    assert missing_paths("page.md", "see tests/test_search.py, fibrilfit/model/helix.py,\n"
+                         "docs/model/search and tests/blender/test_*.py") == \
+        ["page.md:1: tests/test_search.py"]

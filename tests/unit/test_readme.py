@@ -1,6 +1,6 @@
-"""The README's `inspect` example is what the command prints, so the front page cannot drift
-from the reader. (The run and minimal-linker examples need Blender and minutes: they are not
-checked here.)"""
+"""The inspect example on the front page (README.md) is what the command prints, so the page
+cannot drift from the reader. (The run and minimal-linker examples need Blender and minutes:
+they are not checked here.)"""
 import pathlib
 import re
 import subprocess

@@ -93,12 +93,19 @@ NAMED_PATH = re.compile(r"(?<![\w/.-])((?:fibrilfit|tests|tools|bench|docs|examp
                         r"[\w/.-]*\w)")
 
 
+# Folders .gitignore names (wheels/, out/, dist/): made by make targets, absent from a clone.
+MADE = {line.strip().strip("/") for line in (ROOT / ".gitignore").read_text().splitlines()
+        if line.strip().endswith("/")}
+
+
 def missing_paths(where: str, text: str) -> list[str]:
     """The repository paths `text` names that are neither a file nor a folder (a page may be
-    named without its .md); globs and placeholders are skipped."""
+    named without its .md); globs, placeholders and the folders make targets write are
+    skipped."""
     return [f"{where}:{n}: {m.group(1)}"
             for n, line in enumerate(text.splitlines(), 1) for m in NAMED_PATH.finditer(line)
             if line[m.end():m.end() + 1] not in ("*", "{", "<")
+            and not MADE & set(m.group(1).split("/"))
             and not (ROOT / m.group(1)).exists() and not (ROOT / (m.group(1) + ".md")).exists()]
 
 
@@ -119,3 +126,4 @@ def test_a_stale_path_is_caught():
     assert missing_paths("page.md", "see tests/test_search.py, fibrilfit/model/helix.py,\n"
                          "docs/model/search and tests/blender/test_*.py") == \
         ["page.md:1: tests/test_search.py"]
+    assert missing_paths("page.md", "fetched into fibrilfit/wheels/ by make extension") == []

@@ -27,12 +27,15 @@ def option(name: str) -> str:
 def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False) -> None:
     """One option per parameter, from the parameter definition. Values stay strings here:
     params.make_params (or the sweep's grid) validates them, so every message names the range."""
-    group = parser.add_argument_group("model parameters (units: Å, rad, frames)")
+    group = parser.add_argument_group(
+        "model parameters (units: Å, frames; angles in rad, or with a unit: 1.95deg, 1.95°, "
+        "0.034rad)")
     for f in dataclasses.fields(P.Params):
         meta = f.metadata
         if not meta["cli"]:
             continue
-        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}{_default_text(f)}]"
+        unit = ("rad, or give a unit: 1.95deg" if meta["unit"] == "rad" else meta["unit"])
+        help_ = f"{meta['doc']} [{unit + ', ' if unit else ''}{_default_text(f)}]"
         if meta["kind"] is bool:
             group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
                                default=None, help=help_)
@@ -115,11 +118,11 @@ def _default_text(f) -> str:
     meta, default = f.metadata, f.default
     if meta["derived"]:
         text = f"default {meta['derived']}"
-        return text + (": 180° for K = 2" if f.name == "pf_rotation" else "")
+        return text + (": π rad (180°) for K = 2" if f.name == "pf_rotation" else "")
     if f.name == "slab":
         return "default " + " ".join(f"{v:g}" for v in default)
     if meta["unit"] == "rad":
-        return f"default {default} ({math.degrees(default):.2f}°)"
+        return f"default {default} rad ({math.degrees(default):.2f}°)"
     return f"default {default}"
 
 

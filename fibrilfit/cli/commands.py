@@ -2,8 +2,12 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
+import difflib
+import json
 import math
+import re
 import sys
 
 from ..model import cases, params as P
@@ -17,7 +21,40 @@ from ..structure.inputs import add_structure_options, measure_structures, params
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, no usage block, no traceback
+        wrong = re.match(r"argument command: invalid choice: '([^']*)'", message)
+        if wrong:
+            message += did_you_mean(wrong.group(1), list(COMMANDS))
         raise UsageError(message)
+
+    def parse_args(self, args=None, namespace=None):
+        """As argparse's, with "did you mean --linker?" for an unknown option (argparse's own
+        suggest_on_error needs Python 3.14)."""
+        ns, extras = self.parse_known_args(args, namespace)
+        if extras:
+            raise UsageError(f"unrecognized arguments: {' '.join(extras)}"
+                             + _suggest_options(self, ns, extras))
+        return ns
+
+
+def did_you_mean(word: str, known) -> str:
+    """'; did you mean X?' for the closest of `known` to `word`, or ''."""
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]}?" if close else ""
+
+
+def _suggest_options(parser: argparse.ArgumentParser, ns, extras) -> str:
+    """The suggestion for the first unknown option, among the options of the command given."""
+    actions = list(parser._actions)
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and getattr(ns, "command", None):
+            actions += list(action.choices[ns.command]._actions)
+    known = [o for a in actions for o in a.option_strings if o.startswith("--")]
+    for extra in extras:
+        if extra.startswith("-"):
+            text = did_you_mean(extra.split("=", 1)[0], known)
+            if text:
+                return text
+    return ""
 
 
 def option(name: str) -> str:
@@ -227,6 +264,19 @@ def fresh_scene() -> None:
 
 
 def command_run(args) -> int:
+    """`run`; with `--json -` the result is the only thing on standard output (every other
+    line, Blender's included, goes to standard error)."""
+    if args.json != files.STDOUT:
+        return _command_run(args)[0]
+    with files.stdout_to_stderr():
+        code, result = _command_run(args)
+    if result is not None and code != EXIT_USAGE:
+        sys.stdout.write(json.dumps(result, indent=2) + "\n")
+        sys.stdout.flush()
+    return code
+
+
+def _command_run(args) -> tuple[int, dict | None]:
     p, structure_block, outputs = _checked_run(args)  # everything refused before the bake
     restarts = None
     if args.restarts is not None:  # the seeds run on the executor; the best is run again here
@@ -237,14 +287,14 @@ def command_run(args) -> int:
     result = _run_here(args, p)
     _annotate(args, p, result, structure_block, restarts)
     problems = _write_outputs(args, p, result, outputs)
-    _report(args, result, restarts)
+    _report(args, result, restarts, outputs["paths"])
     for problem in problems:
         print(f"fibrilfit: error: {problem}", file=sys.stderr)
     if problems:
-        return EXIT_OUTPUT_FAILED
+        return EXIT_OUTPUT_FAILED, result
     if args.fail_on_intersection and result.get("verdict") == "intersection":
-        return EXIT_INTERSECTION
-    return EXIT_OK
+        return EXIT_INTERSECTION, result
+    return EXIT_OK, result
 
 
 def _checked_run(args) -> tuple:
@@ -265,7 +315,8 @@ def _checked_run(args) -> tuple:
     if args.pdb:
         export_options.pdb_fits(p)
     outputs["movie_step"] = export_options.movie_step(args)
-    outputs["paths"] = {key: files.check_writable(option(key), getattr(args, key), suffixes)
+    outputs["paths"] = {key: (files.STDOUT if key == "json" and args.json == files.STDOUT else
+                              files.check_writable(option(key), getattr(args, key), suffixes))
                         for key, suffixes in writers.path_suffixes().items()
                         if getattr(args, key, None)}
     if "movie" in outputs["paths"]:
@@ -285,17 +336,57 @@ def _run_here(args, p) -> dict:
 
 
 def _annotate(args, p, result: dict, structure_block, restarts) -> None:
-    """What the result records beside the run: its structures, restarts and case."""
+    """What the result records beside the run: where each value came from, every warning
+    (the structures' first), its structures, restarts and case."""
+    result["sources"] = param_sources(args, p, structure_block, restarts)
+    warnings = list((structure_block or {}).get("warnings", []))
     if structure_block:
         result["structure"] = structure_block
     if restarts is not None:
         best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
-        restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
-            best.get("max_bond_stretch") == result.get("max_bond_stretch")
+        # the verdict is what must reproduce; the stretch may differ in its last digits
+        restarts["reproduced"] = (best.get("accommodated") == result.get("accommodated")
+                                  and best.get("verdict") == result.get("verdict"))
         result["restarts"] = restarts
+        if not restarts["reproduced"]:
+            restarts["not_reproduced"] = (
+                f"the best seed {p.seed}, run again here, did not reproduce the worker's verdict "
+                f"({best.get('verdict')}, accommodated {best.get('accommodated')}; here "
+                f"{result.get('verdict')}, accommodated {result.get('accommodated')})")
+            warnings.append(restarts["not_reproduced"])
+    result["warnings"] = warnings + list(result.get("warnings", []))
     if args.loaded_case is not None:
         result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
                                                    structure_options(args))
+
+
+def param_sources(args, p, structure_block=None, restarts=None) -> dict:
+    """Parameter name -> where its value came from: "default", "option", "case", or the file
+    it was measured from with what in it ("2n0a.pdb.gz: modelled tail 98-140")."""
+    case = getattr(args, "loaded_case", None)
+    from_case = set(case.params) - set(case.overridden) if case is not None else set()
+    given = set(params_from(args))
+    measured = (structure_block or {}).get("sources", {})
+    applied = (structure_block or {}).get("applied", {})
+    out = {}
+    for f in P.fields():
+        name = f.name
+        if name in given:
+            where = "case" if name in from_case else "option"
+        elif name in applied:
+            block = structure_block or {}
+            files_ = [m["file"] for m in (block.get("fibril"), block.get("domain")) if m]
+            where = measured.get(name, f"{files_[0] if files_ else 'a file'} (measured)")
+        elif f.metadata["derived"] and getattr(p, name) is None:
+            where = f"default ({f.metadata['derived']})"
+        else:
+            where = "default"
+        out[name] = where
+    if p.periodic:
+        out["layers"] = f"{out['periodic']} (the periodic cell's layers)"
+    if restarts is not None:
+        out["seed"] = f"the best of --restarts {args.restarts} from seed {out['seed']}"
+    return out
 
 
 def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
@@ -312,15 +403,14 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
         movie_step=outputs["movie_step"], progress=not args.quiet, case=case))
 
 
-def _report(args, result: dict, restarts) -> None:
+def _report(args, result: dict, restarts, paths: dict) -> None:
     from ..exports import summary
     if restarts is not None:
         from ..search import command as search_command
         print(search_command.restarts_line(restarts))
         if not restarts["reproduced"]:
-            print("fibrilfit: warning: the best seed, run again here, did not reproduce the "
-                  "worker's result", file=sys.stderr)
-    print(summary.summary(result, quiet=args.quiet))
+            print(f"fibrilfit: warning: {restarts['not_reproduced']}", file=sys.stderr)
+    print(summary.summary(result, quiet=args.quiet, files=paths))
 
 
 def command_inspect(args) -> int:

@@ -407,7 +407,7 @@ def _report(args, result: dict, restarts, paths: dict) -> None:
     from ..exports import summary
     if restarts is not None:
         from ..search import command as search_command
-        print(search_command.restarts_line(restarts))
+        print(search_command.restarts_line(restarts, result["params"]["protocol"]))
         if not restarts["reproduced"]:
             print(f"fibrilfit: warning: {restarts['not_reproduced']}", file=sys.stderr)
     print(summary.summary(result, quiet=args.quiet, files=paths))

@@ -21,10 +21,9 @@ def summary(r: dict, quiet: bool = False, files: dict | None = None) -> str:
             f"\n{line}" for line in _file_lines(r, files))
     if quiet:
         return _quiet_line(r)
-    shown = set((r.get("structure") or {}).get("warnings", []))  # said on stderr already
     return "\n".join([head, _bake_line(r), *_inflate_lines(r), *_clash_lines(r),
                       *_linker_lines(r), *_periodic_lines(r),
-                      *[f"warning: {w}" for w in r.get("warnings", []) if w not in shown],
+                      *[f"warning: {w}" for w in r.get("warnings", [])],
                       *_envelope_lines(r), *_export_lines(r), *_file_lines(r, files),
                       _answer_line(r)])
 
@@ -69,7 +68,7 @@ def _model_lines(r: dict) -> list[str]:
     if k > 1:
         turn = (2 * math.pi / k) if p.get("pf_rotation") is None else p["pf_rotation"]
         pf = f" (each turned {math.degrees(turn):.1f}° and raised {p.get('pf_rise', 0):g} Å)"
-    detail = lambda name: (f" ({src[name]})" if name in src  # noqa: E731
+    detail = lambda name: (f" (from {src[name]})" if name in src  # noqa: E731
                            and src[name] not in ("default", "option", "case") else "")
     core = ("the slab's box" if p.get("core_outline") is None
             else f"a {len(p['core_outline'])}-point outline")

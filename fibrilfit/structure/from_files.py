@@ -29,7 +29,7 @@ def warnings(fibril, domain) -> list[str]:
 
 def sources(fibril, domain, applied) -> dict:
     """Parameter name -> where its measured value came from, for each applied value: the file
-    and what in it (e.g. '2n0a.pdb.gz: modelled tail 98-140')."""
+    and what in it ('2n0a.pdb.gz: modelled tail 98-140 ...', '1ubq.pdb.gz: measured, ...')."""
     out = {}
     if fibril is not None:
         f = fibril
@@ -37,17 +37,17 @@ def sources(fibril, domain, applied) -> dict:
         pairs = sum(max(0, len(q) - 1) for q in f.layer_chains)
         a = f.anchors[0]
         said = {
-            "rise": f"{f.file} (measured over {pairs} layer pairs, sd {f.rise_sd:g} Å{axis})",
-            "twist": f"{f.file} (measured over {pairs} layer pairs, sd {f.twist_sd:g} rad{axis})",
-            "protofilaments": f"{f.file} (measured: {f.protofilaments} stacks of chains)",
-            "pf_rotation": f"{f.file} (measured between protofilaments 0 and 1)",
-            "pf_rise": f"{f.file} (measured between protofilaments 0 and 1)",
-            "core_outline": f"{f.file} (measured: the section of core residues "
-                            f"{f.core_residues[0]}-{f.core_residues[1]})",
-            "anchor": f"{f.file} (measured: one bead outside chain {a['chain']} "
+            "rise": f"{f.file}: measured over {pairs} layer pairs, sd {f.rise_sd:g} Å{axis}",
+            "twist": f"{f.file}: measured over {pairs} layer pairs, sd {f.twist_sd:g} rad{axis}",
+            "protofilaments": f"{f.file}: measured, {f.protofilaments} stacks of chains",
+            "pf_rotation": f"{f.file}: measured between protofilaments 0 and 1",
+            "pf_rise": f"{f.file}: measured between protofilaments 0 and 1",
+            "core_outline": f"{f.file}: measured, the section of core residues "
+                            f"{f.core_residues[0]}-{f.core_residues[1]}",
+            "anchor": f"{f.file}: measured, one bead outside chain {a['chain']} "
                       f"{a['residue_name']}{a['residue']}, the core's {f.terminus}"
                       f"{'-terminal residue' if f.terminus in ('N', 'C') else ''}"
-                      f"{', BURIED' if a['buried'] else ''})",
+                      f"{', BURIED' if a['buried'] else ''}",
         }
         if f.tail_residues:
             t = f.tail_residues
@@ -56,8 +56,8 @@ def sources(fibril, domain, applied) -> dict:
         out.update({k: v for k, v in said.items() if k in applied})
     if domain is not None and "globule_diameter" in applied:
         d = domain
-        out["globule_diameter"] = (f"{d.file} (measured: 2·√(5/3)·Rg, Rg {d.rg:g} Å, chain "
-                                   f"{d.chain} residues {d.residues[0]}-{d.residues[1]})")
+        out["globule_diameter"] = (f"{d.file}: measured, 2·√(5/3)·Rg, Rg {d.rg:g} Å, chain "
+                                   f"{d.chain} residues {d.residues[0]}-{d.residues[1]}")
     return out
 
 

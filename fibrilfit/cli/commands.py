@@ -186,7 +186,9 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     run.add_argument("--envelope-plot", metavar="PATH.png",
                      help="draw the radial density of the domain centres (needs matplotlib)")
     add_structure_options(run)
-    run.add_argument("--json", metavar="PATH", help="write the result as JSON")
+    run.add_argument("--json", metavar="PATH", help="write the result as JSON ('-': to standard "
+                                                    "output, everything else then to standard "
+                                                    "error)")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
     run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
@@ -198,7 +200,9 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
                                              "(PDB/mmCIF, .gz too) without building anything")
     add_structure_options(inspect)
-    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON ('-': to "
+                                                        "standard output, the text then to "
+                                                        "standard error)")
     from ..search import command as search_command  # argparse only: nothing runs at import
     search_command.add_restart_options(run)
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
@@ -356,8 +360,10 @@ def _annotate(args, p, result: dict, structure_block, restarts) -> None:
             warnings.append(restarts["not_reproduced"])
     result["warnings"] = warnings + list(result.get("warnings", []))
     if args.loaded_case is not None:
-        result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
-                                                   structure_options(args))
+        case = args.loaded_case
+        beside = set(params_from(args)) - (set(case.params) - set(case.overridden)) - {"seed"}
+        result["case"] = case.resolved(p, case.overridden, structure_options(args),
+                                       changed=beside)
 
 
 def param_sources(args, p, structure_block=None, restarts=None) -> dict:
@@ -418,14 +424,20 @@ def command_inspect(args) -> int:
     from ..structure import summary
     if not (args.fibril or args.domain):
         raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
-    path = files.check_writable("--json", args.json, (".json",)) if args.json else None
+    to_stdout = args.json == files.STDOUT  # the JSON on stdout, the text on stderr
+    path = (files.check_writable("--json", args.json, (".json",))
+            if args.json and not to_stdout else None)
     fib, dom = measure_structures(args)
     values = structure.model_values(fib, dom)
-    if path:
+    if args.json:
         import gemmi
-        files.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
-                                 "model_values": values, "gemmi_version": gemmi.__version__})
-    print(summary.text(fib, dom, values))
+        doc = {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+               "model_values": values, "gemmi_version": gemmi.__version__}
+        if path:
+            files.write_json(path, doc)
+    print(summary.text(fib, dom, values), file=sys.stderr if to_stdout else sys.stdout)
+    if to_stdout:
+        print(json.dumps(doc, indent=2))
     return EXIT_OK
 
 

@@ -76,14 +76,17 @@ class Case:
         """Every parameter: the case's, then `overrides` (the command line's) on top."""
         return P.make_params(force=force, **{**self.params, **overrides})
 
-    def resolved(self, p: P.Params, overridden=(), structure: dict | None = None) -> dict:
+    def resolved(self, p: P.Params, overridden=(), structure: dict | None = None,
+                 changed=()) -> dict:
         """The case as run with `p` (and `structure`, the structure options as run, if not the
-        case's own): JSON-ready, embedded in every result (`case`)."""
+        case's own): JSON-ready, embedded in every result (`case`). `changed`: what the command
+        line set beside the case (overridden or added), which makes its own words stale."""
         out = {k: self.meta[k] for k in ORDER if k in self.meta}
-        if overridden:  # the case's words describe its own model, no longer this one
+        changed = sorted(set(changed) | set(overridden))
+        if changed:  # the case's words describe its own model, no longer this one
             out = {k: v for k, v in out.items() if k not in STALE}
-            out["description"] = (f"{self.meta.get('name') or self.path or 'a case'} with "
-                                  f"{', '.join(sorted(overridden))} set on the command line")
+            out["description"] = (f"{self.meta.get('name') or self.path or 'a case'}, with "
+                                  f"{', '.join(changed)} set on the command line")
         if self.seeds is not None:
             out[SEEDS] = list(self.seeds)
         out[PARAMS] = p.to_dict()

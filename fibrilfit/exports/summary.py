@@ -92,7 +92,7 @@ def sources_text(sources: dict) -> str:
             continue
         key = where if where in ("option", "case") else where.split(" ")[0].rstrip(":")
         groups.setdefault(key, []).append(name)
-    order = sorted(groups, key=lambda g: (g in ("option", "case"), g))
+    order = sorted(groups, key=lambda g: ({"option": 1, "case": 2}.get(g, 0), g))
     parts = [f"{', '.join(groups[g])} from {'the ' if g == 'case' else ''}"
              f"{g + 's' if g == 'option' else g}" for g in order]
     return "; ".join(parts + ["the rest defaults"]) if parts else "every value a default"
@@ -246,8 +246,7 @@ def _answer_line(r: dict) -> str:
     if not r["linker_intact"]:
         why.append(f"the linkers stretched beyond tolerance ({numbers})")
     return (f"answer: no layout found in this run: {' and '.join(why) or 'no verdict'}. One "
-            f"relaxation is one random search, not a proof that the domains do not fit; "
-            f"{NEXT}.")
+            f"relaxation is one random search: it cannot show that no layout exists; {NEXT}.")
 
 
 def _case_lines(case: dict | None) -> list[str]:

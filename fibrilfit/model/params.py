@@ -58,7 +58,7 @@ PROTOCOLS = ("tutorial", "inflate")
 ANGLE_UNITS = {"degrees": math.pi / 180, "degree": math.pi / 180, "deg": math.pi / 180,
                "°": math.pi / 180, "rad": 1.0}
 # A twist beyond this per layer is refused without force: measured amyloid fibrils twist 0-8°
-# per layer (the eight structures of tests/data: 0.1-1.0°), so -0.961 is degrees typed as radians.
+# per layer (the six fibrils of tests/data: 0.5-1.8°), so -0.961 is degrees typed as radians.
 MAX_TWIST = 0.2
 
 

@@ -20,9 +20,7 @@ from .stats import wilson
 MEANING = ("accommodated = the fraction of seeds whose relaxation found a clash-free layout with "
            "intact linkers (95 % Wilson interval).\nA seed that ended in a clash does not prove "
            "that no clash-free layout exists, so this is a lower bound on what fits.")
-# the protocol always: it explains why a sweep (tutorial by default) and minimal-linker (inflate)
-# can disagree
-ALWAYS = ("linker", "globule_diameter", "protocol")
+ALWAYS = ("linker", "globule_diameter")
 
 
 @dataclasses.dataclass
@@ -124,8 +122,7 @@ def varied(rows_: list[Row]) -> list[str]:
 
 
 def columns(rows_: list[Row]) -> list[str]:
-    """The parameters a table shows: linker, globule diameter and protocol always, then what
-    varies."""
+    """The parameters a table shows: linker and globule diameter always, then what varies."""
     return list(ALWAYS) + [n for n in varied(rows_) if n not in ALWAYS]
 
 
@@ -153,16 +150,19 @@ CSV_FIELDS = ("n", "failed", "accommodated", "accommodated_fraction", "wilson95_
 
 def csv_text(rows_: list[Row]) -> str:
     names = columns(rows_)
+    # the protocol on every row (last, unless it varies): it explains why a sweep (tutorial by
+    # default) and minimal-linker (inflate) can disagree
+    tail = [] if "protocol" in names else ["protocol"]
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(names + list(CSV_FIELDS))
+    writer.writerow(names + list(CSV_FIELDS) + tail)
     for r in rows_:
         low, high = r.interval
         writer.writerow([fmt_value(r.values[n]) for n in names] + [
             r.n, r.failed, r.accommodated, _num(r.fraction, 4), _num(low, 4), _num(high, 4),
             _num(r.clash_fraction, 4), _num(r.median_stretch, 6),
             "" if r.median_frames is None else f"{r.median_frames:g}",
-            *(_num(d, 1) for d in r.diameter)])
+            *(_num(d, 1) for d in r.diameter)] + [r.values.get("protocol") for _ in tail])
     return buf.getvalue()
 
 

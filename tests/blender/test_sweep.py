@@ -50,7 +50,7 @@ def test_done_when_sweep_on_two_processes(done_when):
     csv = (out / "summary.csv").read_text().splitlines()
     assert len(csv) == 3 and csv[1].startswith("1,30,3,0,") and csv[2].startswith("12,30,3,0,")
     assert (out / "phase.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "minimal linker reaching 95 % accommodated:" in cp.stdout
+    assert "minimal linker with an accommodated fraction of at least 0.95 (protocol " in cp.stdout
     assert "clash-free layout" in cp.stdout
     assert "sweep: 100%" in cp.stderr  # the progress bar
 

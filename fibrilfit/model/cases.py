@@ -83,7 +83,7 @@ class Case:
         line set beside the case (overridden or added), which makes its own words stale."""
         out = {k: self.meta[k] for k in ORDER if k in self.meta}
         changed = sorted(set(changed) | set(overridden))
-        if changed:  # the case's words describe its own model, no longer this one
+        if changed and any(k in out for k in STALE):  # its words describe its own model
             out = {k: v for k, v in out.items() if k not in STALE}
             out["description"] = (f"{self.meta.get('name') or self.path or 'a case'}, with "
                                   f"{', '.join(changed)} set on the command line")

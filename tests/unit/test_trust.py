@@ -289,6 +289,8 @@ def test_a_saved_case_keeps_no_stale_description():
     same = case.resolved(P.make_params(linker=25))
     assert same["description"] == "linker 25 on 7ZIR" and same["expected"] == "fits"
     changed = case.resolved(P.make_params(linker=4), changed=["linker"])
+    assert cases.Case({"name": "M"}, {}).resolved(P.DEFAULTS, changed=["linker"]) == {
+        "name": "M", "params": P.DEFAULTS.to_dict(), "overridden": []}  # nothing to go stale
     assert "25" not in changed["description"] and "linker" in changed["description"]
     assert "expected" not in changed and "observed" not in changed
     assert cases.from_dict(cases.tomllib.loads(cases.dumps(changed)))  # still a valid case

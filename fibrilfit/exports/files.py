@@ -105,7 +105,8 @@ def stdout_to_stderr():
     saved = os.dup(1)
     try:
         os.dup2(2, 1)
-        yield
+        with contextlib.redirect_stdout(sys.stderr):  # also where sys.stdout is not fd 1
+            yield
     finally:
         sys.stdout.flush()
         os.dup2(saved, 1)

@@ -114,8 +114,8 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
 def restarts_line(s: dict, protocol: str | None = None) -> str:
     low, high = s["p_fit_interval"]
     fit = "n/a" if s["p_fit"] is None else f"{s['p_fit']:.2f}"
-    return (f"restarts{f' (protocol {protocol})' if protocol else ''}: "
-            f"{s['accommodated']}/{s['restarts']} accommodated, P(fit) {fit} "
+    return (f"restarts: {s['accommodated']}/{s['restarts']} accommodated"
+            f"{f' (protocol {protocol})' if protocol else ''}, P(fit) {fit} "
             f"(95 % Wilson {low:.2f}-{high:.2f})"
             + (f", {s['failed']} failed" if s["failed"] else "")
             + (", stopped at the first fit" if s["stop_on_fit"] and s["accommodated"] else "")

@@ -197,7 +197,7 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert record["status"] == "failed" and record["attempts"] == 2
     assert record["error"].startswith("timed out after 0.2 s") and len(record["errors"]) == 2
     assert "requirement failed: failed==0" in cp.stdout
-    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,"
+    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,,tutorial"
     # --retry-failed runs it again, replacing the failed line
     cp = run_cli("sweep", "--linker", "6", "--layers", "4", "--frames", "40", "--workers", "1",
                  "--out", str(out), "--resume", "--retry-failed", "--quiet")

@@ -383,7 +383,7 @@ def param_sources(args, p, structure_block=None, restarts=None) -> dict:
             files_ = [m["file"] for m in (block.get("fibril"), block.get("domain")) if m]
             where = measured.get(name, f"{files_[0] if files_ else 'a file'} (measured)")
         elif f.metadata["derived"] and getattr(p, name) is None:
-            where = f"default ({f.metadata['derived']})"
+            where = f"default: {f.metadata['derived']}"
         else:
             where = "default"
         out[name] = where

@@ -281,7 +281,7 @@ def test_sources_name_every_parameter(tmp_path):
     assert set(src) == {f.name for f in P.fields()}
     assert (src["linker"], src["layers"], src["twist"], src["rise"]) == (
         "case", "option", "option", "default")
-    assert src["pf_rotation"] == "default (2π/K)"
+    assert src["pf_rotation"] == "default: 2π/K"
 
 
 def test_a_saved_case_keeps_no_stale_description():

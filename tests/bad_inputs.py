@@ -22,7 +22,8 @@ BAD_INPUTS = [
     (["--layers", "0"], {"layers": 0}, "layers"),
     # non-numeric
     (["--layers", "twenty"], {"layers": "twenty"}, "layers"),
-    (["--twist", "2deg"], {"twist": "2deg"}, "twist"),
+    (["--twist", "2turns"], {"twist": "2turns"}, "twist"),  # (2deg is an angle: issue #23)
+    (["--twist", "-0.961"], {"twist": "-0.961"}, "twist"),  # degrees typed as radians
     (["--linker", "2.5"], {"linker": 2.5}, "linker"),
     # frames, gravity
     (["--frames", "0"], {"frames": 0}, "frames"),

@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model import helix
+from ..model.answer import answer
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
 from .envelope import envelope
@@ -112,6 +113,9 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "linker_intact": bool(intact),
         "accommodated": bool(verdict == "successful" and intact),
+        # fits, borderline or no layout found (docs/model/verdict.md#answer)
+        "answer": answer(clashing=len(clashing), grazing=len(clashes["grazing"]),
+                         max_stretch=max_stretch, tolerance=p.stretch_tolerance),
         "scored_layers": [lo, hi - 1],
         "layer_clashes": layer_clash,
         **chains,

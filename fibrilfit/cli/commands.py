@@ -3,7 +3,10 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import difflib
+import json
 import math
+import re
 import sys
 
 from ..model import cases, params as P
@@ -17,7 +20,40 @@ from ..structure.inputs import add_structure_options, measure_structures, params
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, no usage block, no traceback
+        wrong = re.match(r"argument command: invalid choice: '([^']*)'", message)
+        if wrong:
+            message += did_you_mean(wrong.group(1), list(COMMANDS))
         raise UsageError(message)
+
+    def parse_args(self, args=None, namespace=None):
+        """As argparse's, with "did you mean --linker?" for an unknown option (argparse's own
+        suggest_on_error needs Python 3.14)."""
+        ns, extras = self.parse_known_args(args, namespace)
+        if extras:
+            raise UsageError(f"unrecognized arguments: {' '.join(extras)}"
+                             + _suggest_options(self, ns, extras))
+        return ns
+
+
+def did_you_mean(word: str, known) -> str:
+    """'; did you mean X?' for the closest of `known` to `word`, or ''."""
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]}?" if close else ""
+
+
+def _suggest_options(parser: argparse.ArgumentParser, ns, extras) -> str:
+    """The suggestion for the first unknown option, among the options of the command given."""
+    actions = list(parser._actions)
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and getattr(ns, "command", None):
+            actions += list(action.choices[ns.command]._actions)
+    known = [o for a in actions for o in a.option_strings if o.startswith("--")]
+    for extra in extras:
+        if extra.startswith("-"):
+            text = did_you_mean(extra.split("=", 1)[0], known)
+            if text:
+                return text
+    return ""
 
 
 def option(name: str) -> str:
@@ -27,12 +63,15 @@ def option(name: str) -> str:
 def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False) -> None:
     """One option per parameter, from the parameter definition. Values stay strings here:
     params.make_params (or the sweep's grid) validates them, so every message names the range."""
-    group = parser.add_argument_group("model parameters (units: Å, rad, frames)")
+    group = parser.add_argument_group(
+        "model parameters (units: Å, frames; angles in rad, or with a unit: 1.95deg, 1.95°, "
+        "0.034rad)")
     for f in dataclasses.fields(P.Params):
         meta = f.metadata
         if not meta["cli"]:
             continue
-        help_ = f"{meta['doc']} [{meta['unit'] + ', ' if meta['unit'] else ''}{_default_text(f)}]"
+        unit = ("rad, or give a unit: 1.95deg" if meta["unit"] == "rad" else meta["unit"])
+        help_ = f"{meta['doc']} [{unit + ', ' if unit else ''}{_default_text(f)}]"
         if meta["kind"] is bool:
             group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
                                default=None, help=help_)
@@ -115,11 +154,11 @@ def _default_text(f) -> str:
     meta, default = f.metadata, f.default
     if meta["derived"]:
         text = f"default {meta['derived']}"
-        return text + (": 180° for K = 2" if f.name == "pf_rotation" else "")
+        return text + (": π rad (180°) for K = 2" if f.name == "pf_rotation" else "")
     if f.name == "slab":
         return "default " + " ".join(f"{v:g}" for v in default)
     if meta["unit"] == "rad":
-        return f"default {default} ({math.degrees(default):.2f}°)"
+        return f"default {default} rad ({math.degrees(default):.2f}°)"
     return f"default {default}"
 
 
@@ -146,7 +185,9 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     run.add_argument("--envelope-plot", metavar="PATH.png",
                      help="draw the radial density of the domain centres (needs matplotlib)")
     add_structure_options(run)
-    run.add_argument("--json", metavar="PATH", help="write the result as JSON")
+    run.add_argument("--json", metavar="PATH", help="write the result as JSON ('-': to standard "
+                                                    "output, everything else then to standard "
+                                                    "error)")
     run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
     export_options.add_arguments(run)
     run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
@@ -158,7 +199,9 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
                                              "(PDB/mmCIF, .gz too) without building anything")
     add_structure_options(inspect)
-    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON")
+    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON ('-': to "
+                                                        "standard output, the text then to "
+                                                        "standard error)")
     from ..search import command as search_command  # argparse only: nothing runs at import
     search_command.add_restart_options(run)
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
@@ -224,6 +267,19 @@ def fresh_scene() -> None:
 
 
 def command_run(args) -> int:
+    """`run`; with `--json -` the result is the only thing on standard output (every other
+    line, Blender's included, goes to standard error)."""
+    if args.json != files.STDOUT:
+        return _command_run(args)[0]
+    with files.stdout_to_stderr():
+        code, result = _command_run(args)
+    if result is not None and code != EXIT_USAGE:
+        sys.stdout.write(json.dumps(result, indent=2) + "\n")
+        sys.stdout.flush()
+    return code
+
+
+def _command_run(args) -> tuple[int, dict | None]:
     p, structure_block, outputs = _checked_run(args)  # everything refused before the bake
     restarts = None
     if args.restarts is not None:  # the seeds run on the executor; the best is run again here
@@ -234,14 +290,14 @@ def command_run(args) -> int:
     result = _run_here(args, p)
     _annotate(args, p, result, structure_block, restarts)
     problems = _write_outputs(args, p, result, outputs)
-    _report(args, result, restarts)
+    _report(args, result, restarts, outputs["paths"])
     for problem in problems:
         print(f"fibrilfit: error: {problem}", file=sys.stderr)
     if problems:
-        return EXIT_OUTPUT_FAILED
+        return EXIT_OUTPUT_FAILED, result
     if args.fail_on_intersection and result.get("verdict") == "intersection":
-        return EXIT_INTERSECTION
-    return EXIT_OK
+        return EXIT_INTERSECTION, result
+    return EXIT_OK, result
 
 
 def _checked_run(args) -> tuple:
@@ -262,7 +318,8 @@ def _checked_run(args) -> tuple:
     if args.pdb:
         export_options.pdb_fits(p)
     outputs["movie_step"] = export_options.movie_step(args)
-    outputs["paths"] = {key: files.check_writable(option(key), getattr(args, key), suffixes)
+    outputs["paths"] = {key: (files.STDOUT if key == "json" and args.json == files.STDOUT else
+                              files.check_writable(option(key), getattr(args, key), suffixes))
                         for key, suffixes in writers.path_suffixes().items()
                         if getattr(args, key, None)}
     if "movie" in outputs["paths"]:
@@ -282,17 +339,59 @@ def _run_here(args, p) -> dict:
 
 
 def _annotate(args, p, result: dict, structure_block, restarts) -> None:
-    """What the result records beside the run: its structures, restarts and case."""
+    """What the result records beside the run: where each value came from, every warning
+    (the structures' first), its structures, restarts and case."""
+    result["sources"] = param_sources(args, p, structure_block, restarts)
+    warnings = list((structure_block or {}).get("warnings", []))
     if structure_block:
         result["structure"] = structure_block
     if restarts is not None:
         best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
-        restarts["reproduced"] = best.get("accommodated") == result.get("accommodated") and \
-            best.get("max_bond_stretch") == result.get("max_bond_stretch")
+        # the verdict is what must reproduce; the stretch may differ in its last digits
+        restarts["reproduced"] = (best.get("accommodated") == result.get("accommodated")
+                                  and best.get("verdict") == result.get("verdict"))
         result["restarts"] = restarts
+        if not restarts["reproduced"]:
+            restarts["not_reproduced"] = (
+                f"the best seed {p.seed}, run again here, did not reproduce the worker's verdict "
+                f"({best.get('verdict')}, accommodated {best.get('accommodated')}; here "
+                f"{result.get('verdict')}, accommodated {result.get('accommodated')})")
+            warnings.append(restarts["not_reproduced"])
+    result["warnings"] = warnings + list(result.get("warnings", []))
     if args.loaded_case is not None:
-        result["case"] = args.loaded_case.resolved(p, args.loaded_case.overridden,
-                                                   structure_options(args))
+        case = args.loaded_case
+        beside = set(params_from(args)) - (set(case.params) - set(case.overridden)) - {"seed"}
+        result["case"] = case.resolved(p, case.overridden, structure_options(args),
+                                       changed=beside)
+
+
+def param_sources(args, p, structure_block=None, restarts=None) -> dict:
+    """Parameter name -> where its value came from: "default", "option", "case", or the file
+    it was measured from with what in it ("2n0a.pdb.gz: modelled tail 98-140")."""
+    case = getattr(args, "loaded_case", None)
+    from_case = set(case.params) - set(case.overridden) if case is not None else set()
+    given = set(params_from(args))
+    measured = (structure_block or {}).get("sources", {})
+    applied = (structure_block or {}).get("applied", {})
+    out = {}
+    for f in P.fields():
+        name = f.name
+        if name in given:
+            where = "case" if name in from_case else "option"
+        elif name in applied:
+            block = structure_block or {}
+            files_ = [m["file"] for m in (block.get("fibril"), block.get("domain")) if m]
+            where = measured.get(name, f"{files_[0] if files_ else 'a file'} (measured)")
+        elif f.metadata["derived"] and getattr(p, name) is None:
+            where = f"default: {f.metadata['derived']}"
+        else:
+            where = "default"
+        out[name] = where
+    if p.periodic:
+        out["layers"] = f"{out['periodic']} (the periodic cell's layers)"
+    if restarts is not None:
+        out["seed"] = f"the best of --restarts {args.restarts} from seed {out['seed']}"
+    return out
 
 
 def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
@@ -309,15 +408,14 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
         movie_step=outputs["movie_step"], progress=not args.quiet, case=case))
 
 
-def _report(args, result: dict, restarts) -> None:
+def _report(args, result: dict, restarts, paths: dict) -> None:
     from ..exports import summary
     if restarts is not None:
         from ..search import command as search_command
-        print(search_command.restarts_line(restarts))
+        print(search_command.restarts_line(restarts, result["params"]["protocol"]))
         if not restarts["reproduced"]:
-            print("fibrilfit: warning: the best seed, run again here, did not reproduce the "
-                  "worker's result", file=sys.stderr)
-    print(summary.summary(result, quiet=args.quiet))
+            print(f"fibrilfit: warning: {restarts['not_reproduced']}", file=sys.stderr)
+    print(summary.summary(result, quiet=args.quiet, files=paths))
 
 
 def command_inspect(args) -> int:
@@ -325,14 +423,20 @@ def command_inspect(args) -> int:
     from ..structure import summary
     if not (args.fibril or args.domain):
         raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
-    path = files.check_writable("--json", args.json, (".json",)) if args.json else None
+    to_stdout = args.json == files.STDOUT  # the JSON on stdout, the text on stderr
+    path = (files.check_writable("--json", args.json, (".json",))
+            if args.json and not to_stdout else None)
     fib, dom = measure_structures(args)
     values = structure.model_values(fib, dom)
-    if path:
+    if args.json:
         import gemmi
-        files.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
-                                 "model_values": values, "gemmi_version": gemmi.__version__})
-    print(summary.text(fib, dom, values))
+        doc = {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+               "model_values": values, "gemmi_version": gemmi.__version__}
+        if path:
+            files.write_json(path, doc)
+    print(summary.text(fib, dom, values), file=sys.stderr if to_stdout else sys.stdout)
+    if to_stdout:
+        print(json.dumps(doc, indent=2))
     return EXIT_OK
 
 

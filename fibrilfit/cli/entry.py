@@ -31,15 +31,58 @@ def main(argv: list[str], prog: str = "headless.py") -> int:
         return EXIT_INTERRUPTED
     except SystemExit as exc:  # argparse's --help exits 0; anything else keeps its code
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_FAILED)
+    except BrokenPipeError:  # `headless.py inspect ... | head`: the reader has gone, not a bug
+        return _reader_gone()
+    except ModuleNotFoundError as exc:
+        if exc.name not in NEEDS:
+            return _unexpected(exc)
+        print(f"fibrilfit: error: {missing_module(exc.name, prog)}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # a bug: one line, never exit 0 (Blender's default after a raise)
-        if os.environ.get("FIBRILFIT_TRACEBACK"):
-            traceback.print_exc()
-        print(f"fibrilfit: error: unexpected {describe(exc)}; please report it "
-              "(FIBRILFIT_TRACEBACK=1 shows the traceback)", file=sys.stderr)
-        return EXIT_FAILED
+        return _unexpected(exc)
     finally:
         for stream in (sys.stdout, sys.stderr):
-            stream.flush()
+            try:
+                stream.flush()
+            except BrokenPipeError:
+                _reader_gone()
+
+
+# Modules a command needs that plain Python lacks: what to run instead (one line, exit 2).
+NEEDS = {"bpy": "Blender's Python module bpy", "mathutils": "Blender's Python module bpy",
+         "gemmi": "gemmi (structure files)", "numpy": "numpy"}
+EXIT_PIPE = 141  # 128 + SIGPIPE: what a shell reports for a writer whose reader has gone
+
+
+def missing_module(name: str, prog: str = "headless.py") -> str:
+    """The line for a Python without `name`: which Python to use instead."""
+    where = f"this Python ({sys.executable})"
+    if prog == "headless.py":
+        how = ("run it with the checkout's .venv/bin/python headless.py ... (`make run` sets up "
+               ".venv with the bpy module), or inside Blender: blender -b -P headless.py -- ...")
+    else:
+        how = "run it inside Blender: blender -b -c fibrilfit ..."
+    return f"FibrilFit needs {NEEDS[name]}, which {where} does not have: {how}"
+
+
+def _unexpected(exc: BaseException) -> int:
+    if os.environ.get("FIBRILFIT_TRACEBACK"):
+        traceback.print_exc()
+    print(f"fibrilfit: error: unexpected {describe(exc)}; please report it "
+          "(FIBRILFIT_TRACEBACK=1 shows the traceback)", file=sys.stderr)
+    return EXIT_FAILED
+
+
+def _reader_gone() -> int:
+    """Standard output's reader closed it (`| head`): stop quietly. Python would otherwise
+    complain again when it flushes stdout at exit, so stdout now goes nowhere."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
+    return EXIT_PIPE
 
 
 def command(argv: list[str]) -> int:

@@ -1,10 +1,14 @@
 """Writing results: every file appears whole or not at all (temporary file, then rename)."""
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import pathlib
+import sys
 import tempfile
+
+STDOUT = "-"  # `--json -`: the result goes to standard output (docs/guide/headless.md#json-stdout)
 
 
 class OutputError(ValueError):
@@ -90,3 +94,36 @@ def write_case(path, case: dict) -> pathlib.Path:
     from ..model import cases
     path = pathlib.Path(path).expanduser()
     return write_text(path, cases.dumps(case, path.parent))
+
+
+@contextlib.contextmanager
+def stdout_to_stderr():
+    """Send everything written to standard output (Python's and Blender's own C prints) to
+    standard error until the block ends, so that the block's caller can then write one clean
+    document (`--json -`) to the real standard output."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        os.dup2(2, 1)
+        with contextlib.redirect_stdout(sys.stderr):  # also where sys.stdout is not fd 1
+            yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+@contextlib.contextmanager
+def silenced_stdout():
+    """Drop what C code prints to standard output in the block (Blender's "Info: Saved copy
+    as ..." when saving): the summary names the file itself."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "wb") as null:
+            os.dup2(null.fileno(), 1)
+            yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, 1)
+        os.close(saved)

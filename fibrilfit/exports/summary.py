@@ -1,6 +1,10 @@
 """The short human summary of a result, with the verdict worded as honestly as it is known."""
 from __future__ import annotations
 
+import math
+
+from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, of_result
+
 
 def percent(fraction: float) -> str:
     """A fraction as a percentage with one decimal, as every summary, panel and report shows it."""
@@ -8,22 +12,27 @@ def percent(fraction: float) -> str:
     return "0.0 %" if text == "-0.0 %" else text  # a bond compressed by 0.001 % is not "-0.0"
 
 
-def summary(r: dict, quiet: bool = False) -> str:
-    """The summary a run prints: the model, the bake, the verdict and what it proves."""
-    head = "\n".join([_head_line(r), *_case_lines(r.get("case"))])
+def summary(r: dict, quiet: bool = False, files: dict | None = None) -> str:
+    """The summary a run prints: the model and its sources, the bake, the verdict, the answer
+    and every file written (`files`: option -> path, as the command line checked them)."""
+    head = "\n".join([_head_line(r), *_model_lines(r), *_case_lines(r.get("case"))])
     if "verdict" not in r:
-        return head + f"\nstopped after {r['stage']}; no verdict"
+        return head + f"\nstopped after {r['stage']}; no verdict" + "".join(
+            f"\n{line}" for line in _file_lines(r, files))
     if quiet:
         return _quiet_line(r)
-    return "\n".join([head, _bake_line(r), *_clash_lines(r), *_linker_lines(r),
-                      *_periodic_lines(r), *[f"warning: {w}" for w in r.get("warnings", [])],
-                      *_envelope_lines(r), *_export_lines(r), _answer_line(r)])
+    return "\n".join([head, _bake_line(r), *_inflate_lines(r), *_clash_lines(r),
+                      *_linker_lines(r), *_periodic_lines(r),
+                      *[f"warning: {w}" for w in r.get("warnings", [])],
+                      *_envelope_lines(r), *_export_lines(r), *_file_lines(r, files),
+                      _answer_line(r)])
 
 
 def _quiet_line(r: dict) -> str:
     """--quiet: the verdict alone."""
     return f"verdict: {r['verdict']}" + (
-        "  (accommodated)" if r["accommodated"] else "  (not accommodated)")
+        "  (accommodated)" if r["accommodated"] else "  (not accommodated)") + (
+        f"; answer: {r['answer']}" if r.get("answer") else "")
 
 
 def _head_line(r: dict) -> str:
@@ -38,19 +47,106 @@ def _head_line(r: dict) -> str:
             f"seed {r['seed']}")
 
 
+def hand(twist: float) -> str:
+    """The fibril's hand from its twist per layer (positive: right-handed)."""
+    return "no twist" if twist == 0 else ("right-handed" if twist > 0 else "left-handed")
+
+
+def anchor_radius(p: dict) -> float:
+    """Protofilament 0's anchor's distance from the axis (params.Params.anchor_x), Å."""
+    if p.get("anchor") is not None:
+        return math.hypot(*p["anchor"])
+    return p["slab"][0] / 2.0 + p["residue_radius"]
+
+
+def _model_lines(r: dict) -> list[str]:
+    """The model up front (issue #23): rise, twist in degrees with its hand, protofilaments,
+    anchor radius, linker, domain size and protocol, then where the values came from."""
+    p, src = r["params"], r.get("sources") or {}
+    k = p.get("protofilaments", 1)
+    pf = ""
+    if k > 1:
+        turn = (2 * math.pi / k) if p.get("pf_rotation") is None else p["pf_rotation"]
+        pf = f" (each turned {math.degrees(turn):.1f}° and raised {p.get('pf_rise', 0):g} Å)"
+    detail = lambda name: (f" (from {src[name]})" if name in src  # noqa: E731
+                           and src[name] not in ("default", "option", "case") else "")
+    core = ("the slab's box" if p.get("core_outline") is None
+            else f"a {len(p['core_outline'])}-point outline")
+    lines = [f"model: rise {p['rise']:g} Å, twist {math.degrees(p['twist']):+.3f}° per layer "
+             f"({p['twist']:+.5g} rad, {hand(p['twist'])}), {k} protofilament"
+             f"{'s' if k > 1 else ''}{pf}, core {core}, anchor {anchor_radius(p):.2f} Å from "
+             f"the axis, linker {p['linker']} residues{detail('linker')}, globule "
+             f"{p['globule_diameter']:g} Å{detail('globule_diameter')}, protocol "
+             f"{p['protocol']}"]
+    if src:
+        lines.append("sources: " + sources_text(src))
+    return lines
+
+
+def sources_text(sources: dict) -> str:
+    """Which parameters came from where, grouped: files first, then options and the case; the
+    rest are defaults (every source in the JSON's `sources`)."""
+    groups: dict[str, list[str]] = {}
+    for name, where in sources.items():
+        if where == "default" or where.startswith("default"):
+            continue
+        key = where if where in ("option", "case") else where.split(" ")[0].rstrip(":")
+        groups.setdefault(key, []).append(name)
+    order = sorted(groups, key=lambda g: ({"option": 1, "case": 2}.get(g, 0), g))
+    parts = [f"{', '.join(groups[g])} from {'the ' if g == 'case' else ''}"
+             f"{g + 's' if g == 'option' else g}" for g in order]
+    return "; ".join(parts + ["the rest defaults"]) if parts else "every value a default"
+
+
+def _frames(r: dict, n: int) -> int:
+    """Scene frames in the model's frames (a periodic cell bakes several scene frames per
+    frame: docs/model/periodic-cell.md#periodic-cell)."""
+    per = (r.get("periodic") or {}).get("scene_frames_per_frame", 1)
+    return -(-n // per)
+
+
 def _bake_line(r: dict) -> str:
     p, t = r["params"], r["timings_s"]
     g = ", ".join(f"{v:+.3f}" for v in r["gravity"])
-    settled = (f" (settled: every body under {p['settle_speed']:g} Å/frame for "
-               f"{p['settle_frames']} frames)" if r.get("settled_at") else "")
-    return (f"gravity ({g}); baked {r['frames_simulated']} frames{settled}; "
+    n = r["frames_simulated"]
+    per = (r.get("periodic") or {}).get("scene_frames_per_frame", 1)
+    baked = f"baked {_frames(r, n)} frames" + (
+        f" ({n} scene frames, {per} per frame for the images)" if per > 1 else "")
+    if r.get("settled_at"):
+        settled = (f" (settled: every body under {p['settle_speed']:g} Å/frame for "
+                   f"{p['settle_frames']} frames)")
+    elif p.get("settle") and p.get("protocol") != "inflate" and not r.get("cancelled"):
+        settled = (f"; not settled within {p['frames']} frames (some body still moved "
+                   f"{p['settle_speed']:g} Å/frame or more; --frames sets the cap)")
+    else:
+        settled = ""
+    return (f"gravity ({g}); {baked}{settled}; "
             f"build {t['build']:.2f} s, bake {t['bake']:.2f} s, check {t['check']:.2f} s")
+
+
+def _inflate_lines(r: dict) -> list[str]:
+    """inflate: each grow-and-hold cycle, judged at which frame (counted from frame 1 of the
+    bake, as every frame of the summary)."""
+    cycles = (r.get("inflate") or {}).get("cycles") or []
+    if not cycles:
+        return []
+    p = r["params"]
+    said = [f"cycle {c['cycle']} judged at frame {c['judged_at']}: "
+            + ("accommodated" if c["accommodated"] else
+               f"{c['clashing_pairs']} clashing pairs, stretch {percent(c['max_bond_stretch'])}")
+            for c in cycles]
+    left = "" if cycles[-1]["accommodated"] else (
+        f"; gave up after {len(cycles)} of {1 + p['regrow_cycles']} cycles"
+        if len(cycles) >= 1 + p["regrow_cycles"] else "")
+    return [f"inflate: globules grown from {r['inflate']['start_scale']:g} of full size over "
+            f"{p['grow_frames']} frames; " + "; ".join(said) + left]
 
 
 def _clash_lines(r: dict) -> list[str]:
     p = r["params"]
     lines = [
-        f"verdict: {r['verdict']} at frame {r['frames_simulated']}: {r['intersecting_faces']} "
+        f"verdict: {r['verdict']} at frame {_frames(r, r['frames_simulated'])}: "
+        f"{r['intersecting_faces']} "
         f"intersecting faces, {len(r['clashing_pairs'])} clashing globule pairs"
         + (f" (deepest overlap {r['max_overlap']:.2f} Å)" if r.get("clashing_pairs") else "")
         + (f" in layers {r['scored_layers'][0]}-{r['scored_layers'][1]}"
@@ -71,7 +167,15 @@ def _linker_lines(r: dict) -> list[str]:
         f"linker: worst bond stretch {percent(r['max_bond_stretch'])} at the end "
         f"({'intact' if r['linker_intact'] else 'STRETCHED'}, tolerance "
         f"{percent(r['params']['stretch_tolerance'])})"]
-    if r.get("max_bond_stretch_bake") is not None:
+    if r.get("max_bond_stretch_bake") is not None and r.get("inflate"):
+        intact = r.get("intact_from_frame")
+        lines.append(
+            f"  during the bake: {percent(r['max_bond_stretch_bake'])} at worst (frame "
+            f"{r['max_bond_stretch_bake_frame']}); "
+            + (f"within tolerance from frame {intact} on; " if intact else
+               "over tolerance at the end; ")
+            + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    elif r.get("max_bond_stretch_bake") is not None:
         after = r.get("max_bond_stretch_after_push")
         lines.append(
             f"  during the bake: {percent(r['max_bond_stretch_bake'])} at worst (frame "
@@ -91,8 +195,8 @@ def _periodic_lines(r: dict) -> list[str]:
         f"periodic: {per['images']['moving']} moving and {per['images']['static']} static "
         f"images in cells {', '.join(f'{m:+d}' for m in per['images']['cells'])}; "
         f"pairs counted once, with images up to {per['check_cells']} cells above "
-        f"(globule j + m·{per['chains']} is globule j's image in cell m); frames are scene "
-        f"frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
+        f"(globule j + m·{per['chains']} is globule j's image in cell m); the linker's frames "
+        f"above are scene frames, {per.get('scene_frames_per_frame', 1)} per frame of the model"
         + ("; gravity: its axial part only (the screw turns the rest)"
            if per.get("gravity") == "axial" else "")
         + (f"; images lag their originals by {lag['last']:.2f} Å at the last frame"
@@ -108,18 +212,41 @@ def _envelope_lines(r: dict) -> list[str]:
             f"within {env['r95']:.1f} Å), outer diameter {env['outer_diameter']:.0f} Å"]
 
 
+NEXT = ("to know whether the domains fit, run --restarts 8 (P(fit) over seeds), "
+        "--protocol inflate --restarts 8 (globules grown from small), or minimal-linker for "
+        "the shortest linker that fits")
+
+
 def _answer_line(r: dict) -> str:
-    if r["accommodated"]:
-        return ("accommodated: yes. This relaxation found a clash-free layout with intact "
-                "linkers, which proves that one exists for this model.")
-    if r["verdict"] == "successful":
-        return ("accommodated: no. No globules intersect, but only because the linkers "
-                "stretched beyond tolerance: the domains do not fit at this length.")
-    return ("accommodated: no. This relaxation ended with clashes"
-            + ("" if r["linker_intact"] else ", even with linkers stretched")
-            + ". That does not prove "
-            "that no clash-free layout exists: one bake is one random search, not an "
-            "exhaustive one. Sweep seeds to see how often one is found.")
+    """The answer in words: only a layout found says "fits"; a run at the criterion says
+    borderline; one that found none says so, with its numbers and what to run next
+    (docs/model/verdict.md#answer)."""
+    word = of_result(r)
+    stretch, tol = r["max_bond_stretch"], r["params"]["stretch_tolerance"]
+    n, graze = len(r.get("clashing_pairs") or []), len(r.get("grazing_pairs") or [])
+    numbers = f"worst linker stretch {percent(stretch)}, tolerance {percent(tol)}"
+    band = f"{100 * BORDERLINE_STRETCH:g} point"
+    if word == FITS:
+        return (f"answer: fits. This relaxation found a clash-free layout with intact linkers "
+                f"({numbers}), which proves that one exists for this model.")
+    if word == BORDERLINE and r["accommodated"]:
+        return (f"answer: borderline (fits by the criterion). This relaxation found a clash-free "
+                f"layout, but its worst linker stretch ({percent(stretch)}) is within {band} of "
+                f"the {percent(tol)} tolerance; {NEXT}.")
+    if word == BORDERLINE:
+        what = (f"Its {n} clashing pairs only graze (overlap at most "
+                f"{r['sphere_check']['tolerance']:.2f} Å, the globule mesh's resolution)"
+                if n else "No globules clash")
+        return (f"answer: borderline (no layout found in this run by the criterion). {what}; "
+                f"{numbers}, within {band} of it. One relaxation is one random search; {NEXT}.")
+    why = []
+    if n:
+        why.append(f"{n} globule pairs clash (deepest overlap {r['max_overlap']:.2f} Å"
+                   + (f"; {graze} of them only graze" if graze else "") + ")")
+    if not r["linker_intact"]:
+        why.append(f"the linkers stretched beyond tolerance ({numbers})")
+    return (f"answer: no layout found in this run: {' and '.join(why) or 'no verdict'}. One "
+            f"relaxation is one random search: it cannot show that no layout exists; {NEXT}.")
 
 
 def _case_lines(case: dict | None) -> list[str]:
@@ -151,3 +278,18 @@ def _export_lines(r: dict) -> list[str]:
         out.append(f"render: {png['path']} ({png['width']}x{png['height']}, {how}, "
                    f"{png['seconds']:.1f} s)")
     return out
+
+
+FILE_LABELS = (("json", "result"), ("blend", "blend file"), ("pdb", "structure"),
+               ("render", "picture"), ("movie", "movie"), ("envelope_plot", "envelope plot"),
+               ("save_case", "case"))
+
+
+def _file_lines(r: dict, files: dict | None) -> list[str]:
+    """Every file the run wrote, one line (a failed one is named by its error instead)."""
+    if not files:
+        return []
+    wrote = [f"{label} {files[key]}" for key, label in FILE_LABELS
+             if key in files and str(files[key]) != "-"
+             and "error" not in (r.get(key) if isinstance(r.get(key), dict) else {})]
+    return [f"wrote: {', '.join(wrote)}"] if wrote else []

@@ -66,8 +66,9 @@ def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | 
 def save_blend(path, scene: bpy.types.Scene | None = None) -> None:
     """--blend: the whole file with the bake kept, so it reopens ready to scrub."""
     keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too
-    files.atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
-        filepath=str(tmp), copy=True, compress=True, check_existing=False))
+    with files.silenced_stdout():  # Blender's "Info: Saved copy as ..." (the summary says it)
+        files.atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
+            filepath=str(tmp), copy=True, compress=True, check_existing=False))
 
 
 @dataclass
@@ -145,8 +146,8 @@ def write_all(job: Job, outputs=OUTPUTS) -> list[str]:
     quick ones are done and again after each slow one; return the failures' messages."""
     problems, json_written = [], False
 
-    def write_json():
-        if "json" in job.paths:
+    def write_json():  # `--json -` is written once, by the command, to standard output
+        if "json" in job.paths and str(job.paths["json"]) != files.STDOUT:
             files.write_json(job.paths["json"], job.result)
 
     for out in outputs:

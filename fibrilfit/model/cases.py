@@ -45,6 +45,8 @@ METADATA = {
     "notes": (str, "anything else: how numbers were estimated, caveats"),
 }
 SEEDS = "seeds"
+# What a case says of its own model, stale once an option changes it (dropped from the case as run)
+STALE = ("description", "observed", "expected")
 STRUCTURE = "structure"
 # [structure]: the options of --fibril/--domain (structure/inputs.py); files are relative to
 # the case file. Measured values fill the parameters the case and the command line leave unset.
@@ -74,10 +76,17 @@ class Case:
         """Every parameter: the case's, then `overrides` (the command line's) on top."""
         return P.make_params(force=force, **{**self.params, **overrides})
 
-    def resolved(self, p: P.Params, overridden=(), structure: dict | None = None) -> dict:
+    def resolved(self, p: P.Params, overridden=(), structure: dict | None = None,
+                 changed=()) -> dict:
         """The case as run with `p` (and `structure`, the structure options as run, if not the
-        case's own): JSON-ready, embedded in every result (`case`)."""
+        case's own): JSON-ready, embedded in every result (`case`). `changed`: what the command
+        line set beside the case (overridden or added), which makes its own words stale."""
         out = {k: self.meta[k] for k in ORDER if k in self.meta}
+        changed = sorted(set(changed) | set(overridden))
+        if changed and any(k in out for k in STALE):  # its words describe its own model
+            out = {k: v for k, v in out.items() if k not in STALE}
+            out["description"] = (f"{self.meta.get('name') or self.path or 'a case'}, with "
+                                  f"{', '.join(changed)} set on the command line")
         if self.seeds is not None:
             out[SEEDS] = list(self.seeds)
         out[PARAMS] = p.to_dict()
@@ -186,6 +195,8 @@ def _check_param(path, name: str, value):
         return _file(path, key, value)  # a file of points, relative to the case file
     if meta.get("derived") and isinstance(value, str):
         return value
+    if P.is_angle(name) and isinstance(value, str):
+        return value  # an angle with its unit, "-0.961deg" (params.angle_value reads it)
     if meta["kind"] is bool:
         if not isinstance(value, bool):
             raise _error(path, key, f"must be true or false (got {value!r})")

@@ -54,6 +54,12 @@ def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section=
 DERIVED_WORDS = ("auto", "default", "none", "box", "")
 MAX_OUTLINE_POINTS = 10_000
 PROTOCOLS = ("tutorial", "inflate")
+# Angles (docs/guide/headless.md#angles): a bare number is radians; a value may name its unit.
+ANGLE_UNITS = {"degrees": math.pi / 180, "degree": math.pi / 180, "deg": math.pi / 180,
+               "°": math.pi / 180, "rad": 1.0}
+# A twist beyond this per layer is refused without force: measured amyloid fibrils twist 0-8°
+# per layer (the six fibrils of tests/data: 0.5-1.8°), so -0.961 is degrees typed as radians.
+MAX_TWIST = 0.2
 
 
 @dataclass(frozen=True)
@@ -81,7 +87,8 @@ class Params:
                         "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
                         section="Layers")
     twist: float = _spec(0.034, -math.pi, math.pi, "rad",
-                         "Helical twist between consecutive layers about the fibril axis",
+                         "Helical twist between consecutive layers about the fibril axis "
+                         "(positive: right-handed)",
                          section="Layers")
     gravity: float = _spec(0.5, 0.0, 100.0, "Å/s²",
                            "Bound of the random gravity: each axis is drawn uniform in [-g, g]")
@@ -121,7 +128,7 @@ class Params:
                                 "sharing the layer's core", kind=int, section="Layers")
     pf_rotation: float | None = _spec(None, -2 * math.pi, 2 * math.pi, "rad",
                                       "Turn about the fibril axis from one protofilament to the "
-                                      "next (a pseudo-2₁ fibril: about 179.3°)",
+                                      "next (a pseudo-2₁ fibril: about 3.13 rad, i.e. 179.3deg)",
                                       section="Layers", derived="2π/K")
     pf_rise: float = _spec(0.0, -50.0, 50.0, "Å",
                            "Rise along the fibril axis from one protofilament to the next "
@@ -259,7 +266,10 @@ class Params:
         return d
 
     def replace(self, **changes) -> "Params":
-        return make_params(**{**self.to_dict(), **changes})
+        """A copy with `changes`, validated under the force this one was (a forced model's
+        copies stay forced)."""
+        return make_params(force=self.__dict__.get(VALIDATED) is True,
+                           **{**self.to_dict(), **changes})
 
 
 @dataclass(frozen=True)
@@ -369,11 +379,65 @@ def _describe_range(meta: dict) -> str:
     kind, lo, hi, unit = meta["kind"], meta["min"], meta["max"], meta["unit"]
     what = "an integer" if kind is int else "a number"
     suffix = f" {unit}" if unit and unit not in ("×", "fraction") else ""
+    if unit == "rad":  # the range in both units, and how to write degrees
+        return (f"must be an angle from {lo:.5g} to {hi:.5g} rad ({math.degrees(lo):g}° to "
+                f"{math.degrees(hi):g}°): a number in rad, or with a unit: 1.95deg, 1.95°, "
+                f"0.034rad")
     return f"must be {what} from {lo:g} to {hi:g}{suffix}"
+
+
+def is_angle(name: str) -> bool:
+    """Whether parameter `name` is an angle (in rad, also accepted with a unit: angle_value)."""
+    f = Params.__dataclass_fields__.get(name)
+    return f is not None and f.metadata["unit"] == "rad"
+
+
+def split_unit(text: str) -> tuple[str, float | None]:
+    """'-0.961deg' -> ('-0.961', π/180); '-0.01678rad' -> ('-0.01678', 1.0); '0.5' -> ('0.5',
+    None): the number's text and the factor to radians its unit names (None: no unit)."""
+    text = text.strip()
+    low = text.lower()
+    for unit, factor in ANGLE_UNITS.items():
+        if low.endswith(unit):
+            return text[:len(text) - len(unit)].strip(), factor
+    return text, None
+
+
+def angle_value(name: str, value: Any, meta: dict):
+    """An angle as typed: a number (rad), or text with a unit ('1.95deg', '1.95°', '0.034rad')
+    -> radians; anything else is returned as it is, for _coerce to refuse."""
+    if not isinstance(value, str):
+        return value
+    number, factor = split_unit(value)
+    if factor is None:
+        return value
+    try:
+        return float(number) * factor
+    except ValueError:
+        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})") from None
+
+
+def _check_twist(raw: Any, twist: float, force: bool) -> None:
+    """Refuse a twist beyond ±MAX_TWIST rad per layer unless forced, with its degree reading:
+    the commonest slip is a twist in degrees typed as radians (issue #23)."""
+    if force or abs(twist) <= MAX_TWIST:
+        return
+    typed = str(raw).strip() if isinstance(raw, str) else f"{twist:g}"
+    if isinstance(raw, str) and split_unit(raw)[1] is not None:
+        reading = f"{typed} is {twist:.4g} rad ({math.degrees(twist):.1f}°) per layer"
+        hint = "check the value"
+    else:
+        reading = f"{typed} rad is {math.degrees(twist):.1f}° per layer"
+        hint = f"write {typed}deg if you meant degrees"
+    raise ParamError("twist", f"{reading}, beyond ±{MAX_TWIST:g} rad (±"
+                              f"{math.degrees(MAX_TWIST):.1f}°; measured amyloid fibrils twist "
+                              f"0-8° per layer): {hint}, or add --force to build it anyway")
 
 
 def _coerce(name: str, value: Any, meta: dict):
     kind = meta["kind"]
+    if meta["unit"] == "rad":
+        value = angle_value(name, value, meta)
     if kind is bool:
         if isinstance(value, bool):
             return value
@@ -448,6 +512,7 @@ def make_params(*, force: bool = False, **values) -> Params:
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
+    _check_twist(values.get("twist", p.twist), p.twist, force)
     _check_combination(p, force)
     object.__setattr__(p, VALIDATED, force)  # trusted from here on: see validate()
     return p

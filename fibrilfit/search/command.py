@@ -23,7 +23,7 @@ from . import minimal, restarts
 RESULTS, CSV, JSON, PNG, LOG = (outdir.RESULTS, "minimal_linker.csv", "minimal_linker.json",
                                 "minimal_linker.png", "workers.log")
 COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
-           "p_fit_below", "p_fit_below_high", "restarts", "linker_below")
+           "p_fit_below", "p_fit_below_high", "restarts", "linker_below", "protocol")
 
 
 def add_executor_options(g) -> None:
@@ -111,10 +111,11 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
     return summary
 
 
-def restarts_line(s: dict) -> str:
+def restarts_line(s: dict, protocol: str | None = None) -> str:
     low, high = s["p_fit_interval"]
     fit = "n/a" if s["p_fit"] is None else f"{s['p_fit']:.2f}"
-    return (f"restarts: {s['accommodated']}/{s['restarts']} accommodated, P(fit) {fit} "
+    return (f"restarts: {s['accommodated']}/{s['restarts']} accommodated"
+            f"{f' (protocol {protocol})' if protocol else ''}, P(fit) {fit} "
             f"(95 % Wilson {low:.2f}-{high:.2f})"
             + (f", {s['failed']} failed" if s["failed"] else "")
             + (", stopped at the first fit" if s["stop_on_fit"] and s["accommodated"] else "")
@@ -153,7 +154,8 @@ def run_minimal(args, values: dict) -> int:
         print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
               file=sys.stderr)
         return exits.EXIT_INTERRUPTED
-    rows = [{"kind": kind_of(dict(values)), **w.row()} for w in walks]
+    rows = [{"kind": kind_of(dict(values)), **w.row(), "protocol": values["protocol"]}
+            for w in walks]
     _write_minimal(args, values, seeds, rows, out)
     errors = [r for r in rows if r.get("error")]
     for r in errors:
@@ -233,7 +235,8 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
         "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
         "method": "walk: from a guess, up one residue from a miss, down one from a fit, until "
                   "a fit at L and R missed restarts at L - 1 (search/minimal.py)",
-        "model": {**values, "seeds": list(seeds)}, "restarts": args.restarts,
+        "model": {**values, "seeds": list(seeds)}, "protocol": values["protocol"],
+        "restarts": args.restarts,
         "max_linker": args.max_linker, "rows": rows,
     }
     files.write_json(out / JSON, document)
@@ -241,7 +244,7 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
     if not args.no_plot:
         from . import plot
         plot.write(out / PNG, rows)
-    print(table(rows))
+    print(table(rows, values["protocol"], args.restarts, seeds))
     print(f"minimal-linker: {out / CSV}, {out / JSON}"
           + ("" if args.no_plot else f", {out / PNG}") + f"; every run in {out / RESULTS}")
 
@@ -260,7 +263,8 @@ def csv_text(rows: list[dict]) -> str:
         below_hi = (r["p_fit_below_interval"] or (None, None))[1]
         writer.writerow([_cell(v) for v in (r["kind"], r["globule_diameter"], r["minimal_linker"],
                                             r["p_fit"], lo, hi, r["p_fit_below"], below_hi,
-                                            r["restarts"], r["linker_below"])])
+                                            r["restarts"], r["linker_below"],
+                                            r.get("protocol"))])
     return buf.getvalue()
 
 
@@ -268,8 +272,15 @@ def _cell(v):
     return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
 
 
-def table(rows: list[dict]) -> str:
-    lines = ["diameter (Å)  minimal linker  P(fit) [95 % CI]     P(fit) one below [95 % CI]"]
+def table(rows: list[dict], protocol: str | None = None, restarts: int | None = None,
+          seeds=None) -> str:
+    """The printed map; its first line names the protocol and restarts behind every P(fit)."""
+    lines = []
+    if protocol is not None:
+        lines.append(f"minimal linker: the shortest length at which at least one of {restarts} "
+                     f"restarts (protocol {protocol}, seeds {seeds[0]}-{seeds[-1]}) found a "
+                     f"layout, with none found one residue shorter")
+    lines.append("diameter (Å)  minimal linker  P(fit) [95 % CI]     P(fit) one below [95 % CI]")
     for r in rows:
         m = r["minimal_linker"]
         fit = (f"{r['p_fit']:.2f} [{r['p_fit_interval'][0]:.2f}-{r['p_fit_interval'][1]:.2f}]"

@@ -7,10 +7,11 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from . import reading
+from . import fibril, reading
 from .errors import StructureError
 
 RG_TO_DIAMETER = 2.0 * math.sqrt(5.0 / 3.0)  # the uniform sphere with the same Rg
+FIBRIL_STACK = 3  # chains stacked as layers that make a file a fibril, not a domain
 
 
 @dataclass
@@ -51,6 +52,12 @@ def measure(path, *, chain: str | None = None, residues=None,
             option: str = "--domain") -> DomainSize:
     loaded = reading.load(path, option)
     name = loaded.path.name
+    stack = fibril.longest_stack(loaded)
+    if stack >= FIBRIL_STACK:
+        raise StructureError(option, f"{name} holds a stacked fibril ({stack} chains stacked "
+                                     f"{fibril.STACK[0]}-{fibril.STACK[1]} Å apart, as a "
+                                     f"fibril's layers), not a globular domain: give it as "
+                                     f"--fibril, and the domain's own structure as --domain")
     names = [c.name for c in loaded.chains]
     if chain is None:
         c = loaded.chains[0]

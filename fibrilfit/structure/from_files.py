@@ -17,6 +17,50 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     return out
 
 
+def warnings(fibril, domain) -> list[str]:
+    """Every warning and note of the measurement, each naming its file: buried anchors, an
+    approximate axis, a core in pieces, the chain or model chosen, layers built by symmetry."""
+    out = []
+    for m in (fibril, domain):
+        if m is not None:
+            out += [f"{m.file}: {w}" for w in (*getattr(m, "warnings", []), *m.notes)]
+    return out
+
+
+def sources(fibril, domain, applied) -> dict:
+    """Parameter name -> where its measured value came from, for each applied value: the file
+    and what in it ('2n0a.pdb.gz: modelled tail 98-140 ...', '1ubq.pdb.gz: measured, ...')."""
+    out = {}
+    if fibril is not None:
+        f = fibril
+        axis = "" if f.axis_exact else ", axis approximate"
+        pairs = sum(max(0, len(q) - 1) for q in f.layer_chains)
+        a = f.anchors[0]
+        said = {
+            "rise": f"{f.file}: measured over {pairs} layer pairs, sd {f.rise_sd:g} Å{axis}",
+            "twist": f"{f.file}: measured over {pairs} layer pairs, sd {f.twist_sd:g} rad{axis}",
+            "protofilaments": f"{f.file}: measured, {f.protofilaments} stacks of chains",
+            "pf_rotation": f"{f.file}: measured between protofilaments 0 and 1",
+            "pf_rise": f"{f.file}: measured between protofilaments 0 and 1",
+            "core_outline": f"{f.file}: measured, the section of core residues "
+                            f"{f.core_residues[0]}-{f.core_residues[1]}",
+            "anchor": f"{f.file}: measured, one bead outside chain {a['chain']} "
+                      f"{a['residue_name']}{a['residue']}, the core's {f.terminus}"
+                      f"{'-terminal residue' if f.terminus in ('N', 'C') else ''}"
+                      f"{', BURIED' if a['buried'] else ''}",
+        }
+        if f.tail_residues:
+            t = f.tail_residues
+            said["linker"] = (f"{f.file}: modelled tail {t[0]}-{t[1]} (the anchor and "
+                              f"{t[1] - t[0] + 1} residues)")
+        out.update({k: v for k, v in said.items() if k in applied})
+    if domain is not None and "globule_diameter" in applied:
+        d = domain
+        out["globule_diameter"] = (f"{d.file}: measured, 2·√(5/3)·Rg, Rg {d.rg:g} Å, chain "
+                                   f"{d.chain} residues {d.residues[0]}-{d.residues[1]}")
+    return out
+
+
 def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75):
     """(values to apply, structure block). `explicit`: parameters given as options (they win);
     `known`: the model's parameter names."""
@@ -24,4 +68,7 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)
-    return applied, block(fibril, domain, applied, overridden, missing)
+    out = block(fibril, domain, applied, overridden, missing)
+    out["warnings"] = warnings(fibril, domain)
+    out["sources"] = sources(fibril, domain, applied)
+    return applied, out

@@ -64,6 +64,8 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
     applied, block = from_files.split(fib, dom, explicit=set(explicit),
                                       known={f.name for f in P.fields()}, residue_radius=radius)
     if block["not_in_model"]:
-        print(f"fibrilfit: warning: measured but not in this model: "
-              f"{', '.join(block['not_in_model'])}", file=sys.stderr)
+        block["warnings"].append(f"measured but not in this model: "
+                                 f"{', '.join(block['not_in_model'])}")
+    for warning in block["warnings"]:  # every run and sweep says them (issue #23)
+        print(f"fibrilfit: warning: {warning}", file=sys.stderr)
     return {**applied, **explicit}, block

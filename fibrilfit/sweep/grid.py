@@ -57,10 +57,24 @@ def _text(value: Decimal) -> str:
     return format(value.normalize(), "f")
 
 
+def _unit(name: str, spec: str, parts: list[str]) -> tuple[list[str], str]:
+    """An angle's range may name its unit on any of its numbers (0.5deg:2deg:0.5 or
+    0.5:2:0.5deg): the numbers without it, and the unit every value is then written with."""
+    if not P.is_angle(name):
+        return parts, ""
+    split = [P.split_unit(part) for part in parts]
+    units = {part[len(number):].strip() for part, (number, factor) in zip(parts, split)
+             if factor is not None}
+    if len({P.ANGLE_UNITS[u.lower()] for u in units}) > 1:
+        raise GridError(name, f"range {spec!r} mixes units; give one (e.g. 0.5:2:0.5deg)")
+    return [number for number, _ in split], (units.pop() if units else "")
+
+
 def _range(name: str, spec: str, item: str) -> list[str]:
     parts = item.split(":")
     if len(parts) not in (2, 3):
         raise GridError(name, f"{spec!r} is not {SPEC_HELP}")
+    parts, unit = _unit(name, spec, parts)
     start, stop = _number(name, spec, parts[0]), _number(name, spec, parts[1])
     step = _number(name, spec, parts[2]) if len(parts) == 3 else Decimal(1)
     if step <= 0:
@@ -71,7 +85,7 @@ def _range(name: str, spec: str, item: str) -> list[str]:
     count = int((stop - start) / step) + 1  # Decimal arithmetic: 0.02:0.05:0.01 has 4 values
     if count > MAX_RANGE:
         raise GridError(name, f"range {item!r} has {count} values; at most {MAX_RANGE}")
-    return [_text(start + i * step) for i in range(count)]
+    return [_text(start + i * step) + unit for i in range(count)]
 
 
 def parse_spec(name: str, spec) -> list[str]:

@@ -150,16 +150,19 @@ CSV_FIELDS = ("n", "failed", "accommodated", "accommodated_fraction", "wilson95_
 
 def csv_text(rows_: list[Row]) -> str:
     names = columns(rows_)
+    # the protocol on every row (last, unless it varies): it explains why a sweep (tutorial by
+    # default) and minimal-linker (inflate) can disagree
+    tail = [] if "protocol" in names else ["protocol"]
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(names + list(CSV_FIELDS))
+    writer.writerow(names + list(CSV_FIELDS) + tail)
     for r in rows_:
         low, high = r.interval
         writer.writerow([fmt_value(r.values[n]) for n in names] + [
             r.n, r.failed, r.accommodated, _num(r.fraction, 4), _num(low, 4), _num(high, 4),
             _num(r.clash_fraction, 4), _num(r.median_stretch, 6),
             "" if r.median_frames is None else f"{r.median_frames:g}",
-            *(_num(d, 1) for d in r.diameter)])
+            *(_num(d, 1) for d in r.diameter)] + [r.values.get("protocol") for _ in tail])
     return buf.getvalue()
 
 
@@ -196,12 +199,47 @@ def _ci(row: Row) -> str:
     return f"{row.accommodated}/{row.n}, 95 % CI {low:.2f}-{high:.2f}"
 
 
+def seeds_to_show(target: float, most: int = 100_000) -> int | None:
+    """The fewest seeds, all accommodated, whose 95 % Wilson interval lies at or above `target`
+    (73 for 0.95); None if no number up to `most` does (a target of 1)."""
+    n = 1
+    while n <= most:
+        if wilson(n, n)[0] >= target:
+            return n
+        n = n * 2 if wilson(n * 2, n * 2)[0] < target else n + 1
+    return None
+
+
+def shown(row: Row, target: float) -> str:
+    """What a row's seeds show about P(fit) against `target`: 'k of n seeds (95 % CI a-b)' and,
+    when the interval's low end is below the target, that too few seeds ran to show it."""
+    low, high = row.interval
+    count = (f"all {row.n} of {row.n} seeds" if row.accommodated == row.n
+             else f"{row.accommodated} of {row.n} seeds")
+    text = f"{count} accommodated, 95 % CI {low:.2f}-{high:.2f}"
+    if low >= target:
+        return text + f"; P(fit) ≥ {target:g} shown"
+    need = seeds_to_show(target)
+    return text + (f"; {row.n} seeds cannot show P(fit) ≥ {target:g}"
+                   + (f" (that needs the interval's low end there: at least {need} seeds, all "
+                      f"accommodated)" if need else ""))
+
+
+def _setting(rows_: list[Row]) -> str:
+    """The protocol(s) and seeds per point behind a sweep's fractions."""
+    protocols = sorted({str(r.values.get("protocol", P.DEFAULTS.protocol)) for r in rows_})
+    seeds = sorted({r.n for r in rows_ if r.n})
+    per = (f"{seeds[0]}" if len(seeds) == 1 else f"{seeds[0]}-{seeds[-1]}") if seeds else "0"
+    return f"protocol {', '.join(protocols)}, {per} seeds per point"
+
+
 def minimal_lines(rows_: list[Row], target: float) -> list[str]:
-    lines = [f"minimal linker reaching {100 * target:g} % accommodated:"]
+    lines = [f"minimal linker with an accommodated fraction of at least {target:g} "
+             f"({_setting(rows_)}):"]
     for m in minimal_linkers(rows_, target):
         if m.row is not None:
             lines.append(f"  {_label(m.group)}: linker {m.row.values['linker']} "
-                         f"({_ci(m.row)})")
+                         f"({shown(m.row, target)})")
         elif m.best is not None:
             lines.append(f"  {_label(m.group)}: none in this sweep (best: linker "
                          f"{m.best.values['linker']}, {_ci(m.best)})")

@@ -103,8 +103,8 @@ def test_sweep_takes_the_case_and_its_seeds(tmp_path):
                and r["case"]["params"] == r["params"] and r["case"]["overridden"] == ["linker"]
                for r in records)
     head, *rows = (out / "summary.csv").read_text().splitlines()
-    assert head.endswith("outer_diameter_median,outer_diameter_min,outer_diameter_max")
-    assert len(rows) == 2 and all(float(row.split(",")[-3]) > 0 for row in rows)
+    assert head.endswith("outer_diameter_median,outer_diameter_min,outer_diameter_max,protocol")
+    assert len(rows) == 2 and all(float(row.split(",")[-4]) > 0 for row in rows)
 
 
 def test_sweep_seed_options_beat_the_case_seeds(tmp_path):

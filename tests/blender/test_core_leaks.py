@@ -55,7 +55,8 @@ def test_a_bead_pushed_into_an_outline_core_is_pushed_back_out(scene):
 
 
 def test_members_inside_core_follows_each_layers_turn_and_height():
-    p = P.make_params(layers=3, core_outline=U_CORE, anchor=(0, -1), twist=0.5)
+    p = P.make_params(layers=3, core_outline=U_CORE, anchor=(0, -1), twist=0.5,
+                      force=True)  # a 28.6° twist: beyond ±0.2 rad needs force
     k = 2
     c, s = np.cos(k * p.twist), np.sin(k * p.twist)
     inner, outer = (0.0, -8.0), (0.0, -12.0)  # in the layer's frame: inside, outside

@@ -50,7 +50,7 @@ def test_done_when_sweep_on_two_processes(done_when):
     csv = (out / "summary.csv").read_text().splitlines()
     assert len(csv) == 3 and csv[1].startswith("1,30,3,0,") and csv[2].startswith("12,30,3,0,")
     assert (out / "phase.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "minimal linker reaching 95 % accommodated:" in cp.stdout
+    assert "minimal linker with an accommodated fraction of at least 0.95 (protocol " in cp.stdout
     assert "clash-free layout" in cp.stdout
     assert "sweep: 100%" in cp.stderr  # the progress bar
 
@@ -197,7 +197,7 @@ def test_a_run_failing_twice_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert record["status"] == "failed" and record["attempts"] == 2
     assert record["error"].startswith("timed out after 0.2 s") and len(record["errors"]) == 2
     assert "requirement failed: failed==0" in cp.stdout
-    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,"
+    assert (out / "summary.csv").read_text().splitlines()[1] == "6,30,0,1,0,,,,,,,,,,tutorial"
     # --retry-failed runs it again, replacing the failed line
     cp = run_cli("sweep", "--linker", "6", "--layers", "4", "--frames", "40", "--workers", "1",
                  "--out", str(out), "--resume", "--retry-failed", "--quiet")

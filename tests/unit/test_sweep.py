@@ -107,12 +107,13 @@ def test_summary_pools_seeds_per_grid_point():
     assert csv[0].startswith("linker,globule_diameter,n,failed,accommodated,accommodated_fraction,"
                              "wilson95_low,wilson95_high,clash_fraction,median_stretch")
     assert csv[3] == (f"6,30,2,1,2,1.0000,{wilson(2, 2)[0]:.4f},1.0000,0.0000,0.010000,225,"
-                      f"105.0,100.0,110.0")  # the envelope's outer diameter: median, min, max
+                      f"105.0,100.0,110.0,tutorial")  # the envelope's outer diameter: median,
+    # min, max; then the protocol (issue #23)
     assert r6.metric("outer_diameter") == 105.0
     minimal = {m.group["globule_diameter"]: m for m in summary.minimal_linkers(rows, 0.95)}
     assert minimal[30.0].row is r6 and minimal[45.0].row is None and minimal[45.0].best is r6b
     text = summary.table(rows, 0.95)
-    assert "globule_diameter 30: linker 6 (2/2" in text
+    assert "globule_diameter 30: linker 6 (all 2 of 2 seeds accommodated" in text
     assert "globule_diameter 45: none in this sweep (best: linker 6, 1/2" in text
     assert "fraction of seeds whose relaxation found a clash-free layout" in text
 

@@ -1,0 +1,47 @@
+"""The one-word answer of one relaxation: fits, borderline or no layout found.
+
+Plain Python over a result's numbers (no bpy), so the verdict (analysis/verdict.py), the printed
+summary and the unit tests read the same rule (docs/model/verdict.md#answer):
+
+- **fits**: no globule pair clashes and the worst linker bond is within the stretch tolerance,
+  by more than BORDERLINE_STRETCH: a layout was found, which proves one exists;
+- **borderline**: the run sits at the criterion: its worst stretch lies within BORDERLINE_STRETCH
+  of the tolerance (either side), or every clashing pair only grazes (an overlap within the
+  globule mesh's resolution, which can flip from frame to frame);
+- **no layout found**: this run found none. One relaxation is one random search: it proves
+  nothing about whether a layout exists.
+"""
+from __future__ import annotations
+
+FITS, BORDERLINE, NO_LAYOUT = "fits", "borderline", "no layout found"
+ANSWERS = (FITS, BORDERLINE, NO_LAYOUT)
+# A stretch within one percentage point of the tolerance (e.g. 4-6 % for 5 %) is borderline:
+# the worst stretch of one layout varies by about this much between frames once settled
+# (docs/model/linker-integrity.md#linker-integrity).
+BORDERLINE_STRETCH = 0.01
+
+
+def answer(*, clashing: int, grazing: int, max_stretch: float, tolerance: float) -> str:
+    """The answer for a run with `clashing` BVH pairs, of which `grazing` only graze, and its
+    worst bond stretch (fractions)."""
+    near = abs(max_stretch - tolerance) <= BORDERLINE_STRETCH
+    only_grazing = clashing > 0 and grazing >= clashing
+    intact = max_stretch <= tolerance
+    if clashing == 0 and intact:
+        return BORDERLINE if near else FITS
+    if (clashing == 0 or only_grazing) and (intact or near):
+        return BORDERLINE
+    return NO_LAYOUT
+
+
+def of_result(r: dict) -> str | None:
+    """The answer of a result dict (None without a verdict); a result from before the answer
+    existed gets it from its numbers."""
+    if "verdict" not in r:
+        return None
+    if r.get("answer") in ANSWERS:
+        return r["answer"]
+    return answer(clashing=len(r.get("clashing_pairs") or []),
+                  grazing=len(r.get("grazing_pairs") or []),
+                  max_stretch=float(r["max_bond_stretch"]),
+                  tolerance=float(r["params"]["stretch_tolerance"]))

@@ -261,6 +261,9 @@ def _checked_run(args) -> tuple:
                "pdb_images": export_options.pdb_images(args, p)}
     if args.pdb:
         export_options.pdb_fits(p)
+    if args.pdb_atoms:
+        from ..structure.inputs import atom_sources
+        outputs["atoms"] = atom_sources(args)  # refused without --fibril/--domain
     outputs["movie_step"] = export_options.movie_step(args)
     outputs["paths"] = {key: files.check_writable(option(key), getattr(args, key), suffixes)
                         for key, suffixes in writers.path_suffixes().items()
@@ -306,7 +309,8 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
     return writers.write_all(writers.Job(
         bpy.context.scene, result, outputs["paths"], look=outputs["look"],
         pdb_frames=args.pdb_frames, pdb_images=outputs["pdb_images"],
-        movie_step=outputs["movie_step"], progress=not args.quiet, case=case))
+        movie_step=outputs["movie_step"], progress=not args.quiet, case=case,
+        atoms=outputs.get("atoms")))
 
 
 def _report(args, result: dict, restarts) -> None:

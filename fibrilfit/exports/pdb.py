@@ -24,6 +24,7 @@ import bpy
 import numpy as np
 
 from . import files
+from .mmcif import shown as _shown
 from ..model import helix
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
@@ -151,15 +152,6 @@ def result_remarks(result: dict | None) -> list[str]:
         what = "layer" if result.get("params", {}).get("protofilaments", 1) == 1 else "chain"
         out.append(f"clashing {what} pairs: " + (" ".join(pairs) or "none"))
     return out
-
-
-def _shown(value) -> str:
-    """A parameter's value in a REMARK: numbers by %g, lists space-separated, an outline's
-    points as x,y pairs."""
-    if isinstance(value, (list, tuple)):
-        return " ".join(",".join(f"{v:g}" for v in item) if isinstance(item, (list, tuple))
-                        else f"{item:g}" for item in value)
-    return str(value)
 
 
 def positions_at(scene: bpy.types.Scene, model, frames) -> list[tuple[int, np.ndarray]]:

@@ -56,6 +56,7 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
         return explicit, None
     from . import from_files
     fib, dom = measure_structures(args)
+    args.measured = (fib, dom)  # for --pdb-atoms (atom_sources), measured once
     radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
     try:
         radius = float(radius)
@@ -67,3 +68,19 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
         print(f"fibrilfit: warning: measured but not in this model: "
               f"{', '.join(block['not_in_model'])}", file=sys.stderr)
     return {**applied, **explicit}, block
+
+
+def atom_sources(args):
+    """What --pdb-atoms places (structure.atoms.Sources), from --fibril/--domain as measured by
+    params_and_structure. Refused without a structure to place."""
+    if not (args.fibril or args.domain):
+        raise UsageError("--pdb-atoms: needs a structure to place: give --fibril FILE and/or "
+                         "--domain FILE")
+    from . import atoms
+    fib, _ = getattr(args, "measured", None) or measure_structures(args)
+    domains = []
+    if args.domain:
+        domains.append(atoms.domain_atoms(args.domain, chain=args.domain_chain,
+                                          residues=args.domain_residues))
+    return atoms.sources(args.fibril, fib, domains) if args.fibril else atoms.sources(
+        domains=domains)

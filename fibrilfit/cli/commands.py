@@ -334,8 +334,11 @@ def command_inspect(args) -> int:
     values = structure.model_values(fib, dom)
     if path:
         import gemmi
+        from ..structure.mapping import linker_source
+        sources = ({"linker": linker_source(fib, dom, explicit=False)} if fib or dom else {})
         files.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
-                                 "model_values": values, "gemmi_version": gemmi.__version__})
+                                 "model_values": values, "sources": sources,
+                                 "gemmi_version": gemmi.__version__})
     print(summary.text(fib, dom, values))
     return EXIT_OK
 

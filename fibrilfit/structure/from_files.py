@@ -2,10 +2,11 @@
 files, the explicit options winning, and the `structure` block a result records."""
 from __future__ import annotations
 
-from .mapping import model_values
+from .mapping import linker_source, model_values
 
 
-def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -> dict:
+def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list,
+          explicit: set = frozenset()) -> dict:
     """What a result says it was computed from: files, sha256, measurements, what was used."""
     out = {}
     for key, m in (("fibril", fibril), ("domain", domain)):
@@ -14,6 +15,10 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     out["applied"] = applied
     out["overridden"] = sorted(overridden)  # measured, but an explicit option set the value
     out["not_in_model"] = not_in_model  # measured, but this model has no such parameter
+    # where the linker came from: the issue's `sources`, for the linker (the lead merges this
+    # into the result's top-level `sources`)
+    out["sources"] = {"linker": linker_source(fibril, domain,
+                                              explicit="linker" in explicit)}
     return out
 
 
@@ -24,4 +29,4 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)
-    return applied, block(fibril, domain, applied, overridden, missing)
+    return applied, block(fibril, domain, applied, overridden, missing, explicit)

@@ -49,6 +49,9 @@ def text(fibril=None, domain=None, values=None) -> str:
         lines += fibril_lines(fibril)
     if domain is not None:
         lines += domain_lines(domain)
+    if fibril is not None and domain is not None:
+        from .mapping import linker_source
+        lines.append(f"linker: {linker_source(fibril, domain, explicit=False)}")
     if values:
         shown = {k: (f"{len(v)} points" if k == "core_outline" else v) for k, v in values.items()}
         lines.append("model values: " + ", ".join(f"{k}={v}" for k, v in shown.items()))

@@ -1,0 +1,106 @@
+"""Domains as they are (issue #24), the parts that need no bpy: the linker from the files'
+numbering, the body frame, and the atoms of a decorated fibril (placed rigidly, read back)."""
+import math
+
+import numpy as np
+import pytest
+from helpers import ROOT
+
+gemmi = pytest.importorskip("gemmi")
+from fibrilfit import structure as S  # noqa: E402
+from fibrilfit.exports import mmcif  # noqa: E402
+from fibrilfit.model import params as P  # noqa: E402
+from fibrilfit.structure import atoms as A, mapping  # noqa: E402
+
+DATA = ROOT / "tests" / "data"
+
+
+def renumbered(tmp_path, name: str, shift: int):
+    """1UBQ with every residue number shifted (a domain in another protein's numbering)."""
+    st = gemmi.read_structure(str(DATA / "1ubq.pdb.gz"))
+    for ch in st[0]:
+        for res in ch:
+            res.seqid.num += shift
+    out = tmp_path / name
+    st.write_pdb(str(out))
+    return out
+
+
+@pytest.fixture(scope="module")
+def six():
+    return S.measure_fibril(DATA / "6cu7.pdb.gz")
+
+
+def test_the_linker_is_the_residues_between_anchor_and_domain(six, tmp_path):
+    dom = S.measure_domain(renumbered(tmp_path, "d128.pdb", 127))  # residues 128-203
+    assert six.anchors[0]["residue"] == 97 and dom.residues[0] == 128
+    values = S.model_values(six, dom)
+    assert values["linker"] == 31  # 98..127: 30 residues between, plus the anchor
+    assert "30 residues between LYS97" in mapping.linker_source(six, dom, explicit=False)
+    said = mapping.linker_source(six, dom, explicit=True)
+    assert said.startswith("the --linker option") and "gives 31" in said
+
+
+def test_numbering_that_does_not_follow_the_anchor_is_not_used(six):
+    dom = S.measure_domain(DATA / "1ubq.pdb.gz")  # 1-76: before K97, not after it
+    assert "linker" not in S.model_values(six, dom)
+    assert "not from numbering" in mapping.linker_source(six, dom, explicit=False)
+    # on the N side (anchor V38) the same domain precedes the core: 38 - 76 < 0, refused too
+    n_side = S.measure_fibril(DATA / "6cu7.pdb.gz", terminus="N")
+    assert n_side.anchors[0]["residue"] == 38 and "linker" not in S.model_values(n_side, dom)
+
+
+def test_a_domain_before_an_n_terminal_anchor(tmp_path):
+    fib = S.measure_fibril(DATA / "7ymn.pdb.gz", terminus="N")  # anchor 304
+    dom = S.measure_domain(renumbered(tmp_path, "d200.pdb", 199))  # 200-275
+    assert S.model_values(fib, dom)["linker"] == 304 - 275  # 276..303 between, plus the anchor
+
+
+def test_the_body_frame_is_the_centroid_unrotated():
+    xyz = np.random.default_rng(1).normal(size=(50, 3)) * 7 + [3, -2, 40]
+    local, centroid = A.body_coordinates(xyz)
+    assert np.allclose(centroid, xyz.mean(axis=0)) and np.allclose(local + centroid, xyz)
+    ubq = A.domain_atoms(DATA / "1ubq.pdb.gz")
+    assert np.allclose(ubq.xyz.mean(axis=0), 0, atol=1e-9)
+    assert len(ubq) == S.measure_domain(DATA / "1ubq.pdb.gz").atoms
+
+
+def _rotation(rng):
+    q = rng.normal(size=4)
+    q /= np.linalg.norm(q)
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def test_placed_domains_are_rigid_and_the_file_reads_back(six, tmp_path):
+    p = P.make_params(layers=3, linker=4, **{
+        k: v for k, v in S.model_values(six).items() if k not in ("linker",)})
+    ubq = A.domain_atoms(DATA / "1ubq.pdb.gz")
+    sources = A.sources(DATA / "6cu7.pdb.gz", six, [ubq])
+    rng = np.random.default_rng(7)
+    mats = np.zeros((p.chains, 4, 4))
+    for c in range(p.chains):
+        mats[c, :3, :3] = _rotation(rng) * (1 + 1e-7)  # float32-like noise is taken out
+        mats[c, :3, 3] = rng.normal(size=3) * 50
+        mats[c, 3, 3] = 1
+    positions = rng.normal(size=(p.chains, p.linker + 1, 3))
+    atoms = mmcif.decorated_atoms(p, positions, mats, sources)
+    out = tmp_path / "d.cif"
+    info = mmcif.write(out, atoms, mmcif.header({"params": p.to_dict(), "seed": 0}))
+    st = gemmi.read_structure(str(out))
+    assert len(st[0]) == info["chains"] == 2 * p.chains
+    assert sum(1 for _ in st[0].all()) == info["atoms"]
+    want = np.linalg.norm(ubq.xyz[:, None] - ubq.xyz[None], axis=-1)
+    for c in range(p.chains):
+        ch = st[0][mmcif.chain_name(c // 2, c % 2, 0)]
+        xyz = np.array([a.pos.tolist() for r in ch for a in r])
+        got = np.linalg.norm(xyz[:, None] - xyz[None], axis=-1)
+        assert np.abs(got - want).max() < 0.005
+        assert np.allclose(xyz.mean(axis=0), mats[c, :3, 3], atol=0.002)  # centroid at origin
+    doc = gemmi.cif.read(str(out))
+    assert doc[0].find_value("_struct.title").startswith("'FibrilFit decorated fibril")
+    params = doc[0].get_mmcif_category("_fibrilfit_param.")
+    assert dict(zip(params["name"], params["value"]))["linker"] == "4"
+    assert math.isclose(float(dict(zip(params["name"], params["value"]))["rise"]), p.rise)

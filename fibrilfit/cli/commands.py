@@ -12,7 +12,7 @@ from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401
                      EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from ..exports import options as export_options
 from ..structure.errors import StructureError
-from ..structure.inputs import add_structure_options, measure_structures, params_and_structure
+from ..structure.inputs import add_structure_options, params_and_structure
 
 
 class _Parser(argparse.ArgumentParser):
@@ -65,9 +65,13 @@ def _given(argv, name: str) -> bool:
 
 def structure_options(args) -> dict:
     """The --fibril/--domain options as they will run (for a case's [structure])."""
-    if not (getattr(args, "fibril", None) or getattr(args, "domain", None)):
+    from ..structure.inputs import has_structure
+    if not has_structure(args):
         return {}
     out = {k: getattr(args, k) for k in cases.STRUCTURE_KEYS if getattr(args, k, None) is not None}
+    for k, v in list(out.items()):  # an option given once (argparse appends) is one value
+        if isinstance(v, list):
+            out[k] = v[0] if len(v) == 1 else v
     if not args.fibril:
         out.pop("terminus", None)
     return out
@@ -327,19 +331,25 @@ def _report(args, result: dict, restarts) -> None:
 def command_inspect(args) -> int:
     from .. import structure
     from ..structure import summary
-    if not (args.fibril or args.domain):
-        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    from ..structure.inputs import has_structure, measure_all
+    if not has_structure(args):
+        raise UsageError("inspect: give --fibril FILE, --domain FILE and/or --full-length FILE")
     path = files.check_writable("--json", args.json, (".json",)) if args.json else None
-    fib, dom = measure_structures(args)
+    fib, doms, seg = measure_all(args)
+    dom = doms[0] if doms else None
     values = structure.model_values(fib, dom)
     if path:
         import gemmi
         from ..structure.mapping import linker_source
         sources = ({"linker": linker_source(fib, dom, explicit=False)} if fib or dom else {})
-        files.write_json(path, {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
-                                 "model_values": values, "sources": sources,
-                                 "gemmi_version": gemmi.__version__})
-    print(summary.text(fib, dom, values))
+        data = {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
+                "model_values": values, "sources": sources, "gemmi_version": gemmi.__version__}
+        if seg is not None:
+            data.update(full_length=seg.to_dict(), domains=seg.domains, linkers=seg.linkers)
+        if len(doms) > 1:
+            data["domains_measured"] = [d.to_dict() for d in doms]
+        files.write_json(path, data)
+    print(summary.text(fib, dom, values, segmentation=seg))
     return EXIT_OK
 
 

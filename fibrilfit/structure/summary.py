@@ -43,10 +43,30 @@ def domain_lines(d) -> list:
     return lines
 
 
-def text(fibril=None, domain=None, values=None) -> str:
+def segmentation_lines(seg) -> list:
+    lines = [f"full-length model {seg.file} (sha256 {seg.sha256[:12]}…): chain {seg.chain} "
+             f"residues {seg.residues[0]}-{seg.residues[1]}"
+             + (f", fibril core {seg.core[0]}-{seg.core[1]}" if seg.core else
+                " (no --fibril: the core is not known)")]
+    lines += [f"  note: {n}" for n in seg.notes]
+    for d in seg.domains:
+        lines.append(f"  domain {d['first']}-{d['last']} ({d['residues']} residues"
+                     + (f", {d['side']} side" if d["side"] else "")
+                     + f"): pLDDT {d['plddt_mean']:.1f}, diameter {d['diameter']:.1f} Å")
+    if not seg.domains:
+        lines.append("  no folded domain (pLDDT >= 70 over at least 40 residues) outside the core")
+    for k in seg.linkers:
+        lines.append(f"  linker {k['first']}-{k['last']}: {k['length']} residues "
+                     f"({k['between'][0]} to {k['between'][1]})")
+    return lines
+
+
+def text(fibril=None, domain=None, values=None, segmentation=None) -> str:
     lines = []
     if fibril is not None:
         lines += fibril_lines(fibril)
+    if segmentation is not None:
+        lines += segmentation_lines(segmentation)
     if domain is not None:
         lines += domain_lines(domain)
     if fibril is not None and domain is not None:

@@ -41,3 +41,42 @@ def test_inspect_says_where_the_linker_comes_from(ff, tmp_path, capsys):
     assert "linker: numbering: 30 residues between LYS97" in capsys.readouterr().out
     data = json.loads(out.read_text())
     assert data["model_values"]["linker"] == 31 and "numbering" in data["sources"]["linker"]
+
+
+def test_a_full_length_model_gives_the_domain_and_its_linker(ff, scene, tmp_path, capsys):
+    from helpers import synthetic_full_length
+    fl, js = synthetic_full_length(tmp_path), tmp_path / "i.json"
+    assert ff.cli.main(["inspect", "--fibril", str(DATA / "6cu7.pdb.gz"), "--full-length",
+                        str(fl), "--json", str(js)]) == 0
+    data = json.loads(js.read_text())
+    assert [(d["first"], d["last"]) for d in data["domains"]] == [(128, 203)]
+    assert data["linkers"] == [{"first": 98, "last": 127, "length": 30,
+                                "between": ["core 38-97", "domain 128-203"]}]
+    assert "linker 98-127: 30 residues" in capsys.readouterr().out
+    out, cif = tmp_path / "r.json", tmp_path / "r.cif"
+    assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--full-length", str(fl),
+                        *FAST, "--stop-after", "build", "--json", str(out), "--pdb-atoms",
+                        str(cif)]) == 0
+    r = json.loads(out.read_text())
+    assert r["params"]["linker"] == 31  # 30 residues between K97 and 128, plus the anchor
+    assert r["params"]["globule_diameter"] == 30.276  # ubiquitin's own coordinates
+    assert r["structure"]["full_length"]["domains"][0]["first"] == 128
+    st = gemmi.read_structure(str(cif))
+    dom = st[0]["0A1"]
+    assert (dom[0].seqid.num, dom[len(dom) - 1].seqid.num) == (128, 203)
+    core = st[0]["0A"]  # the beads continue the numbering up to the domain
+    assert core[len(core) - 1].seqid.num == 127
+
+
+def test_bad_full_length_models_are_refused_in_one_line(ff, scene, tmp_path, capsys):
+    from helpers import synthetic_full_length
+    for bad, words in ((synthetic_full_length(tmp_path, flat=True, name="flat.pdb"),
+                        "no pLDDT"),
+                       (synthetic_full_length(tmp_path, shift=500, name="far.pdb"),
+                        "do not cover the fibril's core 38-97")):
+        out = tmp_path / "r.json"
+        assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--full-length",
+                            str(bad), *FAST, "--json", str(out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("fibrilfit: error: --full-length: ")
+        assert words in err[0] and not out.exists()

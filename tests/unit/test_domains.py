@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from helpers import ROOT
+from helpers import ROOT, synthetic_full_length
 
 gemmi = pytest.importorskip("gemmi")
 from fibrilfit import structure as S  # noqa: E402
@@ -104,3 +104,27 @@ def test_placed_domains_are_rigid_and_the_file_reads_back(six, tmp_path):
     params = doc[0].get_mmcif_category("_fibrilfit_param.")
     assert dict(zip(params["name"], params["value"]))["linker"] == "4"
     assert math.isclose(float(dict(zip(params["name"], params["value"]))["rise"]), p.rise)
+
+
+def test_a_full_length_model_is_cut_into_its_domain_and_linker(six, tmp_path):
+    from fibrilfit.structure import full_length
+    seg = full_length.segment(synthetic_full_length(tmp_path), six.core_residues)
+    assert seg.core == [38, 97] and seg.residues == [1, 203]
+    assert [(d["first"], d["last"]) for d in seg.domains] == [(128, 203)]  # the dip bridged
+    assert seg.domains[0]["plddt_mean"] == pytest.approx((74 * 91 + 2 * 60) / 76, abs=0.01)
+    ubq = S.measure_domain(DATA / "1ubq.pdb.gz")
+    assert seg.domains[0]["diameter"] == pytest.approx(ubq.globule_diameter, abs=0.01)
+    assert [(k["first"], k["last"], k["length"]) for k in seg.linkers] == [(98, 127, 30)]
+    # without the fibril the confident core is a domain too (it is 60 residues)
+    alone = full_length.segment(synthetic_full_length(tmp_path), None)
+    assert [(d["first"], d["last"]) for d in alone.domains] == [(38, 97), (128, 203)]
+
+
+def test_a_full_length_model_must_cover_the_core_and_carry_plddt(six, tmp_path):
+    from fibrilfit.structure import full_length
+    with pytest.raises(S.StructureError, match="--full-length: .*do not cover the fibril's "
+                                               "core 38-97"):
+        full_length.segment(synthetic_full_length(tmp_path, shift=500), six.core_residues)
+    with pytest.raises(S.StructureError, match="--full-length: .*no pLDDT .*every B-factor "
+                                               "is 50"):
+        full_length.segment(synthetic_full_length(tmp_path, flat=True), six.core_residues)

@@ -124,6 +124,8 @@ def _default_text(f) -> str:
         return "default " + " ".join(f"{v:g}" for v in default)
     if meta["unit"] == "rad":
         return f"default {default} ({math.degrees(default):.2f}°)"
+    if meta["kind"] == "list" and default is None:
+        return "default none: one domain per chain"
     return f"default {default}"
 
 

@@ -141,7 +141,7 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
 
 def domain_members(p) -> list:
     """The member index of each globule along a chain (one domain: the last member)."""
-    return [p.linker]
+    return p.globule_members()
 
 
 def header(result: dict | None) -> dict:

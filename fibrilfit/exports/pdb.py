@@ -74,14 +74,17 @@ def hybrid36(value: int, width: int = 5) -> str:
     return out
 
 
-def residue_names(linker: int) -> list[str]:
-    return ["ANC"] + ["LNK"] * (linker - 1) + ["GLB"]
+def residue_names(p) -> list[str]:
+    """ANC, LNK ..., GLB per chain member (several domains: GLB at each globule)."""
+    globules = set(p.globule_members())
+    return ["ANC"] + ["GLB" if i in globules else "LNK"
+                      for i in range(1, len(p.chain_radii()))]
 
 
 def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -> str:
     """The PDB file for parameters `p` and [(frame, positions (chains, linker + 1, 3))]."""
-    layers, members = p.chains, p.linker + 1  # "layers" here: PDB chains, one per model chain
-    names = residue_names(p.linker)
+    layers, members = p.chains, len(p.chain_radii())  # "layers": PDB chains, one per chain
+    names = residue_names(p)
     radii = p.chain_radii()
     labels = [chain_label(k, layers) for k in range(layers)]
     pfs = (f" X {p.protofilaments} PROTOFILAMENTS" if p.protofilaments > 1 else "")
@@ -202,5 +205,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     text = pdb_text(p, models, remarks)
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": p.chains * (p.linker + 1),
+            "atoms_per_model": p.chains * len(p.chain_radii()),
             **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

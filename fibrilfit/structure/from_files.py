@@ -22,10 +22,12 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list,
     return out
 
 
-def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75):
+def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75,
+          more_domains=()):
     """(values to apply, structure block). `explicit`: parameters given as options (they win);
-    `known`: the model's parameter names."""
-    values = model_values(fibril, domain, residue_radius=residue_radius)
+    `known`: the model's parameter names; `more_domains`: the domains after `domain`."""
+    values = model_values(fibril, domain, residue_radius=residue_radius,
+                          more_domains=more_domains)
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)

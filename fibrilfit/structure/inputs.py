@@ -125,7 +125,8 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
     except (TypeError, ValueError):
         radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
     applied, block = from_files.split(fib, dom, explicit=set(explicit),
-                                      known={f.name for f in P.fields()}, residue_radius=radius)
+                                      known={f.name for f in P.fields()}, residue_radius=radius,
+                                      more_domains=doms[1:])
     if block["not_in_model"]:
         print(f"fibrilfit: warning: measured but not in this model: "
               f"{', '.join(block['not_in_model'])}", file=sys.stderr)

@@ -12,7 +12,7 @@ RESIDUE_RADIUS = 1.75  # Å: the model's anchor bead (params.residue_radius's de
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
                  "anchor", "linker")
-DOMAIN_PARAMS = ("globule_diameter",)
+DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker")
 
 
 def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
@@ -35,7 +35,7 @@ def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
 
 
 def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None = None, *,
-                 residue_radius: float = RESIDUE_RADIUS) -> dict:
+                 residue_radius: float = RESIDUE_RADIUS, more_domains=()) -> dict:
     """Parameter name -> value for the model, in its units (Å, rad).
 
     The layer frame is the fibril's: Z = the helical axis through the origin, layer 0 of the model
@@ -60,7 +60,27 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
     numbered = linker_from_numbering(fibril, domain)
     if numbered is not None:  # covers a modelled tail too: the residues between, all of them
         values["linker"] = numbered[0]
+    if more_domains:  # several domains per chain, in chain order from the core outward
+        values["domain_diameters"] = [d.globule_diameter for d in more_domains]
+        gaps = domain_gaps([domain, *more_domains],
+                           "N" if fibril is not None and fibril.terminus == "N" else "C")
+        if gaps is not None:
+            values["domain_linker"] = gaps
     return values
+
+
+def domain_gaps(domains: list, side: str = "C"):
+    """Residues between consecutive domains (chain order from the core outward) from their
+    numbering, or None when the numbering does not run that way (then --domain-linker is
+    needed)."""
+    gaps = []
+    for near, far in zip(domains, domains[1:]):
+        gap = (far.residues[0] - near.residues[1] - 1 if side == "C" else
+               near.residues[0] - far.residues[1] - 1)
+        if gap < 0:
+            return None
+        gaps.append(int(gap))
+    return gaps
 
 
 def linker_from_numbering(fibril: FibrilGeometry | None, domain: DomainSize | None):

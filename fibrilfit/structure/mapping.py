@@ -116,9 +116,9 @@ def numbering_note(fibril, domain):
     where = f"{name}{res} ({fibril.file}) and the domain's {end} ({domain.file})"
     if not beyond:
         return (False, None, f"not from numbering: the domain's residues {first}-{last} do not "
-                             f"lie beyond the anchor {name}{res}"
+                             f"follow the anchor {name}{res}"
                              + (f" and the modelled tail {tail[0]}-{tail[1]}" if tail else "")
-                             + " on the linker's side (another numbering?)")
+                             + " (another numbering?)")
     return (True, between + 1, f"numbering: {between} residues between {where}; "
                                f"linker {between + 1} with the anchor")
 

@@ -2,6 +2,7 @@
 import json
 
 import gemmi
+import numpy as np
 from helpers import ROOT
 
 DATA = ROOT / "tests" / "data"
@@ -80,3 +81,84 @@ def test_bad_full_length_models_are_refused_in_one_line(ff, scene, tmp_path, cap
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and err[0].startswith("fibrilfit: error: --full-length: ")
         assert words in err[0] and not out.exists()
+
+
+# A TDP-43-like chain: the core, 50 residues to RRM2, 23 to RRM1, 24 to the NTD (the issue's
+# numbers; spheres of given diameters: the repository has no TDP-43 domain files), two
+# molecules per layer as in 8QX9 (examples/tdp43_8qx9.toml's geometry).
+TDP43 = dict(protofilaments=2, slab=(56.5, 22.0, 4.78), rise=4.78, twist=-0.0309, layers=4,
+             linker=51, globule_diameter=31.0, domain_diameters="31,30", domain_linker="23,24",
+             frames=40)
+
+
+def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scene):
+    P = ff.model.params
+    p = P.make_params(**TDP43)
+    assert p.globule_members() == [51, 75, 100]
+    r = ff.pipeline.run(p, scene)
+    model = ff.pipeline.current_model(scene)
+    assert len(model.chain) == 8 and all(len(c) == 101 for c in model.chain)
+    assert len(model.globules) == 24
+    scales = [round(ob.scale[0], 4) for ob in model.globules[:3]]
+    assert scales == [1.0, 1.0, round(30 / 31, 4)]
+    assert r["verdict"] in ("successful", "intersection") and "accommodated" in r
+    assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8]
+    assert r["envelope"]["n"] == 24
+    assert len(r["globule_centres"]) == 24 and r["checks_agree"]
+    # every bond of the whole chain is judged: the stretch is over 100 bonds, within reason
+    assert -1.0 < r["max_bond_stretch"] < 10.0
+    # no two domains overlap deeper than the sphere check's tolerance unless it says so
+    centres = np.array(r["globule_centres"])
+    radii = np.tile(p.domain_radii, p.chains)
+    d = np.linalg.norm(centres[:, None] - centres[None], axis=-1)
+    depth = radii[:, None] + radii[None] - d
+    np.fill_diagonal(depth, -np.inf)
+    deep = {(int(i), int(j)) for i, j in zip(*np.nonzero(np.triu(depth > r["sphere_check"][
+        "tolerance"])))}
+    assert deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+
+
+def test_the_json_names_which_domain_of_which_chain_clashes(ff, scene):
+    p = ff.model.params.make_params(layers=4, linker=2, globule_diameter=40,
+                                    domain_diameters="40,40", domain_linker="1,1", frames=20)
+    r = ff.pipeline.run(p, scene)
+    assert r["verdict"] == "intersection" and r["clashing_domains"]
+    assert len(r["clashing_domains"]) == len(r["clashing_pairs"])
+    for (a, b, depth), (i, j, d) in zip(r["clashing_domains"], r["clashing_pairs"]):
+        assert (a["chain"], a["domain"], b["chain"], b["domain"]) == (i // 3, i % 3, j // 3,
+                                                                    j % 3)
+        assert a["layer"] == a["chain"] and a["protofilament"] == 0 and depth == d
+    assert ff.analysis.clashing_layers(r) == sorted(
+        {k // 3 for i, j, _ in r["clashing_pairs"] for k in (i, j)})
+
+
+def test_a_domain_linker_count_that_does_not_match_is_refused(ff, scene, tmp_path, capsys):
+    out = tmp_path / "r.json"
+    for extra in (["--domain-diameters", "30,20", "--domain-linker", "5"],
+                  ["--domain", str(DATA / "1ubq.pdb.gz"), "--domain", str(DATA / "1gfl.pdb.gz")],
+                  ["--domain-diameters", "30", "--domain-linker", "5", "--protocol", "inflate"]):
+        assert ff.cli.main(["run", *FAST, *extra, "--json", str(out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and not out.exists()
+        assert err[0].startswith(("fibrilfit: error: domain_linker: needs one value per gap",
+                                  "fibrilfit: error: domain_diameters: several domains"))
+
+
+def test_several_domain_files_fill_the_chain(ff, scene, tmp_path):
+    """--domain twice: diameters from the files; the gap from their numbering when it runs
+    outward (ubiquitin 128-203, then ubiquitin again as 230-305: 26 residues between)."""
+    near, far, out = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "r.json"
+    cif = tmp_path / "r.cif"
+    assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--domain", str(near),
+                        "--domain", str(far), *FAST, "--json", str(out), "--pdb-atoms",
+                        str(cif)]) == 0
+    r = json.loads(out.read_text())
+    assert r["params"]["linker"] == 31 and r["params"]["domain_linker"] == [26]
+    assert r["params"]["domain_diameters"] == [r["params"]["globule_diameter"]] == [30.276]
+    assert len(r["structure"]["domains"]) == 2
+    st = gemmi.read_structure(str(cif))
+    chains = {ch.name: ch for ch in st[0]}
+    assert {"0A", "0A1", "0A2", "0B2"} <= set(chains) and len(chains) == 3 * 3 * 2
+    gap = chains["0A1"]  # domain 1, then its 26 beads numbered on to 229
+    assert [r.seqid.num for r in gap][-27:] == [203] + list(range(204, 230))
+    assert chains["0A2"][0].seqid.num == 230

@@ -128,3 +128,36 @@ def test_a_full_length_model_must_cover_the_core_and_carry_plddt(six, tmp_path):
     with pytest.raises(S.StructureError, match="--full-length: .*no pLDDT .*every B-factor "
                                                "is 50"):
         full_length.segment(synthetic_full_length(tmp_path, flat=True), six.core_residues)
+
+
+def test_several_domains_in_the_one_parameter_definition():
+    one = P.DEFAULTS
+    assert one.globule_members() == [one.linker] and one.domain_radii == [one.globule_radius]
+    assert one.chain_x() == [21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0]  # the tutorial's
+    p = P.make_params(linker=4, globule_diameter=25, domain_diameters="30, 20",
+                      domain_linker="3,2")
+    assert p.domain_diameters == (30.0, 20.0) and p.domain_linker == (3, 2)
+    assert p.globule_members() == [4, 8, 11] and len(p.chain_radii()) == 12
+    assert p.chain_radii()[4] == 12.5 and p.chain_radii()[8] == 15.0 and p.chain_radii()[11] == 10
+    # beads 3.5 Å apart, a globule touching its neighbours
+    assert np.allclose(p.rest_lengths(), [3.5, 3.5, 3.5, 14.25, 14.25, 3.5, 3.5, 16.75, 16.75,
+                                          3.5, 11.75])
+    assert p.estimated_objects() == 20 * (1 + 2 * 12 - 1)
+    assert P.make_params(**p.to_dict()) == p and p.to_dict()["domain_linker"] == [3, 2]
+    assert P.make_params(domain_diameters="none").domain_diameters is None
+    for bad, words in (({"domain_diameters": "30", "domain_linker": "2,3"}, "got 2 value"),
+                       ({"domain_diameters": "30,x", "domain_linker": "1,1"}, "must be a number"),
+                       ({"domain_diameters": "30", "domain_linker": "-1"}, "from 0 to 500"),
+                       ({"domain_diameters": "30", "domain_linker": "1", "periodic": 20},
+                        "not with periodic")):
+        with pytest.raises(P.ParamError, match=words):
+            P.make_params(**bad)
+
+
+def test_a_sweep_takes_lists_of_domains_separated_by_semicolons():
+    from types import SimpleNamespace
+    from fibrilfit.sweep import grid
+    args = SimpleNamespace(**{f.name: None for f in P.fields()})
+    args.domain_diameters, args.domain_linker = "30,20;25,25", "3,2"
+    specs = grid.specs_from(args)
+    assert specs["domain_diameters"] == ["30,20", "25,25"] and specs["domain_linker"] == ["3,2"]

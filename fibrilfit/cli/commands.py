@@ -339,7 +339,7 @@ def command_inspect(args) -> int:
     path = files.check_writable("--json", args.json, (".json",)) if args.json else None
     fib, doms, seg = measure_all(args)
     dom = doms[0] if doms else None
-    values = structure.model_values(fib, dom)
+    values = structure.model_values(fib, dom, more_domains=doms[1:])
     if path:
         import gemmi
         from ..structure.mapping import linker_source
@@ -351,7 +351,7 @@ def command_inspect(args) -> int:
         if len(doms) > 1:
             data["domains_measured"] = [d.to_dict() for d in doms]
         files.write_json(path, data)
-    print(summary.text(fib, dom, values, segmentation=seg))
+    print(summary.text(fib, dom, values, segmentation=seg, more_domains=doms[1:]))
     return EXIT_OK
 
 

@@ -167,8 +167,13 @@ def header(result: dict | None) -> dict:
         details += (f"; verdict {verdict}, accommodated {result.get('accommodated')}, "
                     f"max_bond_stretch {result.get('max_bond_stretch')}")
     params = {k: shown(v) for k, v in par.items() if v is not None}
-    return {"title": title, "details": details, "params": params,
-            "entities": {1: "fibril core and linker"}}
+    block = result.get("structure") or {}
+    named = [d["file"] for d in block.get("domains", [])] or (
+        [block["domain"]["file"]] if "domain" in block else [])
+    entities = {1: "fibril core and linker"}
+    entities.update({2 + d: f"domain {d + 1}" + (f" ({named[d]})" if d < len(named) else "")
+                     for d in range(1 + len(par.get("domain_diameters") or ()))})
+    return {"title": title, "details": details, "params": params, "entities": entities}
 
 
 def shown(value) -> str:

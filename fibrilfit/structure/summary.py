@@ -61,14 +61,15 @@ def segmentation_lines(seg) -> list:
     return lines
 
 
-def text(fibril=None, domain=None, values=None, segmentation=None) -> str:
+def text(fibril=None, domain=None, values=None, segmentation=None, more_domains=()) -> str:
     lines = []
     if fibril is not None:
         lines += fibril_lines(fibril)
     if segmentation is not None:
         lines += segmentation_lines(segmentation)
-    if domain is not None:
-        lines += domain_lines(domain)
+    for n, d in enumerate([domain, *more_domains] if domain is not None else []):
+        lines += [("" if not more_domains else f"[{n + 1}] ") + line if k == 0 else line
+                  for k, line in enumerate(domain_lines(d))]
     if fibril is not None and domain is not None:
         from .mapping import linker_source
         lines.append(f"linker: {linker_source(fibril, domain, explicit=False)}")

@@ -187,11 +187,11 @@ class Params:
                                            "Diameters of the domains after the first on each "
                                            "chain (the first is globule_diameter), in chain "
                                            "order from the core outward, comma-separated",
-                                           kind="list", item=float, section="Globule", ui=False)
+                                           kind="list", item=float, section="Globule")
     domain_linker: tuple | None = _spec(None, 0, 500, "residues",
                                         "Residues between consecutive domains of a chain, one "
                                         "per gap, comma-separated", kind="list", item=int,
-                                        section="Globule", ui=False)
+                                        section="Globule")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property

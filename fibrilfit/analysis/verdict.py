@@ -90,7 +90,7 @@ def check_model(model) -> dict:
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
-    chains = _chain_blocks(p, clashing, chain_clash, n)
+    chains = _chain_blocks(p, clashing, chain_clash, n, domains)
     if domains > 1:
         chains.update(_domain_blocks(p, clashing, clashes["centres"], scored[:n]))
     warnings += _cell_warnings(p)
@@ -188,14 +188,15 @@ def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int,
     return chain_clash, layer_clash
 
 
-def _chain_blocks(p, clashing, chain_clash, n: int) -> dict:
-    """With several protofilaments, pair indices are chains: each clashing globule's layer and
-    protofilament, and each chain's clash."""
+def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
+    """With several protofilaments, pair indices are chains (globules: domain g % D of chain
+    g // D): each clashing globule's layer and protofilament, and each chain's clash."""
     if p.protofilaments <= 1:
         return {}
     layer_of, pf_of = helix.chain_layers(p)
     # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
-    name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
+    name = lambda g: [int(layer_of[g % n // domains]) + g // n * p.layers,  # noqa: E731
+                      int(pf_of[g % n // domains])]
     return {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
             "chain_clashes": chain_clash}
 

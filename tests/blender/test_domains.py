@@ -130,6 +130,13 @@ def test_the_json_names_which_domain_of_which_chain_clashes(ff, scene):
         assert a["layer"] == a["chain"] and a["protofilament"] == 0 and depth == d
     assert ff.analysis.clashing_layers(r) == sorted(
         {k // 3 for i, j, _ in r["clashing_pairs"] for k in (i, j)})
+    # two protofilaments: the chain blocks count chains, not globules
+    p = ff.model.params.make_params(layers=3, protofilaments=2, linker=2, globule_diameter=40,
+                                    domain_diameters="40,40", domain_linker="1,1", frames=10)
+    r = ff.pipeline.run(p, scene)
+    assert r["verdict"] == "intersection" and len(r["chain_clashes"]) == 6
+    for (a, b, _), (la, lb, _) in zip(r["clashing_domains"], r["clashing_chains"]):
+        assert la == [a["layer"], a["protofilament"]] and lb == [b["layer"], b["protofilament"]]
 
 
 def test_a_domain_linker_count_that_does_not_match_is_refused(ff, scene, tmp_path, capsys):

@@ -15,3 +15,55 @@ def run_cli(*args, timeout=600):
     """Run headless.py under this interpreter; return the CompletedProcess."""
     return subprocess.run([sys.executable, str(ROOT / "headless.py"), *args], capture_output=True,
                           text=True, timeout=timeout, cwd=ROOT)
+
+
+def synthetic_full_length(tmp_path, *, shift: int = 0, flat: bool = False, name="fl.pdb"):
+    """A predicted full-length chain in 6CU7's numbering: a low-pLDDT N-terminal tail 1-37,
+    the fibril core 38-97 (6CU7 chain A, confident: it must not count as a domain), a
+    low-pLDDT linker 98-127, then ubiquitin as residues 128-203 (confident, with a 2-residue
+    dip in a loop)."""
+    import gemmi
+    data = ROOT / "tests" / "data"
+    six = gemmi.read_structure(str(data / "6cu7.pdb.gz"))
+    ubq = gemmi.read_structure(str(data / "1ubq.pdb.gz"))
+    st = gemmi.Structure()
+    model = gemmi.Model("1")
+    chain = gemmi.Chain("A")
+
+    def ca_residue(num, xyz, b):
+        r = gemmi.Residue()
+        r.name, r.seqid = "GLY", gemmi.SeqId(num + shift, " ")
+        a = gemmi.Atom()
+        a.name, a.element, a.pos, a.b_iso = "CA", gemmi.Element("C"), gemmi.Position(*xyz), b
+        r.add_atom(a)
+        return r
+
+    for n in range(1, 38):
+        chain.add_residue(ca_residue(n, (-100 - 3.8 * n, 0, 0), 35.0))
+    for res in six[0]["A"]:
+        if 38 <= res.seqid.num <= 97:
+            r = res.clone()
+            r.seqid = gemmi.SeqId(res.seqid.num + shift, " ")
+            for a in r:
+                a.b_iso = 88.0
+            chain.add_residue(r)
+    for n in range(98, 128):
+        chain.add_residue(ca_residue(n, (100 + 3.8 * (n - 98), 0, 0), 30.0))
+    for res in ubq[0]["A"]:
+        if res.het_flag == "H" or res.name == "HOH":
+            continue
+        r = res.clone()
+        r.seqid = gemmi.SeqId(res.seqid.num + 127 + shift, " ")
+        for a in r:
+            a.b_iso = 60.0 if res.seqid.num in (46, 47) else 91.0
+        chain.add_residue(r)
+    if flat:
+        for r in chain:
+            for a in r:
+                a.b_iso = 50.0
+    model.add_chain(chain)
+    st.add_model(model)
+    st.setup_entities()
+    out = tmp_path / name
+    st.write_pdb(str(out))
+    return out

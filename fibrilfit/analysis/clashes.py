@@ -225,15 +225,22 @@ def close_pairs(centres: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarr
     return a[hit], b[hit], dist[hit]
 
 
-def sphere_clashes(centres: np.ndarray, radius: float, tolerance: float = 1e-3
+def sphere_clashes(centres: np.ndarray, radius, tolerance: float = 1e-3
                    ) -> list[tuple[int, int, float]]:
-    """Pairs of equal spheres closer than 2·radius − tolerance, with their overlap depth (Å).
+    """Pairs of spheres closer than the sum of their radii − tolerance, with their overlap
+    depth (Å). `radius`: one for all, or one per sphere (several domain sizes).
 
     Found through the grid of close_pairs, not all pairs.
     """
-    reach = 2.0 * radius - tolerance
+    radii = np.asarray(radius, dtype=float)
+    reach = 2.0 * float(radii.max()) - tolerance
     a, b, dist = close_pairs(centres, reach)
-    depth = 2.0 * radius - dist
+    if radii.ndim:
+        depth = radii[a] + radii[b] - dist
+        keep = depth > tolerance
+        a, b, depth = a[keep], b[keep], depth[keep]
+    else:
+        depth = 2.0 * radius - dist
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     by = np.lexsort((hi, lo))
     return list(zip(lo[by].tolist(), hi[by].tolist(), depth[by].tolist()))

@@ -85,11 +85,15 @@ def check_model(model) -> dict:
     warnings = list(clashes["warnings"])
     stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
     max_stretch = float(stretch.max()) if stretch.size else 0.0
-    chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n], lo, hi)
+    domains = len(p.globule_members())
+    chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
+                                                           hi, domains)
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
-    chains = _chain_blocks(p, clashing, chain_clash, n)
+    chains = _chain_blocks(p, clashing, chain_clash, n, domains)
+    if domains > 1:
+        chains.update(_domain_blocks(p, clashing, clashes["centres"], scored[:n]))
     warnings += _cell_warnings(p)
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
         chains["inside_core"] = members_inside_core(p, positions)
@@ -97,6 +101,7 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     centres = clashes["centres"]
+    overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius)
     return {
         "verdict": verdict,
         "intersecting_faces": clashes["faces"],
@@ -120,7 +125,7 @@ def check_model(model) -> dict:
         "layer_clashes": layer_clash,
         **chains,
         "globule_centres": np.round(centres, 4).tolist(),
-        "envelope": envelope(centres[scored[:n]], p.globule_radius),
+        "envelope": overall,
         **periodic,
     }
 
@@ -133,7 +138,11 @@ def _clash_checks(model) -> dict:
     c_lo, c_hi = scored_chains(p)
     globules = model.globules
     mesh = globules[0].data
-    band = grazing_depth(mesh)
+    domains = len(p.globule_members())  # globule g: domain g % D of chain g // D
+    # further domains share the mesh, scaled: its facets' sag scales with them
+    radius = (p.globule_radius if domains == 1 else
+              np.tile(np.asarray(p.domain_radii), p.chains))
+    band = grazing_depth(mesh) * max(p.domain_radii) / p.globule_radius
     matrices = world_matrices(globules, model.root.children)
     n = len(matrices)
     cells = 0
@@ -141,13 +150,14 @@ def _clash_checks(model) -> dict:
         matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
     scored = np.zeros(len(everything), dtype=bool)
-    scored[slice(0, n) if p.periodic else slice(c_lo, c_hi)] = True  # a cell has no ends
+    scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
 
     def depth(i, j):
-        return 2 * p.globule_radius - float(np.linalg.norm(everything[i] - everything[j]))
+        touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
+        return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
     faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
-    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, p.globule_radius, band)
+    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, radius, band)
                if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
     grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band)
@@ -163,13 +173,16 @@ def _clash_checks(model) -> dict:
             "clashing": [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]}
 
 
-def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int) -> tuple[list, list]:
-    """Whether each chain's globule clashes (None: not scored), and each layer's."""
+def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int,
+                                domains: int = 1) -> tuple[list, list]:
+    """Whether each chain's globules clash (None: not scored), and each layer's. `scored`:
+    per chain; pair indices are globules (domain g % D of chain g // D)."""
     n = len(scored)
     layer_of, _ = helix.chain_layers(p)
     chain_clash = [False if s else None for s in scored.tolist()]  # None: not scored
     for i, j, _ in clashing:
-        for c in (i % n, j % n):  # a periodic cell: an image's globule is its original's
+        for c in (i // domains % n, j // domains % n):  # a periodic cell: an image's globule
+            # is its original's
             if scored[c]:
                 chain_clash[c] = True
     layer_clash = [None if not lo <= k < hi else False for k in range(p.layers)]
@@ -179,16 +192,37 @@ def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int) -> tuple[
     return chain_clash, layer_clash
 
 
-def _chain_blocks(p, clashing, chain_clash, n: int) -> dict:
-    """With several protofilaments, pair indices are chains: each clashing globule's layer and
-    protofilament, and each chain's clash."""
+def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
+    """With several protofilaments, pair indices are chains (globules: domain g % D of chain
+    g // D): each clashing globule's layer and protofilament, and each chain's clash."""
     if p.protofilaments <= 1:
         return {}
     layer_of, pf_of = helix.chain_layers(p)
     # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
-    name = lambda c: [int(layer_of[c % n]) + c // n * p.layers, int(pf_of[c % n])]  # noqa: E731
+    name = lambda g: [int(layer_of[g % n // domains]) + g // n * p.layers,  # noqa: E731
+                      int(pf_of[g % n // domains])]
     return {"clashing_chains": [[name(i), name(j), d] for i, j, d in clashing],
             "chain_clashes": chain_clash}
+
+
+def _domain_blocks(p, clashing, centres, scored) -> dict:
+    """Several domains per chain: which domain of which chain clashes (layer, protofilament,
+    domain from the core outward, 0 first), and the envelope of each domain and of all."""
+    domains = len(p.globule_members())
+    layer_of, pf_of = helix.chain_layers(p)
+
+    def name(g):
+        c = g // domains
+        return {"chain": int(c), "layer": int(layer_of[c]), "protofilament": int(pf_of[c]),
+                "domain": int(g % domains)}
+
+    which = np.arange(len(centres)) % domains
+    return {
+        "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
+        "domain_envelopes": [envelope(centres[scored & (which == d)], r)
+                             for d, r in enumerate(p.domain_radii)],
+        "envelope": envelope(centres[scored], max(p.domain_radii)),
+    }
 
 
 def _cell_warnings(p) -> list[str]:
@@ -222,4 +256,6 @@ def clashing_layers(result: dict) -> list[int]:
         return []
     n = len(result.get("globule_centres") or []) if result.get("periodic") else 0
     cell = (lambda k: k % n) if n else (lambda k: k)  # an image's globule is its original's
-    return sorted({cell(k) for i, j, *_ in result.get("clashing_pairs", []) for k in (i, j)})
+    domains = 1 + len(result.get("params", {}).get("domain_diameters") or ())
+    return sorted({cell(k) // domains for i, j, *_ in result.get("clashing_pairs", [])
+                   for k in (i, j)})

@@ -52,7 +52,10 @@ class Model:
 
     @property
     def globules(self) -> list:
-        return [c[-1] for c in self.chain]
+        """Every chain's globules, chain-major: globule g is domain g % D of chain g // D
+        (D = len(params.globule_members()); one domain: the chain's last member)."""
+        members = self.params.globule_members()
+        return [c[i] for c in self.chain for i in members]
 
     @property
     def active(self) -> list:
@@ -255,6 +258,7 @@ class _LayerBuilder:
         self.pfs = p.protofilaments
         if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
             self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
+        self.globule_members = p.globule_members()
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
@@ -322,7 +326,7 @@ class _LayerBuilder:
     def _chain_member(self, k, j, i):
         p = self.p
         c = k * self.pfs + j
-        role = "anchor" if i == 0 else ("globule" if i == p.linker else "residue")
+        role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
         mesh = self._shared_mesh("globule" if role == "globule" else "residue")
         ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
@@ -361,6 +365,24 @@ class _LayerBuilder:
 
     def _globule(self, k):
         self._member(k, self.p.linker)
+        self._further_domains(k)
+
+    def _further_domains(self, k):
+        """Several domains per chain: each protofilament's chain on from its first globule
+        (beads, globule, beads, globule ...), bonds in chain order."""
+        last = self.globule_members[-1]
+        for j in range(self.pfs):
+            for i in range(self.p.linker + 1, last + 1):
+                self._chain_member(k, j, i)
+
+    def _domain_scale(self, members: np.ndarray):
+        """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
+        sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
+        one domain (no scale set: the build as before)."""
+        if len(self.globule_members) == 1:
+            return None
+        radius = dict(zip(self.globule_members, self.p.domain_radii))
+        return np.array([radius[int(i)] / self.p.globule_radius for i in members])
 
     def place(self) -> None:
         """Location, rotation, world matrix and colour of every object, one foreach_set each.
@@ -386,7 +408,8 @@ class _LayerBuilder:
                 loc = (self.pivots if role == "bond" else self.pos)[k, i]
             rot_z = (np.zeros(len(k)) if role == "bond" else
                      self.angle[k] if role == "slab" else self.chain_angle[k])
-            _place(objects, loc, rot_z)
+            scale = self._domain_scale(i) if role == "globule" else None
+            _place(objects, loc, rot_z, scale=scale)
             if role == "bond":
                 objects.foreach_set("empty_display_size",
                                     np.full(len(k), self.p.residue_radius, np.float32))
@@ -406,12 +429,14 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
     """
     keep_bake(scene or bpy.context.scene)
     red = {int(k) for k in clashing_layers}
+    places = model.params.globule_members()
     for k, members in enumerate(model.chain):
-        if members and members[-1].get(TAG) == "globule":
-            colour = (CLASH_COLOR if k in red else
-                      part_colour("globule", members[-1].get(PROTOFILAMENT, 0)))
-            if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
-                members[-1].color = colour
+        for ob in (members[i] for i in places if i < len(members)):
+            if ob.get(TAG) != "globule":
+                continue
+            colour = CLASH_COLOR if k in red else part_colour("globule", ob.get(PROTOFILAMENT, 0))
+            if not np.allclose(ob.color, colour, atol=1e-6):  # no needless update
+                ob.color = colour
     return sorted(red)
 
 
@@ -425,7 +450,7 @@ def _in_order(coll, objects):
 
 
 def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
-           world_rot_z=None) -> None:
+           world_rot_z=None, scale=None) -> None:
     """Set location and Z rotation of a collection's objects, and a world matrix to match
     (`world_loc`, `world_rot_z` for children: their parent's).
 
@@ -443,6 +468,9 @@ def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
     c, s = np.cos(rot_z), np.sin(rot_z)
     mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
     mat[:, 2, 2] = mat[:, 3, 3] = 1.0
+    if scale is not None:  # uniform scales (several domain sizes on one mesh)
+        objects.foreach_set("scale", np.repeat(scale, 3).astype(np.float32))
+        mat[:, :3, :3] *= np.asarray(scale, float)[:, None, None]
     mat[:, 3, :3] = loc
     objects.foreach_set("matrix_world", mat.astype(np.float32).ravel())
 

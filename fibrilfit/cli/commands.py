@@ -15,7 +15,7 @@ from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401
                      EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from ..exports import options as export_options
 from ..structure.errors import StructureError
-from ..structure.inputs import add_structure_options, measure_structures, params_and_structure
+from ..structure.inputs import add_structure_options, params_and_structure
 
 
 class _Parser(argparse.ArgumentParser):
@@ -104,9 +104,13 @@ def _given(argv, name: str) -> bool:
 
 def structure_options(args) -> dict:
     """The --fibril/--domain options as they will run (for a case's [structure])."""
-    if not (getattr(args, "fibril", None) or getattr(args, "domain", None)):
+    from ..structure.inputs import has_structure
+    if not has_structure(args):
         return {}
     out = {k: getattr(args, k) for k in cases.STRUCTURE_KEYS if getattr(args, k, None) is not None}
+    for k, v in list(out.items()):  # an option given once (argparse appends) is one value
+        if isinstance(v, list):
+            out[k] = v[0] if len(v) == 1 else v
     if not args.fibril:
         out.pop("terminus", None)
     return out
@@ -159,6 +163,8 @@ def _default_text(f) -> str:
         return "default " + " ".join(f"{v:g}" for v in default)
     if meta["unit"] == "rad":
         return f"default {default} rad ({math.degrees(default):.2f}°)"
+    if meta["kind"] == "list" and default is None:
+        return "default none: one domain per chain"
     return f"default {default}"
 
 
@@ -317,6 +323,9 @@ def _checked_run(args) -> tuple:
                "pdb_images": export_options.pdb_images(args, p)}
     if args.pdb:
         export_options.pdb_fits(p)
+    if args.pdb_atoms:
+        from ..structure.inputs import atom_sources
+        outputs["atoms"] = atom_sources(args)  # refused without --fibril/--domain
     outputs["movie_step"] = export_options.movie_step(args)
     outputs["paths"] = {key: (files.STDOUT if key == "json" and args.json == files.STDOUT else
                               files.check_writable(option(key), getattr(args, key), suffixes))
@@ -405,7 +414,8 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
     return writers.write_all(writers.Job(
         bpy.context.scene, result, outputs["paths"], look=outputs["look"],
         pdb_frames=args.pdb_frames, pdb_images=outputs["pdb_images"],
-        movie_step=outputs["movie_step"], progress=not args.quiet, case=case))
+        movie_step=outputs["movie_step"], progress=not args.quiet, case=case,
+        atoms=outputs.get("atoms")))
 
 
 def _report(args, result: dict, restarts, paths: dict) -> None:
@@ -421,20 +431,29 @@ def _report(args, result: dict, restarts, paths: dict) -> None:
 def command_inspect(args) -> int:
     from .. import structure
     from ..structure import summary
-    if not (args.fibril or args.domain):
-        raise UsageError("inspect: give --fibril FILE and/or --domain FILE")
+    from ..structure.inputs import has_structure, measure_all
+    if not has_structure(args):
+        raise UsageError("inspect: give --fibril FILE, --domain FILE and/or --full-length FILE")
     to_stdout = args.json == files.STDOUT  # the JSON on stdout, the text on stderr
     path = (files.check_writable("--json", args.json, (".json",))
             if args.json and not to_stdout else None)
-    fib, dom = measure_structures(args)
-    values = structure.model_values(fib, dom)
+    fib, doms, seg = measure_all(args)
+    dom = doms[0] if doms else None
+    values = structure.model_values(fib, dom, more_domains=doms[1:])
     if args.json:
         import gemmi
+        from ..structure.mapping import linker_source
+        sources = ({"linker": linker_source(fib, dom, explicit=False)} if fib or dom else {})
         doc = {"fibril": fib and fib.to_dict(), "domain": dom and dom.to_dict(),
-               "model_values": values, "gemmi_version": gemmi.__version__}
+               "model_values": values, "sources": sources, "gemmi_version": gemmi.__version__}
+        if seg is not None:
+            doc.update(full_length=seg.to_dict(), domains=seg.domains, linkers=seg.linkers)
+        if len(doms) > 1:
+            doc["domains_measured"] = [d.to_dict() for d in doms]
         if path:
             files.write_json(path, doc)
-    print(summary.text(fib, dom, values), file=sys.stderr if to_stdout else sys.stdout)
+    print(summary.text(fib, dom, values, segmentation=seg, more_domains=doms[1:]),
+          file=sys.stderr if to_stdout else sys.stdout)
     if to_stdout:
         print(json.dumps(doc, indent=2))
     return EXIT_OK

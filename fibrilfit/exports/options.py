@@ -33,6 +33,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--pdb-images", metavar="N", type=int, default=0,
                        help="with --periodic: add the cell's images in the N cells below and "
                             "above as extra chains, after the cell's own (default 0: the cell)")
+    group.add_argument("--pdb-atoms", metavar="PATH.cif",
+                       help="write the decorated fibril in atoms as mmCIF: the core's chains as "
+                            "deposited on the model's layers, each domain placed by its "
+                            "globule's final transform, linker beads as CA-only residues "
+                            "(needs --fibril and/or --domain)")
     group.add_argument("--render", metavar="PATH.png",
                        help="render the final frame to a PNG (clashing globules red)")
     group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,

@@ -24,6 +24,7 @@ import bpy
 import numpy as np
 
 from . import files
+from .mmcif import shown as _shown
 from ..model import helix
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
@@ -73,14 +74,17 @@ def hybrid36(value: int, width: int = 5) -> str:
     return out
 
 
-def residue_names(linker: int) -> list[str]:
-    return ["ANC"] + ["LNK"] * (linker - 1) + ["GLB"]
+def residue_names(p) -> list[str]:
+    """ANC, LNK ..., GLB per chain member (several domains: GLB at each globule)."""
+    globules = set(p.globule_members())
+    return ["ANC"] + ["GLB" if i in globules else "LNK"
+                      for i in range(1, len(p.chain_radii()))]
 
 
 def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -> str:
     """The PDB file for parameters `p` and [(frame, positions (chains, linker + 1, 3))]."""
-    layers, members = p.chains, p.linker + 1  # "layers" here: PDB chains, one per model chain
-    names = residue_names(p.linker)
+    layers, members = p.chains, len(p.chain_radii())  # "layers": PDB chains, one per chain
+    names = residue_names(p)
     radii = p.chain_radii()
     labels = [chain_label(k, layers) for k in range(layers)]
     pfs = (f" X {p.protofilaments} PROTOFILAMENTS" if p.protofilaments > 1 else "")
@@ -153,15 +157,6 @@ def result_remarks(result: dict | None) -> list[str]:
     return out
 
 
-def _shown(value) -> str:
-    """A parameter's value in a REMARK: numbers by %g, lists space-separated, an outline's
-    points as x,y pairs."""
-    if isinstance(value, (list, tuple)):
-        return " ".join(",".join(f"{v:g}" for v in item) if isinstance(item, (list, tuple))
-                        else f"{item:g}" for item in value)
-    return str(value)
-
-
 def positions_at(scene: bpy.types.Scene, model, frames) -> list[tuple[int, np.ndarray]]:
     """Chain positions at each frame, read from the baked cache; the scene returns to the
     frame it was on."""
@@ -210,5 +205,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     text = pdb_text(p, models, remarks)
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": p.chains * (p.linker + 1),
+            "atoms_per_model": p.chains * len(p.chain_radii()),
             **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

@@ -14,7 +14,7 @@ import bpy
 from ..analysis import clashing_layers
 from ..builders import find_model, keep_bake
 from ..model import cases
-from . import dressing, envelope_plot, files, movie, pdb, render
+from . import dressing, envelope_plot, files, mmcif, movie, pdb, render
 from .options import MOVIE_FORMATS
 
 
@@ -35,6 +35,34 @@ def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last",
     last = int(result.get("frames_simulated") or scene.frame_current)
     wanted = pdb.keyframes(last) if frames == "all" else [last]
     return pdb.write_pdb(path, model, scene, frames=wanted, result=result, images=images)
+
+
+def write_atoms(scene: bpy.types.Scene, result: dict, path, sources) -> dict:
+    """--pdb-atoms: the decorated fibril in atoms at the last baked frame (exports/mmcif.py)."""
+    from ..analysis.verdict import chain_positions, world_matrices
+    model = find_model(scene)
+    if model is None:
+        raise mmcif.AtomsError(f"scene '{scene.name}' holds no FibrilFit model")
+    if sources is None:
+        raise mmcif.AtomsError("no structure to place (give --fibril and/or --domain)")
+    last = int(result.get("frames_simulated") or scene.frame_current)
+    now = scene.frame_current
+    if now != last:
+        keep_bake(scene)
+        scene.frame_set(last)
+    try:
+        members = mmcif.domain_members(model.params)
+        positions = chain_positions(model)
+        globules = [members_[i] for members_ in model.chain for i in members]
+        mats = world_matrices(globules, model.root.children).reshape(
+            len(model.chain), len(members), 4, 4)
+    finally:
+        if now != last:
+            scene.frame_set(now)
+    atoms = mmcif.decorated_atoms(model.params, positions, mats, sources, members)
+    info = mmcif.write(path, atoms, mmcif.header(result))
+    info["frame"] = last
+    return info
 
 
 def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> dict:
@@ -84,6 +112,7 @@ class Job:
     movie_step: int = 1
     progress: bool = False
     case: dict | None = None                  # what --save-case writes
+    atoms: object = None                      # structure.atoms.Sources, for --pdb-atoms
 
 
 @dataclass(frozen=True)
@@ -116,6 +145,8 @@ OUTPUTS = (  # in the order they run: the slow ones last
            lambda j: prepare(j.scene, j.result, aspect=j.look["aspect"])),
     Output("pdb", "--pdb", (".pdb",), _asked("pdb"), lambda j: write_pdb(
         j.scene, j.result, j.paths["pdb"], j.pdb_frames, j.pdb_images)),
+    Output("pdb_atoms", "--pdb-atoms", mmcif.SUFFIXES, _asked("pdb_atoms"),
+           lambda j: write_atoms(j.scene, j.result, j.paths["pdb_atoms"], j.atoms)),
     Output("blend", "--blend", (".blend",), _asked("blend"), _blend, guarded=False),
     Output("save_case", "--save-case", cases.SUFFIXES, _asked("save_case"),
            lambda j: files.write_case(j.paths["save_case"], j.case) and None, guarded=False),
@@ -132,7 +163,7 @@ BY_KEY = {out.key: out for out in OUTPUTS}
 JSON_SUFFIXES = (".json",)  # --json: the result, which write_all writes itself
 # The order the command line checks the output paths in, so that of two bad paths the one named
 # is the one it always named (--json and --blend first, then the pictures and structures).
-CHECK_ORDER = ("json", "blend", "pdb", "render", "movie", "save_case", "envelope_plot")
+CHECK_ORDER = ("json", "blend", "pdb", "pdb_atoms", "render", "movie", "save_case", "envelope_plot")
 
 
 def path_suffixes() -> dict[str, tuple[str, ...]]:

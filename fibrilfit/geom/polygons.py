@@ -178,13 +178,6 @@ def rotate(xy, angle: float) -> np.ndarray:
     return np.stack([c * q[..., 0] - s * q[..., 1], s * q[..., 0] + c * q[..., 1]], axis=-1)
 
 
-def chain_offsets(linker: int, spacing: float, residue_radius: float,
-                  globule_radius: float) -> np.ndarray:
-    """Distance of each member (anchor, beads, globule) from the anchor along the chain."""
-    t = [spacing * i for i in range(linker)]
-    return np.array(t + [t[-1] + residue_radius + globule_radius])
-
-
 def linker_direction(outline, anchor, offsets, radii, copies=(0.0,)) -> tuple[np.ndarray, str]:
     """Unit direction of the chain from `anchor`, and the rule that chose it ("radial",
     "edge normal", "nearest free"). `copies`: angles of the other protofilaments' copies of

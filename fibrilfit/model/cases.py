@@ -50,8 +50,11 @@ STALE = ("description", "observed", "expected")
 STRUCTURE = "structure"
 # [structure]: the options of --fibril/--domain (structure/inputs.py); files are relative to
 # the case file. Measured values fill the parameters the case and the command line leave unset.
-STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "terminus": ("N", "C"),
-                  "anchor_residue": int, "domain_chain": str, "domain_residues": str}
+# "domain" (and its chain and residues) may be a list: several domains in chain order (#24).
+STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "full_length": "file",
+                  "terminus": ("N", "C"), "anchor_residue": int, "domain_chain": str,
+                  "domain_residues": str}
+LISTED = ("domain", "domain_chain", "domain_residues")
 ORDER = ("name", "description", "citation", "doi", "pdb", "source", "observed", "expected",
          "envelope_width", "envelope_width_source", "estimates", "notes", SEEDS)
 
@@ -95,8 +98,10 @@ class Case:
             out[STRUCTURE] = {k: structure[k] for k in STRUCTURE_KEYS if k in structure}
         files = {name: file_record(name, v, self.path) for name, v in self.params.items()
                  if _names_file(name, v)}
-        files.update({k: file_record(k, v, self.path) for k, v in (structure or {}).items()
-                      if STRUCTURE_KEYS[k] == "file"})
+        for k, v in (structure or {}).items():
+            if STRUCTURE_KEYS[k] == "file":
+                for n, one in enumerate(v if isinstance(v, list) else [v]):
+                    files[k if n == 0 else f"{k}.{n + 1}"] = file_record(k, one, self.path)
         if files:
             out["files"] = files  # the files the case named, relative to it, with sha256
         if self.path is not None:
@@ -251,6 +256,9 @@ def _check_structure(path, table) -> dict:
         kind = STRUCTURE_KEYS.get(key)
         if kind is None:
             raise _error(path, name, f"unknown key; known: {', '.join(STRUCTURE_KEYS)}")
+        if key in LISTED and isinstance(value, list) and value:
+            out[key] = [_check_structure(path, {key: v})[key] for v in value]
+            continue
         if kind == "file":
             if not isinstance(value, str):
                 raise _error(path, name, f"must be a file name (got {value!r})")
@@ -325,9 +333,10 @@ def dumps(case: dict, where=None) -> str:
     structure = dict(case.get(STRUCTURE) or {})
     for key, kind in STRUCTURE_KEYS.items():
         if kind == "file" and key in structure:
-            target = pathlib.Path(structure[key])
-            structure[key] = (os.path.relpath(target.resolve(), pathlib.Path(where).resolve())
-                              if where is not None else str(target))
+            rel = (lambda t: os.path.relpath(pathlib.Path(t).resolve(), pathlib.Path(
+                where).resolve()) if where is not None else str(t))
+            value = structure[key]
+            structure[key] = [rel(v) for v in value] if isinstance(value, list) else rel(value)
     if structure:
         lines += ["", f"[{STRUCTURE}]"]
         lines += [f"{k} = {_value(structure[k])}" for k in STRUCTURE_KEYS if k in structure]

@@ -39,7 +39,7 @@ class ParamError(ValueError):
 
 
 def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
-          derived=None, size=None, choices=None):
+          derived=None, size=None, choices=None, item=None):
     """`derived`: for a parameter whose default (None) is worked out from others, how (text).
     `size`: a fixed number of values (a vector); kind "points" is a list of [x, y].
     `choices`: kind str, one of these (CLI choices, the panel's enum)."""
@@ -47,6 +47,8 @@ def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section=
             "section": section, "derived": derived, "size": size}
     if choices is not None:
         meta["choices"] = tuple(choices)
+    if item is not None:  # kind "list": any number of values of this type, comma-separated
+        meta["item"] = item
     return field(default=default, metadata=meta)
 
 
@@ -185,6 +187,19 @@ class Params:
                                "per frame (each frame is baked as this many shorter frames, with "
                                "the same substep length; must divide substeps)", kind=int)
 
+    # ---- several domains per chain (issue #24): anchor, linker, domain 1, its linker, domain 2 ...
+    # Domain 1 is globule_diameter's; these give the domains after it, from the core outward
+    # (docs/guide/atoms-and-domains.md#several-domains).
+    domain_diameters: tuple | None = _spec(None, 0.5, 500.0, "Å",
+                                           "Diameters of the domains after the first on each "
+                                           "chain (the first is globule_diameter), in chain "
+                                           "order from the core outward, comma-separated",
+                                           kind="list", item=float, section="Globule")
+    domain_linker: tuple | None = _spec(None, 0, 500, "residues",
+                                        "Residues between consecutive domains of a chain, one "
+                                        "per gap, comma-separated", kind="list", item=int,
+                                        section="Globule")
+
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
@@ -223,15 +238,36 @@ class Params:
         """Protofilament 0's chain in the layer's frame (see ChainLayout). Raises ParamError."""
         return _chain_layout(self)
 
+    @property
+    def domain_radii(self) -> list[float]:
+        """Radius of each domain of a chain, from the core outward (one: globule_radius)."""
+        return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
+
+    def globule_members(self) -> list[int]:
+        """The member index of each domain along a chain (one domain: [linker], the last)."""
+        out = [self.linker]
+        for gap in self.domain_linker or ():
+            out.append(out[-1] + gap + 1)
+        return out
+
     def chain_x(self) -> list[float]:
-        """Distance of each chain member (anchor, residues, globule) from the axis, for a
+        """Distance of each chain member (anchor, residues, globules) from the axis, for a
         radial linker (the tutorial's); in general the anchor's distance plus the distance along
-        the chain."""
-        xs = [self.anchor_x + self.residue_spacing * i for i in range(self.linker)]
-        return xs + [xs[-1] + self.residue_radius + self.globule_radius]
+        the chain: consecutive residues `residue_spacing` apart, a globule touching its
+        neighbours."""
+        radii, globules = self.chain_radii(), set(self.globule_members())
+        xs = [self.anchor_x]
+        for i in range(len(radii) - 1):
+            beads = i not in globules and i + 1 not in globules
+            xs.append(xs[-1] + (self.residue_spacing if beads else radii[i] + radii[i + 1]))
+        return xs
 
     def chain_radii(self) -> list[float]:
-        return [self.residue_radius] * self.linker + [self.globule_radius]
+        members = self.globule_members()
+        radii = [self.residue_radius] * (members[-1] + 1)
+        for i, r in zip(members, self.domain_radii):
+            radii[i] = r
+        return radii
 
     def rest_lengths(self) -> list[float]:
         """Rest length of each bond along the chain (`linker` bonds)."""
@@ -253,12 +289,16 @@ class Params:
         constraint empties. An outline's core adds its convex pieces per layer: the n - 2
         triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
         pieces = 0 if self.core_outline is None else len(self.core_outline) - 2
-        return self.layers * (1 + pieces + self.protofilaments * (2 * self.linker + 1))
+        members = self.globule_members()[-1] + 1
+        return self.layers * (1 + pieces + self.protofilaments * (2 * members - 1))
 
     # ---- conversion ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         d = {f.name: getattr(self, f.name) for f in fields()}
         d["slab"] = list(self.slab)
+        for name in ("domain_diameters", "domain_linker"):
+            if d[name] is not None:
+                d[name] = list(d[name])
         if self.anchor is not None:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
@@ -288,8 +328,7 @@ class ChainLayout:
 def _chain_layout(p: "Params") -> ChainLayout:
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
-    offsets = polygons.chain_offsets(p.linker, p.residue_spacing, p.residue_radius,
-                                     p.globule_radius)
+    offsets = np.asarray(p.chain_x()) - p.anchor_x  # along the chain from the anchor
     copies = [j * p.pf_angle for j in range(p.protofilaments)]
     for j, a in enumerate(copies):
         xy = polygons.rotate(anchor, a)
@@ -503,6 +542,8 @@ def make_params(*, force: bool = False, **values) -> Params:
                                              f"(got {value[:40]!r})") from None
             clean[f.name] = (read_outline(value) if isinstance(value, (str, pathlib.Path))
                              else _outline_value(value))
+        elif meta["kind"] == "list":
+            clean[f.name] = _list(f.name, value, meta)
         elif f.name == "slab" or meta["size"]:
             clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
         else:
@@ -516,6 +557,20 @@ def make_params(*, force: bool = False, **values) -> Params:
     _check_combination(p, force)
     object.__setattr__(p, VALIDATED, force)  # trusted from here on: see validate()
     return p
+
+
+def _list(name: str, value, meta: dict) -> tuple | None:
+    """A kind "list" parameter: numbers, comma-separated in text; none (None) when empty."""
+    if value is None or (isinstance(value, str) and value.strip().lower() in DERIVED_WORDS):
+        return None
+    items = value.replace(",", " ").split() if isinstance(value, str) else value
+    try:
+        items = list(items)
+    except TypeError:
+        items = [items]
+    item_meta = {**meta, "kind": meta["item"]}
+    out = tuple(meta["item"](_coerce(name, v, item_meta)) for v in items)
+    return out or None
 
 
 def _vector(name: str, value, meta: dict, size: int) -> tuple:
@@ -544,16 +599,34 @@ def _check_combination(p: Params, force: bool) -> None:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
                                          f"(got {p.score_layers})")
+    _check_domains(p)
     p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
     _check_anchors_apart(p)
     n = p.estimated_objects()
     if n > MAX_OBJECTS_UNFORCED and not force:
-        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.linker + 1))
+        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.globule_members()[-1] + 1))
         chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
         raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make "
                                    f"{'up to ' if p.core_outline is not None else ''}{n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
+
+
+def _check_domains(p: Params) -> None:
+    """Several domains per chain: one linker per gap; the tutorial protocol on a fibril with
+    ends only, for now (inflate grows globules by their scale, which several domain sizes
+    already use; a periodic cell's images are not built for them)."""
+    more, gaps = len(p.domain_diameters or ()), len(p.domain_linker or ())
+    if gaps != more:
+        raise ParamError("domain_linker", f"needs one value per gap between consecutive "
+                                          f"domains: {more + 1} domain(s) per chain have {more} "
+                                          f"gap(s), got {gaps} value(s)")
+    if more and p.periodic:
+        raise ParamError("domain_diameters", "several domains per chain: not with periodic "
+                                             "(a periodic cell's images are not built for them)")
+    if more and p.protocol == "inflate":
+        raise ParamError("domain_diameters", "several domains per chain: not with protocol "
+                                             "inflate (use tutorial)")
 
 
 def _check_periodic(p: Params) -> None:

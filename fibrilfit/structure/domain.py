@@ -48,9 +48,9 @@ def parse_range(text) -> tuple:
     return a, b
 
 
-def measure(path, *, chain: str | None = None, residues=None,
-            option: str = "--domain") -> DomainSize:
-    loaded = reading.load(path, option)
+def select(loaded, *, chain: str | None = None, residues=None) -> tuple:
+    """(ChainAtoms, mask of its heavy atoms used, notes): the domain's chain (default the first
+    protein chain) and residues (default all), as `measure` and the atom writer use them."""
     name = loaded.path.name
     stack = fibril.longest_stack(loaded)
     if stack >= FIBRIL_STACK:
@@ -77,6 +77,19 @@ def measure(path, *, chain: str | None = None, residues=None,
             raise StructureError("--domain-residues", f"no residue {a}-{b} in chain {c.name} of "
                                                       f"{name} (residues {c.residues[0]}-"
                                                       f"{c.residues[-1]})")
+    return c, keep, notes
+
+
+def measure(path, *, chain: str | None = None, residues=None,
+            option: str = "--domain") -> DomainSize:
+    loaded = reading.load(path, option)
+    return measure_loaded(loaded, chain=chain, residues=residues)
+
+
+def measure_loaded(loaded, *, chain: str | None = None, residues=None) -> DomainSize:
+    """`measure` of a file already read (reading.load)."""
+    name = loaded.path.name
+    c, keep, notes = select(loaded, chain=chain, residues=residues)
     xyz = c.heavy[keep]
     used = np.unique(c.heavy_residue[keep])
     rg = float(np.sqrt(((xyz - xyz.mean(axis=0)) ** 2).sum(axis=1).mean()))

@@ -375,3 +375,20 @@ def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
                             "not a free exit for a linker")
         anchors.append(anchor)
     return anchors
+
+
+def layer_frame(geometry: FibrilGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """(origin, frame): the model's layer-0 frame in the file's coordinates. A file point xyz
+    is (xyz - origin) @ frame.T in the model (frame rows: X, Y, Z = the helical axis)."""
+    ax = geometry.axis
+    origin = np.asarray(ax["point"], float)
+    return origin, G.frame(np.asarray(ax["direction"], float), np.asarray(ax["x"], float))
+
+
+def reference_chains(path, geometry: FibrilGeometry, option: str = "--fibril") -> list:
+    """Each protofilament's reference chain (reading.ChainAtoms, file coordinates), as `measure`
+    chose it (the chains of a one-chain file built from its symmetry as `measure` built them)."""
+    loaded = reading.load(path, option)
+    chains = _stacked_core(loaded, loaded.path.name, option)[0]
+    by_name = {c.name: c for c in chains}
+    return [by_name[a["chain"]] for a in geometry.anchors]

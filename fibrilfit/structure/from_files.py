@@ -2,7 +2,7 @@
 files, the explicit options winning, and the `structure` block a result records."""
 from __future__ import annotations
 
-from .mapping import model_values
+from .mapping import linker_source, model_values
 
 
 def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -> dict:
@@ -17,11 +17,11 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     return out
 
 
-def warnings(fibril, domain) -> list[str]:
+def warnings(fibril, domain, *more_domains) -> list[str]:
     """Every warning and note of the measurement, each naming its file: buried anchors, an
     approximate axis, a core in pieces, the chain or model chosen, layers built by symmetry."""
     out = []
-    for m in (fibril, domain):
+    for m in (fibril, domain, *more_domains):
         if m is not None:
             out += [f"{m.file}: {w}" for w in (*getattr(m, "warnings", []), *m.notes)]
     return out
@@ -61,14 +61,18 @@ def sources(fibril, domain, applied) -> dict:
     return out
 
 
-def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75):
+def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75,
+          more_domains=()):
     """(values to apply, structure block). `explicit`: parameters given as options (they win);
-    `known`: the model's parameter names."""
-    values = model_values(fibril, domain, residue_radius=residue_radius)
+    `known`: the model's parameter names; `more_domains`: the domains after `domain`."""
+    values = model_values(fibril, domain, residue_radius=residue_radius,
+                          more_domains=more_domains)
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)
     out = block(fibril, domain, applied, overridden, missing)
-    out["warnings"] = warnings(fibril, domain)
+    out["warnings"] = warnings(fibril, domain, *more_domains)
     out["sources"] = sources(fibril, domain, applied)
+    # the linker's source also when an option set it: what the numbering would have given
+    out["sources"]["linker"] = linker_source(fibril, domain, explicit="linker" in explicit)
     return applied, out

@@ -13,15 +13,24 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("structure files (PDB/mmCIF, optionally .gz)")
     group.add_argument("--fibril", metavar="FILE", help="a fibril structure: fills rise, twist, "
                                                           "protofilaments, core outline, anchor")
-    group.add_argument("--domain", metavar="FILE", help="a domain structure: fills "
-                                                          "globule_diameter from its Rg")
+    group.add_argument("--domain", metavar="FILE", action="append",
+                       help="a domain structure: fills globule_diameter from its Rg; repeat it "
+                            "for several domains on one chain, in chain order from the core "
+                            "outward")
+    group.add_argument("--full-length", metavar="FILE",
+                       help="a predicted model of the whole chain in the fibril's numbering "
+                            "(pLDDT in the B-factor column): its folded domains and linkers "
+                            "(instead of --domain)")
     group.add_argument("--terminus", choices=("N", "C"), default="C",
                        help="the core terminus that carries the linker [default C]")
     group.add_argument("--anchor-residue", metavar="R", type=_residue_number,
                        help="anchor on this residue instead of the core's terminus")
-    group.add_argument("--domain-chain", metavar="C", help="the domain's chain [default: first]")
-    group.add_argument("--domain-residues", metavar="A-B",
-                       help="the domain's residues [default: all]")
+    group.add_argument("--domain-chain", metavar="C", action="append",
+                       help="the domain's chain [default: first]; once for every --domain, "
+                            "or once for all")
+    group.add_argument("--domain-residues", metavar="A-B", action="append",
+                       help="the domain's residues [default: all]; once for every --domain, "
+                            "or once for all")
 
 
 def _residue_number(text: str) -> int:
@@ -31,41 +40,116 @@ def _residue_number(text: str) -> int:
         raise argparse.ArgumentTypeError(f"must be a residue number (got {text!r})") from None
 
 
-def measure_structures(args):
-    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain."""
+def _listed(value) -> list:
+    """An option that argparse appends to, or a case file gives as one value or a list."""
+    if value is None:
+        return []
+    return [value] if isinstance(value, (str, int)) else list(value)
+
+
+def domain_files(args) -> list:
+    return [str(v) for v in _listed(getattr(args, "domain", None))]
+
+
+def has_structure(args) -> bool:
+    return bool(getattr(args, "fibril", None) or domain_files(args)
+                or getattr(args, "full_length", None))
+
+
+def domain_specs(args, fib=None) -> tuple[list, object]:
+    """[(file, chain, residues)] of the domains in chain order from the core outward, and the
+    full-length model's Segmentation (or None). --full-length gives the folded domains on the
+    linker's side of the core."""
+    files = domain_files(args)
+    chains, ranges = _listed(args.domain_chain), _listed(args.domain_residues)
+    full = getattr(args, "full_length", None)
+    if full:
+        if files:
+            raise UsageError("--full-length: gives the domains itself; leave out --domain")
+        if chains or ranges:
+            raise UsageError("--domain-chain/--domain-residues: not with --full-length")
+        from .full_length import segment
+        seg = segment(full, fib.core_residues if fib is not None else None)
+        side = "N" if fib is not None and fib.terminus == "N" else "C"
+        return [(full, seg.chain, f"{d['first']}-{d['last']}")
+                for d in seg.chain_order(side)], seg
+    for name, given in (("--domain-chain", chains), ("--domain-residues", ranges)):
+        if given and not files:
+            raise UsageError(f"{name}: needs --domain")
+        if len(given) > 1 and len(given) != len(files):
+            raise UsageError(f"{name}: given {len(given)} times for {len(files)} --domain "
+                             "files: give it once (for all) or once per --domain")
+    pick = (lambda given, i: None if not given else given[i] if len(given) > 1 else given[0])
+    return [(f, pick(chains, i), pick(ranges, i)) for i, f in enumerate(files)], None
+
+
+def measure_all(args) -> tuple:
+    """(FibrilGeometry or None, [DomainSize] in chain order, Segmentation or None)."""
     from .. import structure
     if args.anchor_residue is not None and not args.fibril:
         raise UsageError("--anchor-residue: needs --fibril")
-    if (args.domain_chain or args.domain_residues) and not args.domain:
-        raise UsageError("--domain-chain/--domain-residues: need --domain")
-    fib = dom = None
+    fib = None
     if args.fibril:
         fib = structure.measure_fibril(args.fibril, terminus=args.terminus,
                                        anchor_residue=args.anchor_residue)
-    if args.domain:
-        dom = structure.measure_domain(args.domain, chain=args.domain_chain,
-                                       residues=args.domain_residues)
-    return fib, dom
+    specs, seg = domain_specs(args, fib)
+    if seg is not None and not specs and args.command != "inspect":
+        raise UsageError(f"--full-length: no folded domain (pLDDT >= 70 over at least 40 "
+                         f"residues) on the linker's side of the core in {seg.file}")
+    option = "--full-length" if seg is not None else "--domain"
+    doms = [structure.measure_domain(f, chain=c, residues=r, option=option)
+            for f, c, r in specs]
+    return fib, doms, seg
+
+
+def measure_structures(args):
+    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain: the first domain
+    (the one nearest the core)."""
+    fib, doms, _ = measure_all(args)
+    return fib, (doms[0] if doms else None)
 
 
 def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict | None]:
     """The parameter values of `run`/`sweep`: measured from --fibril/--domain, then the explicit
     options over them. Returns (values, the result's `structure` block or None)."""
     explicit = explicit if explicit is not None else {}
-    if not (args.fibril or args.domain):
+    if not has_structure(args):
         return explicit, None
     from . import from_files
-    fib, dom = measure_structures(args)
+    fib, doms, seg = measure_all(args)
+    dom = doms[0] if doms else None
+    args.measured = (fib, doms)  # for --pdb-atoms (atom_sources), measured once
     radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
     try:
         radius = float(radius)
     except (TypeError, ValueError):
         radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
     applied, block = from_files.split(fib, dom, explicit=set(explicit),
-                                      known={f.name for f in P.fields()}, residue_radius=radius)
+                                      known={f.name for f in P.fields()}, residue_radius=radius,
+                                      more_domains=doms[1:])
     if block["not_in_model"]:
         block["warnings"].append(f"measured but not in this model: "
                                  f"{', '.join(block['not_in_model'])}")
     for warning in block["warnings"]:  # every run and sweep says them (issue #23)
         print(f"fibrilfit: warning: {warning}", file=sys.stderr)
+    if seg is not None:
+        block["full_length"] = seg.to_dict()
+    if len(doms) > 1:
+        block["domains"] = [{"file": d.file, "sha256": d.sha256, "measured": d.to_dict()}
+                            for d in doms]
     return {**applied, **explicit}, block
+
+
+def atom_sources(args):
+    """What --pdb-atoms places (structure.atoms.Sources), from --fibril/--domain/--full-length
+    as measured by params_and_structure. Refused without a structure to place."""
+    if not has_structure(args):
+        raise UsageError("--pdb-atoms: needs a structure to place: give --fibril FILE and/or "
+                         "--domain FILE")
+    from . import atoms
+    fib = (getattr(args, "measured", None) or measure_all(args))[0]
+    specs, seg = domain_specs(args, fib)
+    option = "--full-length" if seg is not None else "--domain"
+    domains = [atoms.domain_atoms(f, chain=c, residues=r, option=option) for f, c, r in specs]
+    return atoms.sources(args.fibril, fib, domains) if args.fibril else atoms.sources(
+        domains=domains)

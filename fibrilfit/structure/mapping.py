@@ -12,7 +12,7 @@ RESIDUE_RADIUS = 1.75  # Å: the model's anchor bead (params.residue_radius's de
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
                  "anchor", "linker")
-DOMAIN_PARAMS = ("globule_diameter",)
+DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker")
 
 
 def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
@@ -35,7 +35,7 @@ def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
 
 
 def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None = None, *,
-                 residue_radius: float = RESIDUE_RADIUS) -> dict:
+                 residue_radius: float = RESIDUE_RADIUS, more_domains=()) -> dict:
     """Parameter name -> value for the model, in its units (Å, rad).
 
     The layer frame is the fibril's: Z = the helical axis through the origin, layer 0 of the model
@@ -57,4 +57,83 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
             values["linker"] = 1 + tail[1] - tail[0] + 1
     if domain is not None:
         values["globule_diameter"] = domain.globule_diameter
+    numbered = linker_from_numbering(fibril, domain)
+    if numbered is not None:  # covers a modelled tail too: the residues between, all of them
+        values["linker"] = numbered[0]
+    if more_domains:  # several domains per chain, in chain order from the core outward
+        values["domain_diameters"] = [d.globule_diameter for d in more_domains]
+        gaps = domain_gaps([domain, *more_domains],
+                           "N" if fibril is not None and fibril.terminus == "N" else "C")
+        if gaps is not None:
+            values["domain_linker"] = gaps
     return values
+
+
+def domain_gaps(domains: list, side: str = "C"):
+    """Residues between consecutive domains (chain order from the core outward) from their
+    numbering, or None when the numbering does not run that way (then --domain-linker is
+    needed)."""
+    gaps = []
+    for near, far in zip(domains, domains[1:]):
+        gap = (far.residues[0] - near.residues[1] - 1 if side == "C" else
+               near.residues[0] - far.residues[1] - 1)
+        if gap < 0:
+            return None
+        gaps.append(int(gap))
+    return gaps
+
+
+def linker_from_numbering(fibril: FibrilGeometry | None, domain: DomainSize | None):
+    """(linker, why) when the two files share the protein's numbering, else None.
+
+    The linker is every residue between the core's anchor and the domain's first modelled
+    residue (its last when the linker leaves the core's N side), plus the anchor itself, which
+    the model's `linker` counts: 6CU7's K97 and a domain starting at 128 give 30 residues
+    between, linker 31 (docs/guide/atoms-and-domains.md#linker-from-numbering). The files share
+    the numbering when the domain lies wholly beyond the anchor on the linker's side, and beyond
+    any tail the fibril file models there."""
+    why = numbering_note(fibril, domain)
+    if why is None or not why[0]:
+        return None
+    return why[1], why[2]
+
+
+def numbering_note(fibril, domain):
+    """(usable, linker, text) of linker_from_numbering, or None without both files; `text`
+    says where the linker came from, or why the numbering was not used."""
+    if fibril is None or domain is None:
+        return None
+    anchor = fibril.anchors[0]
+    res, name = int(anchor["residue"]), anchor["residue_name"]
+    first, last = (int(v) for v in domain.residues)
+    tail = fibril.tail_residues
+    if fibril.terminus == "N":
+        between, beyond = res - last - 1, last < res and (not tail or last < tail[0])
+        end = f"last residue {last}"
+    else:
+        between, beyond = first - res - 1, first > res and (not tail or first > tail[1])
+        end = f"first residue {first}"
+    where = f"{name}{res} ({fibril.file}) and the domain's {end} ({domain.file})"
+    if not beyond:
+        return (False, None, f"not from numbering: the domain's residues {first}-{last} do not "
+                             f"follow the anchor {name}{res}"
+                             + (f" and the modelled tail {tail[0]}-{tail[1]}" if tail else "")
+                             + " (another numbering?)")
+    return (True, between + 1, f"numbering: {between} residues between {where}; "
+                               f"linker {between + 1} with the anchor")
+
+
+def linker_source(fibril, domain, *, explicit: bool) -> str:
+    """Where the run's linker came from, in words (the result's `sources` entry)."""
+    note = numbering_note(fibril, domain)
+    if explicit:
+        return "the --linker option" + (f" (the numbering gives {note[1]}: {note[2]})"
+                                        if note and note[0] else "")
+    if note is not None and note[0]:
+        return note[2]
+    tail = fibril.tail_residues if fibril is not None else []
+    if tail:
+        return (f"the fibril file's modelled tail {tail[0]}-{tail[1]} beyond the anchor: "
+                f"linker {tail[1] - tail[0] + 2} with the anchor"
+                + (f"; {note[2]}" if note else ""))
+    return "the default" + (f"; {note[2]}" if note else "")

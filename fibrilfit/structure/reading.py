@@ -27,6 +27,14 @@ class ChainAtoms:
     heavy: np.ndarray  # (m, 3) heavy-atom coordinates
     heavy_residue: np.ndarray  # (m,) residue number of each heavy atom
     heavy_radius: np.ndarray  # (m,) van der Waals radius, Å
+    # per heavy atom, for writing atoms out (exports/mmcif.py): atom name, element, residue
+    # name, B-factor (a predicted model's pLDDT)
+    heavy_name: np.ndarray | None = None
+    heavy_element: np.ndarray | None = None
+    heavy_resname: np.ndarray | None = None
+    heavy_b: np.ndarray | None = None
+    # per residue (same order as `residues`): the CA's B-factor
+    ca_b: np.ndarray | None = None
 
     def ca_of(self, numbers) -> np.ndarray:
         idx = np.searchsorted(self.residues, numbers)
@@ -109,6 +117,7 @@ def chains_of(model) -> list:
     out = []
     for chain in model:
         residues, names, ca, heavy, heavy_res, radius = [], [], [], [], [], []
+        atom_names, elements, resnames, bfac, ca_b = [], [], [], [], []
         seen = set()
         for res in chain:
             info = gemmi.find_tabulated_residue(res.name)
@@ -122,18 +131,27 @@ def chains_of(model) -> list:
             residues.append(num)
             names.append(res.name)
             ca.append(atom.pos.tolist())
+            ca_b.append(atom.b_iso)
             for a in res:
                 if a.altloc not in ("\0", "A") or a.element.is_hydrogen:
                     continue
                 heavy.append(a.pos.tolist())
                 heavy_res.append(num)
                 radius.append(a.element.vdw_r)
+                atom_names.append(a.name)
+                elements.append(a.element.name)
+                resnames.append(res.name)
+                bfac.append(a.b_iso)
         if len(residues) < MIN_CHAIN_RESIDUES:
             continue
         order = np.argsort(residues, kind="stable")
         out.append(ChainAtoms(chain.name, np.asarray(residues)[order], [names[i] for i in order],
                               np.asarray(ca, float)[order], np.asarray(heavy, float),
-                              np.asarray(heavy_res, int), np.asarray(radius, float)))
+                              np.asarray(heavy_res, int), np.asarray(radius, float),
+                              np.asarray(atom_names, dtype=object),
+                              np.asarray(elements, dtype=object),
+                              np.asarray(resnames, dtype=object), np.asarray(bfac, float),
+                              np.asarray(ca_b, float)[order]))
     return out
 
 

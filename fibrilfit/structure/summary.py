@@ -43,12 +43,36 @@ def domain_lines(d) -> list:
     return lines
 
 
-def text(fibril=None, domain=None, values=None) -> str:
+def segmentation_lines(seg) -> list:
+    lines = [f"full-length model {seg.file} (sha256 {seg.sha256[:12]}…): chain {seg.chain} "
+             f"residues {seg.residues[0]}-{seg.residues[1]}"
+             + (f", fibril core {seg.core[0]}-{seg.core[1]}" if seg.core else
+                " (no --fibril: the core is not known)")]
+    lines += [f"  note: {n}" for n in seg.notes]
+    for d in seg.domains:
+        lines.append(f"  domain {d['first']}-{d['last']} ({d['residues']} residues"
+                     + (f", {d['side']} side" if d["side"] else "")
+                     + f"): pLDDT {d['plddt_mean']:.1f}, diameter {d['diameter']:.1f} Å")
+    if not seg.domains:
+        lines.append("  no folded domain (pLDDT >= 70 over at least 40 residues) outside the core")
+    for k in seg.linkers:
+        lines.append(f"  linker {k['first']}-{k['last']}: {k['length']} residues "
+                     f"({k['between'][0]} to {k['between'][1]})")
+    return lines
+
+
+def text(fibril=None, domain=None, values=None, segmentation=None, more_domains=()) -> str:
     lines = []
     if fibril is not None:
         lines += fibril_lines(fibril)
-    if domain is not None:
-        lines += domain_lines(domain)
+    if segmentation is not None:
+        lines += segmentation_lines(segmentation)
+    for n, d in enumerate([domain, *more_domains] if domain is not None else []):
+        lines += [("" if not more_domains else f"[{n + 1}] ") + line if k == 0 else line
+                  for k, line in enumerate(domain_lines(d))]
+    if fibril is not None and domain is not None:
+        from .mapping import linker_source
+        lines.append(f"linker: {linker_source(fibril, domain, explicit=False)}")
     if values:
         shown = {k: (f"{len(v)} points" if k == "core_outline" else v) for k, v in values.items()}
         lines.append("model values: " + ", ".join(f"{k}={v}" for k, v in shown.items()))

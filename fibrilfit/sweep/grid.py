@@ -154,6 +154,9 @@ def specs_from(args) -> dict:
             specs[f.name] = [" ".join(c) for c in itertools.product(*axes)]
         elif f.metadata["kind"] == "points" and isinstance(value, (list, tuple)):
             specs[f.name] = [json.dumps(value)]  # inline points (from a case file)
+        elif f.metadata["kind"] == "list":  # lists of numbers: the lists ';'-separated
+            specs[f.name] = [",".join(str(v) for v in value)] if isinstance(
+                value, (list, tuple)) else [item.strip() for item in str(value).split(";")]
         elif f.metadata["kind"] == "points":  # outline files (or 'box'), comma-separated
             specs[f.name] = [item.strip() for item in str(value).split(",")]
         else:

@@ -75,7 +75,7 @@ def derived_fields() -> list:
 def _param_property(field):
     meta, default = field.metadata, field.default
     common = {"name": label(field), "description": _description(field)}
-    if meta["kind"] == "points":
+    if meta["kind"] in ("points", "list"):
         return StringProperty(default="", **common)
     if default is None:
         default = _SHOWN_DEFAULTS[field.name]
@@ -166,9 +166,26 @@ def _value(settings, field):
             return tuple(tuple(xy) for xy in json.loads(text))
         except (ValueError, TypeError):
             return text  # make_params refuses it, naming core_outline
+    if field.metadata["kind"] == "list":  # "31, 30": the numbers, or the text if not numbers
+        return list_value(getattr(settings, field.name), field.metadata["item"])
     if field.metadata.get("derived") and not getattr(settings, switch_name(field.name)):
         return None
     return _plain(getattr(settings, field.name))
+
+
+def list_value(text: str, item=float):
+    """A kind "list" parameter's text as a tuple (None when empty); the text itself when it is
+    not a list of numbers (make_params then refuses it, naming the parameter)."""
+    words = text.replace(",", " ").split()
+    if not words:
+        return None
+    try:
+        numbers = tuple(float(w) for w in words)
+    except ValueError:
+        return text
+    if item is int and all(n == int(n) for n in numbers):
+        return tuple(int(n) for n in numbers)
+    return numbers
 
 
 def values(settings) -> dict:
@@ -191,6 +208,8 @@ def write_params(settings, p: P.Params) -> None:
     for name, value in p.to_dict().items():
         if name == "core_outline":
             settings.core_outline = "" if value is None else json.dumps(value)
+        elif P.field_spec(name)["kind"] == "list":
+            setattr(settings, name, "" if value is None else ", ".join(f"{v:g}" for v in value))
         elif name in derived:
             setattr(settings, switch_name(name), value is not None)
             if value is not None:

@@ -66,7 +66,8 @@ def test_one_property_per_parameter_with_its_metadata(ui):
             assert prop.type == "ENUM" and prop.default == f.default, f.name
             assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
             continue
-        if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
+        if meta["kind"] in ("points", "list"):  # the outline: JSON text, empty for the slab's
+            # box; a list ("31, 30"), empty for none
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
@@ -93,6 +94,8 @@ def test_panel_values_read_back_as_the_decimals_typed(ui):
                                         globule_diameter=27.3, settle=True, seed=123456),
               P.make_params(protofilaments=2, pf_rotation=3.1294, pf_rise=2.34,
                             anchor=(0.25, -12.75)),
+              P.make_params(globule_diameter=27.3, domain_diameters="31.5,30",
+                            domain_linker="23,24"),
               P.make_params(anchor=(0.25, -1.5), core_outline=outline)):
         properties.write_params(ui, p)
         assert properties.read_params(ui) == p

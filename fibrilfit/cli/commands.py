@@ -15,7 +15,7 @@ from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401
                      EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from ..exports import options as export_options
 from ..structure.errors import StructureError
-from ..structure.inputs import add_structure_options, params_and_structure
+from ..structure.inputs import add_structure_options, params_and_structure, say_warnings
 
 
 class _Parser(argparse.ArgumentParser):
@@ -334,6 +334,7 @@ def _checked_run(args) -> tuple:
     if "movie" in outputs["paths"]:
         from ..exports import movie  # imports bpy: only when a movie is asked for
         movie.refuse_unsupported(outputs["paths"]["movie"], args.stop_after)
+    say_warnings(structure_block)
     return p, structure_block, outputs
 
 
@@ -467,7 +468,8 @@ def command_sweep(args) -> int:
 def command_minimal_linker(args) -> int:
     from ..search import command
     explicit = params_from(args)
-    values, _ = params_and_structure(args, explicit)
+    values, block = params_and_structure(args, explicit)
+    say_warnings(block)
     if "linker" not in explicit:  # a fibril file's tail length: the very thing the map searches
         values.pop("linker", None)
     return command.run_minimal(args, values)

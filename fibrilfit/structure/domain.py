@@ -48,7 +48,8 @@ def parse_range(text) -> tuple:
     return a, b
 
 
-def select(loaded, *, chain: str | None = None, residues=None) -> tuple:
+def select(loaded, *, chain: str | None = None, residues=None,
+           option: str = "--domain") -> tuple:
     """(ChainAtoms, mask of its heavy atoms used, notes): the domain's chain (default the first
     protein chain) and residues (default all), as `measure` and the atom writer use them."""
     name = loaded.path.name
@@ -83,13 +84,14 @@ def select(loaded, *, chain: str | None = None, residues=None) -> tuple:
 def measure(path, *, chain: str | None = None, residues=None,
             option: str = "--domain") -> DomainSize:
     loaded = reading.load(path, option)
-    return measure_loaded(loaded, chain=chain, residues=residues)
+    return measure_loaded(loaded, chain=chain, residues=residues, option=option)
 
 
-def measure_loaded(loaded, *, chain: str | None = None, residues=None) -> DomainSize:
+def measure_loaded(loaded, *, chain: str | None = None, residues=None,
+                   option: str = "--domain") -> DomainSize:
     """`measure` of a file already read (reading.load)."""
     name = loaded.path.name
-    c, keep, notes = select(loaded, chain=chain, residues=residues)
+    c, keep, notes = select(loaded, chain=chain, residues=residues, option=option)
     xyz = c.heavy[keep]
     used = np.unique(c.heavy_residue[keep])
     rg = float(np.sqrt(((xyz - xyz.mean(axis=0)) ** 2).sum(axis=1).mean()))

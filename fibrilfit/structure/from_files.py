@@ -73,6 +73,9 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     out = block(fibril, domain, applied, overridden, missing)
     out["warnings"] = warnings(fibril, domain, *more_domains)
     out["sources"] = sources(fibril, domain, applied)
-    # the linker's source also when an option set it: what the numbering would have given
-    out["sources"]["linker"] = linker_source(fibril, domain, explicit="linker" in explicit)
+    # the linker from the files' numbering (a modelled tail is said above), and an option's
+    # linker with what the numbering would have given
+    said = linker_source(fibril, domain, explicit="linker" in explicit)
+    if "linker" in explicit or ("linker" in applied and said.startswith("numbering")):
+        out["sources"]["linker"] = said
     return applied, out

@@ -130,14 +130,19 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
     if block["not_in_model"]:
         block["warnings"].append(f"measured but not in this model: "
                                  f"{', '.join(block['not_in_model'])}")
-    for warning in block["warnings"]:  # every run and sweep says them (issue #23)
-        print(f"fibrilfit: warning: {warning}", file=sys.stderr)
     if seg is not None:
         block["full_length"] = seg.to_dict()
     if len(doms) > 1:
         block["domains"] = [{"file": d.file, "sha256": d.sha256, "measured": d.to_dict()}
                             for d in doms]
     return {**applied, **explicit}, block
+
+
+def say_warnings(block: dict | None) -> None:
+    """Every warning of the measurement on stderr (issue #23: they travel with every run and
+    sweep), said once the run's input has passed its checks, so bad input stays one line."""
+    for warning in (block or {}).get("warnings", []):
+        print(f"fibrilfit: warning: {warning}", file=sys.stderr)
 
 
 def atom_sources(args):

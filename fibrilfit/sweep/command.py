@@ -96,6 +96,7 @@ def _plan(args) -> tuple:
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
+    inputs.say_warnings(structure_block)
     return points, requirements, structure_block, out
 
 

@@ -213,7 +213,8 @@ def test_structure_warnings_and_sources():
     assert any("5oqv_addedH.pdb.gz: anchor" in w and "buried" in w for w in warned)
     assert any(w.startswith("1gfl.pdb.gz:") and "chain A used" in w for w in warned)
     src = block["sources"]
-    assert set(src) == set(applied)
+    assert set(src) == set(applied) | {"linker"}  # an option's linker: what the numbering gives
+    assert src["linker"].startswith("the --linker option")
     assert src["globule_diameter"].startswith("1gfl.pdb.gz: measured") and "chain A" in src[
         "globule_diameter"]
     assert "BURIED" in src["anchor"]

@@ -18,7 +18,7 @@ import bpy
 import numpy as np
 
 from . import files
-from ..analysis import clashing_layers
+from ..analysis import clash_kinds
 from ..builders import find_model
 from ..builders.model import colour_globules
 from . import dressing, render
@@ -114,7 +114,8 @@ def _render_frames(scene, model, result, frames, folder, width, height, progress
         for frame in frames:
             scene.frame_set(frame)
             if frame == frames[-1]:
-                colour_globules(model, clashing_layers(result), scene)
+                deep, grazing = clash_kinds(result)
+                colour_globules(model, deep, scene, grazing)
             png = folder / f"frame{frame:06d}.png"
             with render.captured_output() as log:
                 try:

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import pathlib
 import sys
 
 from ..model import cases, params as P
@@ -180,6 +181,22 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
     search_command.add_minimal_arguments(minimal)
+    report = sub.add_parser(
+        "report", help="the whole answer in one page: P(fit) at the linker with restarts, the "
+                       "minimal linker, the best layout rendered, the envelope "
+                       "(DIR/report.html, DIR/report.json)")
+    add_param_options(report)
+    add_case_option(report)
+    add_structure_options(report)
+    g = report.add_argument_group("the report's picture")
+    g.add_argument("--render-size", metavar="WxH", default=export_options.DEFAULT_SIZE,
+                   help=f"picture size in pixels (default {export_options.DEFAULT_SIZE})")
+    g.add_argument("--render-samples", metavar="N", default=str(export_options.DEFAULT_SAMPLES),
+                   help=f"Cycles samples per pixel (default {export_options.DEFAULT_SAMPLES})")
+    g.add_argument("--render-engine", choices=export_options.ENGINES, default="cycles",
+                   help="cycles or workbench (default cycles)")
+    from ..search import report as search_report  # argparse only: nothing runs at import
+    search_report.add_arguments(report)
     return parser
 
 
@@ -188,6 +205,7 @@ def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     try:
         args = build_parser(prog).parse_args(argv)
         args.loaded_case = apply_case(args, argv)
+        args.command_line = [prog, *argv]
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, files.OutputError, export_options.OptionError,
             StructureError) as exc:
@@ -251,9 +269,7 @@ def _checked_run(args) -> tuple:
     from ..exports import writers
     from ..search import command as search_command
     search_command.check_restart_options(args)
-    P.refuse_beside_periodic(params_from(args))
-    values, structure_block = params_and_structure(args, params_from(args))
-    p = P.make_params(force=args.force, **values)
+    p, _, structure_block = checked_params(args)
     if args.envelope_plot:
         from ..exports import envelope_plot
         envelope_plot.available(args.stop_after)
@@ -269,6 +285,68 @@ def _checked_run(args) -> tuple:
         from ..exports import movie  # imports bpy: only when a movie is asked for
         movie.refuse_unsupported(outputs["paths"]["movie"], args.stop_after)
     return p, structure_block, outputs
+
+
+def checked_params(args, defaults: dict | None = None) -> tuple:
+    """(Params, values, structure block) of `run` and `report`: the options and the measured
+    structures merged and validated (`defaults`: a command's own defaults under them)."""
+    P.refuse_beside_periodic(params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    values = {**(defaults or {}), **values}
+    return P.make_params(force=args.force, **values), values, structure_block
+
+
+def sources_of(args, values: dict, structure_block: dict | None, defaults: dict) -> dict:
+    """Where each parameter's value came from: the option, the case, the file it was measured
+    from, the command's own default, or FibrilFit's default."""
+    explicit = {f.name for f in dataclasses.fields(P.Params) if _given(args.command_line[1:],
+                                                                        f.name)}
+    case = set((args.loaded_case.params if args.loaded_case is not None else {}))
+    applied = (structure_block or {}).get("applied") or {}
+    files_ = {key: ((structure_block or {}).get(key) or {}).get("file") for key in
+              ("fibril", "domain")}
+    out = {}
+    for f in dataclasses.fields(P.Params):
+        name = f.name
+        if name in explicit:
+            out[name] = "option"
+        elif name in case:
+            out[name] = "case"
+        elif name in applied:
+            key = "domain" if name == "globule_diameter" and files_["domain"] else "fibril"
+            out[name] = f"measured from {files_[key] or key}"
+        elif name in defaults:
+            out[name] = f"{args.command} default"
+        else:
+            out[name] = "default"
+    return out
+
+
+def command_report(args) -> int:
+    """`report`: refuses what `run` refuses (before anything is written), then runs it all."""
+    from .. import pipeline  # noqa: F401 (imports bpy first)
+    from ..search import report
+    defaults = {"protocol": "inflate"}  # restarts search layouts; inflate is the search protocol
+    report.check_options(args)
+    p, values, structure_block = checked_params(args, defaults)
+    look = export_options.render_options(args)
+    report.seeds_of(p, args.restarts)
+    files.check_writable("--out", pathlib.Path(args.out) / report.HTML, (".html",))
+    case = None
+    if args.loaded_case is not None:
+        case = args.loaded_case.resolved(p, args.loaded_case.overridden, structure_options(args))
+    sources = sources_of(args, values, structure_block, defaults)
+    fresh = {"stop_after": "check", "progress": False}
+
+    def run_here(q):
+        return _run_here(argparse.Namespace(**{**vars(args), **fresh}), q)
+    doc = report.make_report(args, p, values, structure_block=structure_block, case=case,
+                             look=look, sources=sources, run_here=run_here)
+    out = pathlib.Path(args.out)
+    print(f"report: {doc['answer']}; P(fit) {doc['p_fit']['fits']}/{doc['p_fit']['runs']} at "
+          f"linker {p.linker}; minimal linker {doc['minimal_linker']['linker']}; "
+          f"{out / report.HTML}, {out / report.JSON}")
+    return EXIT_OK
 
 
 def _run_here(args, p) -> dict:
@@ -351,4 +429,4 @@ def command_minimal_linker(args) -> int:
 
 
 COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
-            "minimal-linker": command_minimal_linker}
+            "minimal-linker": command_minimal_linker, "report": command_report}

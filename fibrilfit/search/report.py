@@ -47,6 +47,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     command.add_executor_options(g)
 
 
+def options(**given) -> argparse.Namespace:
+    """The report's options with their command-line defaults, for callers without a command
+    line (the sidebar's Report… button)."""
+    out = {"restarts": DEFAULT_RESTARTS, "max_linker": DEFAULT_MAX_LINKER, "out": "out/report",
+           "resume": False, "quiet": False, "executor": "processes", "workers": None,
+           "scheduler": None, "timeout": None, "force": False, "command_line": [],
+           "command": "report"}
+    unknown = set(given) - set(out)
+    if unknown:
+        raise TypeError(f"unknown report options: {sorted(unknown)}")
+    return argparse.Namespace(**{**out, **given})
+
+
 def check_options(args) -> None:
     """The report's own options, refused in one line before anything runs."""
     command._check_executor_options(args)

@@ -166,3 +166,26 @@ def test_report_refuses_what_run_refuses_and_writes_nothing(tmp_path, bad, needl
         ran = run_cli("run", *bad, "--layers", "3", "--stop-after", "build") if \
             bad[0] != "--layers" else run_cli("run", *bad, "--stop-after", "build")
         assert ran.returncode == 2  # run refuses it too
+
+
+def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path):
+    import bpy
+    from fibrilfit.ui import properties
+    ff.register()
+    try:
+        properties.write_params(scene.fibrilfit, P.make_params(
+            layers=3, linker=3, globule_diameter=12, protocol="inflate", grow_frames=20,
+            hold_frames=20, regrow_cycles=0))
+        out = tmp_path / "page"
+        assert bpy.ops.fibrilfit.report(directory=str(out), restarts=2, max_linker=4) == {
+            "FINISHED"}
+    finally:
+        ff.unregister()
+    doc = json.loads((out / "report.json").read_text())
+    assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
+            "files"} <= set(doc)
+    assert doc["p_fit"]["runs"] == 2 and doc["sources"]["linker"] == "sidebar"
+    assert (out / "report.html").read_text().count('src="data:image/png;base64,') == 2
+    # the page's command reproduces it from the case the button saved
+    assert doc["command"][1:4] == ["report", "--case", str(out / "case.toml")]
+    assert (out / "case.toml").is_file()

@@ -18,8 +18,20 @@ SCALE_FRACTION = 0.2   # the scale bar is about a fifth of the picture's width
 NICE = (1, 2, 5)       # its length: 1, 2 or 5 times a power of ten Å
 
 
+MIN_SIZE = (240, 135)  # below this a legend would hide the model (and cannot be read)
+
+
 def available() -> bool:
     return importlib.util.find_spec("matplotlib") is not None
+
+
+def why_not(width: int, height: int) -> str | None:
+    """Why a picture of this size gets no legend (None: it gets one)."""
+    if width < MIN_SIZE[0] or height < MIN_SIZE[1]:
+        return f"the picture is smaller than {MIN_SIZE[0]}x{MIN_SIZE[1]} pixels"
+    if not available():
+        return "needs matplotlib"
+    return None
 
 
 def srgb(linear) -> tuple[float, float, float]:

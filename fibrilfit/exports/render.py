@@ -66,7 +66,8 @@ def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None
     if model is None:
         raise RenderError(f"scene '{scene.name}' holds no FibrilFit model to render")
     dressing = dress(scene, model, clashing, aspect=width / height, grazing=grazing)
-    drawn = {"drawn": False, "reason": "needs matplotlib"}
+    why = legend.why_not(width, height) if with_legend else "not asked for"
+    drawn = {"drawn": False, "reason": why}
     entries = legend_entries(model, clashing or (), grazing, result)
     scale = angstrom_per_pixel(dressing.camera, model_points(model), width)
     denoise = engine == "cycles" and has_denoiser()
@@ -80,7 +81,7 @@ def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None
                 files.atomic_write(path, lambda tmp: render_frame(scene, tmp))
         except Exception as exc:  # Blender reports render failures as RuntimeError
             raise RenderError(one_line(exc) + last_words(log())) from exc
-    if with_legend and legend.available():
+    if why is None:
         drawn = {}
         files.atomic_write(path, lambda tmp: drawn.update(
             legend.compose(path, tmp, entries, scale, note=scale_note(model))))

@@ -110,8 +110,12 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         walk_values = {k: v for k, v in values.items()
                        if k not in ("linker", "seed", "globule_diameter")}
         walk_values["protocol"] = p.protocol
+        # from minimal-linker's own guess: a miss runs to the frame cap and costs ~10x a fit
+        # (6CU7 + ubiquitin: 130-150 s against 9-20 s per run), so walking down from a long
+        # asked linker costs more than it saves; the asked length's runs are reused if reached
         walk = minimal.Walk(p.globule_diameter,
-                            min(p.linker, args.max_linker), args.max_linker)
+                            min(minimal.first_guess(p.globule_diameter), args.max_linker),
+                            args.max_linker)
         try:
             command._walk(args, walk_values, seeds, [walk], out)
         except SweepError as exc:

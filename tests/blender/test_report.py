@@ -69,18 +69,21 @@ def test_legend_is_composed_onto_the_picture(tmp_path):
 def test_every_render_has_a_legend_with_clash_and_graze(scene, tmp_path):
     pipeline.run(P.make_params(layers=3, linker=3), scene, stop_after="build")
     with_it = render.render_png(scene, tmp_path / "a.png", clashing=[0], grazing=[2],
-                                size=(160, 90), engine="workbench")
+                                size=(320, 180), engine="workbench")
     without = render.render_png(scene, tmp_path / "b.png", clashing=[0], grazing=[2],
-                                size=(160, 90), engine="workbench", with_legend=False)
+                                size=(320, 180), engine="workbench", with_legend=False)
     assert with_it["legend"]["drawn"] and without["legend"] == {"drawn": False,
-                                                              "reason": "needs matplotlib"}
+                                                              "reason": "not asked for"}
+    tiny = render.render_png(scene, tmp_path / "c.png", size=(64, 36), engine="workbench")
+    assert tiny["legend"] == {"drawn": False,
+                              "reason": "the picture is smaller than 240x135 pixels"}
     labels = with_it["legend"]["entries"]
     assert any(x.startswith("clash") and x.endswith("(1)") for x in labels)
     assert any(x.startswith("graze") and x.endswith("(1)") for x in labels)
     assert with_it["legend"]["scale_bar_angstrom"] > 0
     from matplotlib.image import imread
     a, b = imread(tmp_path / "a.png")[..., :3], imread(tmp_path / "b.png")[..., :3]
-    assert a.shape == b.shape == (90, 160, 3) and np.abs(a - b).max() > 0.3
+    assert a.shape == b.shape == (180, 320, 3) and np.abs(a - b).max() > 0.3
 
 
 # ---- the envelope plot's core -------------------------------------------------------------------

@@ -182,29 +182,40 @@ def _pictures(best: dict, out, look: dict) -> tuple[dict, list[str]]:
     return pictures, problems
 
 
+NEAR = 0.01  # "near the criterion": a stretch within 1 point of the tolerance (issue #23)
+
+
 def answer_of(best: dict, summary: dict) -> str:
     """'fits' (a restart found an accommodated layout), 'borderline' (the best layout sits at
-    the criterion: stretch within 1 point of the tolerance, or grazing pairs only), or 'no
-    layout found'. The run's own word wins where it gives one (`answer`)."""
+    the criterion: its stretch within 1 point of the tolerance, or its only contacts grazing),
+    or 'no layout found'. The run's own word wins where it gives one (`answer`)."""
     if best.get("answer"):
         return best["answer"]
-    if not summary["accommodated"]:
-        tol = best["params"]["stretch_tolerance"]
-        grazes_only = (best.get("verdict") == "intersection" and best.get("clashing_pairs")
-                       and len(best.get("grazing_pairs") or []) == len(best["clashing_pairs"]))
-        near = best.get("max_bond_stretch", 1.0) - tol <= 0.01
-        if best.get("verdict") == "intersection" and grazes_only and near:
-            return "borderline"
-        if best.get("verdict") == "successful" and near:
-            return "borderline"
-        return "no layout found"
-    return "fits"
+    tol = best["params"]["stretch_tolerance"]
+    stretch = best.get("max_bond_stretch")
+    stretch = 1.0 if stretch is None else stretch
+    near = abs(stretch - tol) <= NEAR
+    if summary["accommodated"]:
+        return "borderline" if near else "fits"
+    pairs = best.get("clashing_pairs") or []
+    grazes_only = (best.get("verdict") == "intersection" and pairs
+                   and len(best.get("grazing_pairs") or []) == len(pairs))
+    if (grazes_only and stretch <= tol + NEAR) or (best.get("verdict") == "successful"
+                                                   and near):
+        return "borderline"
+    return "no layout found"
 
 
 def warnings_of(best: dict, structure_block: dict | None, summary: dict, row: dict,
                 problems: list[str]) -> list[str]:
     """Every warning the answer rests on, each once: the structures', the run's, the search's."""
     out = list(best.get("warnings") or [])
+    worker = next((r for r in summary["runs"] if r["seed"] == best.get("seed")), None)
+    if worker and worker.get("status") == "ok" and \
+            worker.get("accommodated") != best.get("accommodated"):
+        out.append(f"the best seed ({best.get('seed')}), run again for the pictures, gave "
+                   f"accommodated {best.get('accommodated')} where its restart gave "
+                   f"{worker.get('accommodated')}")
     for key in ("fibril", "domain"):
         measured = ((structure_block or {}).get(key) or {}).get("measured") or {}
         out += [f"{key}: {w}" for w in measured.get("warnings") or []]
@@ -242,7 +253,7 @@ def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources
                      f"fibril, all fit without clashing, and how long must the linker be?"),
         "command": list(getattr(args, "command_line", None) or []),
         "answer": answer_of(best, summary),
-        "model": best["params"],
+        "model": p.to_dict(),
         "sources": {**sources, **(best.get("sources") or {})},
         "warnings": warnings_of(best, structure_block, summary, row, problems),
         "p_fit": {"fits": summary["accommodated"], "runs": summary["restarts"],

@@ -131,7 +131,8 @@ def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
         assert m["tried"][str(m["linker"] - 1)] == {"accommodated": 0, "restarts": 2}
         assert m["tried"][str(m["linker"])]["accommodated"] >= 1
     assert doc["answer"] in ("fits", "borderline", "no layout found")
-    assert (pf["fits"] > 0) == (doc["answer"] == "fits")
+    assert (pf["fits"] > 0) == (doc["answer"] != "no layout found") or \
+        doc["answer"] == "borderline"
     for name in doc["files"].values():
         assert (out / name).is_file(), name
     assert {"render", "envelope_plot"} <= set(doc["files"])

@@ -21,8 +21,9 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "globule": (0.7, 0.72, 0.7, 1.0),
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
-# A grazing pair (only the BVH names it, within the mesh's resolution: docs/model/verdict.md#two-checks)
-# is not a deep clash: a pale red, so the picture does not overstate it.
+# A grazing pair (only the BVH names it, within the mesh's resolution:
+# docs/model/verdict.md#two-checks) is not a deep clash: a pale red, so the picture does not
+# overstate it.
 GRAZE_COLOR = (1.0, 0.45, 0.62, 1.0)
 # Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
 PF_COLORS = {

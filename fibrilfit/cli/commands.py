@@ -296,7 +296,7 @@ def checked_params(args, defaults: dict | None = None) -> tuple:
     return P.make_params(force=args.force, **values), values, structure_block
 
 
-def sources_of(args, values: dict, structure_block: dict | None, defaults: dict) -> dict:
+def sources_of(args, structure_block: dict | None, defaults: dict) -> dict:
     """Where each parameter's value came from: the option, the case, the file it was measured
     from, the command's own default, or FibrilFit's default."""
     explicit = {f.name for f in dataclasses.fields(P.Params) if _given(args.command_line[1:],
@@ -335,7 +335,7 @@ def command_report(args) -> int:
     case = None
     if args.loaded_case is not None:
         case = args.loaded_case.resolved(p, args.loaded_case.overridden, structure_options(args))
-    sources = sources_of(args, values, structure_block, defaults)
+    sources = sources_of(args, structure_block, defaults)
     fresh = {"stop_after": "check", "progress": False}
 
     def run_here(q):

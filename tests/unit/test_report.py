@@ -59,3 +59,20 @@ def test_page_is_self_contained_and_says_no_layout_found_never_does_not_fit(tmp_
     assert "150 Å" in page and "EM, Fig. 2" in page  # the measured width beside the envelope
     assert "headless.py report --linker 2" in page
     assert "3 residue(s) shorter than the minimal linker" in page
+
+
+def test_sources_name_option_case_file_and_defaults():
+    import argparse
+
+    from fibrilfit.cli import commands
+    case = argparse.Namespace(params={"layers": 12, "linker": 9})
+    args = argparse.Namespace(command="report", loaded_case=case, command_line=[
+        "headless.py", "report", "--linker=4", "--case", "c.toml"])
+    block = {"fibril": {"file": "/data/6cu7.pdb.gz"}, "domain": {"file": "/data/1ubq.pdb"},
+             "applied": {"rise": 4.8, "globule_diameter": 30.3, "linker": 44}}
+    s = commands.sources_of(args, block, {"protocol": "inflate"})
+    assert s["linker"] == "option"                      # the option wins over case and file
+    assert s["layers"] == "case"
+    assert s["rise"] == "measured from /data/6cu7.pdb.gz"
+    assert s["globule_diameter"] == "measured from /data/1ubq.pdb"
+    assert s["protocol"] == "report default" and s["twist"] == "default"

@@ -21,6 +21,7 @@ from ..batch import outdir
 from ..batch.executors import SweepError, cpu_count, make_executor
 from ..exports import files
 from ..model import params as P
+from ..sweep import runner
 from . import command, minimal, restarts
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
@@ -94,7 +95,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / outdir.RESULTS
-    command.runner.repair_tail(results)
+    runner.repair_tail(results)
     t0 = time.perf_counter()
     timings = {}
     with _stages(not args.quiet) as stage:

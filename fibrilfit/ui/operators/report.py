@@ -20,7 +20,7 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
     bl_description = ("Write report.html and report.json for the panel's model: P(fit) over "
                       "restarts, the minimal linker, the best layout rendered and the envelope "
                       "(the same report as `headless.py report`; takes minutes)")
-    bl_options = {"REGISTER"}
+    bl_options = {"REGISTER", "UNDO"}  # it builds the best layout in the scene
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})
     restarts: bpy.props.IntProperty(name="Restarts", default=report.DEFAULT_RESTARTS, min=1,
                                     max=1000, description="seeds run at each linker length")

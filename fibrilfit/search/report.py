@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib.util
 import platform
 import sys
 import time
@@ -69,7 +70,12 @@ def check_options(args) -> None:
     lmax = P.field_spec("linker")["max"]
     if not 1 <= args.max_linker <= lmax:
         raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
-    outdir.need("tqdm", "matplotlib", *(["distributed"] if args.executor == "dask" else []))
+    wanted = ("tqdm", "matplotlib", *(["distributed"] if args.executor == "dask" else []))
+    missing = [name for name in wanted if importlib.util.find_spec(name) is None]
+    if missing:
+        raise exits.UsageError(f"report: needs the Python package(s) {', '.join(missing)}, "
+                               f"which this Python (e.g. Blender's own) does not have: "
+                               f"pip install {' '.join(missing)}")
 
 
 def seeds_of(p: P.Params, r: int) -> range:

@@ -76,3 +76,12 @@ def test_sources_name_option_case_file_and_defaults():
     assert s["rise"] == "measured from /data/6cu7.pdb.gz"
     assert s["globule_diameter"] == "measured from /data/1ubq.pdb"
     assert s["protocol"] == "report default" and s["twist"] == "default"
+
+
+def test_report_refuses_in_one_line_without_matplotlib(monkeypatch):
+    from fibrilfit.exits import UsageError
+    real = report.importlib.util.find_spec
+    monkeypatch.setattr(report.importlib.util, "find_spec",
+                        lambda name: None if name == "matplotlib" else real(name))
+    with pytest.raises(UsageError, match="report: needs the Python package.*matplotlib"):
+        report.check_options(report.options())

@@ -17,10 +17,10 @@ from mathutils.bvhtree import BVHTree
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
 from fibrilfit.ui import properties, registration
-from fibrilfit.analysis import bvh_clashes
+from fibrilfit.analysis import bvh_clashes, clash_kinds
 from fibrilfit.analysis.verdict import world_matrices
 from fibrilfit.builders import find_model, model_stage
-from fibrilfit.builders.model import CLASH_COLOR, COLORS
+from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR
 from fibrilfit.ui.operators import common, simulate
 from fibrilfit.ui import panels
 
@@ -200,8 +200,10 @@ def test_steps_in_order_match_the_api(ui, scene):
     assert shown["max_bond_stretch"] == pytest.approx(api["max_bond_stretch"], abs=1e-6)
     assert (shown["linker_intact"], shown["accommodated"]) == (api["linker_intact"],
                                                                api["accommodated"])
-    red = {k for pair in api["clashing_pairs"] for k in pair[:2]}
-    expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in red else COLORS["globule"]))
+    deep, grazing = clash_kinds(api)  # deep clashes red, globules that only graze pale red
+    assert set(deep + grazing) == {k for pair in api["clashing_pairs"] for k in pair[:2]}
+    expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in deep else GRAZE_COLOR
+                                            if k in grazing else COLORS["globule"]))
                 for k in range(SMALL["layers"])]
     assert colours == expected
 

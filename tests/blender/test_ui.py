@@ -305,11 +305,12 @@ def test_colours_follow_each_check(ui, scene):
         ui.score_layers = exclude
         run("check_intersections")
         result = stored_result(scene)
-        red = {k for pair in result["clashing_pairs"] for k in pair[:2]}
+        deep, grazing = clash_kinds(result)  # deep clashes red, grazes pale red
         scored = range(exclude, SMALL["layers"] - exclude)
         assert all(i in scored or j in scored for i, j, _ in result["clashing_pairs"])
         for k, ob in enumerate(find_model(scene).globules):
-            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in red else COLORS["globule"])
+            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in deep else GRAZE_COLOR
+                                                    if k in grazing else COLORS["globule"])
     run("bake")  # the old verdict and colours no longer apply
     assert ui.verdict == "" and model_stage(scene) == "baked"
     assert all(tuple(ob.color) == pytest.approx(COLORS["globule"])

@@ -4,6 +4,7 @@ import json
 import re
 
 import numpy as np
+from mathutils import Vector
 import pytest
 from helpers import ROOT, run_cli
 
@@ -193,3 +194,21 @@ def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path):
     # the page's command reproduces it from the case the button saved
     assert doc["command"][1:4] == ["report", "--case", str(out / "case.toml")]
     assert (out / "case.toml").is_file()
+
+
+def test_periodic_render_frames_the_cell_and_every_image(scene):
+    from bpy_extras.object_utils import world_to_camera_view
+
+    from fibrilfit.builders.periodic import MOVING, STATIC, image_collection
+    from fibrilfit.exports import dressing
+    pipeline.run(P.make_params(layers=8, linker=3, periodic=8), scene, stop_after="build")
+    model = pipeline.current_model(scene)
+    images = [ob for role in (MOVING, STATIC) if image_collection(model, role) is not None
+              for ob in image_collection(model, role).all_objects if ob.type == "MESH"]
+    assert images  # the cell has images to frame
+    d = dressing.dress(scene, model, [], aspect=16 / 9)
+    scene.render.resolution_x, scene.render.resolution_y = 1600, 900
+    for ob in [*images, *model.globules]:
+        for corner in ob.bound_box:  # every corner of every body in the picture, none cropped
+            u, v, depth = world_to_camera_view(scene, d.camera, ob.matrix_world @ Vector(corner))
+            assert -1e-6 <= u <= 1 + 1e-6 and -1e-6 <= v <= 1 + 1e-6 and depth > 0, ob.name

@@ -247,6 +247,20 @@ def periodic_block(model, cells: int) -> dict:
             "gravity": "axial" if helix.axial_gravity(model.params) else "whole"}
 
 
+def clash_kinds(result: dict) -> tuple[list[int], list[int]]:
+    """(deep, grazing): chains to paint as clashing, and chains whose every pair only grazes
+    (a BVH pair within the mesh's resolution, `grazing_pairs`: docs/model/verdict.md#two-checks).
+    A chain in any deep pair is deep. Both empty unless the verdict is intersection."""
+    chains = clashing_layers(result)
+    if not chains:
+        return [], []
+    grazing = {(int(i), int(j)) for i, j, *_ in result.get("grazing_pairs") or []}
+    deep_pairs = [[i, j] for i, j, *_ in result.get("clashing_pairs", [])
+                  if (int(i), int(j)) not in grazing]
+    deep = set(clashing_layers({**result, "clashing_pairs": deep_pairs})) if deep_pairs else set()
+    return sorted(deep), sorted(set(chains) - deep)
+
+
 def clashing_layers(result: dict) -> list[int]:
     """Chains (= layers with one protofilament) to show red: both globules of every pair in
     `clashing_pairs` (the BVH's pairs, so none under a successful verdict), including an end

@@ -21,6 +21,10 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "globule": (0.7, 0.72, 0.7, 1.0),
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
+# A grazing pair (only the BVH names it, within the mesh's resolution:
+# docs/model/verdict.md#two-checks) is not a deep clash: a pale red, so the picture does not
+# overstate it.
+GRAZE_COLOR = (1.0, 0.45, 0.62, 1.0)
 # Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
 PF_COLORS = {
     "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
@@ -419,9 +423,10 @@ class _LayerBuilder:
                 objects.foreach_set("color", tints[pf].ravel())
 
 
-def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
-    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), the
-    others their protofilament's colour, through ob.color. Returns the red.
+def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:
+    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), those
+    of `grazing` (and not clashing) pale red, the others their protofilament's colour, through
+    ob.color. Returns the red.
 
     ob.color is what the viewport shows with Color: Object, and what materials read through
     an Object Info node, so one call recolours both after each check. Colouring edits simulated
@@ -429,12 +434,14 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
     """
     keep_bake(scene or bpy.context.scene)
     red = {int(k) for k in clashing_layers}
+    pale = {int(k) for k in grazing} - red
     places = model.params.globule_members()
     for k, members in enumerate(model.chain):
         for ob in (members[i] for i in places if i < len(members)):
             if ob.get(TAG) != "globule":
                 continue
-            colour = CLASH_COLOR if k in red else part_colour("globule", ob.get(PROTOFILAMENT, 0))
+            colour = (CLASH_COLOR if k in red else GRAZE_COLOR if k in pale else
+                      part_colour("globule", ob.get(PROTOFILAMENT, 0)))
             if not np.allclose(ob.color, colour, atol=1e-6):  # no needless update
                 ob.color = colour
     return sorted(red)

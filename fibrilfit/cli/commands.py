@@ -6,6 +6,7 @@ import dataclasses
 import difflib
 import json
 import math
+import pathlib
 import re
 import sys
 
@@ -229,6 +230,22 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
     search_command.add_minimal_arguments(minimal)
+    report = sub.add_parser(
+        "report", help="the whole answer in one page: P(fit) at the linker with restarts, the "
+                       "minimal linker, the best layout rendered, the envelope "
+                       "(DIR/report.html, DIR/report.json)")
+    add_param_options(report)
+    add_case_option(report)
+    add_structure_options(report)
+    g = report.add_argument_group("the report's picture")
+    g.add_argument("--render-size", metavar="WxH", default=export_options.DEFAULT_SIZE,
+                   help=f"picture size in pixels (default {export_options.DEFAULT_SIZE})")
+    g.add_argument("--render-samples", metavar="N", default=str(export_options.DEFAULT_SAMPLES),
+                   help=f"Cycles samples per pixel (default {export_options.DEFAULT_SAMPLES})")
+    g.add_argument("--render-engine", choices=export_options.ENGINES, default="cycles",
+                   help="cycles or workbench (default cycles)")
+    from ..search import report as search_report  # argparse only: nothing runs at import
+    search_report.add_arguments(report)
     return parser
 
 
@@ -237,6 +254,7 @@ def main(argv: list[str] | None = None, prog: str = "headless.py") -> int:
     try:
         args = build_parser(prog).parse_args(argv)
         args.loaded_case = apply_case(args, argv)
+        args.command_line = [prog, *argv]
         return COMMANDS[args.command](args)
     except (UsageError, P.ParamError, files.OutputError, export_options.OptionError,
             StructureError) as exc:
@@ -313,9 +331,7 @@ def _checked_run(args) -> tuple:
     from ..exports import writers
     from ..search import command as search_command
     search_command.check_restart_options(args)
-    P.refuse_beside_periodic(params_from(args))
-    values, structure_block = params_and_structure(args, params_from(args))
-    p = P.make_params(force=args.force, **values)
+    p, _, structure_block = checked_params(args)
     if args.envelope_plot:
         from ..exports import envelope_plot
         envelope_plot.available(args.stop_after)
@@ -336,6 +352,51 @@ def _checked_run(args) -> tuple:
         movie.refuse_unsupported(outputs["paths"]["movie"], args.stop_after)
     say_warnings(structure_block)
     return p, structure_block, outputs
+
+
+def checked_params(args, defaults: dict | None = None) -> tuple:
+    """(Params, values, structure block) of `run` and `report`: the options and the measured
+    structures merged and validated (`defaults`: a command's own defaults under them)."""
+    P.refuse_beside_periodic(params_from(args))
+    values, structure_block = params_and_structure(args, params_from(args))
+    values = {**(defaults or {}), **values}
+    return P.make_params(force=args.force, **values), values, structure_block
+
+
+def sources_of(args, p, structure_block: dict | None, defaults: dict) -> dict:
+    """`param_sources`, with a command's own defaults named as such ('report default')."""
+    out = param_sources(args, p, structure_block)
+    for name in defaults:
+        if out.get(name, "").startswith("default"):
+            out[name] = f"{args.command} default"
+    return out
+
+
+def command_report(args) -> int:
+    """`report`: refuses what `run` refuses (before anything is written), then runs it all."""
+    from .. import pipeline  # noqa: F401 (imports bpy first)
+    from ..search import report
+    defaults = {"protocol": "inflate"}  # restarts search layouts; inflate is the search protocol
+    report.check_options(args)
+    p, values, structure_block = checked_params(args, defaults)
+    look = export_options.render_options(args)
+    report.seeds_of(p, args.restarts)
+    files.check_writable("--out", pathlib.Path(args.out) / report.HTML, (".html",))
+    case = None
+    if args.loaded_case is not None:
+        case = args.loaded_case.resolved(p, args.loaded_case.overridden, structure_options(args))
+    sources = sources_of(args, p, structure_block, defaults)
+    fresh = {"stop_after": "check", "progress": False}
+
+    def run_here(q):
+        return _run_here(argparse.Namespace(**{**vars(args), **fresh}), q)
+    doc = report.make_report(args, p, values, structure_block=structure_block, case=case,
+                             look=look, sources=sources, run_here=run_here)
+    out = pathlib.Path(args.out)
+    print(f"report: {doc['answer']}; P(fit) {doc['p_fit']['fits']}/{doc['p_fit']['runs']} at "
+          f"linker {p.linker}; minimal linker {doc['minimal_linker']['linker']}; "
+          f"{out / report.HTML}, {out / report.JSON}")
+    return EXIT_OK
 
 
 def _run_here(args, p) -> dict:
@@ -476,4 +537,4 @@ def command_minimal_linker(args) -> int:
 
 
 COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
-            "minimal-linker": command_minimal_linker}
+            "minimal-linker": command_minimal_linker, "report": command_report}

@@ -14,6 +14,7 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from ..builders.model import COLORS, colour_globules
+from ..builders.periodic import MOVING, STATIC, image_collection
 from ..builders.physics import keep_bake
 from ..builders.scene import is_ours, new_collection, tag
 
@@ -33,16 +34,18 @@ class Dressing:
     materials: dict
 
 
-def dress(scene: bpy.types.Scene, model, clashing=None, *, aspect: float = 16 / 9) -> Dressing:
+def dress(scene: bpy.types.Scene, model, clashing=None, *, aspect: float = 16 / 9,
+          grazing=()) -> Dressing:
     """Give `model` materials, a framing camera and a light (reused if dressed before).
 
-    `clashing`: layers to colour red (None leaves the colours as they are). The camera is
+    `clashing`: layers to colour red (None leaves the colours as they are); `grazing`: layers
+    whose globules only graze, pale red. The camera is
     framed on the model as it stands now (call at the last frame). scene.camera and
     scene.world are set only if empty or already FibrilFit's.
     """
     keep_bake(scene)
     if clashing is not None:
-        colour_globules(model, clashing, scene)
+        colour_globules(model, clashing, scene, grazing)
     materials = ensure_materials(model)
     view = _view_collection(model)
     camera = _owned_object(view, "camera", lambda: bpy.data.cameras.new("FibrilFit camera"))
@@ -140,8 +143,13 @@ def _owned_object(coll, role, new_data):
 
 
 def model_points(model) -> np.ndarray:
-    """World-space corners of every object's bounding box, shape (n, 3)."""
+    """World-space corners of every object's bounding box, shape (n, 3): the cores, chains
+    and, in a periodic cell, every image, so that the camera frames the cell and its images."""
     objects = [*model.slabs, *(ob for members in model.chain for ob in members)]
+    for role in (MOVING, STATIC):
+        coll = image_collection(model, role)
+        if coll is not None:
+            objects += [ob for ob in coll.all_objects if ob.type == "MESH"]
     pts = []
     for ob in objects:
         corners = np.array(ob.bound_box, dtype=float)

@@ -31,11 +31,25 @@ def _scored_centres(result: dict) -> np.ndarray:
     return centres[lo * per_layer:(hi + 1) * per_layer]
 
 
+def core_shape(p: dict) -> tuple:
+    """(outline (n, 2) or None, the core's reach from the axis in Å, its label): a structure
+    model's own core outline and its farthest point, or the default slab's box and corner."""
+    outline = p.get("core_outline")
+    if outline:
+        pts = np.asarray(outline, dtype=float).reshape(-1, 2)
+        reach = float(np.hypot(pts[:, 0], pts[:, 1]).max())
+        return pts, reach, f"core reach {reach:.1f} Å (outline's farthest point)"
+    sx, sy = float(p["slab"][0]), float(p["slab"][1])
+    box = np.array([(-sx, -sy), (sx, -sy), (sx, sy), (-sx, sy)]) / 2
+    reach = float(np.hypot(sx, sy)) / 2
+    return box, reach, f"core reach {reach:.1f} Å (slab corner)"
+
+
 def draw(result: dict):
     """The figure: left, the centres seen down the axis; right, their radial density."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
-    from matplotlib.patches import Circle
+    from matplotlib.patches import Circle, Polygon
 
     env, p = result["envelope"], result["params"]
     R = p["globule_diameter"] / 2
@@ -47,13 +61,17 @@ def draw(result: dict):
     for x, y in c[:, :2]:
         top.add_patch(Circle((x, y), R, facecolor="0.75", edgecolor="0.35", alpha=0.35, lw=0.5))
     top.plot(c[:, 0], c[:, 1], ".", color="0.2", ms=3)
-    core = np.hypot(p["slab"][0], p["slab"][1]) / 2
-    rings = [(core, "steelblue", "core (slab corner)"), (env["r95"], "darkorange", "r95"),
+    outline, core, core_label = core_shape(p)
+    if outline is not None:
+        top.add_patch(Polygon(outline, closed=True, facecolor="lightsteelblue", alpha=0.5,
+                              edgecolor="steelblue", lw=0.8, label="core outline (first layer)"))
+    rings = [(core, "steelblue", core_label), (env["r95"], "darkorange", "r95"),
              (env["r95"] + R, "firebrick", "outer: r95 + R")]
     for radius, colour, label in rings:
         top.add_patch(Circle((0, 0), radius, fill=False, ls="--", color=colour, label=label))
     lim = 1.1 * (env["r95"] + R if r.size else core)
     lim = max(lim, 1.1 * (float(r.max()) + R)) if r.size else lim
+    lim = max(lim, 1.1 * core)
     top.set(xlim=(-lim, lim), ylim=(-lim, lim), aspect="equal", xlabel="x (Å)", ylabel="y (Å)",
             title="domain centres, down the fibril axis")
     top.legend(loc="upper right", fontsize=7)
@@ -61,7 +79,8 @@ def draw(result: dict):
     width = max(1.0, (float(r.max()) if r.size else 1.0) / 40)
     bins = np.arange(0, (float(r.max()) if r.size else 1.0) + 2 * width, width)
     dens.hist(r, bins=bins, density=True, color="0.55", edgecolor="0.3")
-    for x, colour, label in ((env["r_median"], "k", f"median {env['r_median']:.1f} Å"),
+    for x, colour, label in ((core, "steelblue", f"core reach {core:.1f} Å"),
+                             (env["r_median"], "k", f"median {env['r_median']:.1f} Å"),
                              (env["r95"], "darkorange", f"r95 {env['r95']:.1f} Å"),
                              (env["r95"] + R, "firebrick",
                               f"r95 + R: outer diameter {env['outer_diameter']:.0f} Å")):

@@ -1,5 +1,6 @@
 """--movie: the bake as a movie. Workbench, every k-th baked frame and the last, clashing
-globules red on the last frame, which is held for a second.
+globules red (grazing ones pale red) on the last frame, which is held for a second; every frame
+with the legend and scale bar of exports/legend.py where matplotlib is there.
 
 Each frame is rendered to a PNG with render.py's settings (restored afterwards), then joined:
 .mp4 by Blender's own FFmpeg (H.264, through a temporary sequencer scene: no extra library),
@@ -18,10 +19,10 @@ import bpy
 import numpy as np
 
 from . import files
-from ..analysis import clashing_layers
+from ..analysis import clash_kinds
 from ..builders import find_model
 from ..builders.model import colour_globules
-from . import dressing, render
+from . import dressing, legend, render
 from .options import MOVIE_FORMATS, OptionError
 
 FPS = 24
@@ -105,8 +106,14 @@ def _render_frames(scene, model, result, frames, folder, width, height, progress
     for frame in frames:
         scene.frame_set(frame)
         points.append(dressing.model_points(model))
-    dressing.frame_camera(dressed.camera, np.concatenate(points), width / height,
-                          dressing.view_azimuth(model))
+    points = np.concatenate(points)
+    dressing.frame_camera(dressed.camera, points, width / height, dressing.view_azimuth(model))
+    deep, grazing = clash_kinds(result)
+    # every frame carries the legend (its clash and graze counts are the last frame's) and the
+    # scale bar of the one camera the whole movie uses
+    entries = render.legend_entries(model, deep, grazing, result)
+    scale = render.angstrom_per_pixel(dressed.camera, points, width)
+    note = render.scale_note(model)
     dressing.aim_light(dressed.light, dressed.camera)
     settings = render.render_settings(scene, dressed.camera, ENGINE, width, height, 1, False)
     pngs = []
@@ -114,7 +121,7 @@ def _render_frames(scene, model, result, frames, folder, width, height, progress
         for frame in frames:
             scene.frame_set(frame)
             if frame == frames[-1]:
-                colour_globules(model, clashing_layers(result), scene)
+                colour_globules(model, deep, scene, grazing)
             png = folder / f"frame{frame:06d}.png"
             with render.captured_output() as log:
                 try:
@@ -122,6 +129,8 @@ def _render_frames(scene, model, result, frames, folder, width, height, progress
                 except Exception as exc:
                     raise MovieError(f"frame {frame}: {render.one_line(exc)}"
                                      f"{render.last_words(log())}") from exc
+            if legend.why_not(width, height) is None:
+                legend.compose(png, png, entries, scale, note=note)
             pngs.append(png)
             tick()
     return pngs

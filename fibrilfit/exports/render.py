@@ -14,10 +14,13 @@ import tempfile
 import time
 
 import bpy
+import numpy as np
 
-from . import files
+from . import files, legend
 from ..builders import find_model
-from .dressing import dress
+from ..builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR, part_colour
+from ..builders.periodic import FADE, FADE_TO
+from .dressing import SENSOR_MM, dress, model_points
 
 ENGINES = {"cycles": "CYCLES", "workbench": "BLENDER_WORKBENCH"}
 MIN_SIZE, MAX_SIZE = 16, 8192
@@ -40,11 +43,15 @@ def has_denoiser() -> bool:
 
 def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None,
                size: tuple[int, int] = DEFAULT_SIZE, samples: int = DEFAULT_SAMPLES,
-               engine: str = "cycles") -> dict:
-    """Render the model at the scene's current frame to `path` (PNG, written atomically).
+               engine: str = "cycles", grazing=(), result: dict | None = None,
+               with_legend: bool = True) -> dict:
+    """Render the model at the scene's current frame to `path` (PNG, written atomically), with
+    a legend and a scale bar (exports/legend.py) when matplotlib is there.
 
-    `clashing`: layers to colour red first (None keeps the current colours). Returns what
-    was done, for the result JSON. Raises RenderError with a one-line reason on failure.
+    `clashing`: layers to colour red first (None keeps the current colours); `grazing`: layers
+    whose globules only graze, pale red. `result`: the check's result, for the legend's counts.
+    Returns what was done, for the result JSON. Raises RenderError with a one-line reason on
+    failure.
     """
     scene = scene or bpy.context.scene
     if engine not in ENGINES:
@@ -58,7 +65,11 @@ def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None
     model = model or find_model(scene)
     if model is None:
         raise RenderError(f"scene '{scene.name}' holds no FibrilFit model to render")
-    dressing = dress(scene, model, clashing, aspect=width / height)
+    dressing = dress(scene, model, clashing, aspect=width / height, grazing=grazing)
+    why = legend.why_not(width, height) if with_legend else "not asked for"
+    drawn = {"drawn": False, "reason": why}
+    entries = legend_entries(model, clashing or (), grazing, result)
+    scale = angstrom_per_pixel(dressing.camera, model_points(model), width)
     denoise = engine == "cycles" and has_denoiser()
     t = time.perf_counter()
     # Blender's C code prints device probes and per-tile progress on fds 1 and 2: keep them
@@ -70,10 +81,49 @@ def render_png(scene: bpy.types.Scene | None, path, *, model=None, clashing=None
                 files.atomic_write(path, lambda tmp: render_frame(scene, tmp))
         except Exception as exc:  # Blender reports render failures as RuntimeError
             raise RenderError(one_line(exc) + last_words(log())) from exc
+    if why is None:
+        drawn = {}
+        files.atomic_write(path, lambda tmp: drawn.update(
+            legend.compose(path, tmp, entries, scale, note=scale_note(model))))
     return {"path": str(path), "engine": engine, "width": width, "height": height,
+            "legend": drawn,
             "samples": samples if engine == "cycles" else None,
             "denoiser": "OpenImageDenoise" if denoise else None,
             "frame": scene.frame_current, "seconds": round(time.perf_counter() - t, 3)}
+
+
+def legend_entries(model, clashing, grazing, result: dict | None = None) -> list[tuple]:
+    """(label, colour) for every colour in the picture: core, linker, each protofilament's
+    domains, and the clash and graze colours with how many domains each marks."""
+    k = model.params.protofilaments
+    band = ((result or {}).get("sphere_check") or {}).get("tolerance")
+    within = f" ≤ {band:.2f} Å" if band else ""
+    deeper = f" > {band:.2f} Å" if band else ""
+    domains = ([("domain", part_colour("globule", 0))] if k == 1 else
+               [(f"domain, protofilament {j + 1}", part_colour("globule", j)) for j in range(k)])
+    images = []
+    if model.params.periodic:  # the cell's screw images, faded towards the backdrop
+        faded = tuple(c + FADE * (b - c) for c, b in zip(part_colour("globule", 0), FADE_TO))
+        images = [("images of the periodic cell", faded)]
+    return [("fibril core", COLORS["slab"]), ("linker", COLORS["residue"]), *domains, *images,
+            (f"clash: overlap{deeper} ({len(clashing)})", CLASH_COLOR),
+            (f"graze: overlap{within}, mesh resolution ({len(grazing)})", GRAZE_COLOR)]
+
+
+def angstrom_per_pixel(camera, points, width: int) -> float:
+    """Å per pixel across the picture at the depth of the model's centre (perspective: the
+    scale bar is exact there, nearer parts look larger)."""
+    pts = np.asarray(points, dtype=float)
+    centre = (pts.min(axis=0) + pts.max(axis=0)) / 2
+    m = np.array(camera.matrix_world, dtype=float)
+    depth = float((m[:3, 3] - centre) @ m[:3, 2])  # the camera looks along its -Z
+    return depth * SENSOR_MM / camera.data.lens / width
+
+
+def scale_note(model) -> str:
+    p = model.params
+    return (f"{p.layers} layers, linker {p.linker}, domain {p.globule_diameter:g} Å; "
+            "scale at the fibril axis")
 
 
 def render_frame(scene, tmp: pathlib.Path) -> None:

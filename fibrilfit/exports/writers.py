@@ -11,7 +11,7 @@ from typing import Callable
 
 import bpy
 
-from ..analysis import clashing_layers
+from ..analysis import clash_kinds
 from ..builders import find_model, keep_bake
 from ..model import cases
 from . import dressing, envelope_plot, files, mmcif, movie, pdb, render
@@ -23,7 +23,8 @@ def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> 
     --render)."""
     model = find_model(scene)
     if model is not None:
-        dressing.dress(scene, model, clashing_layers(result), aspect=aspect)
+        deep, grazing = clash_kinds(result)
+        dressing.dress(scene, model, deep, aspect=aspect, grazing=grazing)
 
 
 def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last",
@@ -66,8 +67,10 @@ def write_atoms(scene: bpy.types.Scene, result: dict, path, sources) -> dict:
 
 
 def write_render(scene: bpy.types.Scene, result: dict, path, options: dict) -> dict:
-    """--render: the final frame as a PNG, clashing globules red."""
-    return render.render_png(scene, path, clashing=clashing_layers(result),
+    """--render: the final frame as a PNG, clashing globules red, grazing ones pale red, with
+    a legend and a scale bar."""
+    deep, grazing = clash_kinds(result)
+    return render.render_png(scene, path, clashing=deep, grazing=grazing, result=result,
                              size=options["size"], samples=options["samples"],
                              engine=options["engine"])
 

@@ -33,7 +33,8 @@ BUTTONS = {
     "Layers": (("fibrilfit.replicate_layers", "layers"),),
     "Simulation": (("fibrilfit.bake", "baked"),),
     "Check": (("fibrilfit.check_intersections", "checked"), ("fibrilfit.join_globules", None),
-              ("fibrilfit.render", None), ("fibrilfit.export_pdb", None)),
+              ("fibrilfit.render", None), ("fibrilfit.export_pdb", None),
+              ("fibrilfit.report", None)),
 }
 
 

@@ -11,10 +11,10 @@ from helpers import run_cli
 from fibrilfit import exits as ff_exits, pipeline
 from fibrilfit.cli import commands as cli
 from fibrilfit.model import params as P
-from fibrilfit.analysis import clashing_layers
+from fibrilfit.analysis import clash_kinds, clashing_layers
 from fibrilfit.analysis.verdict import chain_positions
 from fibrilfit.builders import clear_model
-from fibrilfit.builders.model import CLASH_COLOR, COLORS, colour_globules
+from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR, colour_globules
 from fibrilfit.exports import dressing, render
 
 
@@ -128,12 +128,15 @@ def test_render_shows_red_only_where_globules_clash(scene, tmp_path):
     scene.render.resolution_x, scene.render.resolution_y = size
     scene.render.engine = "BLENDER_WORKBENCH"
     scene.render.filepath = "//mine_"
-    calm = render.render_png(scene, tmp_path / "calm.png", clashing=[], size=size, samples=2)
+    # (the model's own colours: the legend, which has a red swatch, is tested on its own)
+    calm = render.render_png(scene, tmp_path / "calm.png", clashing=[], size=size, samples=2,
+                             with_legend=False)
     assert calm["engine"] == "cycles" and calm["width"] == 128 and calm["seconds"] > 0
     rgb = pixels(tmp_path / "calm.png")
     assert rgb.shape == (72, 128, 3)
     assert rgb.std() > 0.05 and not red(rgb).any()  # a picture, and nothing red in it
-    render.render_png(scene, tmp_path / "clash.png", clashing=[2], size=size, samples=2)
+    render.render_png(scene, tmp_path / "clash.png", clashing=[2], size=size, samples=2,
+                      with_legend=False)
     rgb = pixels(tmp_path / "clash.png")
     assert red(rgb).sum() > 100
     # The top globule (layer 2) is the red one: its centre's pixel is red.
@@ -219,9 +222,11 @@ def test_blend_opens_dressed_and_scrubbable(tmp_path):
         globules = sorted((ob for ob in scene.objects if ob.get("fibrilfit") == "globule"),
                           key=lambda ob: ob["fibrilfit_layer"])
         assert all(ob.data.materials[0].get("fibrilfit") == "material" for ob in globules)
-        clashing = clashing_layers(r)
+        deep, grazing = clash_kinds(r)  # deep clashes red, grazes pale red
+        assert sorted(deep + grazing) == clashing_layers(r)
         for k, ob in enumerate(globules):
-            want = CLASH_COLOR if k in clashing else COLORS["globule"]
+            want = (CLASH_COLOR if k in deep else GRAZE_COLOR if k in grazing
+                    else COLORS["globule"])
             assert tuple(ob.color) == pytest.approx(want)
         scene.frame_set(1)
         scene.frame_set(40)

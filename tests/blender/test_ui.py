@@ -17,10 +17,10 @@ from mathutils.bvhtree import BVHTree
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
 from fibrilfit.ui import properties, registration
-from fibrilfit.analysis import bvh_clashes
+from fibrilfit.analysis import bvh_clashes, clash_kinds
 from fibrilfit.analysis.verdict import world_matrices
 from fibrilfit.builders import find_model, model_stage
-from fibrilfit.builders.model import CLASH_COLOR, COLORS
+from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR
 from fibrilfit.ui.operators import common, simulate
 from fibrilfit.ui import panels
 
@@ -203,8 +203,10 @@ def test_steps_in_order_match_the_api(ui, scene):
     assert shown["max_bond_stretch"] == pytest.approx(api["max_bond_stretch"], abs=1e-6)
     assert (shown["linker_intact"], shown["accommodated"]) == (api["linker_intact"],
                                                                api["accommodated"])
-    red = {k for pair in api["clashing_pairs"] for k in pair[:2]}
-    expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in red else COLORS["globule"]))
+    deep, grazing = clash_kinds(api)  # deep clashes red, globules that only graze pale red
+    assert set(deep + grazing) == {k for pair in api["clashing_pairs"] for k in pair[:2]}
+    expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in deep else GRAZE_COLOR
+                                            if k in grazing else COLORS["globule"]))
                 for k in range(SMALL["layers"])]
     assert colours == expected
 
@@ -306,11 +308,12 @@ def test_colours_follow_each_check(ui, scene):
         ui.score_layers = exclude
         run("check_intersections")
         result = stored_result(scene)
-        red = {k for pair in result["clashing_pairs"] for k in pair[:2]}
+        deep, grazing = clash_kinds(result)  # deep clashes red, grazes pale red
         scored = range(exclude, SMALL["layers"] - exclude)
         assert all(i in scored or j in scored for i, j, _ in result["clashing_pairs"])
         for k, ob in enumerate(find_model(scene).globules):
-            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in red else COLORS["globule"])
+            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in deep else GRAZE_COLOR
+                                                    if k in grazing else COLORS["globule"])
     run("bake")  # the old verdict and colours no longer apply
     assert ui.verdict == "" and model_stage(scene) == "baked"
     assert all(tuple(ob.color) == pytest.approx(COLORS["globule"])
@@ -505,7 +508,7 @@ def test_panels_draw_in_every_state(ui, scene):
                                        + switches + ["use_periodic"])  # the cell's checkbox
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
-                                                    "load_case", "save_case",
+                                                    "report", "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
                                                     "import_domain")}

@@ -8,7 +8,7 @@ import traceback
 from ...model import params as P
 from ... import pipeline
 from .. import properties
-from ...analysis import clashing_layers
+from ...analysis import clash_kinds
 from ...builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
                                update_params)
 from ...builders.physics import SceneConflict
@@ -113,7 +113,8 @@ def record_bake(context, model, bake: dict) -> None:
 def record_check(context, model, result: dict) -> None:
     """After a check: the verdict in scene.fibrilfit, clashing globules red, the JSON kept."""
     properties.store_result(settings(context), result)
-    colour_globules(model, clashing_layers(result))
+    deep, grazing = clash_kinds(result)
+    colour_globules(model, deep, grazing=grazing)
     merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
     model.root[RESULT] = json.dumps(merged)
     set_stage(model, "checked")

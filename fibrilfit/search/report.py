@@ -1,0 +1,300 @@
+"""`headless.py report`: the whole answer in one command and one page.
+
+Measures nothing itself (the command line has measured the structures and validated the model
+before anything runs); it runs R restarts at the asked linker (P(fit) with its Wilson interval,
+search/restarts.py), walks the minimal linker with the same seeds (search/minimal.py: the
+restarts' records are reused, nothing runs twice), runs the best layout again here, renders it
+with its legend and scale bar, plots the envelope, and writes DIR/report.html (one
+self-contained page, exports/report_page.py), DIR/report.json and the pictures. The method is
+in docs/guide/report.md#method.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib.util
+import platform
+import sys
+import time
+
+from .. import exits
+from ..batch import outdir
+from ..batch.executors import SweepError, cpu_count, make_executor
+from ..exports import files
+from ..model import params as P
+from ..sweep import runner
+from . import command, minimal, restarts
+
+HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
+                                      "envelope.png", "best_layout.json")
+DEFAULT_RESTARTS, DEFAULT_MAX_LINKER = 8, 30
+STAGES = ("restarts", "minimal linker", "best layout", "pictures", "page")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """The report's own options (the model, case and structure options are `run`'s)."""
+    g = parser.add_argument_group("report")
+    g.add_argument("--restarts", type=int, default=DEFAULT_RESTARTS, metavar="R",
+                   help=f"seeds run at the linker and at every length the minimal-linker walk "
+                        f"tries (SEED..SEED+R-1) [default {DEFAULT_RESTARTS}]")
+    g.add_argument("--max-linker", type=int, default=DEFAULT_MAX_LINKER, metavar="N",
+                   help=f"the walk gives up when no length up to N fits "
+                        f"[default {DEFAULT_MAX_LINKER}]")
+    g.add_argument("--out", metavar="DIR", default="out/report",
+                   help=f"{HTML}, {JSON}, the pictures and every run ({outdir.RESULTS}) go here "
+                        f"[default out/report]")
+    g.add_argument("--resume", action="store_true",
+                   help=f"reuse the runs already in DIR/{outdir.RESULTS}")
+    g.add_argument("--quiet", action="store_true", help="no progress bar")
+    command.add_executor_options(g)
+
+
+def options(**given) -> argparse.Namespace:
+    """The report's options with their command-line defaults, for callers without a command
+    line (the sidebar's Report… button)."""
+    out = {"restarts": DEFAULT_RESTARTS, "max_linker": DEFAULT_MAX_LINKER, "out": "out/report",
+           "resume": False, "quiet": False, "executor": "processes", "workers": None,
+           "scheduler": None, "timeout": None, "force": False, "command_line": [],
+           "command": "report"}
+    unknown = set(given) - set(out)
+    if unknown:
+        raise TypeError(f"unknown report options: {sorted(unknown)}")
+    return argparse.Namespace(**{**out, **given})
+
+
+def check_options(args) -> None:
+    """The report's own options, refused in one line before anything runs."""
+    command._check_executor_options(args)
+    if args.restarts < 1:
+        raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
+    lmax = P.field_spec("linker")["max"]
+    if not 1 <= args.max_linker <= lmax:
+        raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
+    wanted = ("tqdm", "matplotlib", *(["distributed"] if args.executor == "dask" else []))
+    missing = [name for name in wanted if importlib.util.find_spec(name) is None]
+    if missing:
+        raise exits.UsageError(f"report: needs the Python package(s) {', '.join(missing)}, "
+                               f"which this Python (e.g. Blender's own) does not have: "
+                               f"pip install {' '.join(missing)}")
+
+
+def seeds_of(p: P.Params, r: int) -> range:
+    seeds = range(p.seed, p.seed + r)
+    if seeds[-1] > P.field_spec("seed")["max"]:
+        raise P.ParamError("seed", f"seed + restarts - 1 must be at most "
+                                   f"{P.field_spec('seed')['max']} (got {seeds[-1]})")
+    return seeds
+
+
+def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None,
+                case: dict | None, look: dict, sources: dict, run_here) -> dict:
+    """Run everything and write the report into args.out (checked, not yet created).
+
+    `values`: the model values as given and measured (strings allowed; no linker needed);
+    `run_here(p)`: builds, bakes and checks `p` in this process's scene (the command line's
+    fresh scene, or the sidebar's) and returns the result. Returns report.json's document.
+    """
+    from .. import pipeline
+    from ..exports import report_page
+    seeds = seeds_of(p, args.restarts)
+    out = outdir.out_dir(args)
+    out.mkdir(parents=True, exist_ok=True)
+    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
+    results = out / outdir.RESULTS
+    runner.repair_tail(results)
+    t0 = time.perf_counter()
+    timings = {}
+    with _stages(not args.quiet) as stage:
+        stage("restarts")
+        t = time.perf_counter()
+        records = _restarts(args, p, seeds, out)
+        summary = restarts.summarise(records)
+        timings["restarts"] = round(time.perf_counter() - t, 1)
+
+        stage("minimal linker")
+        t = time.perf_counter()
+        # the walk's base is the model with its linker and seed set per run (seeds as above)
+        walk_values = {k: v for k, v in values.items()
+                       if k not in ("linker", "seed", "globule_diameter")}
+        walk_values["protocol"] = p.protocol
+        # from minimal-linker's own guess: a miss runs to the frame cap and costs ~10x a fit
+        # (6CU7 + ubiquitin: 130-150 s against 9-20 s per run), so walking down from a long
+        # asked linker costs more than it saves; the asked length's runs are reused if reached
+        walk = minimal.Walk(p.globule_diameter,
+                            min(minimal.first_guess(p.globule_diameter), args.max_linker),
+                            args.max_linker)
+        try:
+            command._walk(args, walk_values, seeds, [walk], out)
+        except SweepError as exc:
+            raise exits.UsageError(str(exc)) from None
+        row = walk.row()
+        timings["minimal_linker"] = round(time.perf_counter() - t, 1)
+
+        stage("best layout")
+        t = time.perf_counter()
+        best_seed = summary["best_seed"] if summary["best_seed"] is not None else p.seed
+        best = run_here(p.replace(seed=best_seed))
+        if structure_block:
+            best["structure"] = structure_block
+        if case is not None:
+            best["case"] = case
+        timings["best_layout"] = round(time.perf_counter() - t, 1)
+
+        stage("pictures")
+        t = time.perf_counter()
+        pictures, problems = _pictures(best, out, look)
+        files.write_json(out / BEST, best)
+        timings["pictures"] = round(time.perf_counter() - t, 1)
+
+        stage("page")
+        doc = document(args, p, best, summary, row, sources=sources,
+                       structure_block=structure_block, case=case, pictures=pictures,
+                       problems=problems, version=pipeline.version())
+        timings["total"] = round(time.perf_counter() - t0, 1)
+        doc["timings_s"] = timings
+        files.write_json(out / JSON, doc)
+        files.write_text(out / HTML, report_page.html(doc, out))
+    return doc
+
+
+def _restarts(args, p: P.Params, seeds: range, out) -> list[dict]:
+    from .. import pipeline
+    try:
+        with make_executor(args, log_path=out / command.LOG) as executor:
+            return restarts.run(executor, p.to_dict(), seeds, out / outdir.RESULTS,
+                                window=args.workers or cpu_count(), force=args.force,
+                                progress=not args.quiet, version=pipeline.version())
+    except SweepError as exc:
+        raise exits.UsageError(str(exc)) from None
+
+
+def _pictures(best: dict, out, look: dict) -> tuple[dict, list[str]]:
+    """The best layout rendered (legend, scale bar) and the envelope plot; failures reported,
+    never fatal (the page says what is missing)."""
+    import bpy
+    from ..exports import writers
+    pictures, problems = {}, []
+    scene = bpy.context.scene
+    writers.prepare(scene, best, aspect=look["aspect"])
+    for key, label, path, write in (
+            ("render", "render", out / RENDER,
+             lambda: writers.write_render(scene, best, out / RENDER, look)),
+            ("envelope_plot", "envelope plot", out / ENVELOPE,
+             lambda: writers.envelope_plot.write(best, out / ENVELOPE))):
+        problem = writers.export(best, key, label, write)
+        if problem:
+            problems.append(problem)
+        else:
+            pictures[key] = path.name
+    return pictures, problems
+
+
+def answer_of(best: dict, summary: dict) -> str:
+    """The best restart's answer, by the one rule (model/answer.py): 'fits', 'borderline' (at
+    the criterion) or 'no layout found'."""
+    from ..model import answer
+    return answer.of_result(best) or answer.NO_LAYOUT
+
+
+def warnings_of(best: dict, structure_block: dict | None, summary: dict, row: dict,
+                problems: list[str]) -> list[str]:
+    """Every warning the answer rests on, each once: the structures', the run's, the search's."""
+    out = list(best.get("warnings") or [])
+    worker = next((r for r in summary["runs"] if r["seed"] == best.get("seed")), None)
+    if worker and worker.get("status") == "ok" and \
+            worker.get("accommodated") != best.get("accommodated"):
+        out.append(f"the best seed ({best.get('seed')}), run again for the pictures, gave "
+                   f"accommodated {best.get('accommodated')} where its restart gave "
+                   f"{worker.get('accommodated')}")
+    for key in ("fibril", "domain"):
+        measured = ((structure_block or {}).get(key) or {}).get("measured") or {}
+        out += [f"{key}: {w}" for w in measured.get("warnings") or []]
+    if summary["failed"]:
+        out.append(f"{summary['failed']} of {summary['failed'] + summary['restarts']} restarts "
+                   f"failed to run")
+    if row.get("error"):
+        out.append(f"minimal linker: {row['error']}")
+    out += problems
+    seen = set()
+    return [w for w in out if not (w in seen or seen.add(w))]
+
+
+def versions(version: str) -> dict:
+    import bpy
+    import numpy
+    out = {"fibrilfit": version, "blender": bpy.app.version_string,
+           "python": platform.python_version(), "numpy": numpy.__version__}
+    for name in ("gemmi", "matplotlib"):
+        with contextlib.suppress(ImportError):
+            out[name] = __import__(name).__version__
+    return out
+
+
+def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources: dict,
+             structure_block, case, pictures: dict, problems: list[str], version: str) -> dict:
+    """report.json: the question, the model and its sources, the answer and what it rests on."""
+    low, high = summary["p_fit_interval"]
+    tol = p.stretch_tolerance
+    m = row["minimal_linker"]
+    measured_width = (case or {}).get("envelope_width")
+    return {
+        "question": (f"Can domains of {p.globule_diameter:g} Å, tethered by {p.linker}-residue "
+                     f"linkers to every {'chain' if p.protofilaments > 1 else 'layer'} of this "
+                     f"fibril, all fit without clashing, and how long must the linker be?"),
+        "command": list(getattr(args, "command_line", None) or []),
+        "answer": answer_of(best, summary),
+        "model": p.to_dict(),
+        "sources": {**sources, **(best.get("sources") or {})},
+        "warnings": warnings_of(best, structure_block, summary, row, problems),
+        "p_fit": {"fits": summary["accommodated"], "runs": summary["restarts"],
+                  "low": low, "high": high, "p": summary["p_fit"], "linker": p.linker,
+                  "protocol": p.protocol, "seeds": [p.seed, p.seed + args.restarts - 1],
+                  "failed": summary["failed"], "best_seed": summary["best_seed"],
+                  "per_seed": summary["runs"]},
+        "minimal_linker": {
+            "linker": m, "p_fit": row["p_fit"], "interval": row["p_fit_interval"],
+            "linker_below": row["linker_below"], "p_fit_below": row["p_fit_below"],
+            "interval_below": row["p_fit_below_interval"], "restarts": args.restarts,
+            "max_linker": args.max_linker, "tried": row["tried"], "error": row["error"],
+            "method": minimal.__doc__.split("\n\n")[1].replace("\n", " ")},
+        "margin": {
+            "linker_residues": None if m is None else p.linker - m,
+            "stretch_tolerance": tol,
+            "best_max_bond_stretch": best.get("max_bond_stretch"),
+            "stretch_margin": (None if best.get("max_bond_stretch") is None
+                               else round(tol - best["max_bond_stretch"], 6))},
+        "best_layout": {k: best.get(k) for k in (
+            "seed", "verdict", "accommodated", "max_bond_stretch", "max_overlap",
+            "frames_simulated", "settled_at")} | {
+            "clashing_pairs": len(best.get("clashing_pairs") or []),
+            "grazing_pairs": len(best.get("grazing_pairs") or [])},
+        "envelope": {"best_layout": best.get("envelope"),
+                     "outer_diameter_over_restarts": summary.get("outer_diameter"),
+                     "measured_width": measured_width,
+                     "measured_width_source": (case or {}).get("envelope_width_source")},
+        "structure": structure_block,
+        "case": case,
+        "versions": versions(version),
+        "files": {"html": HTML, "json": JSON, "best_layout_json": BEST,
+                  "results": outdir.RESULTS, **pictures},
+    }
+
+
+@contextlib.contextmanager
+def _stages(show: bool):
+    """A callable naming the stage now running: a tqdm bar over STAGES on stderr."""
+    if not show:
+        yield lambda name: None
+        return
+    from tqdm import tqdm
+    with tqdm(total=len(STAGES), desc="fibrilfit report", unit="stage", file=sys.stderr,
+              leave=True, dynamic_ncols=True) as bar:
+        started = []
+
+        def stage(name):
+            if started:
+                bar.update(1)
+            started.append(name)
+            bar.set_postfix_str(name)
+        yield stage
+        bar.update(1)

@@ -1,0 +1,214 @@
+"""Issue #23: pictures that say what they show, and one command, one report."""
+import base64
+import json
+import re
+
+import numpy as np
+from mathutils import Vector
+import pytest
+from helpers import ROOT, run_cli
+
+from fibrilfit import pipeline, structure
+from fibrilfit.analysis import clash_kinds, clashing_layers
+from fibrilfit.builders.model import CLASH_COLOR, GRAZE_COLOR, colour_globules, part_colour
+from fibrilfit.exports import envelope_plot, legend, render
+from fibrilfit.model import params as P
+from fibrilfit.sweep.stats import wilson
+
+DATA = ROOT / "tests" / "data"
+FAST = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow-cycles", "0",
+        "--globule-diameter", "12", "--linker", "3", "--restarts", "2", "--max-linker", "4",
+        "--workers", "2", "--render-engine", "workbench", "--render-size", "320x180"]
+
+
+# ---- clash and graze in two colours -------------------------------------------------------------
+
+def test_deep_clashes_and_grazes_are_told_apart():
+    """A crafted result: pair (0, 1) is deep, pair (1, 2) only grazes, pair (3, 4) only grazes.
+    Globule 1 is in a deep pair, so it is a clash; 2, 3 and 4 only graze."""
+    r = {"verdict": "intersection", "clashing_pairs": [[0, 1, 0.9], [1, 2, 0.1], [3, 4, 0.05]],
+         "grazing_pairs": [[1, 2, 0.1], [3, 4, 0.05]]}
+    assert clash_kinds(r) == ([0, 1], [2, 3, 4])
+    assert sorted(sum(clash_kinds(r), [])) == clashing_layers(r)
+    assert clash_kinds({**r, "verdict": "successful"}) == ([], [])
+    assert clash_kinds({**r, "grazing_pairs": []}) == ([0, 1, 2, 3, 4], [])
+
+
+def test_clash_and_graze_globules_get_different_colours(scene):
+    pipeline.run(P.make_params(layers=5, linker=2), scene, stop_after="build")
+    model = pipeline.current_model(scene)
+    assert colour_globules(model, [0], scene, grazing=[0, 2]) == [0]  # deep wins over graze
+    colours = [tuple(round(c, 3) for c in ob.color) for ob in model.globules]
+    deep, pale = (tuple(round(c, 3) for c in col) for col in (CLASH_COLOR, GRAZE_COLOR))
+    assert deep != pale
+    assert colours[0] == deep and colours[2] == pale
+    assert colours[1] == tuple(round(c, 3) for c in part_colour("globule", 0))
+
+
+# ---- legend and scale bar -----------------------------------------------------------------------
+
+def test_legend_is_composed_onto_the_picture(tmp_path):
+    from matplotlib.image import imread, imsave
+    plain = np.full((180, 320, 3), 0.58, dtype=np.float32)
+    plain[60:120, 200:300] = 0.9  # "the model", upper right area
+    imsave(tmp_path / "in.png", plain)
+    entries = [("fibril core", (0.55, 0.62, 0.75)), ("clash: overlap > 0.29 Å (2)", CLASH_COLOR),
+               ("graze: overlap ≤ 0.29 Å (1)", GRAZE_COLOR)]
+    info = legend.compose(tmp_path / "in.png", tmp_path / "out.png", entries, 0.25)
+    out = imread(tmp_path / "out.png")[..., :3]
+    assert out.shape == plain.shape  # the same size
+    assert info["drawn"] and info["entries"] == [e[0] for e in entries]
+    assert info["scale_bar_angstrom"] == 10  # a fifth of 320 px at 0.25 Å/px is 16 Å: 10
+    corner = info["legend_corner"]
+    assert corner != "upper right"  # not over the model
+    rows = slice(0, 60) if corner.startswith("upper") else slice(120, 180)
+    cols = slice(0, 120) if corner.endswith("left") else slice(200, 320)
+    assert np.abs(out[rows, cols] - plain[rows, cols]).max() > 0.3  # the legend is there
+    assert legend.scale_length(0.4, 640) == 50 and legend.scale_length(1.3, 640) == 100
+
+
+def test_every_render_has_a_legend_with_clash_and_graze(scene, tmp_path):
+    pipeline.run(P.make_params(layers=3, linker=3), scene, stop_after="build")
+    with_it = render.render_png(scene, tmp_path / "a.png", clashing=[0], grazing=[2],
+                                size=(320, 180), engine="workbench")
+    without = render.render_png(scene, tmp_path / "b.png", clashing=[0], grazing=[2],
+                                size=(320, 180), engine="workbench", with_legend=False)
+    assert with_it["legend"]["drawn"] and without["legend"] == {"drawn": False,
+                                                              "reason": "not asked for"}
+    tiny = render.render_png(scene, tmp_path / "c.png", size=(64, 36), engine="workbench")
+    assert tiny["legend"] == {"drawn": False,
+                              "reason": "the picture is smaller than 240x135 pixels"}
+    labels = with_it["legend"]["entries"]
+    assert any(x.startswith("clash") and x.endswith("(1)") for x in labels)
+    assert any(x.startswith("graze") and x.endswith("(1)") for x in labels)
+    assert with_it["legend"]["scale_bar_angstrom"] > 0
+    from matplotlib.image import imread
+    a, b = imread(tmp_path / "a.png")[..., :3], imread(tmp_path / "b.png")[..., :3]
+    assert a.shape == b.shape == (180, 320, 3) and np.abs(a - b).max() > 0.3
+
+
+# ---- the envelope plot's core -------------------------------------------------------------------
+
+def test_envelope_plot_draws_the_structure_models_own_core(scene):
+    values = structure.model_values(structure.measure_fibril(DATA / "6cu7.pdb.gz"), None)
+    outline = np.asarray(values["core_outline"])
+    reach = float(np.hypot(outline[:, 0], outline[:, 1]).max())
+    assert 45 < reach < 52  # 6CU7's core reaches ~48-50 Å, not the slab's 23 Å
+    centres = np.c_[np.full(6, 70.0), np.zeros(6), 4.8 * np.arange(6)]
+    p = P.make_params(layers=6, score_layers=0, **values)
+    result = {"params": p.to_dict(), "globule_centres": centres.tolist(), "scored_layers": [0, 5],
+              "seed": 0, "envelope": {"r_median": 70.0, "r95": 70.0, "r_max": 70.0, "n": 6,
+                                      "outer_diameter": 170.0}}
+    fig = envelope_plot.draw(result)
+    top = fig.axes[0]
+    rings = {p.get_label(): p for p in top.patches if p.get_label().startswith("core reach")}
+    (label, ring), = rings.items()
+    assert ring.radius == pytest.approx(reach) and "outline" in label
+    drawn = [p for p in top.patches if p.get_label() == "core outline (first layer)"]
+    assert len(drawn) == 1 and len(drawn[0].get_xy()) >= len(outline)
+    # the default slab keeps its corner
+    slab = envelope_plot.core_shape(P.DEFAULTS.to_dict())
+    assert slab[1] == pytest.approx(np.hypot(*P.DEFAULTS.slab[:2]) / 2)
+
+
+# ---- one command, one report --------------------------------------------------------------------
+
+def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
+    out = tmp_path / "rep"
+    proc = run_cli("report", *FAST, "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    assert "fibrilfit report" in proc.stderr  # the progress bar
+    doc = json.loads((out / "report.json").read_text())
+    assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
+            "files"} <= set(doc)
+    pf = doc["p_fit"]
+    assert {"fits", "runs", "low", "high"} <= set(pf) and pf["runs"] == 2
+    assert [pf["low"], pf["high"]] == pytest.approx(wilson(pf["fits"], pf["runs"]), abs=1e-4)
+    assert doc["model"]["linker"] == 3 and doc["model"]["protocol"] == "inflate"
+    assert doc["sources"]["linker"] == "option" and doc["sources"]["protocol"] == "report default"
+    assert doc["sources"]["rise"] == "default"
+    m = doc["minimal_linker"]
+    if m["linker"] is not None and m["linker"] > 1:  # a fit at L and R misses at L - 1, measured
+        assert m["tried"][str(m["linker"] - 1)] == {"accommodated": 0, "restarts": 2}
+        assert m["tried"][str(m["linker"])]["accommodated"] >= 1
+    assert doc["answer"] in ("fits", "borderline", "no layout found")
+    assert (pf["fits"] > 0) == (doc["answer"] != "no layout found") or \
+        doc["answer"] == "borderline"
+    for name in doc["files"].values():
+        assert (out / name).is_file(), name
+    assert {"render", "envelope_plot"} <= set(doc["files"])
+    assert doc["command"][1:3] == ["report", "--layers"]
+    page = (out / "report.html").read_text()
+    # one self-contained page: every picture inside it, no outside file
+    srcs = re.findall(r'src="([^"]*)"', page)
+    assert len(srcs) == 2 and all(s.startswith("data:image/png;base64,") for s in srcs)
+    assert base64.b64decode(srcs[0].split(",", 1)[1]) == (out / doc["files"]["render"]).read_bytes()
+    assert "<link" not in page and "<script" not in page
+    for needle in ("P(fit)", "Minimal linker", "Wilson", "Warnings", "report --layers 3",
+                   "where each value came from", doc["versions"]["blender"]):
+        assert needle in page, needle
+    # every run is in results.jsonl; the walk reused the restarts at the linker (none twice)
+    runs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    keys = [(r["params"]["linker"], r["params"]["seed"]) for r in runs]
+    assert len(keys) == len(set(keys))
+
+
+@pytest.mark.parametrize("bad, needle", [
+    (["--linker", "0"], "linker"),
+    (["--layers", "many"], "layers"),
+    (["--fibril", "no-such-file.pdb"], "no-such-file"),
+    (["--restarts", "0"], "--restarts"),
+    (["--render-size", "wide"], "--render-size"),
+    (["--workers", "0"], "--workers"),
+])
+def test_report_refuses_what_run_refuses_and_writes_nothing(tmp_path, bad, needle):
+    out = tmp_path / "rep"
+    proc = run_cli("report", *FAST, *bad, "--out", str(out))
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and needle in proc.stderr
+    assert "Traceback" not in proc.stderr and not out.exists()
+    if bad[0] not in ("--restarts", "--render-size", "--workers", "--max-linker"):
+        ran = run_cli("run", *bad, "--layers", "3", "--stop-after", "build") if \
+            bad[0] != "--layers" else run_cli("run", *bad, "--stop-after", "build")
+        assert ran.returncode == 2  # run refuses it too
+
+
+def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path):
+    import bpy
+    from fibrilfit.ui import properties
+    ff.register()
+    try:
+        properties.write_params(scene.fibrilfit, P.make_params(
+            layers=3, linker=3, globule_diameter=12, protocol="inflate", grow_frames=20,
+            hold_frames=20, regrow_cycles=0))
+        out = tmp_path / "page"
+        assert bpy.ops.fibrilfit.report(directory=str(out), restarts=2, max_linker=4) == {
+            "FINISHED"}
+    finally:
+        ff.unregister()
+    doc = json.loads((out / "report.json").read_text())
+    assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
+            "files"} <= set(doc)
+    assert doc["p_fit"]["runs"] == 2 and doc["sources"]["linker"] == "sidebar"
+    assert (out / "report.html").read_text().count('src="data:image/png;base64,') == 2
+    # the page's command reproduces it from the case the button saved
+    assert doc["command"][1:4] == ["report", "--case", str(out / "case.toml")]
+    assert (out / "case.toml").is_file()
+
+
+def test_periodic_render_frames_the_cell_and_every_image(scene):
+    from bpy_extras.object_utils import world_to_camera_view
+
+    from fibrilfit.builders.periodic import MOVING, STATIC, image_collection
+    from fibrilfit.exports import dressing
+    pipeline.run(P.make_params(layers=8, linker=3, periodic=8), scene, stop_after="build")
+    model = pipeline.current_model(scene)
+    images = [ob for role in (MOVING, STATIC) if image_collection(model, role) is not None
+              for ob in image_collection(model, role).all_objects if ob.type == "MESH"]
+    assert images  # the cell has images to frame
+    d = dressing.dress(scene, model, [], aspect=16 / 9)
+    scene.render.resolution_x, scene.render.resolution_y = 1600, 900
+    for ob in [*images, *model.globules]:
+        for corner in ob.bound_box:  # every corner of every body in the picture, none cropped
+            u, v, depth = world_to_camera_view(scene, d.camera, ob.matrix_world @ Vector(corner))
+            assert -1e-6 <= u <= 1 + 1e-6 and -1e-6 <= v <= 1 + 1e-6 and depth > 0, ob.name

@@ -144,6 +144,9 @@ def run_minimal(args, values: dict) -> int:
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / RESULTS
     runner.repair_tail(results)
+    aside = outdir.set_aside_other_code(results)  # never mix results of other code
+    if aside:
+        print(aside, file=sys.stderr)
     try:
         _walk(args, values, seeds, walks, out)
     except SweepError as exc:

@@ -163,6 +163,52 @@ def test_every_job_cancelled_then_interrupted_and_resumed(tmp_path):
     assert all(r["status"] == "ok" for r in records)
 
 
+def default_partition() -> str:
+    cp = subprocess.run(["sinfo", "-h", "-o", "%P"], capture_output=True, text=True, timeout=30,
+                        check=True)
+    (name,) = [p.rstrip("*") for p in cp.stdout.split() if p.endswith("*")]
+    return name
+
+
+def set_partition(name: str, state: str) -> None:
+    subprocess.run(["scontrol", "update", f"PartitionName={name}", f"State={state}"],
+                   check=True, timeout=30)
+
+
+def test_sbatch_refusing_the_replacements_stops_in_one_line_and_resumes(tmp_path):
+    """Issue #25: every job ends and SLURM takes no new ones (the partition drained): the sweep
+    stops with one line and exit 2, its jobs gone, the finished runs kept; once SLURM takes jobs
+    again, --resume completes it without loss."""
+    out = tmp_path / "s"
+    args = (*LONGER, "--executor", "slurm", "--job-name", "ff-drain", "--out", str(out),
+            "--quiet")
+    partition = default_partition()
+    proc = start_sweep(*args)
+    try:
+        wait_for(lambda: count(out / "results.jsonl"), 180, "the first result")
+        set_partition(partition, "DRAIN")  # queued jobs run, new ones are refused
+        subprocess.run(["scancel", *jobs("ff-drain")], check=True, timeout=30)
+        _, stderr = proc.communicate(timeout=180)
+    finally:
+        set_partition(partition, "UP")
+        proc.kill()
+    assert proc.returncode == 2, stderr
+    kept = lines(out / "results.jsonl")
+    assert stderr.strip().splitlines() == [
+        "fibrilfit: error: SLURM refused the replacement jobs: sbatch: error: Batch job "
+        "submission failed: Required partition not available (inactive or drain); "
+        f"{len(kept)} results kept in {out / 'results.jsonl'}, continue with --resume"], stderr
+    assert 0 < len(kept) < 16
+    wait_for(lambda: not jobs("ff-drain", "PD,R"), 60, "the sweep's jobs to end")
+
+    cp = run_cli("sweep", *args, "--resume")
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert records[:len(kept)] == kept
+    assert len(records) == 16 and len(set(keys(records))) == 16  # every point, none twice
+    assert all(r["status"] == "ok" for r in records)
+
+
 def test_sbatch_refusing_the_jobs_is_one_line(tmp_path):
     cp = run_cli("sweep", "--linker", "2", "--layers", "4", "--executor", "slurm",
                  "--partition", "no-such-partition", "--out", str(tmp_path / "s"), "--quiet")

@@ -58,7 +58,7 @@ def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
     cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
            "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
            "--workers", str(workers), "--quiet", "--no-plot"]
-    if fits_at_real and p.linker <= MAX_LINKER:
+    if fits_at_real:  # beyond MAX_LINKER too: the walk then still stops at the cap
         cmd += ["--known-fit", str(p.linker)]
     if (out / "results.jsonl").exists():
         cmd.append("--resume")

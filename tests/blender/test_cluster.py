@@ -167,6 +167,28 @@ def test_every_job_cancelled_then_interrupted_and_resumed(tmp_path):
     assert all(r["status"] == "ok" for r in records)
 
 
+def test_a_job_cancelled_while_queued_is_replaced(tmp_path):
+    """Issue #25: a job cancelled before it started never had a Dask worker, so Dask never
+    misses it; the executor's watchdog, asking squeue, replaces it. 3 one-core jobs on the
+    2-CPU node: one waits in the queue."""
+    out = tmp_path / "s"
+    args = ("--linker", "2,6", "--layers", "40", "--seeds", "8", "--workers", "3",
+            "--executor", "slurm", "--job-name", "ff-queued", "--out", str(out), "--quiet")
+    proc = start_sweep(*args)
+    try:
+        queued = wait_for(lambda: jobs("ff-queued", "PD"), SLOW, "a job waiting in the queue")
+        before = set(jobs("ff-queued", "PD,R"))
+        subprocess.run(["scancel", *queued], check=True, timeout=30)
+        wait_for(lambda: set(jobs("ff-queued", "PD,R")) - before, 120, "a replacement job")
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, stderr
+    assert "SLURM job ended early; submitted 1 replacement" in stderr
+    wait_for(lambda: not jobs("ff-queued", "PD,R"), 60, "Ctrl-C to cancel the jobs")
+
+
 def default_partition() -> str:
     cp = subprocess.run(["sinfo", "-h", "-o", "%P"], capture_output=True, text=True, timeout=30,
                         check=True)

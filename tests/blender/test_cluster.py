@@ -176,7 +176,11 @@ def test_a_job_cancelled_while_queued_is_replaced(tmp_path):
             "--executor", "slurm", "--job-name", "ff-queued", "--out", str(out), "--quiet")
     proc = start_sweep(*args)
     try:
-        queued = wait_for(lambda: jobs("ff-queued", "PD"), SLOW, "a job waiting in the queue")
+        # two running and one waiting for a CPU (right after sbatch all three are pending for a
+        # moment: cancelling them then would be the every-job case)
+        wait_for(lambda: len(jobs("ff-queued", "R")) == 2 and jobs("ff-queued", "PD"), SLOW,
+                 "two running jobs and one waiting in the queue")
+        queued = jobs("ff-queued", "PD")
         before = set(jobs("ff-queued", "PD,R"))
         subprocess.run(["scancel", *queued], check=True, timeout=30)
         wait_for(lambda: set(jobs("ff-queued", "PD,R")) - before, 120, "a replacement job")
@@ -185,7 +189,7 @@ def test_a_job_cancelled_while_queued_is_replaced(tmp_path):
     finally:
         proc.kill()
     assert proc.returncode == 130, stderr
-    assert "SLURM job ended early; submitted 1 replacement" in stderr
+    assert "fibrilfit: 1 SLURM job ended early; submitted 1 replacement\n" in stderr
     wait_for(lambda: not jobs("ff-queued", "PD,R"), 60, "Ctrl-C to cancel the jobs")
 
 

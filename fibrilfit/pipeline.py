@@ -5,14 +5,13 @@ wherever it came from.
 """
 from __future__ import annotations
 
-import pathlib
 import time
-import tomllib
 from typing import Callable
 
 import bpy
 
 from .model import params as P
+from .model import version as model_version
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -23,8 +22,7 @@ STAGES = ("build", "bake", "check")
 
 
 def version() -> str:
-    manifest = pathlib.Path(__file__).with_name("blender_manifest.toml")
-    return tomllib.loads(manifest.read_text(encoding="utf-8"))["version"]
+    return model_version.fibrilfit_version()
 
 
 def build(p: P.Params, scene=None, *, force: bool = False):
@@ -111,7 +109,7 @@ def check(model, scene=None) -> dict:
 def describe(p: P.Params) -> dict:
     """The head of every result: versions, every parameter, the seed and its gravity."""
     return {
-        "fibrilfit_version": version(),
+        **model_version.code_key(),  # FibrilFit and model versions (what a resume matches)
         "blender_version": bpy.app.version_string,
         "params": p.to_dict(),
         "seed": p.seed,

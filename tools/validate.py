@@ -9,18 +9,20 @@ Runs go through `headless.py sweep` (results kept in out/validate/, so running a
 A case that cannot run in this build (e.g. a parameter from an issue not merged yet) gets a row
 saying why. Nothing is filled in by hand.
 
-    python tools/validate.py [--out out/validate] [--workers 2] [--restarts 3] [--no-docs]
-                             [CASE.toml ...]
+    python tools/validate.py [--out out/validate] [--workers 2] [--parallel 2] [--restarts 3]
+                             [--no-docs] [CASE.toml ...]
 """
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import datetime
 import importlib
 import json
 import pathlib
 import subprocess
 import sys
+import threading
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -48,13 +50,16 @@ def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
 
 
 def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
-                   until: float | None = None) -> dict:
+                   until: float | None = None, fits_at_real: bool = False) -> dict:
     """`headless.py minimal-linker --case` (issue #13's walk, protocol inflate unless the case
-    sets one), up to the real linker or MAX_LINKER."""
+    sets one), up to the real linker or MAX_LINKER. A case that fits at its real linker tells
+    the walk so (--known-fit): it brackets the minimum below it and bisects (issue #25)."""
     top = min(p.linker, MAX_LINKER)
     cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
            "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
            "--workers", str(workers), "--quiet", "--no-plot"]
+    if fits_at_real:  # beyond MAX_LINKER too: the walk then still stops at the cap
+        cmd += ["--known-fit", str(p.linker)]
     if (out / "results.jsonl").exists():
         cmd.append("--resume")
     try:
@@ -194,6 +199,8 @@ def main(argv=None) -> int:
     ap.add_argument("cases", nargs="*", type=pathlib.Path)
     ap.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "validate")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--parallel", type=int, default=2, metavar="N",
+                    help="cases run at the same time, each on --workers processes [default 2]")
     ap.add_argument("--restarts", type=int, default=3,
                     help="restarts per linker length in minimal-linker [default 3]")
     ap.add_argument("--until", metavar="HH:MM",
@@ -210,31 +217,58 @@ def main(argv=None) -> int:
         args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
     paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
                                  key=lambda q: (q.stem != "tutorial", q.stem))
-    rows = []
+    rows = [None] * len(paths)  # in the gallery's order, whichever case finishes first
 
     def save():
+        have = [r for r in rows if r is not None]
         args.out.mkdir(parents=True, exist_ok=True)
-        (args.out / "validation.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
-        (args.out / "table.md").write_text(table(rows) + "\n", encoding="utf-8")
+        (args.out / "validation.json").write_text(json.dumps(have, indent=1), encoding="utf-8")
+        (args.out / "table.md").write_text(table(have) + "\n", encoding="utf-8")
 
-    for path in paths:  # first every case at its real linker: the cheaper, more telling part
+    lock = threading.Lock()
+    started = time.time()
+
+    def said(text):
+        with lock:
+            print(f"validate: [{time.time() - started:6.0f} s] {text}", file=sys.stderr,
+                  flush=True)
+
+    def real(i, path):
         if path.name in args.skip or path.stem in args.skip:
-            rows.append({"case": path.name, "error": "skipped in this run (--skip), e.g. for "
-                                                     "lack of time; make validate runs it"})
-            continue
-        print(f"validate: {path.name}", file=sys.stderr, flush=True)
-        rows.append(validate(path, args.out, args.workers))
-        save()
-    for path, row in zip(paths, rows):  # then the minimal linkers, while time allows
-        if "error" in row:
-            continue
-        if args.until and time.time() > args.until:
-            continue  # the row keeps saying it was not computed
-        print(f"validate: minimal linker of {path.name}", file=sys.stderr, flush=True)
-        row["minimal"] = minimal_linker(path, P.make_params(force=True, **row["params"]),
-                                        args.out / path.stem / "minimal-linker", args.workers,
-                                        args.restarts, args.until)
-        save()
+            rows[i] = {"case": path.name, "error": "skipped in this run (--skip), e.g. for "
+                                                   "lack of time; make validate runs it"}
+            return
+        said(f"{path.name} at its real linker")
+        rows[i] = validate(path, args.out, args.workers)
+        said(f"{path.name} at its real linker: done")
+        with lock:
+            save()
+
+    def walk(i, path):
+        row = rows[i]
+        if "error" in row or (args.until and time.time() > args.until):
+            return  # the row keeps saying it was not computed
+        said(f"minimal linker of {path.name}")
+        minimal = minimal_linker(path, P.make_params(force=True, **row["params"]),
+                                 args.out / path.stem / "minimal-linker", args.workers,
+                                 args.restarts, args.until,
+                                 fits_at_real=row["fit"]["accommodated"] > 0)
+        said(f"minimal linker of {path.name}: done")
+        with lock:
+            row["minimal"] = minimal
+            save()
+
+    # First every case at its real linker (the cheaper, more telling part), then the minimal
+    # linkers, while time allows. --parallel cases at a time, each with --workers processes:
+    # a case's last runs leave workers idle (3 seeds on 2 workers: a quarter of the time), which
+    # the other case's runs fill (docs/benchmarks.md#validate).
+    with concurrent.futures.ThreadPoolExecutor(max(1, args.parallel)) as pool:
+        reals = [pool.submit(real, i, path) for i, path in enumerate(paths)]
+        # queued behind every real-linker task; each starts once its own case's is done
+        walks = [pool.submit(lambda i, path: (reals[i].result(), walk(i, path)), i, path)
+                 for i, path in enumerate(paths)]
+        for done in reals + walks:
+            done.result()
     text = table(rows)
     print(text)
     if not args.no_docs:

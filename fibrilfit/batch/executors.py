@@ -10,11 +10,12 @@ import logging
 import os
 import pathlib
 import queue
+import sys
 import threading
 import time
 import uuid
 
-from . import pool
+from . import pool, slurm
 
 POOL_FILE = str(pathlib.Path(pool.__file__).resolve())  # what Dask workers load (dask_task.py)
 START_FAILURES = 3  # workers dying before they are ready, in a row, before the sweep gives up
@@ -168,15 +169,30 @@ class DaskExecutor:
 
 class SlurmExecutor(DaskExecutor):
     """The DaskExecutor on a dask-jobqueue SLURMCluster: `workers` SLURM jobs, one single-threaded
-    Dask worker each (options: sweep/slurm.py). A job that ends early (scancel, walltime, a failed
-    node) loses its run in flight, which Dask runs again elsewhere; the job is replaced."""
+    Dask worker each (options: batch/slurm.py). A job that ends early (scancel, walltime, a failed
+    node) loses its run in flight, which Dask runs again elsewhere.
 
-    KEEP_EVERY = 10.0  # seconds between asking the cluster to replace lost jobs
+    Replacing lost jobs is this class's own watchdog, not Dask's: every KEEP_EVERY seconds it asks
+    squeue which of the sweep's jobs are still queued or running, and submits a new job (under a
+    new worker name) for each one that is not. dask-jobqueue alone replaces a job only after the
+    scheduler has seen its worker leave and lost-worker-timeout has passed, so a job cancelled
+    before its worker connected, or one whose worker's leaving went unnoticed on a loaded machine,
+    was never replaced and the sweep waited forever (issue #25). If sbatch refuses the
+    replacements, the sweep stops with SweepError (one line, exit 2); the finished runs are in
+    results.jsonl already, so --resume loses nothing.
+    """
+
+    KEEP_EVERY = 10.0  # seconds between squeue polls (a poll is one squeue call of the user's jobs)
+    ALIVE = {"PENDING", "CONFIGURING", "RUNNING", "SUSPENDED", "REQUEUED", "REQUEUE_HOLD",
+             "REQUEUE_FED", "RESIZING", "SIGNALING", "STAGE_OUT", "RESV_DEL_HOLD", "SPECIAL_EXIT"}
 
     def __init__(self, workers: int, cluster_options: dict, *, timeout: float | None = None):
         super().__init__(workers, timeout=timeout)
         self.cluster_options = cluster_options
         self.kept = 0.0
+        self.replaced = 0  # jobs submitted in place of lost ones
+        self.unstarted = 0  # lost jobs in a row whose worker never connected
+        self.connected: set = set()  # worker names that have reached the scheduler
 
     def _connect(self, distributed) -> None:
         import shutil
@@ -190,24 +206,71 @@ class SlurmExecutor(DaskExecutor):
         # must stop the sweep, where scale() would only log it and leave the sweep waiting
         while len(self.cluster.worker_spec) < self.size:
             self.cluster.worker_spec.update(self.cluster.new_worker_spec())
+        self._submit("SLURM refused the worker jobs", close=True)
+        self.kept = time.monotonic()
+
+    def _submit(self, what: str, *, close: bool = False) -> None:
+        """Submit a job for every worker spec without one, waiting for sbatch's answer; its
+        refusal is a SweepError (after closing the cluster if `close`: not entered yet)."""
         try:
             self.cluster.sync(self.cluster._correct_state)
         except Exception as exc:
-            from .slurm import submit_error
             from distributed.core import Status
             for job in self.cluster.workers.values():
                 if job.job_id is None:  # never submitted; close() insists on a final state
                     job.status = Status.failed
-            self.__exit__(None, None, None)
-            raise SweepError(f"SLURM refused the worker jobs: {submit_error(exc)}") from None
-        self.kept = time.monotonic()
+            if close:
+                self.__exit__(None, None, None)
+            raise SweepError(f"{what}: {slurm.submit_error(exc)}") from None
+
+    def job_ids(self) -> dict:
+        """Worker name -> SLURM job id, for the jobs submitted and not yet given up."""
+        return {name: job.job_id for name, job in self.cluster.workers.items() if job.job_id}
+
+    def lost(self) -> list:
+        """Names of the workers whose job is no longer queued or running (squeue), [] when
+        squeue does not answer (a busy controller is not a lost job)."""
+        ids = self.job_ids()
+        if not ids:
+            return []
+        alive = slurm.alive_jobs(self.ALIVE)
+        if alive is None:
+            return []
+        return [name for name, job_id in ids.items() if job_id not in alive]
+
+    def watch(self) -> int:
+        """One round of the watchdog: replace every lost job; how many were replaced."""
+        self.connected |= {w.get("name") for w in self.cluster.scheduler_info.get(
+            "workers", {}).values()}
+        if self.connected & set(self.cluster.workers):
+            self.unstarted = 0
+        lost = self.lost()
+        if not lost:
+            return 0
+        from distributed.core import Status
+        for name in lost:
+            job = self.cluster.workers.pop(name)
+            self.cluster.worker_spec.pop(name, None)
+            if name not in self.connected:
+                self.unstarted += 1
+            self.cluster.sync(job.close)  # scancel; a job already gone is no error
+            job.status = Status.closed  # jobqueue's close() leaves it running: close() asserts
+        if self.unstarted > START_FAILURES * self.size:
+            raise SweepError(f"SLURM jobs keep ending before their Dask worker starts "
+                             f"({self.unstarted} in a row); see the job logs in "
+                             f"{self.cluster_options.get('log_directory')}")
+        while len(self.cluster.worker_spec) < self.size:
+            self.cluster.worker_spec.update(self.cluster.new_worker_spec())  # a new name
+        self._submit("SLURM refused the replacement jobs")
+        self.replaced += len(lost)
+        print(f"fibrilfit: {len(lost)} SLURM job{'s' * (len(lost) > 1)} ended early; "
+              f"submitted {len(lost)} replacement{'s' * (len(lost) > 1)}", file=sys.stderr)
+        return len(lost)
 
     def wait(self) -> tuple[dict, dict]:
         while not self.done.has_ready():
             if time.monotonic() - self.kept > self.KEEP_EVERY:
-                # a lost job leaves cluster.workers once Dask gives up on it (lost-worker-timeout);
-                # scale() then submits a replacement under the same name
-                self.cluster.scale(jobs=self.size)
+                self.watch()
                 self.kept = time.monotonic()
             time.sleep(0.1)
         return super().wait()

@@ -47,3 +47,41 @@ def lock(out: pathlib.Path):
         fh.close()
         raise exits.UsageError(f"--out: another sweep is writing to '{out}'") from None
     return fh
+
+
+OTHER_CODE = "results.other-code.jsonl"  # records set aside by set_aside_other_code
+
+
+def set_aside_other_code(results: pathlib.Path) -> str | None:
+    """Move the records of `results` that other code made (another FibrilFit or model version,
+    or none recorded) to OTHER_CODE beside it, so a resume runs their points again and never
+    mixes them with this code's; the line saying so, or None when every record is this code's.
+    Lines that are not records are left for the reader to report."""
+    import json
+    from ..model import version
+    if not results.exists():
+        return None
+    key = version.code_key()
+    kept, moved, makers = [], [], {}
+    for line in results.read_text(encoding="utf-8").splitlines(keepends=True):
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError:
+            record = None
+        if not isinstance(record, dict) or version.same_code(record, key):
+            kept.append(line)
+            continue
+        moved.append(line)
+        maker = (f"FibrilFit {record.get('fibrilfit_version', '?')}, model "
+                 f"{record.get('model_version', '?')}")
+        makers[maker] = makers.get(maker, 0) + 1
+    if not moved:
+        return None
+    aside = results.with_name(OTHER_CODE)
+    previous = aside.read_text(encoding="utf-8") if aside.exists() else ""
+    files.write_text(aside, previous + "".join(l if l.endswith("\n") else l + "\n" for l in moved))
+    files.write_text(results, "".join(kept))
+    made_by = "; ".join(f"{n} by {m}" for m, n in makers.items())
+    return (f"fibrilfit: {len(moved)} of {len(moved) + len(kept)} records in {results} were made "
+            f"by other code ({made_by}; this is FibrilFit {key['fibrilfit_version']}, model "
+            f"{key['model_version']}): moved to {aside}; their runs are done again")

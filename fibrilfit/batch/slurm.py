@@ -12,6 +12,7 @@ import contextlib
 import os
 import re
 import signal
+import subprocess
 import sys
 import threading
 
@@ -107,3 +108,22 @@ def submit_error(exc: BaseException) -> str:
     lines = [line.strip() for line in text.splitlines() if "error" in line.lower()]
     sbatch = [line for line in lines if line.startswith("sbatch:")]
     return (sbatch or lines or [text.strip().splitlines()[0] if text.strip() else repr(exc)])[0]
+
+
+def alive_jobs(states, *, timeout: float = 30.0) -> set | None:
+    """The ids of this user's SLURM jobs in one of `states` (squeue's long state names), or None
+    when squeue gives no answer (not on the PATH, a timeout, the controller busy)."""
+    import getpass
+    try:
+        cp = subprocess.run(["squeue", "-h", "-u", getpass.getuser(), "-o", "%i %T"],
+                            capture_output=True, text=True, timeout=timeout)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    if cp.returncode != 0:
+        return None
+    alive = set()
+    for line in cp.stdout.splitlines():
+        parts = line.split()
+        if len(parts) == 2 and parts[1] in states:
+            alive.add(parts[0])
+    return alive

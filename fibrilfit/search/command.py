@@ -55,6 +55,11 @@ def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
                    help="seeds tried at every linker length (SEED..SEED+R-1) [default 5]")
     g.add_argument("--max-linker", type=int, default=30, metavar="N",
                    help="give up on a diameter when no length up to N fits [default 30]")
+    g.add_argument("--known-fit", type=int, metavar="L",
+                   help="a linker length at which a layout is known (e.g. a case's seeds fitted "
+                        "at its real linker): the walk brackets the minimum below L, from the "
+                        "guess in doubling steps, and bisects; the minimum and one residue "
+                        "below are measured as always [default: step one residue at a time]")
     g.add_argument("--out", metavar="DIR", default="out/minimal_linker",
                    help=f"{RESULTS}, {CSV}, {JSON}, {PNG} and {LOG} go here")
     g.add_argument("--resume", action="store_true",
@@ -145,6 +150,9 @@ def run_minimal(args, values: dict) -> int:
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / RESULTS
     runner.repair_tail(results)
+    aside = outdir.set_aside_other_code(results)  # never mix results of other code
+    if aside:
+        print(aside, file=sys.stderr)
     try:
         _walk(args, values, seeds, walks, out)
     except SweepError as exc:
@@ -174,6 +182,8 @@ def _minimal_plan(args, values: dict) -> tuple:
     lmax = P.field_spec("linker")["max"]
     if not 1 <= args.max_linker <= lmax:
         raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
+    if args.known_fit is not None and not 1 <= args.known_fit <= lmax:
+        raise exits.UsageError(f"--known-fit: must be from 1 to {lmax} (got {args.known_fit})")
     values = dict(values)
     diameters = grid.parse_spec("globule_diameter",
                                 values.pop("globule_diameter", P.DEFAULTS.globule_diameter))
@@ -186,7 +196,7 @@ def _minimal_plan(args, values: dict) -> tuple:
         base.replace(linker=args.max_linker, seed=seeds[-1])
         walks.append(minimal.Walk(base.globule_diameter,
                                   min(minimal.first_guess(base.globule_diameter), args.max_linker),
-                                  args.max_linker))
+                                  args.max_linker, known_fit=args.known_fit))
     return values, seeds, walks
 
 
@@ -233,8 +243,13 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
     from .. import pipeline
     document = {
         "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
-        "method": "walk: from a guess, up one residue from a miss, down one from a fit, until "
-                  "a fit at L and R missed restarts at L - 1 (search/minimal.py)",
+        "method": ("walk: from a guess, up one residue from a miss, down one from a fit, until "
+                   "a fit at L and R missed restarts at L - 1 (search/minimal.py)"
+                   if args.known_fit is None else
+                   f"bracketed walk below the known fit at {args.known_fit}: from a guess in "
+                   f"doubling steps until a fit and a miss bracket the minimum, then bisection, "
+                   f"until a fit at L and R missed restarts at L - 1 (search/minimal.py)"),
+        "known_fit": args.known_fit,
         "model": {**values, "seeds": list(seeds)}, "protocol": values["protocol"],
         "restarts": args.restarts,
         "max_linker": args.max_linker, "rows": rows,

@@ -32,6 +32,9 @@ class Walk:
     max_linker: int
     tried: dict = field(default_factory=dict)
     error: str | None = None  # set when every restart of a length failed to run
+    # a length at which a layout is known from elsewhere (e.g. a case's seeds at its real linker):
+    # the walk then brackets the minimum below it and bisects (next_linker)
+    known_fit: int | None = None
 
     def record(self, linker: int, fits: int, runs: int) -> None:
         self.tried[linker] = (fits, runs)
@@ -54,12 +57,39 @@ class Walk:
         if self.minimal is not None or self.error:
             return None
         fits, misses = self._fits(), self._misses()
+        if self.known_fit is not None and self.known_fit not in misses:
+            return self._bracketed(fits, misses)
         if fits:
             return fits[0] - 1
         if misses:
             top = max(misses)
             return None if top >= self.max_linker else top + 1
         return min(self.start, self.max_linker)
+
+    def _bracketed(self, fits: list, misses: list) -> int | None:
+        """With a known fit: the minimum lies in (lo, hi], hi the shortest fit (measured or
+        known), lo the longest miss below it. Away from the guess in steps that double (1, 2,
+        4, ...) until a fit and a miss bracket the minimum, then bisection; the walk ends, as
+        the linear one, with R restarts measured at the minimum and at one residue below. Runs
+        cost more the longer the linker (bodies per chain), so the walk does not bisect down
+        from the known fit itself (200 residues for Orb2) but brackets from the guess."""
+        hi = min(fits + [self.known_fit])
+        lo = max([m for m in misses if m < hi], default=0)
+        if lo >= self.max_linker:
+            return None  # none up to the cap (the known fit lies beyond it)
+        if hi - lo <= 1:  # bracketed to one length: measure it (if only known), or done
+            return None if hi in fits or hi > self.max_linker else hi
+        if not self.tried:
+            return max(1, min(self.start, hi - 1, self.max_linker))
+        if not fits and lo >= self.start:  # misses from the guess up: gallop up
+            step = lo - self.start + 1
+            if lo + step < hi:
+                return None if lo >= self.max_linker else min(lo + step, self.max_linker)
+        if fits and lo == 0 and hi <= self.start:  # fits from the guess down: gallop down
+            step = self.start - hi + 1
+            if hi - step > lo:
+                return max(1, hi - step)
+        return min((lo + hi) // 2, self.max_linker)
 
     def row(self) -> dict:
         """The map's row: the minimal linker, P(fit) there and one residue below."""

@@ -69,7 +69,10 @@ def run(args) -> int:
                            extra={"structure": structure_block} if structure_block else None,
                            case=_case(args))
         except SweepError as exc:
-            print(f"fibrilfit: error: {exc}", file=sys.stderr)
+            kept, _ = runner.read_lines(results)
+            print(f"fibrilfit: error: {exc}" + (f"; {len(kept)} results kept in {results}, "
+                                                f"continue with --resume" if kept else ""),
+                  file=sys.stderr)
             return exits.EXIT_USAGE
         except KeyboardInterrupt:
             kept, _ = runner.read_lines(results)
@@ -105,6 +108,9 @@ def _todo(args, points: list, results: pathlib.Path) -> list:
     --retry-failed), said on stdout with where they will run."""
     if runner.repair_tail(results):
         print(f"fibrilfit: dropped an unfinished last line of {results}", file=sys.stderr)
+    aside = outdir.set_aside_other_code(results)  # never mix results of other code
+    if aside:
+        print(aside, file=sys.stderr)
     if args.retry_failed:
         runner.drop_failed(results)
     records, bad = runner.read_lines(results)

@@ -7,6 +7,7 @@ import pathlib
 import sys
 
 from ..exports import files
+from ..model.version import MODEL_VERSION
 from .grid import Point, point_key
 
 ATTEMPTS = 2  # the first try and one retry
@@ -75,7 +76,8 @@ def _record(point: Point, job: dict, reply: dict, errors: list[str], version: st
         record.update(point=point.point, status="ok", attempts=job["attempt"],
                       worker=reply.get("worker"))
     else:
-        record = {"fibrilfit_version": version, "params": point.params,
+        record = {"fibrilfit_version": version, "model_version": MODEL_VERSION,
+                  "params": point.params,
                   "seed": point.params["seed"], "point": point.point, "status": "failed",
                   "error": errors[-1], "attempts": job["attempt"]}
     if errors:

@@ -17,6 +17,10 @@ from fibrilfit.sweep import grid
 pytestmark = pytest.mark.cluster
 
 DONE_WHEN = ("--linker", "1,12", "--layers", "8", "--seeds", "3", "--workers", "2")
+# Waits for what the machine's load decides (a job starting bpy, a 40-layer run) are generous:
+# on a shared 2-core machine at load 20 a run takes minutes. The wait for what the executor
+# decides (a replacement job: its watchdog polls squeue every 10 s) stays short.
+SLOW = 900
 # 16 runs of about a second on 2 jobs: long enough to cancel jobs and interrupt the sweep mid-way
 LONGER = ("--linker", "2,6", "--layers", "40", "--seeds", "8", "--workers", "2")
 
@@ -112,10 +116,10 @@ def test_a_cancelled_job_loses_no_run(tmp_path):
     proc = start_sweep(*args)
     try:
         # after the first result both jobs are busy (see test_sweep's killed-worker test)
-        wait_for(lambda: count(out / "results.jsonl"), 180, "the first result")
+        wait_for(lambda: count(out / "results.jsonl"), SLOW, "the first result")
         victim = jobs("ff-cancel", "R")[0]
         subprocess.run(["scancel", victim], check=True, timeout=30)
-        stdout, stderr = proc.communicate(timeout=600)
+        stdout, stderr = proc.communicate(timeout=2 * SLOW)
     finally:
         proc.kill()
     assert proc.returncode == 0, stderr
@@ -125,7 +129,7 @@ def test_a_cancelled_job_loses_no_run(tmp_path):
     assert "16 with a verdict, 0 failed" in stdout
     # --resume finds nothing to do and changes nothing
     before = (out / "results.jsonl").read_bytes()
-    cp = run_cli("sweep", *args, "--resume")
+    cp = run_cli("sweep", *args, "--resume", timeout=2 * SLOW)
     assert cp.returncode == 0, cp.stderr
     assert (out / "results.jsonl").read_bytes() == before
 
@@ -135,14 +139,14 @@ def test_every_job_cancelled_then_interrupted_and_resumed(tmp_path):
     args = (*LONGER, "--executor", "slurm", "--job-name", "ff-all", "--out", str(out), "--quiet")
     proc = start_sweep(*args)
     try:
-        wait_for(lambda: count(out / "results.jsonl"), 180, "the first result")
-        first = jobs("ff-all", "R")
+        wait_for(lambda: count(out / "results.jsonl"), SLOW, "the first result")
+        first = jobs("ff-all", "PD,R")  # every job of the sweep, also one still queued
         subprocess.run(["scancel", *first], check=True, timeout=30)
         at_cancel = count(out / "results.jsonl")
         # no job left: the sweep goes on only because the executor submits replacements
         new = wait_for(lambda: set(jobs("ff-all", "PD,R")) - set(first), 120,
                        "a replacement job")
-        wait_for(lambda: count(out / "results.jsonl") > at_cancel + 1, 180,
+        wait_for(lambda: count(out / "results.jsonl") > at_cancel + 1, SLOW,
                  "a result from a replacement job")
         proc.send_signal(signal.SIGINT)
         _, stderr = proc.communicate(timeout=120)
@@ -155,7 +159,79 @@ def test_every_job_cancelled_then_interrupted_and_resumed(tmp_path):
     assert at_cancel < len(kept) < 16
     assert {r["worker"]["slurm_job"] for r in kept[at_cancel + 1:]} <= new
 
-    cp = run_cli("sweep", *args, "--resume")
+    cp = run_cli("sweep", *args, "--resume", timeout=2 * SLOW)
+    assert cp.returncode == 0, cp.stderr
+    records = lines(out / "results.jsonl")
+    assert records[:len(kept)] == kept
+    assert len(records) == 16 and len(set(keys(records))) == 16  # every point, none twice
+    assert all(r["status"] == "ok" for r in records)
+
+
+def test_a_job_cancelled_while_queued_is_replaced(tmp_path):
+    """Issue #25: a job cancelled before it started never had a Dask worker, so Dask never
+    misses it; the executor's watchdog, asking squeue, replaces it. 3 one-core jobs on the
+    2-CPU node: one waits in the queue."""
+    out = tmp_path / "s"
+    args = ("--linker", "2,6", "--layers", "40", "--seeds", "8", "--workers", "3",
+            "--executor", "slurm", "--job-name", "ff-queued", "--out", str(out), "--quiet")
+    proc = start_sweep(*args)
+    try:
+        # two running and one waiting for a CPU (right after sbatch all three are pending for a
+        # moment: cancelling them then would be the every-job case)
+        wait_for(lambda: len(jobs("ff-queued", "R")) == 2 and jobs("ff-queued", "PD"), SLOW,
+                 "two running jobs and one waiting in the queue")
+        queued = jobs("ff-queued", "PD")
+        before = set(jobs("ff-queued", "PD,R"))
+        subprocess.run(["scancel", *queued], check=True, timeout=30)
+        wait_for(lambda: set(jobs("ff-queued", "PD,R")) - before, 120, "a replacement job")
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, stderr
+    assert "fibrilfit: 1 SLURM job ended early; submitted 1 replacement\n" in stderr
+    wait_for(lambda: not jobs("ff-queued", "PD,R"), 60, "Ctrl-C to cancel the jobs")
+
+
+def default_partition() -> str:
+    cp = subprocess.run(["sinfo", "-h", "-o", "%P"], capture_output=True, text=True, timeout=30,
+                        check=True)
+    (name,) = [p.rstrip("*") for p in cp.stdout.split() if p.endswith("*")]
+    return name
+
+
+def set_partition(name: str, state: str) -> None:
+    subprocess.run(["scontrol", "update", f"PartitionName={name}", f"State={state}"],
+                   check=True, timeout=30)
+
+
+def test_sbatch_refusing_the_replacements_stops_in_one_line_and_resumes(tmp_path):
+    """Issue #25: every job ends and SLURM takes no new ones (the partition drained): the sweep
+    stops with one line and exit 2, its jobs gone, the finished runs kept; once SLURM takes jobs
+    again, --resume completes it without loss."""
+    out = tmp_path / "s"
+    args = (*LONGER, "--executor", "slurm", "--job-name", "ff-drain", "--out", str(out),
+            "--quiet")
+    partition = default_partition()
+    proc = start_sweep(*args)
+    try:
+        wait_for(lambda: count(out / "results.jsonl"), SLOW, "the first result")
+        set_partition(partition, "DRAIN")  # queued jobs run, new ones are refused
+        subprocess.run(["scancel", *jobs("ff-drain")], check=True, timeout=30)
+        _, stderr = proc.communicate(timeout=SLOW)
+    finally:
+        set_partition(partition, "UP")
+        proc.kill()
+    assert proc.returncode == 2, stderr
+    kept = lines(out / "results.jsonl")
+    assert stderr.strip().splitlines() == [
+        "fibrilfit: error: SLURM refused the replacement jobs: sbatch: error: Batch job "
+        "submission failed: Required partition not available (inactive or drain); "
+        f"{len(kept)} results kept in {out / 'results.jsonl'}, continue with --resume"], stderr
+    assert 0 < len(kept) < 16
+    wait_for(lambda: not jobs("ff-drain", "PD,R"), 60, "the sweep's jobs to end")
+
+    cp = run_cli("sweep", *args, "--resume", timeout=2 * SLOW)
     assert cp.returncode == 0, cp.stderr
     records = lines(out / "results.jsonl")
     assert records[:len(kept)] == kept

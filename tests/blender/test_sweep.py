@@ -13,6 +13,7 @@ from helpers import ROOT, run_cli
 
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
+from fibrilfit.model.version import MODEL_VERSION
 from fibrilfit.sweep import grid, summary
 
 # The issue's done-when sweep.
@@ -87,6 +88,29 @@ def test_resume_does_no_work_twice(done_when, tmp_path):
     assert (out / "results.jsonl").read_bytes().startswith(before)
     assert len(records) == 8 and len(set(keys(records))) == 8
     assert sorted(r["point"]["seed"] for r in records[6:]) == [3, 3]
+
+
+def test_resume_recomputes_what_other_code_made(done_when, tmp_path):
+    """Issue #25: records another model version made are set aside, counted, and run again;
+    the summary then holds this code's runs only, each point once."""
+    out = tmp_path / "s"
+    shutil.copytree(done_when[0], out)
+    records = lines(out / "results.jsonl")
+    assert all(r["model_version"] == MODEL_VERSION and
+               r["fibrilfit_version"] == pipeline.version() for r in records)
+    old = [dict(r, model_version=MODEL_VERSION - 1) for r in records[:2]]
+    (out / "results.jsonl").write_text("".join(json.dumps(r) + "\n" for r in old + records[2:]))
+    cp = run_cli("sweep", *DONE_WHEN, "--out", str(out), "--resume", "--no-plot")
+    assert cp.returncode == 0, cp.stderr
+    assert (f"2 of 6 records in {out / 'results.jsonl'} were made by other code "
+            f"(2 by FibrilFit {pipeline.version()}, model {MODEL_VERSION - 1}") in cp.stderr
+    assert "6 runs in the grid, 4 already in" in cp.stdout and "2 to run" in cp.stdout
+    now = lines(out / "results.jsonl")
+    assert len(now) == 6 and len(set(keys(now))) == 6
+    assert all(r["model_version"] == MODEL_VERSION for r in now)
+    assert sorted(keys(now[4:])) == sorted(keys(old))  # the set-aside points, run again
+    assert lines(out / "results.other-code.jsonl") == old
+    assert "6 results in" in cp.stdout
 
 
 def test_existing_results_need_resume(done_when):

@@ -118,3 +118,49 @@ def test_minimal_linker_refuses_a_given_linker(tmp_path):
                           timeout=120)
     assert proc.returncode == 2 and "--linker" in proc.stderr
     assert not (tmp_path / "x").exists()
+
+
+def _walk(w, minimum):
+    order = []
+    while (L := w.next_linker()) is not None:
+        assert L not in w.tried and 1 <= L <= w.max_linker and len(order) < 50
+        order.append(L)
+        w.record(L, 2 if L >= minimum else 0, 3)
+    return order
+
+
+@pytest.mark.parametrize("start", [1, 3, 5, 9, 19])
+@pytest.mark.parametrize("minimum", [1, 2, 5, 11, 19, 20])
+def test_a_walk_below_a_known_fit_finds_the_same_minimum_and_measures_its_neighbours(start,
+                                                                                   minimum):
+    """Issue #25: with a known fit (the real linker) the walk brackets and bisects; it ends with
+    the same answer as the one-residue walk, measured the same way (a fit at the minimum, R
+    missed restarts one below)."""
+    w = minimal.Walk(30.0, start, max_linker=20, known_fit=20)
+    order = _walk(w, minimum)
+    one_by_one = minimal.Walk(30.0, start, max_linker=20)
+    linear = _walk(one_by_one, minimum)
+    assert w.row()["minimal_linker"] == one_by_one.row()["minimal_linker"] == minimum
+    assert w.tried[minimum] == (2, 3)
+    assert minimum == 1 or w.tried[minimum - 1] == (0, 3)
+    assert w.row()["p_fit_below"] == (None if minimum == 1 else 0.0)
+    # a guess far off costs steps that grow like log2 of the distance, not the distance itself
+    assert len(order) <= 2 * abs(start - minimum).bit_length() + 3
+    if abs(start - minimum) >= 8:
+        assert len(order) < len(linear)
+
+
+def test_a_walk_below_a_known_fit_past_its_cap_gives_up_at_the_cap():
+    w = minimal.Walk(30.0, 3, max_linker=40, known_fit=121)  # Sup35: real 121, searched to 40
+    order = _walk(w, 45)
+    assert w.minimal is None and max(order) == 40 and w.row()["linker_below"] == 40
+    w = minimal.Walk(30.0, 3, max_linker=40, known_fit=121)
+    assert _walk(w, 40)[-1] in (39, 40) and w.minimal == 40
+
+
+def test_a_known_fit_the_walk_cannot_reproduce_falls_back_to_stepping_up():
+    """The known fit came from other seeds (or another protocol): if its R restarts all miss,
+    the walk no longer counts on it."""
+    w = minimal.Walk(30.0, 5, max_linker=12, known_fit=6)
+    order = _walk(w, 9)
+    assert order[:2] == [5, 6] and w.minimal == 9 and w.tried[8] == (0, 3)

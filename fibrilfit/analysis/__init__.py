@@ -1,8 +1,9 @@
 """Read the baked model and judge it: BVH and analytic clash checks, linker stretch, verdict."""
 from .clashes import bvh_clashes, grazing_depth, sphere_clashes
 from .stretch import StretchLog, bond_stretch
-from .verdict import check_model, clashing_layers, compare_checks, scored_chains, scored_range
+from .verdict import (check_model, clashing_layers, compare_checks, grazing_layers, scored_chains,
+                      scored_range)
 
 __all__ = ["bvh_clashes", "grazing_depth", "sphere_clashes", "StretchLog", "bond_stretch",
-           "check_model", "clashing_layers", "compare_checks", "scored_chains",
+           "check_model", "clashing_layers", "compare_checks", "grazing_layers", "scored_chains",
            "scored_range"]

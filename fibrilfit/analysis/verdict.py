@@ -209,6 +209,20 @@ def periodic_block(model, cells: int) -> dict:
             "gravity": "axial" if helix.axial_gravity(model.params) else "whole"}
 
 
+def grazing_layers(result: dict) -> list[int]:
+    """Chains whose every clash only grazes (in `grazing_pairs`: named by the BVH alone, within
+    the mesh's resolution; docs/model/verdict.md#two-checks), shown in the graze colour; a chain
+    in any deeper pair is red. Same chain numbering as clashing_layers."""
+    if result.get("verdict") != "intersection":
+        return []
+    n = len(result.get("globule_centres") or []) if result.get("periodic") else 0
+    cell = (lambda k: k % n) if n else (lambda k: k)
+    graze = {(i, j) for i, j, *_ in result.get("grazing_pairs", [])}
+    deep = {cell(k) for i, j, *_ in result.get("clashing_pairs", []) if (i, j) not in graze
+            for k in (i, j)}
+    return sorted({cell(k) for i, j in graze for k in (i, j)} - deep)
+
+
 def clashing_layers(result: dict) -> list[int]:
     """Chains (= layers with one protofilament) to show red: both globules of every pair in
     `clashing_pairs` (the BVH's pairs, so none under a successful verdict), including an end

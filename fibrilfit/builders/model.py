@@ -21,6 +21,7 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "globule": (0.7, 0.72, 0.7, 1.0),
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
+GRAZE_COLOR = (1.0, 0.5, 0.0, 1.0)  # a pair only the BVH names, within the mesh's resolution
 # Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
 PF_COLORS = {
     "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
@@ -396,9 +397,10 @@ class _LayerBuilder:
                 objects.foreach_set("color", tints[pf].ravel())
 
 
-def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
-    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), the
-    others their protofilament's colour, through ob.color. Returns the red.
+def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:
+    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), those
+    of `grazing` (chains whose every clash only grazes: analysis.grazing_layers) orange, the
+    others their protofilament's colour, through ob.color. Returns the red and orange.
 
     ob.color is what the viewport shows with Color: Object, and what materials read through
     an Object Info node, so one call recolours both after each check. Colouring edits simulated
@@ -406,9 +408,10 @@ def colour_globules(model: Model, clashing_layers, scene=None) -> list[int]:
     """
     keep_bake(scene or bpy.context.scene)
     red = {int(k) for k in clashing_layers}
+    orange = {int(k) for k in grazing}
     for k, members in enumerate(model.chain):
         if members and members[-1].get(TAG) == "globule":
-            colour = (CLASH_COLOR if k in red else
+            colour = (GRAZE_COLOR if k in orange else CLASH_COLOR if k in red else
                       part_colour("globule", members[-1].get(PROTOFILAMENT, 0)))
             if not np.allclose(members[-1].color, colour, atol=1e-6):  # no needless update
                 members[-1].color = colour

@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from conftest import OUT, chroot, inside, module, own_lines, quote, read_json
+from realblender.helpers import OUT, chroot, inside, module, own_lines, quote, read_json
 
 # Small cases: the default model, a short linker that cannot fit, two protofilaments, inflate.
 CASES = {
@@ -52,8 +52,9 @@ def test_inspect_reads_structures_with_the_bundled_gemmi(installed):
 
 
 def test_sweep_runs_workers_on_the_real_blender(installed):
+    # --no-plot: the zip bundles tqdm but not matplotlib (docs/guide/install.md#extension)
     args = ["sweep", "--linker", "2,6", "--layers", "8", "--seeds", "2", "--workers", "2",
-            "--quiet"]
+            "--quiet", "--no-plot"]
     real, ref = OUT / "sweep-blender", OUT / "sweep-module"
     cp = chroot(f"rm -rf {inside(real)} && blender -b -c fibrilfit {quote(args)} "
                 f"--out {inside(real)}")
@@ -72,7 +73,7 @@ def test_sweep_runs_workers_on_the_real_blender(installed):
 
 def test_minimal_linker_agrees(installed):
     args = ["minimal-linker", "--globule-diameter", "20", "--layers", "8", "--restarts", "2",
-            "--max-linker", "8", "--quiet"]
+            "--max-linker", "8", "--quiet", "--no-plot"]
     real, ref = OUT / "minimal-blender", OUT / "minimal-module"
     cp = chroot(f"rm -rf {inside(real)} && blender -b -c fibrilfit {quote(args)} "
                 f"--out {inside(real)}")

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from conftest import OUT, ROOT, chroot, inside, module, read_json
+from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
 
 SHOTS = ROOT / "docs" / "images"
 FACTORY_OBJECTS = {"Cube": [0.0, 0.0, 0.0]}

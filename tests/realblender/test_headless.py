@@ -1,7 +1,7 @@
 """`blender -b -P headless.py -- run` from the checkout (bind-mounted at /fibrilfit): the
 package loads from its own folder, no installed extension needed, and gives the bpy module's
 verdict."""
-from conftest import OUT, chroot, inside, module, own_lines, read_json
+from realblender.helpers import OUT, chroot, inside, module, own_lines, read_json
 
 
 def test_headless_script_runs_on_the_real_blender():

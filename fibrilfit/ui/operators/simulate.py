@@ -9,6 +9,7 @@ from ... import pipeline
 from .. import properties
 from . import common
 from ...exports.summary import percent
+from ..view import frame_model
 
 # Events a running bake lets through, so the view can still be turned and zoomed.
 NAVIGATION = {"MIDDLEMOUSE", "WHEELUPMOUSE", "WHEELDOWNMOUSE", "TRACKPADPAN", "TRACKPADZOOM",
@@ -158,12 +159,16 @@ class FIBRILFIT_OT_run_all(ModalBake, bpy.types.Operator):
     def _execute(self, context):
         # No timer to serve: the very call headless.py makes.
         result = pipeline.run(common.panel_params(context), context.scene)
-        common.record_check(context, pipeline.current_model(context.scene), result)
+        model = pipeline.current_model(context.scene)
+        common.record_check(context, model, result)
+        frame_model(context, model)
         self.report({"INFO"}, common.verdict_line(result))
         return {"FINISHED"}
 
     def start(self, context):
-        self.begin(context, pipeline.build(common.panel_params(context), context.scene))
+        model = pipeline.build(common.panel_params(context), context.scene)
+        common.show_model(context, model)
+        self.begin(context, model)
 
     def done(self, context):
         model = self._baking.model

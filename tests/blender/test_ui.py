@@ -664,3 +664,53 @@ def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, s
     assert model.params.anchor == (31.75, 0.0)
     assert run("clear_outline") == {"FINISHED"} and ui.core_outline == ""
     assert properties.read_params(ui).core_outline is None
+
+
+# ---- the bake as a user meets it: progress in the status bar, Esc cancels ----------------------
+
+class _Workspace:
+    def __init__(self):
+        self.status = []
+
+    def status_text_set(self, value):
+        self.status.append(value)
+
+
+class _Progress:
+    def __init__(self):
+        self.drawn = []
+
+    def row(self):
+        return self
+
+    def progress(self, **kw):
+        self.drawn.append(kw)
+
+
+def test_the_bake_shows_progress_in_the_status_bar_and_esc_cancels(ui, scene):
+    run_steps(STEPS[:5])
+    reports = []
+
+    class Bake(simulate.FIBRILFIT_OT_bake.__mro__[1]):  # ModalBake, without the RNA
+        def report(self, kind, text):
+            reports.append((kind, text))
+
+        start = simulate.FIBRILFIT_OT_bake.start
+        done = simulate.FIBRILFIT_OT_bake.done
+
+    ws = _Workspace()
+    context = types.SimpleNamespace(scene=scene, workspace=ws, screen=None,
+                                    window_manager=bpy.context.window_manager)
+    op = Bake()
+    op.start(context)
+    for _ in range(3):
+        assert op.advance(context, 0.0) is False  # one frame per call here
+    bar = _Progress()
+    ws.status[-1](types.SimpleNamespace(layout=bar), context)
+    total = op._baking.total
+    assert bar.drawn == [{"factor": pytest.approx(3 / total), "type": "BAR",
+                          "text": f"FibrilFit: baking frame 3 of {total} (Esc to cancel)"}]
+    assert op._modal(context, types.SimpleNamespace(type="ESC")) == {"CANCELLED"}
+    assert ws.status[-1] is None  # the status bar is the user's again
+    assert reports and reports[-1][0] == {"WARNING"} and "cancelled at frame 3" in reports[-1][1]
+    assert model_stage(scene) == "layers" and ui.verdict == ""  # the model kept, not baked

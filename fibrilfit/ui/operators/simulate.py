@@ -16,9 +16,21 @@ NAVIGATION = {"MIDDLEMOUSE", "WHEELUPMOUSE", "WHEELDOWNMOUSE", "TRACKPADPAN", "T
               "MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "NDOF_MOTION"}
 
 
-def _status(context, text) -> None:
+_HAS_PROGRESS = "progress" in bpy.types.UILayout.bl_rna.functions  # Blender 4.0+
+
+
+def _status(context, text, fraction=None) -> None:
+    """The status bar: `text`, after a progress bar filled to `fraction` when given (Blender
+    4.0+'s UILayout.progress); None clears it."""
     if context.workspace is not None:
-        context.workspace.status_text_set(text)
+        if text is not None and fraction is not None and _HAS_PROGRESS:
+            def draw(header, _context):
+                row = header.layout.row()
+                row.ui_units_x = 24
+                row.progress(factor=fraction, type="BAR", text=text)
+            context.workspace.status_text_set(draw)
+        else:
+            context.workspace.status_text_set(text)
     if context.screen is not None:
         for area in context.screen.areas:
             area.tag_redraw()
@@ -50,7 +62,7 @@ class ModalBake:
         frame = stepped[0]
         context.window_manager.progress_update(frame)
         _status(context, f"FibrilFit: baking frame {frame} of {self._baking.total} "
-                         f"(Esc to cancel)")
+                         f"(Esc to cancel)", frame / max(self._baking.total, 1))
         return False
 
     def end(self, context) -> None:

@@ -58,6 +58,7 @@ case "${1:-}" in
     run)
         shift
         [ -f "$DIR/.fibrilfit-ready" ] || build
+        [ "$(id -u)" = 0 ] || die "running in the chroot needs root (unshare, mount, chroot)"
         mkdir -p "$DIR/fibrilfit"
         [ -e "$DIR/etc/mtab" ] || ln -sf ../proc/self/mounts "$DIR/etc/mtab"
         exec unshare --mount --propagation private sh -c '

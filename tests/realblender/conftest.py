@@ -4,6 +4,7 @@ with FIBRILFIT_CHROOT set; without it (`make test`) they are skipped, since they
 the chroot. With it set, a chroot that is not ready fails them: never a silent pass."""
 import os
 import pathlib
+import shutil
 
 import pytest
 
@@ -27,7 +28,8 @@ def installed():
     chroot_dir = pathlib.Path(os.environ["FIBRILFIT_CHROOT"])
     assert (chroot_dir / ".fibrilfit-ready").exists(), f"{chroot_dir} is not a finished chroot"
     assert ZIP.exists(), f"{ZIP} missing: make extension builds it"
-    OUT.mkdir(parents=True, exist_ok=True)
+    shutil.rmtree(OUT, ignore_errors=True)  # a run again starts from nothing (idempotent)
+    OUT.mkdir(parents=True)
     cp = chroot(f"rm -rf {USER} && blender --version && blender -b --factory-startup --command "
                 f"extension install-file -r user_default -e {inside(ZIP)}")
     assert cp.returncode == 0, cp.stdout + cp.stderr

@@ -2,8 +2,9 @@
 nothing. Every 0.2 s it writes what Blender knows and a screenshot cannot say (window and region
 rectangles, the sidebar's tab, the panel's verdict, the model and the 3D Views) to
 $FIBRILFIT_PROBE/state.json, and it obeys two commands from $FIBRILFIT_PROBE/command:
-"mark" paints operator buttons one flat colour (the theme's wcol_tool), so the test can find the
-buttons in a screenshot; "unmark" restores the theme. The clicks and keys come from xdotool.
+"mark" paints operator buttons and inactive tabs one flat colour and the panels another (theme
+colours), so the test can find the buttons and the panels' extent in a screenshot; "unmark"
+restores the theme. The clicks and keys come from xdotool.
 """
 import json
 import os
@@ -13,25 +14,31 @@ import bpy
 from bpy_extras import view3d_utils
 
 PROBE = pathlib.Path(os.environ["FIBRILFIT_PROBE"])
-MARK = (1.0, 0.0, 1.0, 1.0)  # magenta: no other widget in the default theme has it
+MARK = (1.0, 0.0, 1.0, 1.0)   # magenta: no other widget in the default theme has it
+PANEL = (0.0, 1.0, 1.0, 1.0)  # cyan: the panels' extent
 _saved = {}
 _state = {"seq": 0, "theme": "normal"}
 
 
 def _themed():
-    """(theme struct, property) pairs the mark paints: operator buttons, inactive sidebar tabs."""
+    """(theme struct, property, colour) the mark paints: operator buttons and the sidebar's
+    inactive tabs MARK, the panels' background and headers PANEL (to crop the screenshots)."""
     theme = bpy.context.preferences.themes[0]
     w, space = theme.user_interface.wcol_tool, theme.view_3d.space
-    return [(w, "inner"), (w, "inner_sel"), (w, "outline"), (w, "show_shaded"),
-            (space, "tab_inactive")]
+    return [(w, "inner", MARK), (w, "inner_sel", MARK), (w, "outline", MARK),
+            (w, "show_shaded", False), (space, "tab_inactive", MARK),
+            (space.panelcolors, "back", PANEL), (space.panelcolors, "header", PANEL),
+            (space.panelcolors, "sub_back", PANEL)]
 
 
 def _mark():
-    for struct, name in _themed():
+    for struct, name, colour in _themed():
+        if not hasattr(struct, name):
+            continue
         old = getattr(struct, name)
         _saved.setdefault((struct.as_pointer(), name), (struct, name, old if isinstance(old, bool)
                                                        else tuple(old)))
-        setattr(struct, name, False if isinstance(old, bool) else MARK[:len(old)])
+        setattr(struct, name, colour if isinstance(colour, bool) else colour[:len(old)])
 
 
 def _unmark():

@@ -21,7 +21,8 @@ import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 WIDTH, HEIGHT = 1600, 1000
-MARK = (255, 0, 255)
+MARK = (255, 0, 255)  # gui_probe.py's colours
+PANEL = (0, 255, 255)
 ADDON = "bl_ext.user_default.fibrilfit"
 RUN_TIMEOUT = 600.0
 
@@ -145,7 +146,7 @@ class Session:
     def crop(self, src, rect, dst):
         x0, y0, x1, y1 = rect
         subprocess.run(["convert", str(src), "-crop", f"{x1 - x0}x{y1 - y0}+{x0}+{y0}", "+repage",
-                        "-strip", str(dst)], check=True)
+                        "-strip", "-colors", "256", str(dst)], check=True)  # small for git
         self.log.setdefault("screenshots", []).append(str(dst.name))
 
     def pixels(self, path):
@@ -174,11 +175,11 @@ class Session:
         self.hover(window_region)
         self.command("mark", "marked")
         self.open_tab(ui, window_region)
-        marked = self.screenshot(self.out / "marked.png")
+        marked = self.pixels(self.screenshot(self.out / "marked.png"))
         self.command("unmark", "normal")
-        run_all = self.find_run_all(self.pixels(marked), ui)
+        run_all = self.find_run_all(marked, ui)
         before = self.screenshot(self.out / "before.png")
-        self.crop(before, ui, self.shots / "panel-before.png")
+        self.crop(before, self.panel_rect(marked, ui), self.shots / "panel-before.png")
         self.log["state_before"] = self.state()
         # Press Run all: a real click.
         t0 = time.monotonic()
@@ -189,9 +190,12 @@ class Session:
         self.log["run_seconds"] = round(time.monotonic() - t0, 1)
         self.log["progress_shots"] = progress
         after_state = self.fresh_state(5)
-        after = self.screenshot(self.out / "after.png")
         ui = self.screen_rect(after_state["views"][0]["regions"]["UI"])
-        self.crop(after, ui, self.shots / "panel-after.png")
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-after.png"))
+        self.command("unmark", "normal")
+        after = self.screenshot(self.out / "after.png")
+        self.crop(after, self.panel_rect(marked, ui), self.shots / "panel-after.png")
         self.crop(after, self.screen_rect(after_state["views"][0]["area"]),
                   self.shots / "result.png")
         self.log["state_after"] = after_state
@@ -248,6 +252,15 @@ class Session:
         y = y0 + (top + bottom) // 2
         self.log["run_all_button"] = [int(x), int(y)]
         return int(x), int(y)
+
+    def panel_rect(self, img, ui):
+        """The sidebar's rectangle down to the bottom of its last panel (marked PANEL)."""
+        x0, y0, x1, y1 = ui
+        mask = np.abs(img[y0:y1, x0:x1].astype(int) - PANEL).sum(axis=2) < 30
+        rows = np.flatnonzero(mask.sum(axis=1) > 20)
+        if rows.size == 0:
+            raise SessionError("no panel found in the sidebar (marked screenshot)")
+        return x0, y0, x1, min(y1, y0 + int(rows[-1]) + 8)
 
     def watch_bake(self):
         """Until the panel shows a verdict; screenshots of the status bar while it bakes."""

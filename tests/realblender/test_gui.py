@@ -4,6 +4,7 @@ screen; gui_session.py). The verdict the panel shows must be the headless one fo
 values, the model must be framed in the 3D View and coloured in Solid mode, and the user's
 objects and shading left alone. The screenshots go to docs/images/ for the README and docs."""
 import json
+import struct
 
 import pytest
 
@@ -54,8 +55,20 @@ def test_the_model_is_framed_and_coloured_and_the_users_scene_kept(session):
     assert set(after["user_objects"]) == set(before["user_objects"])
 
 
+def png_size(path) -> tuple:
+    head = path.read_bytes()[:24]
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", path
+    return struct.unpack(">II", head[16:24])
+
+
 def test_screenshots_for_the_docs(session):
-    for name in ("panel-before.png", "panel-after.png", "result.png"):
-        path = SHOTS / name
-        assert path.exists() and path.stat().st_size > 10_000, path
+    """The panel before and after (the sidebar down to its last panel), and the 3D View."""
+    view = session["state_after"]["views"][0]
+    ui, area = view["regions"]["UI"], view["area"]
+    for name in ("panel-before.png", "panel-after.png"):
+        width, height = png_size(SHOTS / name)
+        assert width == ui["width"] and 300 < height <= ui["height"], (name, width, height)
         assert name in session["screenshots"]
+    # after the run the verdict's box makes the panel taller
+    assert png_size(SHOTS / "panel-after.png")[1] > png_size(SHOTS / "panel-before.png")[1]
+    assert png_size(SHOTS / "result.png") == (area["width"], area["height"])

@@ -86,8 +86,8 @@ class Params:
                                     "Diameter of the tethered globular domain", section="Globule",
                                     question=True)
     layers: int = _spec(20, 1, 100_000, "layers",
-                        "Number of stacked β-strand layers in the fibril", kind=int, section="Layers",
-                        question=True)
+                        "Number of stacked β-strand layers in the fibril", kind=int,
+                        section="Layers", question=True)
     rise: float = _spec(4.8, 0.1, 100.0, "Å",
                         "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
                         section="Layers")

@@ -1,4 +1,5 @@
-"""After a build or a run, the model framed in the window's 3D Views (docs/guide/sidebar.md#the-panel).
+"""After a build or a run, the model framed in the window's 3D Views
+(docs/guide/sidebar.md#after-a-run).
 
 The model is about 100 Å tall (1 unit = 1 Å), so Blender's start-up view (about 18 units from
 the origin) sits inside it: the user saw grey slabs until Home. Each 3D View's region_3d is set

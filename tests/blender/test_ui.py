@@ -714,3 +714,19 @@ def test_the_bake_shows_progress_in_the_status_bar_and_esc_cancels(ui, scene):
     assert ws.status[-1] is None  # the status bar is the user's again
     assert reports and reports[-1][0] == {"WARNING"} and "cancelled at frame 3" in reports[-1][1]
     assert model_stage(scene) == "layers" and ui.verdict == ""  # the model kept, not baked
+
+
+def test_framing_is_left_to_a_window_and_fits_the_model(ui, scene):
+    """Headless (no window) nothing is framed; the distance chosen puts the model's bounding
+    sphere inside the narrower side of the view (the GUI test checks a real 3D View:
+    tests/realblender/test_gui.py)."""
+    from fibrilfit.ui import view
+    run_steps(STEPS[:5])
+    assert view.frame_model(bpy.context, find_model(scene)) == 0
+    for width, height in ((1322, 876), (400, 900)):
+        d = view.view_distance(70.0, 50.0, width, height)
+        half = math.atan(view.SENSOR_MM / 2 / 50.0)
+        if width < height:
+            half = math.atan(math.tan(half) * width / height)
+        assert math.asin(70.0 / d) < half  # the sphere's angular radius fits
+        assert math.asin(70.0 / d) > 0.8 * half  # and fills most of the view

@@ -244,11 +244,12 @@ class Session:
         if sorted(heights)[-1] == sorted(heights + [0])[-2]:
             raise SessionError(f"two button rows are equally tall ({heights}): cannot tell "
                                f"Run all's row")
+        # Run all is the left half of its row (Clear the right half, marked too once a model
+        # exists): the row spans the panel's width, as the first row (Import fibril/domain) does
+        first_top, first_bottom = rows[0]
+        full = np.flatnonzero(mask[first_top:first_bottom + 1].any(axis=0))
         cols = np.flatnonzero(mask[top:bottom + 1].any(axis=0))
-        first_end = cols[0]
-        while first_end + 1 in set(cols.tolist()):
-            first_end += 1
-        x = x0 + (cols[0] + first_end) // 2
+        x = x0 + int(cols[0] + (full[-1] - full[0]) // 4)
         y = y0 + (top + bottom) // 2
         self.log["run_all_button"] = [int(x), int(y)]
         return int(x), int(y)
@@ -305,6 +306,10 @@ def main():
     except (SessionError, subprocess.CalledProcessError) as exc:
         session.log["error"] = str(exc)
         print(f"gui test: {exc}", file=sys.stderr)
+        try:  # what the screen showed, for the one who reads the error
+            session.screenshot(out / "failure.png")
+        except (OSError, subprocess.CalledProcessError):
+            pass
     finally:
         session.stop()
         (out / "session.json").write_text(json.dumps(session.log, indent=1))

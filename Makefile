@@ -20,8 +20,8 @@ PYTEST := -m pytest tests
 # `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.
 TEST_MARK ?= not slow
 
-.PHONY: run test test-unit test-latest test-lts test-52 test-slow test-cluster extension bench \
-	validate docs clean
+.PHONY: run test test-unit test-latest test-lts test-52 test-slow test-cluster test-blender \
+	extension bench validate docs clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -79,6 +79,16 @@ test-cluster: $(VENV)/.installed
 	sh .ci/slurm/setup.sh start || { sh .ci/slurm/setup.sh stop; exit 1; }
 	$(VENV)/bin/python $(PYTEST) -m cluster $(PYTEST_ARGS); \
 	status=$$?; sh .ci/slurm/setup.sh stop; exit $$status
+
+# A real Blender: Debian trixie's 4.3.2 in a chroot (root; .ci/blender/chroot.sh builds it once,
+# cached outside the clone and keyed on its package list), the zip installed with Blender's own
+# extension command, then tests/realblender/: the command line and headless.py against the bpy
+# module's verdicts, and the sidebar under Xvfb (real clicks; screenshots into docs/images/).
+# A chroot that cannot be built fails here with one line, never a silent pass.
+test-blender: extension
+	chroot=$$(sh .ci/blender/chroot.sh path) && \
+	FIBRILFIT_CHROOT=$$chroot $(VENV)/bin/python -m pytest tests/realblender -p no:randomly \
+	  $(PYTEST_ARGS)
 
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py

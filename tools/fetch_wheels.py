@@ -1,5 +1,5 @@
 """Fetch the wheels that blender_manifest.toml lists (gemmi, for every platform and Python of the
-supported Blenders) into fibrilfit/wheels/, with pip download from PyPI. `make extension` runs it.
+supported Blenders; tqdm, pure Python) into fibrilfit/wheels/, with pip download from PyPI. `make extension` runs it.
 
     python tools/fetch_wheels.py          # missing ones only; other .whl files in wheels/ removed
 
@@ -24,6 +24,8 @@ def pip_args(wheel: pathlib.Path) -> list:
     A build tag (gemmi-0.7.5-0-cp313-...) is ours: PyPI's file has none (see the manifest)."""
     parts = wheel.name[:-4].split("-")
     name, version, python, _abi, platforms = parts[:2] + parts[-3:]
+    if platforms == "any":  # a pure-Python wheel (tqdm-4.70.1-py3-none-any.whl): one for all
+        return ["--only-binary=:all:", "--no-deps", f"{name}=={version}"]
     args = ["--only-binary=:all:", "--no-deps", "--python-version", f"{python[2]}.{python[3:]}"]
     for platform in platforms.split("."):
         args += ["--platform", platform]

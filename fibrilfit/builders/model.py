@@ -22,9 +22,9 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
 # A grazing pair (only the BVH names it, within the mesh's resolution:
-# docs/model/verdict.md#two-checks) is not a deep clash: a pale red, so the picture does not
-# overstate it.
-GRAZE_COLOR = (1.0, 0.45, 0.62, 1.0)
+# docs/model/verdict.md#two-checks) is not a deep clash: orange, so the picture does not overstate
+# it and the two read apart.
+GRAZE_COLOR = (1.0, 0.5, 0.0, 1.0)
 # Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
 PF_COLORS = {
     "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
@@ -425,8 +425,8 @@ class _LayerBuilder:
 
 def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:
     """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), those
-    of `grazing` (and not clashing) pale red, the others their protofilament's colour, through
-    ob.color. Returns the red.
+    of `grazing` (chains whose every clash only grazes: analysis.clash_kinds) orange, the
+    others their protofilament's colour, through ob.color. Returns the red.
 
     ob.color is what the viewport shows with Color: Object, and what materials read through
     an Object Info node, so one call recolours both after each check. Colouring edits simulated

@@ -16,7 +16,7 @@ from mathutils import Matrix, Vector
 from ..builders.model import COLORS, colour_globules
 from ..builders.periodic import MOVING, STATIC, image_collection
 from ..builders.physics import keep_bake
-from ..builders.scene import is_ours, new_collection, tag
+from ..builders.scene import TAG, is_ours, new_collection, tag
 
 BACKGROUND = (0.3, 0.32, 0.36)     # linear; a mid grey that light globules stand out on
 VIEW_ROLE = "view"                # collection holding the camera and light
@@ -66,8 +66,11 @@ def dress(scene: bpy.types.Scene, model, clashing=None, *, aspect: float = 16 / 
 def ensure_materials(model) -> dict:
     """One material per shared mesh (slab, bead = anchor and residues, globule), each taking
     its colour from the object. Returns {part: material}."""
-    meshes = {"slab": model.slabs[0].data, "bead": model.chain[0][0].data,
-              "globule": model.globules[0].data}
+    first = model.chain[0] if model.chain else []  # a model built part of the way: its parts
+    meshes = {"slab": model.slabs[0].data if model.slabs else None,
+              "bead": first[0].data if first else None,
+              "globule": first[-1].data if first and first[-1].get(TAG) == "globule" else None}
+    meshes = {part: mesh for part, mesh in meshes.items() if mesh is not None}
     viewport = {"slab": COLORS["slab"], "bead": COLORS["residue"], "globule": COLORS["globule"]}
     out = {}
     for part, mesh in meshes.items():
@@ -79,6 +82,52 @@ def ensure_materials(model) -> dict:
         mat.diffuse_color = viewport[part]  # solid viewport in Material mode
         out[part] = mat
     return out
+
+
+COLOUR_KEY = "fibrilfit_colour"  # on an object-linked colour material: its colour, "#rrggbb"
+
+
+def show_colours(model) -> int:
+    """The model's colours in Solid mode, with the user's shading left alone: Solid's default
+    Color: Material shows a material's diffuse colour, so each object whose colour (ob.color:
+    its role, its protofilament's tint, a clash's red, a graze's orange) differs from its mesh's
+    material gets a material of that colour of the model's own, linked to the object; renders
+    read ob.color through Object Info either way. Returns how many objects have their own.
+
+    Edits simulated objects: after a bake, keep the bake first (colour_globules does)."""
+    ensure_materials(model)
+    palette = {m.get(COLOUR_KEY): m for m in bpy.data.materials
+               if is_ours(m) and m.get(COLOUR_KEY)}
+    own = 0
+
+    def material_of(colour):
+        key = "#" + "".join(f"{round(min(max(c, 0.0), 1.0) * 255):02x}" for c in colour)
+        if key not in palette:
+            palette[key] = _object_colour_material(f"FibrilFit {key}")
+            palette[key][COLOUR_KEY] = key
+            palette[key].diffuse_color = colour
+        return palette[key]
+
+    root = model.root
+    for ob in {ob for c in (root, *root.children_recursive) for ob in c.objects}:
+        if ob.type != "MESH" or not is_ours(ob):
+            continue
+        colour = tuple(ob.color)
+        if not ob.material_slots:  # a mesh of its own (a core piece, an image's): its colour
+            ob.data.materials.append(material_of(colour))
+        slot = ob.material_slots[0]
+        base = ob.data.materials[0]
+        if base is not None and np.allclose(base.diffuse_color, colour, atol=1e-3):
+            if slot.link != "DATA":
+                slot.link = "DATA"
+            continue
+        mat = material_of(colour)
+        if slot.link != "OBJECT":
+            slot.link = "OBJECT"
+        if slot.material != mat:
+            slot.material = mat
+        own += 1
+    return own
 
 
 def _object_colour_material(name: str) -> bpy.types.Material:

@@ -39,18 +39,28 @@ class ParamError(ValueError):
 
 
 def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
-          derived=None, size=None, choices=None, item=None):
+          derived=None, size=None, choices=None, item=None, label=None, shown_in=None,
+          question=False):
     """`derived`: for a parameter whose default (None) is worked out from others, how (text).
     `size`: a fixed number of values (a vector); kind "points" is a list of [x, y].
-    `choices`: kind str, one of these (CLI choices, the panel's enum)."""
+    `choices`: kind str, one of these (CLI choices, the panel's enum).
+    The sidebar: `label` its name where the field's name reads badly; `shown_in` a unit it is
+    shown in instead of `unit` (a key of SHOWN_IN: "%" for a fraction the summary prints in per
+    cent); `question` marks what the user asks about, shown at the top of the panel; `section`
+    is also the build step that reads it (docs/guide/sidebar.md#the-panel)."""
     meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
-            "section": section, "derived": derived, "size": size}
+            "section": section, "derived": derived, "size": size, "label": label,
+            "shown_in": shown_in, "question": question}
     if choices is not None:
         meta["choices"] = tuple(choices)
     if item is not None:  # kind "list": any number of values of this type, comma-separated
         meta["item"] = item
     return field(default=default, metadata=meta)
 
+
+# A unit a parameter is shown in on the panel: (from `unit`, factor). The stretch tolerance is a
+# fraction in the definition and the CLI, a percentage in the summary and the verdict's line.
+SHOWN_IN = {"%": ("fraction", 100.0)}
 
 # Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
 DERIVED_WORDS = ("auto", "default", "none", "box", "")
@@ -80,11 +90,13 @@ class Params:
                                    section="Linker")
     linker: int = _spec(6, 1, 200, "residues",
                         "Linker length in residues, counting the passive anchor",
-                        kind=int, section="Linker")
+                        kind=int, section="Linker", question=True)
     globule_diameter: float = _spec(30.0, 0.5, 500.0, "Å",
-                                    "Diameter of the tethered globular domain", section="Globule")
+                                    "Diameter of the tethered globular domain", section="Globule",
+                                    question=True)
     layers: int = _spec(20, 1, 100_000, "layers",
-                        "Number of stacked β-strand layers in the fibril", kind=int, section="Layers")
+                        "Number of stacked β-strand layers in the fibril", kind=int,
+                        section="Layers", question=True)
     rise: float = _spec(4.8, 0.1, 100.0, "Å",
                         "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
                         section="Layers")
@@ -108,7 +120,7 @@ class Params:
                                    "Constraint solver iterations per substep", kind=int)
     stretch_tolerance: float = _spec(0.05, 0.0, 10.0, "fraction",
                                      "Largest bond stretch for which the linker counts as intact",
-                                     section="Check")
+                                     section="Check", shown_in="%")
     # Settling: measured on 147 bakes (docs/model/settling.md#settling), stopping once every body moves less
     # than 0.3 Å/frame for 20 frames gave the 250-frame verdict every time and saved 21 % of the
     # bake time (40 % on the default model). Under the weak random gravity nothing reaches true
@@ -131,10 +143,11 @@ class Params:
     pf_rotation: float | None = _spec(None, -2 * math.pi, 2 * math.pi, "rad",
                                       "Turn about the fibril axis from one protofilament to the "
                                       "next (a pseudo-2₁ fibril: about 3.13 rad, i.e. 179.3deg)",
-                                      section="Layers", derived="2π/K")
+                                      section="Layers", derived="2π/K", label="Protofilament turn")
     pf_rise: float = _spec(0.0, -50.0, 50.0, "Å",
                            "Rise along the fibril axis from one protofilament to the next "
-                           "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers")
+                           "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers",
+                           label="Protofilament rise")
     core_outline: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                        "The core's cross-section: a closed polygon of [x, y] "
                                        "points in the layer's frame (axis at the origin), "
@@ -153,12 +166,12 @@ class Params:
     protocol: str = _spec("tutorial", None, None, "",
                           "How the search starts: tutorial (straight chains, full-size globules "
                           "pushed apart) or inflate (fanned chains, globules grown from small)",
-                          kind=str, choices=PROTOCOLS, section="Linker")
+                          kind=str, choices=PROTOCOLS, section="Linker", question=True)
     # The inflate schedule, measured (docs/model/search.md#inflate-schedule): grow, hold at full size
     # with the gravity off, judge; a jammed layout is shrunk and grown again under a new gravity.
     grow_start: float = _spec(0.3, 0.01, 1.0, "fraction",
                               "inflate: globule scale at the start (smaller if the fanned start "
-                              "layout would overlap)", section="Search")
+                              "layout would overlap)", section="Search", label="Start scale")
     grow_frames: int = _spec(100, 1, 100_000, "frames",
                              "inflate: frames over which the globules grow to full size",
                              kind=int, section="Search")
@@ -172,13 +185,13 @@ class Params:
                                kind=int, section="Search")
     regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
                                 "inflate: globule scale a jammed layout is shrunk to",
-                                section="Search")
+                                section="Search", label="Regrow scale")
 
     periodic: int = _spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
                           "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
                           "--layers layers with two ends)",
-                          kind=int, section="Layers")
+                          kind=int, section="Layers", label="Cell layers", question=True)
 
     # Measured (docs/model/periodic-cell.md#periodic-cell): images one frame behind their originals make every
     # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.

@@ -1,5 +1,9 @@
-"""The FibrilFit tab of the 3D View's sidebar: Run all and Clear, the model's state and verdict,
-then one section per tutorial step with its parameters and its button."""
+"""The FibrilFit tab of the 3D View's sidebar, in the order of the user's question
+(docs/guide/sidebar.md#the-panel): the structures (import a fibril and a domain, or load a case);
+what the user asks about (linker, domain, protocol, layers or a periodic cell); Run all and the
+verdict. Below it, collapsed: the step-by-step build (a sub-panel per step with its settings and
+its button), the physics and the search. A setting shows only where it applies; labels are short
+enough for the default sidebar width (tests/blender/test_ui.py measures them)."""
 import json
 import math
 
@@ -14,28 +18,30 @@ from ..exports.summary import percent
 from .operators.common import reached
 
 STATUS = {
-    "": ("No model yet: run the steps below in order, or Run all", "INFO"),
+    "": ("No model yet", "INFO"),
     "slab": ("Built: slab", "MESH_CUBE"),
     "anchor": ("Built: slab and anchor", "MESH_UVSPHERE"),
-    "linker": ("Built: layer 0 up to the linker", "LINKED"),
+    "linker": ("Built: layer 0 to the linker", "LINKED"),
     "globule": ("Built: layer 0", "MESH_UVSPHERE"),
     "layers": ("Built: every layer; not baked", "MOD_ARRAY"),
     "baked": ("Baked; not checked", "PHYSICS"),
     "checked": ("Checked", "CHECKMARK"),
 }
 
-# Section: (operator, the stage that shows it done), ...
-BUTTONS = {
-    "Slab": (("fibrilfit.build_slab", "slab"),),
-    "Anchor": (("fibrilfit.build_anchor", "anchor"),),
-    "Linker": (("fibrilfit.build_linker", "linker"),),
-    "Globule": (("fibrilfit.build_globule", "globule"),),
-    "Layers": (("fibrilfit.replicate_layers", "layers"),),
-    "Simulation": (("fibrilfit.bake", "baked"),),
-    "Check": (("fibrilfit.check_intersections", "checked"), ("fibrilfit.join_globules", None),
-              ("fibrilfit.render", None), ("fibrilfit.export_pdb", None),
-              ("fibrilfit.report", None)),
-}
+# The step-by-step sub-panels: (label, the parameter section it shows, its buttons); a button is
+# (operator, the stage that shows it done). The bake's settings are under Physics.
+STEPS = (
+    ("Slab", "Slab", (("fibrilfit.build_slab", "slab"),)),
+    ("Anchor", "Anchor", (("fibrilfit.build_anchor", "anchor"),)),
+    ("Linker", "Linker", (("fibrilfit.build_linker", "linker"),)),
+    ("Globule", "Globule", (("fibrilfit.build_globule", "globule"),)),
+    ("Layers", "Layers", (("fibrilfit.replicate_layers", "layers"),)),
+    ("Bake", None, (("fibrilfit.bake", "baked"),)),
+    ("Check", "Check", (("fibrilfit.check_intersections", "checked"),
+                        ("fibrilfit.join_globules", None), ("fibrilfit.render", None),
+                        ("fibrilfit.export_pdb", None))),
+)
+WRAP = 36  # characters per line of a long message (about 230 px of Blender's 11 pt UI font)
 
 
 class _Sidebar:
@@ -49,30 +55,31 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
     bl_label = "FibrilFit"
 
     def draw(self, context):
-        layout, scene = self.layout, context.scene
-        s = scene.fibrilfit
-        row = layout.row(align=True)
-        row.scale_y = 1.3
-        row.operator("fibrilfit.run_all", icon="PLAY")
-        row.operator("fibrilfit.clear", icon="TRASH")
-        _draw_case(layout, s)
-        stage = model_stage(scene)
-        text, icon = STATUS[stage]
-        layout.label(text=text, icon=icon)
-        if reached(stage, "layers"):
-            _draw_changes(layout, s, find_root(scene), stage)
-        if stage == "checked" and s.verdict:
-            _draw_result(layout.box(), s)
-        layout.label(text="Lengths in Å: 1 Blender unit = 1 Å")
+        layout = self.layout
+        layout.use_property_split = False
+        layout.use_property_decorate = False
+        draw_structures(layout.column(), context)
+        layout.separator()
+        draw_question(layout.column(), context.scene.fibrilfit)
+        layout.separator()
+        draw_run(layout.column(), context)
 
 
-def _draw_case(layout, s):
-    row = layout.row(align=True)
+# ---- the structures --------------------------------------------------------------------------
+
+def draw_structures(col, context):
+    s = context.scene.fibrilfit
+    row = col.row(align=True)
+    row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
+    row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
+    row = col.row(align=True)
     row.operator("fibrilfit.load_case", icon="FILE_FOLDER")
     row.operator("fibrilfit.save_case", icon="FILE_TICK")
     name = _case_name(s)
     if name:
-        layout.label(text=f"Case: {name}", icon="BOOKMARKS")
+        col.label(text=f"Case: {name}", icon="BOOKMARKS")
+    for line in structure_lines(structure_trace.measured(context.scene)):
+        col.label(text=line)
 
 
 def _case_name(s) -> str:
@@ -82,20 +89,87 @@ def _case_name(s) -> str:
         return ""
 
 
-def _draw_changes(layout, s, root, stage):
+def structure_lines(measured: dict) -> list:
+    """The panel's lines for the imported structures' measurements, each short enough for the
+    default sidebar width."""
+    lines = []
+    f = measured.get("fibril")
+    if f:
+        hand = "right" if f["twist"] > 0 else "left"
+        lines.append(f"Fibril {f['file']}")
+        lines.append(f"rise {f['rise']:.3f} Å, twist {math.degrees(f['twist']):+.3f}°")
+        lines.append(f"{hand}-handed, {f['protofilaments']} protofilament(s)")
+        lines.append(f"core {f['core_residues'][0]}-{f['core_residues'][1]}, "
+                     f"{f['layers']} layers in the file")
+        for a in f["anchors"]:
+            lines.append(f"anchor {a['chain']} {a['residue_name']}{a['residue']}: r "
+                         f"{a['radius']:.1f} Å" + (", buried" if a["buried"] else ""))
+    d = measured.get("domain")
+    if d:
+        lines.append(f"Domain {d['file']} chain {d['chain']}")
+        lines.append(f"Rg {d['rg']:.2f} Å, globule {d['globule_diameter']:.1f} Å")
+    return lines
+
+
+# ---- the question ----------------------------------------------------------------------------
+
+def draw_question(col, s):
+    """Linker, domain, protocol, then the fibril: layers, or a periodic cell of M layers."""
+    for field in properties.question_fields():
+        if field.name in ("layers", "periodic"):
+            continue
+        col.prop(s, field.name)
+    col.prop(s, "use_periodic")
+    col.prop(s, "periodic" if s.use_periodic else "layers")
+
+
+# ---- Run all and the verdict -----------------------------------------------------------------
+
+def draw_run(col, context):
+    scene = context.scene
+    s = scene.fibrilfit
+    row = col.row(align=True)
+    row.scale_y = 1.6  # the panel's main action, taller than every other button
+    row.operator("fibrilfit.run_all", icon="PLAY")
+    row.operator("fibrilfit.clear", icon="TRASH")
+    col.operator("fibrilfit.report", icon="FILE")  # the whole answer as one page (report.md)
+    stage = model_stage(scene)
+    text, icon = STATUS[stage]
+    col.label(text=text, icon=icon)
+    if reached(stage, "layers"):
+        _draw_changes(col, s, find_root(scene), stage)
+    if stage == "checked" and s.verdict:
+        draw_result(col.box(), s)
+    col.label(text="Lengths in Å (1 unit = 1 Å)")
+
+
+def wrapped(col, text: str, icon: str = "NONE") -> None:
+    """`text` as labels of at most WRAP characters, the icon on the first."""
+    line = ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > WRAP:
+            col.label(text=line, icon=icon)
+            line, icon = word, "BLANK1"
+        else:
+            line = f"{line} {word}" if line else word
+    if line:
+        col.label(text=line, icon=icon)
+
+
+def _draw_changes(col, s, root, stage):
     """Warn when the panel no longer matches the model a bake or check would use."""
     built, now = params_of(root), properties.compared_values(s)
     changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS, now=now)
     if changed:
         names = ", ".join(name for name, _, _ in changed)
-        layout.label(text=f"Changed since the build: {names}", icon="ERROR")
-        layout.label(text="Build again (Run all, or the steps) to apply")
+        wrapped(col, f"Changed since the build: {names}", "ERROR")
+        wrapped(col, "Build again (Run all, or the steps) to apply", "BLANK1")
     elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",),
                                                                 now=now):
-        layout.label(text="Simulation settings changed: Bake again to apply", icon="ERROR")
+        wrapped(col, "Physics changed: Bake again to apply", "ERROR")
 
 
-def _draw_result(box, s):
+def draw_result(box, s):
     ok = s.verdict == "successful"
     box.label(text=f"Verdict: {s.verdict}", icon="CHECKMARK" if ok else "ERROR")
     box.label(text=f"Clashing globule pairs: {s.clash_count}")
@@ -103,44 +177,44 @@ def _draw_result(box, s):
                    f"({'intact' if s.linker_intact else 'stretched'})")
     box.label(text=f"Accommodated: {'yes' if s.accommodated else 'no'}",
               icon="CHECKMARK" if s.accommodated else "CANCEL")
+    if s.clash_count:
+        box.label(text="Red: clash; orange: graze", icon="INFO")
 
 
-class _Section(_Sidebar):
-    bl_parent_id = "FIBRILFIT_PT_main"
-    section = ""
+# ---- the collapsed sub-panels ----------------------------------------------------------------
 
-    def draw(self, context):
-        layout, s = self.layout, context.scene.fibrilfit
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        col = layout.column()
-        for field in properties.fields_in(self.section):
-            if field.name == "periodic":  # its checkbox, then M (0 = auto)
-                col.prop(s, "use_periodic")
-            if field.metadata["kind"] == "points":
-                _draw_outline(col, s, field)
-                continue
-            if field.metadata.get("derived"):  # a switch: off means its default, worked out
-                switch = properties.switch_name(field.name)
-                col.prop(s, switch)
-                row = col.row()
-                row.active = getattr(s, switch)
-                row.prop(s, field.name)
-                continue
-            row = col.row()
-            if field.name == "periodic":
-                row.active = s.use_periodic
-            elif field.name in P.NOT_WITH_PERIODIC:
-                row.active = not s.use_periodic
-            # settle_speed, settle_frames... only matter when the bool field they extend is on
-            switch = field.name.split("_")[0]
-            if switch != field.name and isinstance(getattr(s, switch, None), bool):
-                row.active = getattr(s, switch)
-            row.prop(s, field.name)
-        stage = model_stage(context.scene)
-        for idname, done_at in BUTTONS[self.section]:
-            done = done_at is not None and reached(stage, done_at)
-            layout.operator(idname, icon="CHECKMARK" if done else "NONE")
+def shown(field, s) -> bool:
+    """Whether a setting applies to the panel's model (docs/guide/sidebar.md#the-panel)."""
+    name = field.name
+    if field.metadata.get("question"):
+        return False  # at the top of the panel
+    if _search(field):
+        return s.protocol == "inflate"
+    if name == "image_updates":
+        return s.use_periodic
+    if name in P.NOT_WITH_PERIODIC:
+        return not s.use_periodic
+    switch = name.split("_")[0]  # settle_speed, settle_frames: only with settle on
+    if switch != name and isinstance(getattr(s, switch, None), bool):
+        return getattr(s, switch)
+    return True
+
+
+def draw_fields(col, s, fields):
+    """Settings, one per line (a derived one: its switch, then its value, greyed while off)."""
+    for field in fields:
+        if not shown(field, s):
+            continue
+        if field.metadata["kind"] == "points":
+            _draw_outline(col, s, field)
+        elif field.metadata.get("derived"):
+            switch = properties.switch_name(field.name)
+            col.prop(s, switch)
+            sub = col.column()
+            sub.active = getattr(s, switch)
+            sub.prop(s, field.name)
+        else:
+            col.prop(s, field.name)
 
 
 def _draw_outline(col, s, field):
@@ -161,61 +235,76 @@ def _draw_outline(col, s, field):
     row.operator("fibrilfit.clear_outline", icon="MESH_CUBE")
 
 
-def _section_panel(section):
-    name = f"FIBRILFIT_PT_{section.lower()}"
-    return type(name, (_Section, bpy.types.Panel),
-                {"bl_idname": name, "bl_label": section, "section": section})
-
-
-class FIBRILFIT_PT_check(_Section, bpy.types.Panel):
-    bl_idname = "FIBRILFIT_PT_check"
-    bl_label = "Check"
-    section = "Check"
-
-    def draw(self, context):
-        _Section.draw(self, context)
-        space = context.space_data
-        shading = getattr(space, "shading", None)
-        if shading is not None and shading.type == "SOLID" and shading.color_type != "OBJECT":
-            row = self.layout.row()
-            row.label(text="Red clashes show with colour", icon="INFO")
-            row.prop(shading, "color_type", text="")
-
-
-class FIBRILFIT_PT_structures(_Sidebar, bpy.types.Panel):
-    """Import fibril… / Import domain…, and what they measured."""
-    bl_idname = "FIBRILFIT_PT_structures"
-    bl_label = "Structures"
+class _Closed(_Sidebar):
     bl_parent_id = "FIBRILFIT_PT_main"
+    bl_options = {"DEFAULT_CLOSED"}
+
+
+class FIBRILFIT_PT_steps(_Closed, bpy.types.Panel):
+    """The tutorial's steps one by one: each sub-panel builds the model up to its part."""
+    bl_idname = "FIBRILFIT_PT_steps"
+    bl_label = "Step by step"
 
     def draw(self, context):
-        layout = self.layout
-        row = layout.row(align=True)
-        row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
-        row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
-        for line in structure_lines(structure_trace.measured(context.scene)):
-            layout.label(text=line)
+        wrapped(self.layout.column(), "Each step builds the model up to itself from the "
+                                      "values above and below")
 
 
-def structure_lines(measured: dict) -> list:
-    """The panel's lines for the imported structures' measurements."""
-    lines = []
-    f = measured.get("fibril")
-    if f:
-        hand = "right" if f["twist"] > 0 else "left"
-        twist = math.degrees(f["twist"])
-        lines.append(f"{f['file']}: rise {f['rise']:.3f} Å, twist {twist:+.3f}° ({hand}-handed)")
-        lines.append(f"{f['protofilaments']} protofilament(s), core {f['core_residues'][0]}-"
-                     f"{f['core_residues'][1]}, {f['layers']} layers in the file")
-        for a in f["anchors"]:
-            lines.append(f"anchor {a['chain']} {a['residue_name']}{a['residue']}: r "
-                         f"{a['radius']:.1f} Å" + (" (buried)" if a["buried"] else ""))
-    d = measured.get("domain")
-    if d:
-        lines.append(f"{d['file']} chain {d['chain']}: Rg {d['rg']:.2f} Å, globule "
-                     f"{d['globule_diameter']:.1f} Å")
-    return lines
+class _Step(_Sidebar):
+    bl_parent_id = "FIBRILFIT_PT_steps"
+    section = None
+    buttons = ()
+
+    def draw(self, context):
+        layout, s = self.layout, context.scene.fibrilfit
+        layout.use_property_split = False
+        layout.use_property_decorate = False
+        if self.section:
+            draw_fields(layout.column(), s, properties.fields_in(self.section))
+        stage = model_stage(context.scene)
+        for idname, done_at in self.buttons:
+            done = done_at is not None and reached(stage, done_at)
+            layout.operator(idname, icon="CHECKMARK" if done else "NONE")
 
 
-SECTION_PANELS = tuple(_section_panel(sec) for sec in properties.SECTIONS if sec != "Check")
-CLASSES = (FIBRILFIT_PT_main, *SECTION_PANELS, FIBRILFIT_PT_check, FIBRILFIT_PT_structures)
+def _step_panel(label, section, buttons):
+    name = f"FIBRILFIT_PT_step_{label.lower()}"
+    return type(name, (_Step, bpy.types.Panel), {"bl_idname": name, "bl_label": label,
+                                                 "section": section, "buttons": buttons})
+
+
+def _search(field) -> bool:
+    """The inflate schedule (params section "Search"; the bake reads it, so for the staleness
+    checks it counts as "Simulation": properties.section_of)."""
+    return field.metadata.get("section") == "Search"
+
+
+class FIBRILFIT_PT_physics(_Closed, bpy.types.Panel):
+    """The bake's settings: gravity and seed, time, substeps, settling (and a cell's images)."""
+    bl_idname = "FIBRILFIT_PT_physics"
+    bl_label = "Physics"
+
+    def draw(self, context):
+        self.layout.use_property_decorate = False
+        draw_fields(self.layout.column(), context.scene.fibrilfit,
+                    [f for f in properties.fields_in("Simulation") if not _search(f)])
+
+
+class FIBRILFIT_PT_search(_Closed, bpy.types.Panel):
+    """The inflate protocol's schedule; nothing to set under the tutorial's."""
+    bl_idname = "FIBRILFIT_PT_search"
+    bl_label = "Search"
+
+    def draw(self, context):
+        s = context.scene.fibrilfit
+        self.layout.use_property_decorate = False
+        if s.protocol != "inflate":
+            wrapped(self.layout.column(), "The tutorial protocol has no settings here; "
+                                          "Protocol: Inflate shows its schedule", "INFO")
+            return
+        draw_fields(self.layout.column(), s, [f for f in P.fields() if _search(f)])
+
+
+STEP_PANELS = tuple(_step_panel(*step) for step in STEPS)
+CLASSES = (FIBRILFIT_PT_main, FIBRILFIT_PT_steps, *STEP_PANELS, FIBRILFIT_PT_physics,
+           FIBRILFIT_PT_search)

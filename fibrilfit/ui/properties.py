@@ -25,10 +25,13 @@ BUILD_SECTIONS = SECTIONS[:5]  # what the build steps read; the bake and the che
 _FLOAT_UNITS = {
     "rad": {"subtype": "ANGLE", "unit": "ROTATION"},
     "fraction": {"subtype": "FACTOR"},
+    "%": {"subtype": "PERCENTAGE"},
 }
 _LABEL_UNITS = ("Å", "Å/frame", "Å/s²")
 _UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "Å/s²": "Å/s²",
-               "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %"}
+               "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %",
+               "%": "in per cent, as the summary prints it; the command line takes the fraction: "
+                    "5 % is 0.05"}
 
 
 def section_of(field) -> str:
@@ -37,14 +40,28 @@ def section_of(field) -> str:
 
 
 def fields_in(section: str) -> list:
-    """Fields shown in `section`, in the definition's order."""
+    """Fields of `section`, in the definition's order (the question's among them)."""
     return [f for f in P.fields() if f.metadata.get("ui", True) and section_of(f) == section]
 
 
+def question_fields() -> list:
+    """What the user asks about (params: question=True), shown at the top of the panel."""
+    return [f for f in P.fields() if f.metadata.get("ui", True) and f.metadata.get("question")]
+
+
 def label(field) -> str:
-    name = field.name.replace("_", " ").capitalize()
-    unit = field.metadata["unit"]
-    return f"{name} ({unit})" if unit in _LABEL_UNITS else name
+    """The panel's name of a field: params' `label` or the field's name, with the unit where
+    the value does not show it (short enough for the default sidebar width; a test checks)."""
+    meta = field.metadata
+    name = meta.get("label") or field.name.replace("_", " ").capitalize()
+    unit = meta["unit"]
+    return f"{name} ({unit})" if unit in _LABEL_UNITS and not meta.get("shown_in") else name
+
+
+def _scale(field) -> float:
+    """The factor from the definition's unit to the one the panel shows (1: the same)."""
+    shown = field.metadata.get("shown_in")
+    return P.SHOWN_IN[shown][1] if shown else 1.0
 
 
 def _description(field) -> str:
@@ -52,7 +69,7 @@ def _description(field) -> str:
     if meta["kind"] == "points":
         return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
                 f"Load one from a file with Load outline")
-    note = _UNIT_NOTES.get(meta["unit"], meta["unit"])
+    note = _UNIT_NOTES.get(meta.get("shown_in") or meta["unit"], meta["unit"])
     text = f"{meta['doc']} ({note})" if note and meta["kind"] is not bool else meta["doc"]
     return text + (f". Used when its switch is on; off: {meta['derived']}" if meta.get("derived")
                    else "")
@@ -86,8 +103,10 @@ def _param_property(field):
                             default=default, name=common["name"], description=meta["doc"])
     if meta["kind"] is int:
         return IntProperty(default=default, min=meta["min"], max=meta["max"], **common)
-    units = _FLOAT_UNITS.get(meta["unit"], {})
-    limits = {"min": meta["min"], "max": meta["max"], "precision": 3}
+    units = _FLOAT_UNITS.get(meta.get("shown_in") or meta["unit"], {})
+    k = _scale(field)
+    limits = {"min": meta["min"] * k, "max": meta["max"] * k, "precision": 1 if k != 1 else 3}
+    default = default * k if not isinstance(default, tuple) else default
     if isinstance(default, tuple):
         return FloatVectorProperty(default=default, size=len(default), subtype="XYZ",
                                    unit=units.get("unit", "NONE"), **limits, **common)
@@ -119,7 +138,7 @@ _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
 FIBRILFIT_PG_settings.__annotations__.update({
-    switch_name(f.name): BoolProperty(name=f"Set {label(f).lower()}",
+    switch_name(f.name): BoolProperty(name=f"Set {label(f)[:1].lower()}{label(f)[1:]}",
                                       description=f"Set by hand; off: {f.metadata['derived']}")
     for f in derived_fields()})
 FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
@@ -170,7 +189,9 @@ def _value(settings, field):
         return list_value(getattr(settings, field.name), field.metadata["item"])
     if field.metadata.get("derived") and not getattr(settings, switch_name(field.name)):
         return None
-    return _plain(getattr(settings, field.name))
+    value = _plain(getattr(settings, field.name))
+    k = _scale(field)
+    return value if k == 1 else float(f"{value / k:.12g}")  # 5.0 % reads back as 0.05
 
 
 def list_value(text: str, item=float):
@@ -205,8 +226,11 @@ def read_params(settings) -> P.Params:
 
 def write_params(settings, p: P.Params) -> None:
     derived = {f.name for f in derived_fields()}
+    scaled = {f.name: _scale(f) for f in P.fields() if _scale(f) != 1}
     for name, value in p.to_dict().items():
-        if name == "core_outline":
+        if name in scaled:
+            setattr(settings, name, value * scaled[name])
+        elif name == "core_outline":
             settings.core_outline = "" if value is None else json.dumps(value)
         elif P.field_spec(name)["kind"] == "list":
             setattr(settings, name, "" if value is None else ", ".join(f"{v:g}" for v in value))

@@ -65,8 +65,8 @@ def test_the_panel_draws_with_imports(ui, scene):
     from test_ui import FakeLayout
     bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "2n0a.pdb.gz"))
     log = []
-    panels.FIBRILFIT_PT_structures.draw(types.SimpleNamespace(layout=FakeLayout(log)),
-                                         bpy.context)
-    assert ("operator", "fibrilfit.import_fibril") in log
+    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=FakeLayout(log)), bpy.context)
+    assert log[0] == ("operator", "fibrilfit.import_fibril")  # the structures come first
     labels = [t for kind, t in log if kind == "label"]
-    assert labels[0].startswith("2n0a.pdb.gz: rise 4.89") and "right-handed" in labels[0]
+    assert labels[:3] == ["Fibril 2n0a.pdb.gz", labels[1], labels[2]]
+    assert labels[1].startswith("rise 4.89") and labels[2].startswith("right-handed")

@@ -71,16 +71,27 @@ def test_one_property_per_parameter_with_its_metadata(ui):
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
-        assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"], meta["max"])), f.name
+        # shown in another unit (the stretch tolerance in %): range and default scaled
+        k = P.SHOWN_IN[meta["shown_in"]][1] if meta.get("shown_in") else 1
+        assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"] * k,
+                                                                meta["max"] * k)), f.name
         default = tuple(prop.default_array) if prop.is_array else prop.default
         if meta["derived"]:  # None: its switch is off by default
             switch = rna[properties.switch_name(f.name)]
             assert switch.type == "BOOLEAN" and switch.default is False, f.name
             continue
-        assert default == pytest.approx(f.default), f.name
+        assert default == pytest.approx(f.default * k if k != 1 else f.default), f.name
         if meta["unit"].startswith("Å"):  # no Blender unit: Metric would show "30 m"
             assert prop.unit == "NONE" and prop.name.endswith(f"({meta['unit']})"), f.name
     assert (rna["twist"].subtype, rna["twist"].unit) == ("ANGLE", "ROTATION")
+    # the stretch tolerance in per cent, as the summary and the verdict's line print it
+    assert (rna["stretch_tolerance"].subtype, rna["stretch_tolerance"].default) == \
+        ("PERCENTAGE", pytest.approx(5.0))
+    ui.stretch_tolerance = 7.5
+    assert properties.read_params(ui).stretch_tolerance == 0.075
+    properties.write_params(ui, P.make_params(stretch_tolerance=0.02))
+    assert ui.stretch_tolerance == pytest.approx(2.0)
+    ui.stretch_tolerance = 5.0
     assert "4.8 Å in cross-β amyloid" in rna["rise"].description
     for name in properties.RESULTS:
         assert name in rna
@@ -294,7 +305,7 @@ def test_a_changed_build_value_must_be_rebuilt_before_baking(ui, scene):
     with pytest.raises(RuntimeError, match="gravity changed .* Bake again"):
         run("check_intersections")
     ui.gravity = 0.5
-    ui.stretch_tolerance = 10.0  # a check setting: applies without a new bake
+    ui.stretch_tolerance = 1000.0  # % (10 as a fraction); a check setting: no new bake needed
     run("check_intersections")
     assert ui.linker_intact
     ui.stretch_tolerance = 0.0
@@ -308,16 +319,21 @@ def test_colours_follow_each_check(ui, scene):
         ui.score_layers = exclude
         run("check_intersections")
         result = stored_result(scene)
-        deep, grazing = clash_kinds(result)  # deep clashes red, grazes pale red
+        deep, grazing = clash_kinds(result)  # deep clashes red, grazes orange
         scored = range(exclude, SMALL["layers"] - exclude)
         assert all(i in scored or j in scored for i, j, _ in result["clashing_pairs"])
         for k, ob in enumerate(find_model(scene).globules):
-            assert tuple(ob.color) == pytest.approx(CLASH_COLOR if k in deep else GRAZE_COLOR
-                                                    if k in grazing else COLORS["globule"])
+            want = CLASH_COLOR if k in deep else GRAZE_COLOR if k in grazing else COLORS["globule"]
+            assert tuple(ob.color) == pytest.approx(want)
+            # and in Solid mode (Color: Material): the material the object shows has it
+            assert tuple(ob.material_slots[0].material.diffuse_color) == pytest.approx(want,
+                                                                                     abs=1e-3)
     run("bake")  # the old verdict and colours no longer apply
     assert ui.verdict == "" and model_stage(scene) == "baked"
     assert all(tuple(ob.color) == pytest.approx(COLORS["globule"])
                for ob in find_model(scene).globules)
+    assert all(tuple(ob.material_slots[0].material.diffuse_color) == pytest.approx(
+        COLORS["globule"], abs=1e-3) for ob in find_model(scene).globules)
 
 
 def test_join_globules_adds_a_mesh_and_leaves_the_simulation_intact(ui, scene):
@@ -479,19 +495,36 @@ def draw_all(context):
     drawn = {}
     for cls in panels.CLASSES:
         log = []
-        panel = types.SimpleNamespace(layout=FakeLayout(log), section=getattr(cls, "section", ""))
+        panel = types.SimpleNamespace(layout=FakeLayout(log), section=getattr(cls, "section", ""),
+                                      buttons=getattr(cls, "buttons", ()))
         cls.draw(panel, context)
         drawn[cls.__name__] = log
     return drawn
 
 
-def test_panels_are_in_the_fibrilfit_tab_in_the_tutorials_order(ui):
-    assert [getattr(c, "bl_label") for c in panels.CLASSES] == ["FibrilFit", *properties.SECTIONS,
-                                                                 "Structures"]
+def test_panels_are_in_the_order_of_the_question(ui):
+    """The main panel (structures, the question, Run all), then collapsed: the steps (one
+    sub-panel each), the physics, the search."""
+    labels = [c.bl_label for c in panels.CLASSES]
+    assert labels == ["FibrilFit", "Step by step", "Slab", "Anchor", "Linker", "Globule",
+                      "Layers", "Bake", "Check", "Physics", "Search"]
     for cls in panels.CLASSES:
         assert cls.is_registered
         assert (cls.bl_space_type, cls.bl_region_type, cls.bl_category) == ("VIEW_3D", "UI",
                                                                              "FibrilFit")
+        parent = getattr(cls, "bl_parent_id", "")
+        assert parent in ("", "FIBRILFIT_PT_main", "FIBRILFIT_PT_steps")
+        if parent == "FIBRILFIT_PT_main":  # the sub-panels of the main one start closed
+            assert "DEFAULT_CLOSED" in cls.bl_options, cls.bl_label
+    main = [x for x in draw_all(bpy.context)["FIBRILFIT_PT_main"] if x[0] != "label"]
+    order = [name for _, name in main]
+    assert order.index("fibrilfit.import_fibril") < order.index("fibrilfit.load_case") \
+        < order.index("linker") < order.index("globule_diameter") < order.index("protocol") \
+        < order.index("use_periodic") < order.index("layers") < order.index("fibrilfit.run_all")
+
+
+def _props(drawn):
+    return [name for log in drawn.values() for kind, name in log if kind == "prop"]
 
 
 def test_panels_draw_in_every_state(ui, scene):
@@ -501,11 +534,15 @@ def test_panels_draw_in_every_state(ui, scene):
         run_steps(steps)
         assert model_stage(scene) == state
         states[state] = draw_all(bpy.context)
-    for drawn in states.values():  # every parameter and every step shows, once
-        props = [name for log in drawn.values() for kind, name in log if kind == "prop"]
-        switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
-        assert sorted(props) == sorted([f.name for f in P.fields() if f.metadata.get("ui", True)]
-                                       + switches + ["use_periodic"])  # the cell's checkbox
+    switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
+    everything = sorted([f.name for f in P.fields() if f.metadata.get("ui", True)] + switches
+                        + ["use_periodic"])
+    for drawn in states.values():  # each setting once, where it applies; every step's button
+        props = _props(drawn)
+        assert len(props) == len(set(props))
+        inapplicable = {"periodic", "image_updates", "grow_start", "grow_frames", "hold_frames",
+                        "regrow_cycles", "regrow_scale"}  # tutorial protocol, no cell
+        assert sorted(props) == sorted(set(everything) - inapplicable)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
                                                     "report", "load_case", "save_case",
@@ -523,13 +560,63 @@ def test_panels_draw_in_every_state(ui, scene):
     assert any("Changed since the build: layers" in t for t in labels)
 
 
-def test_check_panel_offers_object_colours_in_solid_view(ui, scene):
-    shading = scene.display.shading  # a real View3DShading, as a 3D View's space has
-    shading.type, shading.color_type = "SOLID", "MATERIAL"
-    context = types.SimpleNamespace(scene=scene, space_data=types.SimpleNamespace(shading=shading))
-    assert ("prop", "color_type") in draw_all(context)["FIBRILFIT_PT_check"]
-    shading.color_type = "OBJECT"
-    assert ("prop", "color_type") not in draw_all(context)["FIBRILFIT_PT_check"]
+def test_a_setting_shows_only_where_it_applies(ui):
+    """Inflate's schedule only under the inflate protocol; a cell's M and image updates only
+    with the periodic cell, which hides layers and score layers; settling's values only with
+    settling on."""
+    ui.protocol, ui.use_periodic, ui.settle = "inflate", True, False
+    props = _props(draw_all(bpy.context))
+    assert len(props) == len(set(props))
+    for name in ("grow_start", "grow_frames", "hold_frames", "regrow_cycles", "regrow_scale",
+                 "periodic", "image_updates"):
+        assert name in props, name
+    for name in ("layers", "score_layers", "settle_speed", "settle_frames"):
+        assert name not in props, name
+    ui.protocol, ui.use_periodic, ui.settle = "tutorial", False, True
+    props = _props(draw_all(bpy.context))
+    assert "grow_frames" not in props and "image_updates" not in props
+    assert "layers" in props and "settle_speed" in props
+
+
+# Blender's UI font is 11 px at the default resolution scale; the default sidebar is 291 px
+# wide (measured under Xvfb, Blender 4.3.2: tests/realblender/gui_probe.py), of which a field
+# gets about 230 px once the tabs, the panel's margins and the field's padding are taken.
+FIELD_PX, TEXT_PX = 230, 11
+
+
+def _text_px(text: str) -> float:
+    import blf
+    blf.size(0, TEXT_PX)
+    return blf.dimensions(0, text)[0]
+
+
+def test_no_label_is_cut_at_the_default_sidebar_width(ui, scene):
+    """Every label, and every field's name beside its value, fits the default sidebar."""
+    run_steps(STEPS)  # the verdict's box too
+    ui.protocol = "inflate"  # its schedule shows
+    rna = ui.bl_rna.properties
+    cut = []
+    for cls_name, log in draw_all(bpy.context).items():
+        for kind, name in log:
+            if kind == "label":
+                text = name
+            elif kind == "prop" and name in rna:
+                prop = rna[name]
+                array = getattr(prop, "is_array", False)
+                value = getattr(ui, name)
+                shown = (f"{value:.3f}" if isinstance(value, float) else
+                         "" if prop.type in ("BOOLEAN", "STRING") or array else
+                         str(value))
+                if prop.type == "ENUM":
+                    shown = max((i.name for i in prop.enum_items), key=len)
+                text = f"{prop.name}  {shown}" if not array else prop.name
+                if prop.type == "BOOLEAN":
+                    text = "[x] " + prop.name
+            else:
+                continue
+            if _text_px(text) > FIELD_PX:
+                cut.append((cls_name, text, _text_px(text)))
+    assert not cut
 
 
 def test_twist_shows_in_degrees(ui):
@@ -575,3 +662,69 @@ def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, s
     assert model.params.anchor == (31.75, 0.0)
     assert run("clear_outline") == {"FINISHED"} and ui.core_outline == ""
     assert properties.read_params(ui).core_outline is None
+
+
+# ---- the bake as a user meets it: progress in the status bar, Esc cancels ----------------------
+
+class _Workspace:
+    def __init__(self):
+        self.status = []
+
+    def status_text_set(self, value):
+        self.status.append(value)
+
+
+class _Progress:
+    def __init__(self):
+        self.drawn = []
+
+    def row(self):
+        return self
+
+    def progress(self, **kw):
+        self.drawn.append(kw)
+
+
+def test_the_bake_shows_progress_in_the_status_bar_and_esc_cancels(ui, scene):
+    run_steps(STEPS[:5])
+    reports = []
+
+    class Bake(simulate.FIBRILFIT_OT_bake.__mro__[1]):  # ModalBake, without the RNA
+        def report(self, kind, text):
+            reports.append((kind, text))
+
+        start = simulate.FIBRILFIT_OT_bake.start
+        done = simulate.FIBRILFIT_OT_bake.done
+
+    ws = _Workspace()
+    context = types.SimpleNamespace(scene=scene, workspace=ws, screen=None,
+                                    window_manager=bpy.context.window_manager)
+    op = Bake()
+    op.start(context)
+    for _ in range(3):
+        assert op.advance(context, 0.0) is False  # one frame per call here
+    bar = _Progress()
+    ws.status[-1](types.SimpleNamespace(layout=bar), context)
+    total = op._baking.total
+    assert bar.drawn == [{"factor": pytest.approx(3 / total), "type": "BAR",
+                          "text": f"FibrilFit: baking frame 3 of {total} (Esc to cancel)"}]
+    assert op._modal(context, types.SimpleNamespace(type="ESC")) == {"CANCELLED"}
+    assert ws.status[-1] is None  # the status bar is the user's again
+    assert reports and reports[-1][0] == {"WARNING"} and "cancelled at frame 3" in reports[-1][1]
+    assert model_stage(scene) == "layers" and ui.verdict == ""  # the model kept, not baked
+
+
+def test_framing_is_left_to_a_window_and_fits_the_model(ui, scene):
+    """Headless (no window) nothing is framed; the distance chosen puts the model's bounding
+    sphere inside the narrower side of the view (the GUI test checks a real 3D View:
+    tests/realblender/test_gui.py)."""
+    from fibrilfit.ui import view
+    run_steps(STEPS[:5])
+    assert view.frame_model(bpy.context, find_model(scene)) == 0
+    for width, height in ((1322, 876), (400, 900)):
+        d = view.view_distance(70.0, 50.0, width, height)
+        half = math.atan(view.SENSOR_MM / 2 / 50.0)
+        if width < height:
+            half = math.atan(math.tan(half) * width / height)
+        assert math.asin(70.0 / d) < half  # the sphere's angular radius fits
+        assert math.asin(70.0 / d) > 0.8 * half  # and fills most of the view

@@ -25,6 +25,7 @@ class _BuildStep:
     def _build(self, context):
         model = build_steps(common.panel_params(context), context.scene, upto=self.step)
         common.clear_results(context)
+        common.show_model(context, model)
         count = sum(len(c.objects) for c in (model.root, *model.root.children))
         self.report({"INFO"}, f"{self.bl_label}: the model has {count} objects")
         return {"FINISHED"}

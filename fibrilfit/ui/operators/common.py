@@ -15,7 +15,9 @@ from ...builders.physics import SceneConflict
 from ...exports.pdb import PdbError
 from ...exports.render import RenderError
 from ...exports.files import OutputError
+from ...exports.dressing import show_colours
 from ...exports.summary import percent
+from ..view import frame_model
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
 
@@ -99,6 +101,12 @@ def model_for(context, kept_sections, doing: str):
     return model
 
 
+def show_model(context, model) -> None:
+    """After a build: the model's colours in Solid mode, and the model framed in the 3D Views."""
+    show_colours(model)
+    frame_model(context, model)
+
+
 def clear_results(context) -> None:
     properties.clear_result(settings(context))
 
@@ -106,15 +114,18 @@ def clear_results(context) -> None:
 def record_bake(context, model, bake: dict) -> None:
     """After a bake: the old verdict and colours no longer apply."""
     clear_results(context)
-    colour_globules(model, ())
+    colour_globules(model, ())  # keeps the bake first: the colours below edit simulated objects
+    show_colours(model)
     model.root[RESULT] = json.dumps({**pipeline.describe(model.params), "stage": "bake", **bake})
 
 
 def record_check(context, model, result: dict) -> None:
-    """After a check: the verdict in scene.fibrilfit, clashing globules red, the JSON kept."""
+    """After a check: the verdict in scene.fibrilfit, clashing globules red (grazing ones
+    orange), the JSON kept."""
     properties.store_result(settings(context), result)
     deep, grazing = clash_kinds(result)
     colour_globules(model, deep, grazing=grazing)
+    show_colours(model)
     merged = {**json.loads(model.root.get(RESULT, "{}")), **result, "stage": "check"}
     model.root[RESULT] = json.dumps(merged)
     set_stage(model, "checked")

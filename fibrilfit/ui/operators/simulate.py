@@ -9,15 +9,28 @@ from ... import pipeline
 from .. import properties
 from . import common
 from ...exports.summary import percent
+from ..view import frame_model
 
 # Events a running bake lets through, so the view can still be turned and zoomed.
 NAVIGATION = {"MIDDLEMOUSE", "WHEELUPMOUSE", "WHEELDOWNMOUSE", "TRACKPADPAN", "TRACKPADZOOM",
               "MOUSEMOVE", "INBETWEEN_MOUSEMOVE", "NDOF_MOTION"}
 
 
-def _status(context, text) -> None:
+_HAS_PROGRESS = "progress" in bpy.types.UILayout.bl_rna.functions  # Blender 4.0+
+
+
+def _status(context, text, fraction=None) -> None:
+    """The status bar: `text`, after a progress bar filled to `fraction` when given (Blender
+    4.0+'s UILayout.progress); None clears it."""
     if context.workspace is not None:
-        context.workspace.status_text_set(text)
+        if text is not None and fraction is not None and _HAS_PROGRESS:
+            def draw(header, _context):
+                row = header.layout.row()
+                row.ui_units_x = 24
+                row.progress(factor=fraction, type="BAR", text=text)
+            context.workspace.status_text_set(draw)
+        else:
+            context.workspace.status_text_set(text)
     if context.screen is not None:
         for area in context.screen.areas:
             area.tag_redraw()
@@ -49,7 +62,7 @@ class ModalBake:
         frame = stepped[0]
         context.window_manager.progress_update(frame)
         _status(context, f"FibrilFit: baking frame {frame} of {self._baking.total} "
-                         f"(Esc to cancel)")
+                         f"(Esc to cancel)", frame / max(self._baking.total, 1))
         return False
 
     def end(self, context) -> None:
@@ -158,12 +171,16 @@ class FIBRILFIT_OT_run_all(ModalBake, bpy.types.Operator):
     def _execute(self, context):
         # No timer to serve: the very call headless.py makes.
         result = pipeline.run(common.panel_params(context), context.scene)
-        common.record_check(context, pipeline.current_model(context.scene), result)
+        model = pipeline.current_model(context.scene)
+        common.record_check(context, model, result)
+        frame_model(context, model)
         self.report({"INFO"}, common.verdict_line(result))
         return {"FINISHED"}
 
     def start(self, context):
-        self.begin(context, pipeline.build(common.panel_params(context), context.scene))
+        model = pipeline.build(common.panel_params(context), context.scene)
+        common.show_model(context, model)
+        self.begin(context, model)
 
     def done(self, context):
         model = self._baking.model

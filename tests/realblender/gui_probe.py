@@ -1,0 +1,153 @@
+"""Runs inside the GUI Blender of the GUI test (`blender --python gui_probe.py`): it presses
+nothing. Every 0.2 s it writes what Blender knows and a screenshot cannot say (window and region
+rectangles, the sidebar's tab, the panel's verdict, the model and the 3D Views) to
+$FIBRILFIT_PROBE/state.json, and it obeys two commands from $FIBRILFIT_PROBE/command:
+"mark" paints operator buttons and inactive tabs one flat colour and the panels another (theme
+colours), so the test can find the buttons and the panels' extent in a screenshot; "unmark"
+restores the theme. The clicks and keys come from xdotool.
+"""
+import json
+import os
+import pathlib
+
+import bpy
+from bpy_extras import view3d_utils
+
+PROBE = pathlib.Path(os.environ["FIBRILFIT_PROBE"])
+MARK = (1.0, 0.0, 1.0, 1.0)   # magenta: no other widget in the default theme has it
+PANEL = (0.0, 1.0, 1.0, 1.0)  # cyan: the panels' extent
+_saved = {}
+_state = {"seq": 0, "theme": "normal"}
+
+
+def _themed():
+    """(theme struct, property, colour) the mark paints: operator buttons and the sidebar's
+    inactive tabs MARK, the panels' background and headers PANEL (to crop the screenshots)."""
+    theme = bpy.context.preferences.themes[0]
+    w, space = theme.user_interface.wcol_tool, theme.view_3d.space
+    return [(w, "inner", MARK), (w, "inner_sel", MARK), (w, "outline", MARK),
+            (w, "show_shaded", False), (space, "tab_inactive", MARK),
+            (space.panelcolors, "back", PANEL), (space.panelcolors, "header", PANEL),
+            (space.panelcolors, "sub_back", PANEL)]
+
+
+def _mark():
+    for struct, name, colour in _themed():
+        if not hasattr(struct, name):
+            continue
+        old = getattr(struct, name)
+        _saved.setdefault((struct.as_pointer(), name), (struct, name, old if isinstance(old, bool)
+                                                       else tuple(old)))
+        setattr(struct, name, colour if isinstance(colour, bool) else colour[:len(old)])
+
+
+def _unmark():
+    for struct, name, value in _saved.values():
+        setattr(struct, name, value)
+
+
+def _rect(r):
+    return {"x": r.x, "y": r.y, "width": r.width, "height": r.height}
+
+
+def _views(window):
+    out = []
+    for area in window.screen.areas:
+        if area.type != "VIEW_3D":
+            continue
+        space = area.spaces.active
+        regions = {r.type: r for r in area.regions}
+        item = {"area": _rect(area), "regions": {t: _rect(r) for t, r in regions.items()},
+                "sidebar": space.show_region_ui,
+                "category": getattr(regions["UI"], "active_panel_category", None),
+                "shading": [space.shading.type, space.shading.color_type],
+                "view_location": list(space.region_3d.view_location),
+                "view_distance": space.region_3d.view_distance}
+        item["model_in_view"] = _model_in_view(regions["WINDOW"], space.region_3d)
+        out.append(item)
+    return out
+
+
+def _model_objects():
+    scene = bpy.context.scene
+    try:
+        from bl_ext.user_default.fibrilfit.builders.scene import find_root
+    except ImportError:
+        return []
+    root = find_root(scene)
+    if root is None:
+        return []
+    return [ob for c in (root, *root.children_recursive) for ob in c.objects]
+
+
+def _model_in_view(region, rv3d):
+    """The share of the model's objects whose centres project inside the 3D View's region."""
+    obs = [ob for ob in _model_objects() if ob.type == "MESH"]
+    if not obs:
+        return None
+    inside = 0
+    for ob in obs:
+        p = view3d_utils.location_3d_to_region_2d(region, rv3d, ob.matrix_world.translation)
+        inside += p is not None and 0 <= p.x <= region.width and 0 <= p.y <= region.height
+    return inside / len(obs)
+
+
+def _colours():
+    """Viewport colours of the model's globules: {colour as hex: count} of the material each
+    shows in Solid mode (its object's slot or its mesh's)."""
+    out = {}
+    for ob in _model_objects():
+        if ob.type != "MESH":
+            continue
+        mat = ob.material_slots[0].material if ob.material_slots else None
+        if mat is None:
+            out.setdefault("no material", {}).setdefault(ob.get("fibrilfit", "?"), 0)
+            out["no material"][ob.get("fibrilfit", "?")] += 1
+            continue
+        key = "#" + "".join(f"{round(c * 255):02x}" for c in mat.diffuse_color[:3])
+        role = ob.get("fibrilfit", "?")
+        out.setdefault(role, {}).setdefault(key, 0)
+        out[role][key] += 1
+    return out
+
+
+def _tick():
+    try:
+        cmd_file = PROBE / "command"
+        if cmd_file.exists():
+            cmd = cmd_file.read_text().strip()
+            cmd_file.unlink()
+            if cmd == "mark":
+                _mark()
+            elif cmd == "unmark":
+                _unmark()
+            _state["theme"] = {"mark": "marked", "unmark": "normal"}.get(cmd, _state["theme"])
+            for window in bpy.context.window_manager.windows:
+                for area in window.screen.areas:
+                    area.tag_redraw()
+        wm = bpy.context.window_manager
+        window = wm.windows[0]
+        s = bpy.context.scene
+        ff = getattr(s, "fibrilfit", None)
+        user = {ob.name: list(ob.location) for ob in s.objects if "fibrilfit" not in ob}
+        _state.update({
+            "seq": _state["seq"] + 1,
+            "window": {"width": window.width, "height": window.height},
+            "views": _views(window),
+            "verdict": ff.verdict if ff else None,
+            "clash_count": ff.clash_count if ff else None,
+            "accommodated": ff.accommodated if ff else None,
+            "model_objects": len(_model_objects()),
+            "colours": _colours(),
+            "user_objects": user,
+            "frame": s.frame_current,
+        })
+        tmp = PROBE / "state.json.tmp"
+        tmp.write_text(json.dumps(_state))
+        tmp.replace(PROBE / "state.json")
+    except Exception as exc:  # keep ticking; the test sees the error
+        (PROBE / "probe_error.txt").write_text(repr(exc))
+    return 0.2
+
+
+bpy.app.timers.register(_tick, first_interval=1.0, persistent=True)

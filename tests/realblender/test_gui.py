@@ -1,0 +1,74 @@
+"""The sidebar as a user meets it, in Blender 4.3.2's window under Xvfb: N opens the sidebar, a
+click opens the FibrilFit tab, a click presses Run all (real X input through xdotool, found on
+screen; gui_session.py). The verdict the panel shows must be the headless one for the same
+values, the model must be framed in the 3D View and coloured in Solid mode, and the user's
+objects and shading left alone. The screenshots go to docs/images/ for the README and docs."""
+import json
+import struct
+
+import pytest
+
+from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
+
+SHOTS = ROOT / "docs" / "images"
+FACTORY_OBJECTS = {"Cube": [0.0, 0.0, 0.0]}
+
+
+@pytest.fixture(scope="module")
+def session(installed):
+    out = OUT / "gui"
+    cp = chroot(f"rm -rf {inside(out)} && python3 tests/realblender/gui_session.py "
+                f"{inside(out)} {inside(SHOTS)}", timeout=1200)
+    log = json.loads((out / "session.json").read_text()) if (out / "session.json").exists() \
+        else {}
+    assert cp.returncode == 0 and log.get("ok"), (cp.stderr[-3000:], log.get("steps"),
+                                                  log.get("error"))
+    return log
+
+
+def test_run_all_shows_the_headless_verdict(session):
+    shown = session["state_after"]
+    real, ref = OUT / "gui-headless-blender.json", OUT / "gui-headless-module.json"
+    cp = chroot(f"blender -b -c fibrilfit run --json {inside(real)}")  # the panel's defaults
+    assert cp.returncode == 0, cp.stderr[-2000:]
+    assert module(["run", "--json", str(ref)]).returncode == 0
+    for result in (read_json(real), read_json(ref)):
+        assert shown["verdict"] == result["verdict"]
+        assert shown["clash_count"] == len(result["clashing_pairs"])
+        assert shown["accommodated"] == result["accommodated"]
+    assert session["state_before"]["verdict"] == ""  # it was the click that ran it
+
+
+def test_the_model_is_framed_and_coloured_and_the_users_scene_kept(session):
+    before, after = session["state_before"], session["state_after"]
+    view = after["views"][0]
+    assert after["model_objects"] > 200  # 20 layers: slabs, beads, globules, bonds
+    assert view["model_in_view"] >= 0.95, view  # every body's centre inside the 3D View
+    assert view["shading"] == before["views"][0]["shading"] == ["SOLID", "MATERIAL"]
+    colours = after["colours"]
+    assert "no material" not in colours, colours
+    assert set(colours) >= {"slab", "anchor", "residue", "globule"}, colours
+    grey = "#b3b3b3"  # Blender's default material grey: the model's own colours show instead
+    assert not any(grey in by_colour for by_colour in colours.values()), colours
+    for name, where in FACTORY_OBJECTS.items():
+        assert after["user_objects"][name] == where
+    assert set(after["user_objects"]) == set(before["user_objects"])
+
+
+def png_size(path) -> tuple:
+    head = path.read_bytes()[:24]
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", path
+    return struct.unpack(">II", head[16:24])
+
+
+def test_screenshots_for_the_docs(session):
+    """The panel before and after (the sidebar down to its last panel), and the 3D View."""
+    view = session["state_after"]["views"][0]
+    ui, area = view["regions"]["UI"], view["area"]
+    for name in ("panel-before.png", "panel-after.png"):
+        width, height = png_size(SHOTS / name)
+        assert width == ui["width"] and 300 < height <= ui["height"], (name, width, height)
+        assert name in session["screenshots"]
+    # after the run the verdict's box makes the panel taller
+    assert png_size(SHOTS / "panel-after.png")[1] > png_size(SHOTS / "panel-before.png")[1]
+    assert png_size(SHOTS / "result.png") == (area["width"], area["height"])

@@ -80,3 +80,17 @@ def measure(path, *, chain: str | None = None, residues=None,
         dmax = max(dmax, float(d.max()))
     return DomainSize(name, loaded.sha256, c.name, [int(used[0]), int(used[-1])], int(len(xyz)),
                       round(rg, 3), round(RG_TO_DIAMETER * rg, 3), round(dmax, 2), notes)
+
+
+def body_frame(atoms) -> tuple:
+    """The domain's rigid-body frame: (centroid (3,), local_xyz (m, 3)).
+
+    The globule object's local frame is the domain file's coordinates minus the heavy-atom
+    centroid, with no rotation; its shape meshes (hull, spheres) are built in it, and an atom at
+    `local` in it lies at `matrix_world @ local` once the body has moved. `atoms`: (m, 3) heavy
+    atoms in the file's frame (Å)."""
+    xyz = np.asarray(atoms, dtype=float).reshape(-1, 3)
+    if not len(xyz):
+        raise ValueError("body_frame: no atoms")
+    centroid = xyz.mean(axis=0)
+    return centroid, xyz - centroid

@@ -5,7 +5,8 @@ import numpy as np
 
 from ..model import helix
 from ..builders.readback import MatrixReader
-from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
+from .clashes import (bounding_radius, bvh_clashes, float_tolerance, grazing_depth, hull_clashes,
+                      sphere_band, sphere_clashes, spheres_clashes)
 from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_stretch
@@ -37,7 +38,8 @@ def scored_chains(p) -> tuple[int, int]:
     return lo * p.protofilaments, hi * p.protofilaments
 
 
-def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, list]:
+def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,
+                   slack: float = TOUCH_SLACK) -> tuple[list, list]:
     """Match the BVH's pairs against the sphere check's (pairs deeper than `band`).
 
     `depth(i, j)` is the spheres' overlap in Å. A pair only the BVH names is a grazing contact
@@ -48,7 +50,7 @@ def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, l
     grazing, disagree = [], []
     for i, j in sorted(set(bvh_pairs) ^ set(sphere_pairs)):
         d = float(depth(i, j))
-        if (i, j) in bvh_pairs and -TOUCH_SLACK < d <= band:
+        if (i, j) in bvh_pairs and -slack < d <= band:
             grazing.append((i, j, d))
         else:
             disagree.append((i, j, d))
@@ -129,7 +131,7 @@ def _clash_checks(model) -> dict:
     c_lo, c_hi = scored_chains(p)
     globules = model.globules
     mesh = globules[0].data
-    band = grazing_depth(mesh)
+    band = grazing_depth(mesh) if p.domain_shape == "sphere" else 0.0
     matrices = world_matrices(globules, model.root.children)
     n = len(matrices)
     cells = 0
@@ -143,10 +145,18 @@ def _clash_checks(model) -> dict:
         return 2 * p.globule_radius - float(np.linalg.norm(everything[i] - everything[j]))
 
     faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
-    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, p.globule_radius, band)
-               if scored[i] or scored[j]]
+    slack = TOUCH_SLACK
+    if p.domain_shape == "sphere":
+        found = sphere_clashes(everything, p.globule_radius, band)
+    elif p.domain_shape == "hull":  # the same faces, exactly: only rounding between the checks
+        band = slack = float_tolerance(everything)
+        found, depth = hull_clashes(mesh, matrices, band)
+    else:  # the covering spheres, each drawn as a 32 × 16 mesh as the sphere's globule
+        band = sphere_band(max(r for *_, r in p.domain_spheres))
+        found, depth = spheres_clashes(p.domain_spheres, matrices, band)
+    spheres = [(i, j, d) for i, j, d in found if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
-    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band)
+    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band, slack)
     warnings = []
     if disagree:
         warnings.append(

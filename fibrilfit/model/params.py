@@ -54,6 +54,8 @@ def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section=
 DERIVED_WORDS = ("auto", "default", "none", "box", "")
 MAX_OUTLINE_POINTS = 10_000
 PROTOCOLS = ("tutorial", "inflate")
+DOMAIN_SHAPES = ("sphere", "hull", "spheres")  # docs/model/domain-shapes.md#domain-shapes
+MAX_SHAPE_ROWS = 5_000
 
 
 @dataclass(frozen=True)
@@ -178,10 +180,48 @@ class Params:
                                "per frame (each frame is baked as this many shorter frames, with "
                                "the same substep length; must divide substeps)", kind=int)
 
+    # ---- the domain's real shape (issue #24): docs/model/domain-shapes.md#domain-shapes ----
+    domain_shape: str = _spec("sphere", None, None, "",
+                              "The globule's body: sphere (of globule_diameter, anywhere on its "
+                              "surface joined), hull (the convex hull of the domain's atoms grown "
+                              "by their van der Waals radius) or spheres (a few overlapping "
+                              "spheres covering them); hull and spheres need --domain and join the "
+                              "linker at the domain's terminal CA",
+                              kind=str, choices=DOMAIN_SHAPES, section="Globule")
+    domain_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "hull: the domain's outermost heavy atoms [x, y, z, r] in "
+                                       "its body frame (structure.shape.hull_atoms)",
+                                       kind="rows", size=4, ui=False, cli=False, section="Globule")
+    domain_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                         "spheres: the covering spheres [x, y, z, r] in the "
+                                         "domain's body frame (structure.shape.covering_spheres)",
+                                         kind="rows", size=4, ui=False, cli=False,
+                                         section="Globule")
+    domain_joint: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "hull, spheres: the linker's joint in the domain's body "
+                                       "frame, its terminal residue's CA",
+                                       size=3, ui=False, cli=False, section="Globule",
+                                       derived="on the sphere's surface")
+
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
         return self.globule_diameter / 2.0
+
+    @property
+    def globule_offset(self) -> float:
+        """From the last bond's pivot to the globule's centre: the sphere's radius, or with a real
+        shape the joint's distance from the domain's centroid."""
+        if self.domain_shape == "sphere" or self.domain_joint is None:
+            return self.globule_radius
+        return math.sqrt(sum(x * x for x in self.domain_joint))
+
+    @property
+    def joint_lever(self) -> float:
+        """From the last linker bead's centre to the globule's joint: its radius (the sphere's
+        surface), or with a real shape one residue spacing (the joint is the domain's terminal
+        CA, the next residue along the chain)."""
+        return self.residue_radius if self.domain_shape == "sphere" else self.residue_spacing
 
     @property
     def anchor_x(self) -> float:
@@ -221,7 +261,7 @@ class Params:
         radial linker (the tutorial's); in general the anchor's distance plus the distance along
         the chain."""
         xs = [self.anchor_x + self.residue_spacing * i for i in range(self.linker)]
-        return xs + [xs[-1] + self.residue_radius + self.globule_radius]
+        return xs + [xs[-1] + self.joint_lever + self.globule_offset]
 
     def chain_radii(self) -> list[float]:
         return [self.residue_radius] * self.linker + [self.globule_radius]
@@ -256,6 +296,11 @@ class Params:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
             d["core_outline"] = [list(xy) for xy in self.core_outline]
+        for name in ("domain_atoms", "domain_spheres"):
+            if d[name] is not None:
+                d[name] = [list(row) for row in d[name]]
+        if self.domain_joint is not None:
+            d["domain_joint"] = list(self.domain_joint)
         return d
 
     def replace(self, **changes) -> "Params":
@@ -278,8 +323,8 @@ class ChainLayout:
 def _chain_layout(p: "Params") -> ChainLayout:
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
-    offsets = polygons.chain_offsets(p.linker, p.residue_spacing, p.residue_radius,
-                                     p.globule_radius)
+    offsets = polygons.chain_offsets(p.linker, p.residue_spacing, p.joint_lever,
+                                     p.globule_offset)
     copies = [j * p.pf_angle for j in range(p.protofilaments)]
     for j, a in enumerate(copies):
         xy = polygons.rotate(anchor, a)
@@ -430,6 +475,8 @@ def make_params(*, force: bool = False, **values) -> Params:
         if meta["derived"] and (value is None or (isinstance(value, str)
                                                   and value.strip().lower() in DERIVED_WORDS)):
             clean[f.name] = None
+        elif meta["kind"] == "rows":
+            clean[f.name] = None if value is None else _rows(f.name, value, meta)
         elif meta["kind"] == "points":
             if isinstance(value, str) and value.strip().startswith("["):
                 try:
@@ -451,6 +498,28 @@ def make_params(*, force: bool = False, **values) -> Params:
     _check_combination(p, force)
     object.__setattr__(p, VALIDATED, force)  # trusted from here on: see validate()
     return p
+
+
+def _rows(name: str, value, meta: dict) -> tuple:
+    """A list of rows of meta["size"] numbers each (kind "rows"), as a tuple of tuples."""
+    size = meta["size"]
+    if isinstance(value, str):
+        try:
+            value = json.loads(value)
+        except ValueError:
+            raise ParamError(name, f"is not a JSON list of rows of {size} numbers "
+                                   f"(got {value[:40]!r})") from None
+    try:
+        rows = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParamError(name, f"must be a list of rows of {size} numbers") from None
+    if rows.ndim != 2 or rows.shape[1] != size or not 1 <= len(rows) <= MAX_SHAPE_ROWS:
+        raise ParamError(name, f"must be a list of 1 to {MAX_SHAPE_ROWS} rows of {size} numbers "
+                               f"(got shape {rows.shape})")
+    if not np.isfinite(rows).all() or np.abs(rows).max() > meta["max"]:
+        raise ParamError(name, f"every number must be finite, from {meta['min']:g} to "
+                               f"{meta['max']:g} {meta['unit']}")
+    return tuple(tuple(float(x) for x in row) for row in rows)
 
 
 def _vector(name: str, value, meta: dict, size: int) -> tuple:
@@ -475,6 +544,7 @@ def _check_combination(p: Params, force: bool) -> None:
                                             f"through each other (got {p.residue_spacing:g})")
     if p.periodic:
         _check_periodic(p)
+    _check_shape(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
@@ -489,6 +559,19 @@ def _check_combination(p: Params, force: bool) -> None:
                                    f"{'up to ' if p.core_outline is not None else ''}{n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
+
+
+def _check_shape(p: Params) -> None:
+    need = {"hull": "domain_atoms", "spheres": "domain_spheres"}.get(p.domain_shape)
+    if need and (getattr(p, need) is None or p.domain_joint is None):
+        raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
+                                         f"FILE) to take its shape and joint from")
+    if p.domain_shape != "sphere" and p.periodic:
+        raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with periodic yet: a "
+                                         f"cell's images follow only their originals' centres "
+                                         f"(spheres); use --layers")
+    if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
+        raise ParamError("domain_spheres", "every sphere's radius must be positive")
 
 
 def _check_periodic(p: Params) -> None:

@@ -44,7 +44,8 @@ def measure_structures(args):
                                        anchor_residue=args.anchor_residue)
     if args.domain:
         dom = structure.measure_domain(args.domain, chain=args.domain_chain,
-                                       residues=args.domain_residues)
+                                       residues=args.domain_residues,
+                                       follows=args.terminus == "C")
     return fib, dom
 
 
@@ -61,8 +62,10 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
         radius = float(radius)
     except (TypeError, ValueError):
         radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
+    shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
     applied, block = from_files.split(fib, dom, explicit=set(explicit),
-                                      known={f.name for f in P.fields()}, residue_radius=radius)
+                                      known={f.name for f in P.fields()}, residue_radius=radius,
+                                      shape=shape)
     if block["not_in_model"]:
         print(f"fibrilfit: warning: measured but not in this model: "
               f"{', '.join(block['not_in_model'])}", file=sys.stderr)

@@ -1,0 +1,93 @@
+"""Real domain shapes in Blender (issue #24): the hull mesh holds every atom, both clash checks
+find hulls pushed into each other, and an accommodated hull model keeps the atoms apart."""
+import numpy as np
+import pytest
+from helpers import ROOT
+
+DATA = ROOT / "tests" / "data"
+
+
+def _hull_params(ff, name, **values):
+    from fibrilfit.structure import measure_domain, model_values
+    dom = measure_domain(DATA / f"{name}.pdb.gz")
+    return ff.model.params.make_params(domain_shape="hull",
+                                       **model_values(None, dom, shape="hull"), **values)
+
+
+def _atoms(name):
+    from fibrilfit.structure import body_frame, reading
+    c = reading.load(DATA / f"{name}.pdb.gz", "--domain").chains[0]
+    return body_frame(c.heavy)[1], c.heavy_radius
+
+
+@pytest.mark.parametrize("name", ["1gfl", "1ubq"])
+def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
+    from fibrilfit.analysis.clashes import mesh_arrays
+    from fibrilfit.builders.model import globule_mesh
+    mesh = globule_mesh(_hull_params(ff, name))
+    verts, starts, loops = mesh_arrays(mesh)
+    normals = np.empty(len(mesh.polygons) * 3, np.float32)
+    mesh.polygons.foreach_get("normal", normals)
+    normals = normals.reshape(-1, 3).astype(float)
+    offset = (normals * verts[loops[starts]]).sum(1)  # each face's plane: n·x = offset
+    local, radii = _atoms(name)
+    inside = offset[None] - local @ normals.T  # (atoms, faces): depth below each face's plane
+    assert (inside.min(axis=1) >= radii - 1e-3).all()  # float32 vertices
+    # and it is the atoms' hull: no face farther out than the grown points reach
+    assert (inside.min(axis=0) <= radii.max() + 0.15).all()
+
+
+def test_hulls_pushed_into_each_other_are_found_by_both_checks(scene, ff):
+    from fibrilfit.analysis.clashes import bvh_clashes, float_tolerance, hull_clashes
+    from fibrilfit.builders.model import globule_mesh
+    mesh = globule_mesh(_hull_params(ff, "1ubq"))
+    turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])  # the second one turned 90° about Z
+    found = []
+    for x in np.linspace(20.0, 45.0, 26):
+        m = np.tile(np.eye(4), (2, 1, 1))
+        m[1, :3, :3], m[1, 0, 3] = turn, x
+        tol = float_tolerance(m[:, :3, 3])
+        analytic, depth = hull_clashes(mesh, m, tol)
+        faces, pairs = bvh_clashes(mesh, m)
+        d = depth(0, 1)
+        if abs(d) > tol:  # beyond rounding the two checks must agree
+            assert bool(analytic) == bool(pairs) == (d > 0), (x, d)
+        found.append(d)
+    assert max(found) > 1.0 and min(found) < -1.0  # deep overlaps and clear gaps both tested
+
+
+def test_gjk_distance_of_two_boxes(ff):
+    from fibrilfit.analysis.clashes import hull_distance
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    assert hull_distance(cube, cube + [3.0, 0, 0]) == pytest.approx(2.0, abs=1e-5)
+    assert hull_distance(cube, cube + [2.0, 2.0, 0]) == pytest.approx(np.sqrt(2.0), abs=1e-5)
+    assert hull_distance(cube, cube + [0.5, 0.5, 0.5]) == 0.0
+
+
+def test_an_accommodated_hull_model_keeps_the_domains_atoms_apart(scene, ff):
+    """The closest heavy atoms of two domains are at least two radii apart, less the resting
+    overlap (0.05 Å): the mesh holds the atoms and Bullet keeps HULL_MARGIN around it."""
+    p = _hull_params(ff, "1ubq", layers=4, linker=10, frames=120)
+    model = ff.pipeline.build(p, scene)
+    assert model.globules[0].rigid_body.collision_shape == "CONVEX_HULL"
+    ff.pipeline.bake(model, scene)
+    r = ff.pipeline.check(model, scene)
+    assert r["accommodated"] and r["checks_agree"], r["warnings"]
+    local, radii = _atoms("1ubq")
+    placed = []
+    for ob in model.globules:
+        m = np.array(ob.matrix_world)
+        placed.append(local @ m[:3, :3].T + m[:3, 3])
+    closest = np.inf
+    for i in range(len(placed)):
+        for j in range(i + 1, len(placed)):
+            d = np.linalg.norm(placed[i][:, None] - placed[j][None], axis=-1)
+            closest = min(closest, float((d - radii[:, None] - radii[None]).min()))
+    assert closest >= -0.05
+    # the joint sits on its bond's pivot: the last bead one residue spacing from the CA
+    joint = np.array(p.domain_joint)
+    for members in model.chain:
+        m = np.array(members[-1].matrix_world)
+        ca = m[:3, :3] @ joint + m[:3, 3]
+        bead = np.array(members[-2].matrix_world)[:3, 3]
+        assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=0.05)

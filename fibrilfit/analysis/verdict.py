@@ -108,6 +108,7 @@ def check_model(model) -> dict:
             "verdict": "intersection" if clashes["spheres"] else "successful",
             "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in clashes["spheres"]],
             "tolerance": round(clashes["band"], 4),
+            **({} if p.domain_shape == "sphere" else {"shape": p.domain_shape}),
         },
         "checks_agree": not clashes["disagree"],
         "warnings": warnings,

@@ -437,20 +437,27 @@ class _LayerBuilder:
         from ..structure import shape
         p = self.p
         joint = np.asarray(p.domain_joint, float)
-        rows = p.domain_atoms if p.domain_shape == "hull" else p.domain_spheres
+        if p.domain_shape == "hull":
+            out = shape.outward(p.domain_atoms, joint)
+        else:  # the union of spheres is not convex: its nearest way out
+            out = shape.union_exit(p.domain_spheres, joint)[0]
         pivot = self.pivots[c, -1]
-        rot = joint_rotations(shape.outward(rows, joint), loc - pivot)
+        rot = joint_rotations(out, loc - pivot)
         loc = pivot - rot @ joint
         objects.foreach_set("location", loc.astype(np.float32).ravel())
         objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
         mat = np.zeros((len(c), 4, 4))
         mat[:, :3, :3], mat[:, :3, 3], mat[:, 3, 3] = rot, loc, 1.0
         objects.foreach_set("matrix_world", mat.transpose(0, 2, 1).astype(np.float32).ravel())
-        world = {ob.session_uid: m for ob, m in zip(objects, mat)}
-        for child, parent in self.placed.get("globule_sphere", []):
-            local = np.eye(4)
-            local[:3, 3] = child.location
-            child.matrix_world = (world[parent.session_uid] @ local).tolist()
+        children = self.placed.get("globule_sphere", [])
+        if children:  # their location is their place in the globule's frame, set when made
+            world = {ob.session_uid: m for ob, m in zip(objects, mat)}
+            local = np.tile(np.eye(4), (len(children), 1, 1))
+            local[:, :3, 3] = [tuple(child.location) for child, _ in children]
+            child_world = np.array([world[parent.session_uid] for _, parent in children]) @ local
+            coll = _in_order(self.spheres_coll, [child for child, _ in children])
+            coll.foreach_set("matrix_world",
+                             child_world.transpose(0, 2, 1).astype(np.float32).ravel())
 
 
 GLOBULE_SHAPES = {"sphere": "SPHERE", "hull": "CONVEX_HULL", "spheres": "COMPOUND"}

@@ -570,6 +570,10 @@ def _check_shape(p: Params) -> None:
         raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with periodic yet: a "
                                          f"cell's images follow only their originals' centres "
                                          f"(spheres); use --layers")
+    if p.domain_shape == "spheres" and p.protocol == "inflate":
+        raise ParamError("domain_shape", "spheres cannot be grown by the inflate protocol: "
+                                         "Bullet does not scale a compound's child spheres; use "
+                                         "hull, or --protocol tutorial")
     if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
         raise ParamError("domain_spheres", "every sphere's radius must be positive")
 

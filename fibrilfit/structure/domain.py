@@ -112,6 +112,7 @@ def measure_shape(heavy, radii, ca, residues, follows: bool = True) -> tuple[dic
                "joint_distance": round(float(np.linalg.norm(joint)), 2),
                "hull_atoms": int(len(hull)), "bounding_radius": round(reach, 2),
                "spheres": int(len(spheres)),
+               "joint_depth_spheres": round(shapes.union_exit(spheres, joint)[1], 2),
                "spheres_radius": [round(float(r), 2) for r in spheres[:, 3]]}
     geometry = {"domain_atoms": np.round(hull, 3).tolist(),
                 "domain_spheres": np.round(spheres, 3).tolist(),

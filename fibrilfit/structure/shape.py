@@ -14,7 +14,7 @@ import numpy as np
 # (extent · angle²)/2 < 0.01 Å for a 60 Å domain; GROW_SLACK covers it.
 SUPPORT_DIRECTIONS = 20_000
 GROW_SLACK = 0.01  # Å
-SPHERES = 8  # covering spheres of the `spheres` shape (docs/model/domain-shapes.md#spheres)
+SPHERES = 16  # covering spheres of the `spheres` shape (docs/model/domain-shapes.md#spheres)
 KMEANS_ROUNDS = 50
 
 
@@ -113,8 +113,8 @@ def joint_point(ca, follows: bool) -> np.ndarray:
 
 def covering_spheres(local, radii, n: int = SPHERES, rounds: int = KMEANS_ROUNDS) -> np.ndarray:
     """n spheres [x, y, z, r] covering every atom's ball: k-means of the atoms (started from
-    farthest points, so the same atoms give the same spheres), each sphere about its cluster's
-    centroid with the radius reaching its farthest atom's ball."""
+    farthest points, so the same atoms give the same spheres), each cluster then held by the
+    smallest sphere reaching its atoms' balls (enclosing_ball)."""
     local = np.asarray(local, float).reshape(-1, 3)
     radii = np.broadcast_to(np.asarray(radii, float), (len(local),))
     n = max(1, min(n, len(local)))
@@ -131,13 +131,43 @@ def covering_spheres(local, radii, n: int = SPHERES, rounds: int = KMEANS_ROUNDS
         if np.allclose(moved, centres):
             break
         centres = moved
-    out = []
-    for k in range(n):
-        mine = label == k
-        if mine.any():
-            r = float((np.linalg.norm(local[mine] - centres[k], axis=1) + radii[mine]).max())
-            out.append([*centres[k], r])
-    return np.array(out)
+    return np.array([enclosing_ball(local[label == k], radii[label == k])
+                     for k in range(n) if (label == k).any()])
+
+
+def enclosing_ball(points, radii, steps: int = 2000) -> list:
+    """A small sphere [x, y, z, r] holding every ball (points, radii): Badoiu-Clarkson steps
+    towards the farthest ball from the centroid (within about 1/√steps of the smallest), then
+    the radius that reaches the farthest ball exactly, so all are held."""
+    points = np.asarray(points, float)
+    radii = np.asarray(radii, float)
+    c = points.mean(axis=0)
+    for k in range(1, steps + 1):
+        far = np.argmax(np.linalg.norm(points - c, axis=1) + radii)
+        c = c + (points[far] - c) / (k + 1)
+    r = float((np.linalg.norm(points - c, axis=1) + radii).max())
+    return [*c.tolist(), r]
+
+
+def union_exit(spheres, point, n: int = 4000) -> tuple[np.ndarray, float]:
+    """The nearest way out of a union of spheres [x, y, z, r] from a point inside it: the
+    direction whose ray leaves the union soonest, and that distance (Å)."""
+    s = np.asarray(spheres, float).reshape(-1, 4)
+    u = directions(n)
+    p = np.asarray(point, float)
+    t = np.zeros(n)
+    for _ in range(4 * len(s)):
+        q = p[None] + t[:, None] * u  # (n, 3): where each ray is now
+        rel = q[:, None] - s[None, :, :3]  # (n, k, 3)
+        inside = (rel ** 2).sum(-1) < s[None, :, 3] ** 2 - 1e-9
+        if not inside.any():
+            break
+        b = (rel * u[:, None]).sum(-1)  # the exit of each sphere along the ray
+        c2 = (rel ** 2).sum(-1) - s[None, :, 3] ** 2
+        out = -b + np.sqrt(np.maximum(b * b - c2, 0.0))
+        t = t + np.where(inside, out, 0.0).max(axis=1) + 1e-6 * inside.any(axis=1)
+    k = int(np.argmin(t))
+    return u[k], float(t[k])
 
 
 def outward(rows, point, n: int = SUPPORT_DIRECTIONS) -> np.ndarray:

@@ -7,11 +7,11 @@ from helpers import ROOT
 DATA = ROOT / "tests" / "data"
 
 
-def _hull_params(ff, name, **values):
+def _hull_params(ff, name, shape="hull", **values):
     from fibrilfit.structure import measure_domain, model_values
     dom = measure_domain(DATA / f"{name}.pdb.gz")
-    return ff.model.params.make_params(domain_shape="hull",
-                                       **model_values(None, dom, shape="hull"), **values)
+    return ff.model.params.make_params(domain_shape=shape,
+                                       **model_values(None, dom, shape=shape), **values)
 
 
 def _atoms(name):
@@ -37,21 +37,30 @@ def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
     assert (inside.min(axis=0) <= radii.max() + 0.15).all()
 
 
-def test_hulls_pushed_into_each_other_are_found_by_both_checks(scene, ff):
-    from fibrilfit.analysis.clashes import bvh_clashes, float_tolerance, hull_clashes
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape):
+    from fibrilfit.analysis.clashes import (bvh_clashes, float_tolerance, hull_clashes,
+                                            sphere_band, spheres_clashes)
     from fibrilfit.builders.model import globule_mesh
-    mesh = globule_mesh(_hull_params(ff, "1ubq"))
+    p = _hull_params(ff, "1ubq", shape)
+    mesh = globule_mesh(p)
     turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])  # the second one turned 90° about Z
     found = []
     for x in np.linspace(20.0, 45.0, 26):
         m = np.tile(np.eye(4), (2, 1, 1))
         m[1, :3, :3], m[1, 0, 3] = turn, x
-        tol = float_tolerance(m[:, :3, 3])
-        analytic, depth = hull_clashes(mesh, m, tol)
+        if shape == "hull":  # the same faces: only rounding between the checks
+            band = slack = float_tolerance(m[:, :3, 3])
+            analytic, depth = hull_clashes(mesh, m, band)
+        else:  # the spheres' meshes are faceted: grazing contacts up to the band
+            band, slack = sphere_band(max(r for *_, r in p.domain_spheres)), 1e-4
+            analytic, depth = spheres_clashes(p.domain_spheres, m, band)
         faces, pairs = bvh_clashes(mesh, m)
         d = depth(0, 1)
-        if abs(d) > tol:  # beyond rounding the two checks must agree
-            assert bool(analytic) == bool(pairs) == (d > 0), (x, d)
+        if d > band:  # overlapping beyond the mesh's resolution: both find it
+            assert analytic and pairs, (x, d)
+        elif d < -slack:  # apart: neither does
+            assert not analytic and not pairs, (x, d)
         found.append(d)
     assert max(found) > 1.0 and min(found) < -1.0  # deep overlaps and clear gaps both tested
 
@@ -64,12 +73,18 @@ def test_gjk_distance_of_two_boxes(ff):
     assert hull_distance(cube, cube + [0.5, 0.5, 0.5]) == 0.0
 
 
-def test_an_accommodated_hull_model_keeps_the_domains_atoms_apart(scene, ff):
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
     """The closest heavy atoms of two domains are at least two radii apart, less the resting
-    overlap (0.05 Å): the mesh holds the atoms and Bullet keeps HULL_MARGIN around it."""
-    p = _hull_params(ff, "1ubq", layers=4, linker=10, frames=120)
+    overlap (0.05 Å): the shape holds the atoms (a hull's mesh with HULL_MARGIN around it for
+    Bullet; spheres each holding their atoms). Spheres start 12 Å apart along the axis: from the
+    tutorial's 4.8 Å start, deeply interpenetrated compounds can lock
+    (docs/model/domain-shapes.md#spheres)."""
+    rise = 4.8 if shape == "hull" else 12.0
+    p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, rise=rise, frames=120)
     model = ff.pipeline.build(p, scene)
-    assert model.globules[0].rigid_body.collision_shape == "CONVEX_HULL"
+    want = {"hull": "CONVEX_HULL", "spheres": "COMPOUND"}[shape]
+    assert model.globules[0].rigid_body.collision_shape == want
     ff.pipeline.bake(model, scene)
     r = ff.pipeline.check(model, scene)
     assert r["accommodated"] and r["checks_agree"], r["warnings"]

@@ -6,7 +6,7 @@ import numpy as np
 from ..model import helix
 from ..builders.readback import MatrixReader
 from .clashes import (bounding_radius, bvh_clashes, float_tolerance, grazing_depth, hull_clashes,
-                      sphere_band, sphere_clashes, spheres_clashes)
+                      joined_globules, sphere_band, sphere_clashes, spheres_clashes)
 from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_stretch
@@ -119,7 +119,8 @@ def check_model(model) -> dict:
         "layer_clashes": layer_clash,
         **chains,
         "globule_centres": np.round(centres, 4).tolist(),
-        "envelope": envelope(centres[scored[:n]], p.globule_radius),
+        "envelope": envelope(centres[scored[:n]], p.globule_radius,
+                             None if p.domain_shape == "sphere" else clashes["reach"][scored[:n]]),
         **periodic,
     }
 
@@ -164,7 +165,11 @@ def _clash_checks(model) -> dict:
             "checks disagree beyond the mesh's resolution: "
             + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
-    return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces,
+    reach = None
+    if p.domain_shape != "sphere":  # each domain's farthest point from the axis, for the envelope
+        world, _ = joined_globules(mesh, matrices[:n])
+        reach = np.hypot(world[..., 0], world[..., 1]).max(axis=1)
+    return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces, "reach": reach,
             "centres": everything[:n], "spheres": spheres, "grazing": grazing,
             "disagree": disagree, "warnings": warnings,
             "clashing": [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]}

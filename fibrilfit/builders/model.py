@@ -436,7 +436,7 @@ class _LayerBuilder:
         pivot towards the linker by only the joint's depth. Children (spheres) follow."""
         from ..structure import shape
         p = self.p
-        joint = np.asarray(p.domain_joint, float)
+        joint = np.asarray(p.domain_joint, float).reshape(3)
         if p.domain_shape == "hull":
             out = shape.outward(p.domain_atoms, joint)
         else:  # the union of spheres is not convex: its nearest way out

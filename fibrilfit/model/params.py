@@ -191,17 +191,18 @@ class Params:
     domain_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                        "hull: the domain's outermost heavy atoms [x, y, z, r] in "
                                        "its body frame (structure.shape.hull_atoms)",
-                                       kind="rows", size=4, ui=False, cli=False, section="Globule")
+                                       kind="rows", size=4, ui=False, cli=False, section="Globule",
+                                       derived="none: the sphere")
     domain_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                          "spheres: the covering spheres [x, y, z, r] in the "
                                          "domain's body frame (structure.shape.covering_spheres)",
                                          kind="rows", size=4, ui=False, cli=False,
-                                         section="Globule")
+                                         section="Globule", derived="none: the sphere")
     domain_joint: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                        "hull, spheres: the linker's joint in the domain's body "
-                                       "frame, its terminal residue's CA",
-                                       size=3, ui=False, cli=False, section="Globule",
-                                       derived="on the sphere's surface")
+                                       "frame, its terminal residue's CA: one row [x, y, z]",
+                                       kind="rows", size=3, ui=False, cli=False,
+                                       section="Globule", derived="on the sphere's surface")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
@@ -214,7 +215,7 @@ class Params:
         shape the joint's distance from the domain's centroid."""
         if self.domain_shape == "sphere" or self.domain_joint is None:
             return self.globule_radius
-        return math.sqrt(sum(x * x for x in self.domain_joint))
+        return math.sqrt(sum(x * x for x in self.domain_joint[0]))
 
     @property
     def joint_lever(self) -> float:
@@ -296,11 +297,9 @@ class Params:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
             d["core_outline"] = [list(xy) for xy in self.core_outline]
-        for name in ("domain_atoms", "domain_spheres"):
+        for name in ("domain_atoms", "domain_spheres", "domain_joint"):
             if d[name] is not None:
                 d[name] = [list(row) for row in d[name]]
-        if self.domain_joint is not None:
-            d["domain_joint"] = list(self.domain_joint)
         return d
 
     def replace(self, **changes) -> "Params":
@@ -501,7 +500,8 @@ def make_params(*, force: bool = False, **values) -> Params:
 
 
 def _rows(name: str, value, meta: dict) -> tuple:
-    """A list of rows of meta["size"] numbers each (kind "rows"), as a tuple of tuples."""
+    """A list of rows of meta["size"] numbers each (kind "rows"), as a tuple of tuples; one
+    row may be given flat."""
     size = meta["size"]
     if isinstance(value, str):
         try:
@@ -513,6 +513,8 @@ def _rows(name: str, value, meta: dict) -> tuple:
         rows = np.array(value, dtype=float)
     except (TypeError, ValueError):
         raise ParamError(name, f"must be a list of rows of {size} numbers") from None
+    if rows.ndim == 1 and rows.size == size:
+        rows = rows[None]
     if rows.ndim != 2 or rows.shape[1] != size or not 1 <= len(rows) <= MAX_SHAPE_ROWS:
         raise ParamError(name, f"must be a list of 1 to {MAX_SHAPE_ROWS} rows of {size} numbers "
                                f"(got shape {rows.shape})")

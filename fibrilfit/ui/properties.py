@@ -47,8 +47,13 @@ def label(field) -> str:
     return f"{name} ({unit})" if unit in _LABEL_UNITS else name
 
 
+JSON_KINDS = ("points", "rows")  # held as JSON text in the panel, read back exactly
+
+
 def _description(field) -> str:
     meta = field.metadata
+    if meta["kind"] == "rows":
+        return f"{meta['doc']}. JSON rows; empty for {meta['derived']}"
     if meta["kind"] == "points":
         return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
                 f"Load one from a file with Load outline")
@@ -69,13 +74,14 @@ def switch_name(name: str) -> str:
 
 
 def derived_fields() -> list:
-    return [f for f in P.fields() if f.metadata.get("derived") and f.metadata["kind"] != "points"]
+    return [f for f in P.fields() if f.metadata.get("derived")
+            and f.metadata["kind"] not in JSON_KINDS]
 
 
 def _param_property(field):
     meta, default = field.metadata, field.default
     common = {"name": label(field), "description": _description(field)}
-    if meta["kind"] == "points":
+    if meta["kind"] in JSON_KINDS:
         return StringProperty(default="", **common)
     if default is None:
         default = _SHOWN_DEFAULTS[field.name]
@@ -158,7 +164,7 @@ def _plain(value):
 
 
 def _value(settings, field):
-    if field.metadata["kind"] == "points":  # JSON text, read exactly: no float32 rounding
+    if field.metadata["kind"] in JSON_KINDS:  # JSON text, read exactly: no float32 rounding
         text = getattr(settings, field.name).strip()
         if not text:
             return None
@@ -189,8 +195,8 @@ def read_params(settings) -> P.Params:
 def write_params(settings, p: P.Params) -> None:
     derived = {f.name for f in derived_fields()}
     for name, value in p.to_dict().items():
-        if name == "core_outline":
-            settings.core_outline = "" if value is None else json.dumps(value)
+        if name == "core_outline" or P.field_spec(name)["kind"] == "rows":
+            setattr(settings, name, "" if value is None else json.dumps(value))
         elif name in derived:
             setattr(settings, switch_name(name), value is not None)
             if value is not None:
@@ -226,7 +232,7 @@ def changed_fields(settings, p: P.Params, sections=SECTIONS, *,
     for f in P.fields():
         if section_of(f) in sections:
             old = then[f.name]
-            if f.metadata["kind"] == "points":
+            if f.metadata["kind"] in JSON_KINDS:
                 old = None if old is None else tuple(map(tuple, old))
                 if old != now[f.name]:
                     out.append((f.name, old, now[f.name]))

@@ -106,3 +106,18 @@ def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
         ca = m[:3, :3] @ joint + m[:3, 3]
         bead = np.array(members[-2].matrix_world)[:3, 3]
         assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=0.05)
+
+
+@pytest.mark.parametrize("protocol", ["tutorial", "inflate"])
+def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, protocol):
+    """Both start layouts put the last bond's pivot at the domain's terminal CA, one residue
+    spacing from the last linker bead, on the surface side facing the linker."""
+    p = _hull_params(ff, "1ubq", layers=3, linker=6, protocol=protocol)
+    model = ff.pipeline.build(p, scene)
+    joint = np.asarray(p.domain_joint, float).reshape(3)
+    for members, bonds in zip(model.chain, model.constraints):
+        m = np.array(members[-1].matrix_world)
+        ca = m[:3, :3] @ joint + m[:3, 3]
+        bead = np.array(members[-2].matrix_world)[:3, 3]
+        assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=1e-3)
+        assert np.allclose(np.array(bonds[-1].matrix_world)[:3, 3], ca, atol=1e-3)

@@ -66,7 +66,8 @@ def test_one_property_per_parameter_with_its_metadata(ui):
             assert prop.type == "ENUM" and prop.default == f.default, f.name
             assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
             continue
-        if meta["kind"] == "points":  # the outline: JSON text, empty for the slab's box
+        if meta["kind"] in ("points", "rows"):  # JSON text, empty for the default (the slab's
+            # box, the sphere's shape)
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name

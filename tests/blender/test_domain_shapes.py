@@ -121,3 +121,17 @@ def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, prot
         bead = np.array(members[-2].matrix_world)[:3, 3]
         assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=1e-3)
         assert np.allclose(np.array(bonds[-1].matrix_world)[:3, 3], ca, atol=1e-3)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--domain-shape", "hull"], "domain_shape: hull needs a domain structure (--domain FILE)"),
+    (["--domain-shape", "cube"], "invalid choice: 'cube'"),
+    (["--domain-shape", "spheres", "--domain", str(DATA / "1ubq.pdb.gz"), "--protocol",
+      "inflate"], "domain_shape: spheres cannot be grown by the inflate protocol"),
+])
+def test_cli_refuses_a_shape_it_cannot_build_in_one_line(tmp_path, args, message):
+    from helpers import run_cli
+    out = tmp_path / "r.json"
+    r = run_cli("run", "--layers", "2", "--json", str(out), *args)
+    assert r.returncode == 2 and message in r.stderr and not out.exists()
+    assert len(r.stderr.strip().splitlines()) <= 3  # argparse's usage lines, or one line

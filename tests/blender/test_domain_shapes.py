@@ -100,7 +100,7 @@ def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
             closest = min(closest, float((d - radii[:, None] - radii[None]).min()))
     assert closest >= -0.05
     # the joint sits on its bond's pivot: the last bead one residue spacing from the CA
-    joint = np.array(p.domain_joint)
+    joint = np.asarray(p.domain_joint, float).reshape(3)
     for members in model.chain:
         m = np.array(members[-1].matrix_world)
         ca = m[:3, :3] @ joint + m[:3, 3]

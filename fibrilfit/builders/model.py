@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 
 from ..model import helix, params as P
+from ..structure import shape
 from . import meshes
 from .start_layout import inflate_layout
 from .physics import check_world_free, ensure_world, keep_bake
@@ -429,12 +430,10 @@ class _LayerBuilder:
                 tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
                 objects.foreach_set("color", tints[pf].ravel())
 
-
     def _turn_globules(self, objects, c, loc) -> None:
         """Put each real-shaped globule's joint (its terminal CA) on its last bond's pivot, the
         surface nearest the joint facing back along the bond: the body then reaches past the
         pivot towards the linker by only the joint's depth. Children (spheres) follow."""
-        from ..structure import shape
         p = self.p
         joint = np.asarray(p.domain_joint, float).reshape(3)
         if p.domain_shape == "hull":
@@ -471,7 +470,6 @@ def globule_mesh(p: P.Params):
     """The globule's mesh: the sphere (32 × 16), the domain's grown hull, or its covering
     spheres joined, in the domain's body frame (structure.domain.body_frame)."""
     if p.domain_shape == "hull":
-        from ..structure import shape
         return meshes.convex_hull("FibrilFit globule", shape.hull_points(p.domain_atoms))
     if p.domain_shape == "spheres":
         return meshes.sphere_union("FibrilFit globule", p.domain_spheres, P.GLOBULE_SEGMENTS,

@@ -244,3 +244,137 @@ def sphere_clashes(centres: np.ndarray, radius, tolerance: float = 1e-3
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     by = np.lexsort((hi, lo))
     return list(zip(lo[by].tolist(), hi[by].tolist(), depth[by].tolist()))
+
+
+# ---- real domain shapes (docs/model/domain-shapes.md#two-checks) ------------------------------
+GJK_TOLERANCE = 1e-5  # Å: GJK stops once the distance is known to within this
+
+
+def _closest_on_simplex(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The point of the simplex (1-4 points) nearest the origin, and the smallest sub-simplex
+    holding it (by trying every face: at most 15, each a small least-squares solve)."""
+    best, best_set, n = None, None, len(pts)
+    for mask in range(1, 1 << n):
+        idx = [i for i in range(n) if mask >> i & 1]
+        p = pts[idx]
+        if len(idx) == 1:
+            x, lam = p[0], np.ones(1)
+        else:
+            e = p[1:] - p[0]
+            g = e @ e.T
+            if abs(np.linalg.det(g)) < 1e-18:
+                continue
+            t = np.linalg.solve(g, -e @ p[0])
+            lam = np.concatenate([[1 - t.sum()], t])
+            if (lam < -1e-12).any():
+                continue
+            x = p[0] + t @ e
+        if best is None or x @ x < best @ best - 1e-15:
+            best, best_set = x, np.array(idx)
+    return best, best_set
+
+
+def hull_distance(a: np.ndarray, b: np.ndarray, iterations: int = 100) -> float:
+    """Distance (Å) between the convex hulls of point sets a and b (GJK); 0.0 if they meet."""
+    x = a.mean(axis=0) - b.mean(axis=0)
+    simplex = np.empty((0, 3))
+    for _ in range(iterations):
+        if x @ x < 1e-24:
+            return 0.0
+        s = a[np.argmax(a @ -x)] - b[np.argmax(b @ x)]  # support of a - b towards -x
+        gap = x @ x - x @ s  # |x|·(|x| - lower bound)
+        if gap <= GJK_TOLERANCE * np.sqrt(x @ x):
+            return float(np.sqrt(x @ x))
+        simplex = np.vstack([simplex, s])
+        x, keep = _closest_on_simplex(simplex)
+        simplex = simplex[keep]
+        if len(simplex) == 4:  # the origin inside the tetrahedron
+            return 0.0
+    return float(np.sqrt(x @ x))
+
+
+def face_overlap(a: np.ndarray, b: np.ndarray, normals: np.ndarray) -> float:
+    """The smallest overlap (Å) of two convex point sets along `normals` (unit, (n, 3)): an
+    upper bound of their penetration depth when they meet (negative: a normal separates)."""
+    pa, pb = a @ normals.T, b @ normals.T
+    return float(np.minimum(pa.max(0) - pb.min(0), pb.max(0) - pa.min(0)).min())
+
+
+def face_normals(mesh) -> np.ndarray:
+    """Unit normals of a mesh's polygons, (n, 3), duplicates (coplanar triangles) merged."""
+    normals = np.empty(len(mesh.polygons) * 3, dtype=np.float32)
+    mesh.polygons.foreach_get("normal", normals)
+    return np.unique(np.round(normals.reshape(-1, 3).astype(float), 6), axis=0)
+
+
+def hull_clashes(mesh, matrices: np.ndarray, tolerance: float
+                 ) -> tuple[list[tuple[int, int, float]], callable]:
+    """The analytic check of convex hull globules: pairs whose hulls (the mesh's vertices, in
+    world space) are closer than -tolerance, i.e. overlap by more than it, with a depth (the
+    smallest overlap along the two hulls' face normals), and the signed depth function of any
+    pair (-distance when apart). Only pairs whose bounding spheres meet are looked at."""
+    verts = mesh_arrays(mesh)[0]
+    normals = face_normals(mesh)
+    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    cache = {}
+
+    def depth(i, j):
+        if (i, j) not in cache:
+            wa = verts @ matrices[i, :3, :3].T + matrices[i, :3, 3]
+            wb = verts @ matrices[j, :3, :3].T + matrices[j, :3, 3]
+            gap = hull_distance(wa, wb)
+            if gap > 0.0:
+                cache[i, j] = -gap
+            else:
+                n = np.vstack([normals @ _rotation(matrices[i]).T,
+                               normals @ _rotation(matrices[j]).T])
+                cache[i, j] = max(face_overlap(wa, wb, n), 0.0)
+        return cache[i, j]
+
+    pairs = candidate_pairs(mesh, matrices)
+    out = [(int(i), int(j), depth(int(i), int(j))) for i, j in pairs.tolist()]
+    return [(i, j, d) for i, j, d in sorted(out) if d > tolerance], depth
+
+
+def _rotation(matrix: np.ndarray) -> np.ndarray:
+    """The rotation of a (uniformly scaled) world matrix."""
+    m = matrix[:3, :3]
+    return m / np.cbrt(np.linalg.det(m))
+
+
+def spheres_clashes(spheres, matrices: np.ndarray, tolerance: float
+                    ) -> tuple[list[tuple[int, int, float]], callable]:
+    """The analytic check of globules made of spheres [x, y, z, r] (their body frame): pairs
+    of globules with two spheres overlapping by more than `tolerance`, with the deepest overlap,
+    and the depth function of any pair (the deepest sphere overlap; negative when apart)."""
+    s = np.asarray(spheres, dtype=float).reshape(-1, 4)
+    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    scale = np.cbrt(np.abs(np.linalg.det(matrices[:, :3, :3])))
+    centres = np.einsum("nij,kj->nki", matrices[:, :3, :3], s[:, :3]) + matrices[:, None, :3, 3]
+    radii = scale[:, None] * s[None, :, 3]
+
+    def depth(i, j):
+        d = np.linalg.norm(centres[i][:, None] - centres[j][None], axis=-1)
+        return float((radii[i][:, None] + radii[j][None] - d).max())
+
+    reach = 2.0 * float(np.max(np.linalg.norm(s[:, :3], axis=1) + s[:, 3])) * \
+        (float(scale.max()) if len(scale) else 1.0) + _margin(matrices[:, :3, 3])
+    a, b, _ = close_pairs(matrices[:, :3, 3], reach)
+    out = sorted((int(min(i, j)), int(max(i, j))) for i, j in zip(a.tolist(), b.tolist()))
+    hits = [(i, j, depth(i, j)) for i, j in out]
+    return [(i, j, d) for i, j, d in hits if d > tolerance], depth
+
+
+def float_tolerance(centres: np.ndarray) -> float:
+    """How far the BVH's float32 world coordinates and its epsilon can move a face (Å): the
+    tolerance between the BVH and an exact check on the same faces (see _margin)."""
+    return _margin(np.asarray(centres, dtype=float))
+
+
+def sphere_band(radius: float) -> float:
+    """grazing_depth of the 32 × 16 UV sphere of this radius: it scales with the radius
+    (0.287 Å at 15 Å)."""
+    return GRAZING_AT_15 * radius / 15.0
+
+
+GRAZING_AT_15 = 0.287  # grazing_depth of the default globule mesh (32 × 16, radius 15 Å)

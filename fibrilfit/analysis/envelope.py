@@ -16,9 +16,11 @@ def radii(centres) -> np.ndarray:
     return np.hypot(c[:, 0], c[:, 1])
 
 
-def envelope(centres, radius: float) -> dict:
+def envelope(centres, radius: float, reach=None) -> dict:
     """{r_median, r95, r_max, outer_diameter, n} of the domain centres given (the scored ones),
-    rounded to 0.001 Å; every number is None when there are none."""
+    rounded to 0.001 Å; every number is None when there are none. `reach`: with a real domain
+    shape, each domain's farthest point from the axis; outer_diameter is then 2 · their 95th
+    percentile (docs/model/domain-shapes.md#envelope)."""
     r = radii(centres)
     if r.size == 0:
         return {"r_median": None, "r95": None, "r_max": None, "outer_diameter": None, "n": 0}
@@ -27,6 +29,7 @@ def envelope(centres, radius: float) -> dict:
         "r_median": round(float(np.median(r)), 3),
         "r95": round(r95, 3),
         "r_max": round(float(r.max()), 3),
-        "outer_diameter": round(2 * (r95 + radius), 3),
+        "outer_diameter": round(2 * (r95 + radius) if reach is None
+                                else 2 * float(np.percentile(reach, 95)), 3),
         "n": int(r.size),
     }

@@ -6,7 +6,8 @@ import numpy as np
 from ..model import helix
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
-from .clashes import bounding_radius, bvh_clashes, grazing_depth, sphere_clashes
+from .clashes import (bounding_radius, bvh_clashes, float_tolerance, grazing_depth, hull_clashes,
+                      joined_globules, sphere_band, sphere_clashes, spheres_clashes)
 from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_stretch
@@ -38,7 +39,8 @@ def scored_chains(p) -> tuple[int, int]:
     return lo * p.protofilaments, hi * p.protofilaments
 
 
-def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, list]:
+def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,
+                   slack: float = TOUCH_SLACK) -> tuple[list, list]:
     """Match the BVH's pairs against the sphere check's (pairs deeper than `band`).
 
     `depth(i, j)` is the spheres' overlap in Å. A pair only the BVH names is a grazing contact
@@ -49,7 +51,7 @@ def compare_checks(bvh_pairs, sphere_pairs, depth, band: float) -> tuple[list, l
     grazing, disagree = [], []
     for i, j in sorted(set(bvh_pairs) ^ set(sphere_pairs)):
         d = float(depth(i, j))
-        if (i, j) in bvh_pairs and -TOUCH_SLACK < d <= band:
+        if (i, j) in bvh_pairs and -slack < d <= band:
             grazing.append((i, j, d))
         else:
             disagree.append((i, j, d))
@@ -101,7 +103,9 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     centres = clashes["centres"]
-    overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius)
+    reach = None if p.domain_shape == "sphere" else clashes["reach"][scored[:n]]
+    overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius,
+                                                       reach)
     return {
         "verdict": verdict,
         "intersecting_faces": clashes["faces"],
@@ -112,6 +116,7 @@ def check_model(model) -> dict:
             "verdict": "intersection" if clashes["spheres"] else "successful",
             "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in clashes["spheres"]],
             "tolerance": round(clashes["band"], 4),
+            **({} if p.domain_shape == "sphere" else {"shape": p.domain_shape}),
         },
         "checks_agree": not clashes["disagree"],
         "warnings": warnings,
@@ -142,7 +147,8 @@ def _clash_checks(model) -> dict:
     # further domains share the mesh, scaled: its facets' sag scales with them
     radius = (p.globule_radius if domains == 1 else
               np.tile(np.asarray(p.domain_radii), p.chains))
-    band = grazing_depth(mesh) * max(p.domain_radii) / p.globule_radius
+    band = (grazing_depth(mesh) * max(p.domain_radii) / p.globule_radius
+            if p.domain_shape == "sphere" else 0.0)
     matrices = world_matrices(globules, model.root.children)
     n = len(matrices)
     cells = 0
@@ -157,17 +163,29 @@ def _clash_checks(model) -> dict:
         return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
     faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
-    spheres = [(i, j, d) for i, j, d in sphere_clashes(everything, radius, band)
-               if scored[i] or scored[j]]
+    slack = TOUCH_SLACK
+    if p.domain_shape == "sphere":
+        found = sphere_clashes(everything, radius, band)
+    elif p.domain_shape == "hull":  # the same faces, exactly: only rounding between the checks
+        band = slack = float_tolerance(everything)
+        found, depth = hull_clashes(mesh, matrices, band)
+    else:  # the covering spheres, each drawn as a 32 × 16 mesh as the sphere's globule
+        band = sphere_band(max(r for *_, r in p.domain_spheres))
+        found, depth = spheres_clashes(p.domain_spheres, matrices, band)
+    spheres = [(i, j, d) for i, j, d in found if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
-    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band)
+    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band, slack)
     warnings = []
     if disagree:
         warnings.append(
             "checks disagree beyond the mesh's resolution: "
             + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
-    return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces,
+    reach = None
+    if p.domain_shape != "sphere":  # each domain's farthest point from the axis, for the envelope
+        world, _ = joined_globules(mesh, matrices[:n])
+        reach = np.hypot(world[..., 0], world[..., 1]).max(axis=1)
+    return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces, "reach": reach,
             "centres": everything[:n], "spheres": spheres, "grazing": grazing,
             "disagree": disagree, "warnings": warnings,
             "clashing": [[i, j, round(depth(i, j), 4)] for i, j in sorted(bvh_pairs)]}

@@ -54,3 +54,30 @@ def _finish(bm, name):
     bm.free()
     me.shade_smooth()
     return me
+
+
+def convex_hull(name: str, points) -> bpy.types.Mesh:
+    """The convex hull of points (n, 3) as a closed triangle mesh (bmesh.ops.convex_hull),
+    coplanar triangles kept (the BVH and Bullet see the same faces)."""
+    bm = bmesh.new()
+    for xyz in points:
+        bm.verts.new(tuple(map(float, xyz)))
+    bm.verts.index_update()
+    result = bmesh.ops.convex_hull(bm, input=bm.verts, use_existing_faces=False)
+    inner = {v.index: v for v in result["geom_interior"] + result["geom_unused"]
+             if isinstance(v, bmesh.types.BMVert) and not v.link_faces}
+    bmesh.ops.delete(bm, geom=list(inner.values()), context="VERTS")
+    bmesh.ops.recalc_face_normals(bm, faces=bm.faces)
+    me = tag(bpy.data.meshes.new(name), "mesh")
+    bm.to_mesh(me)
+    bm.free()
+    return me
+
+
+def sphere_union(name: str, spheres, segments: int, rings: int) -> bpy.types.Mesh:
+    """Overlapping spheres [x, y, z, r] as one mesh of closed shells (drawn and BVH-tested)."""
+    bm = bmesh.new()
+    for x, y, z, r in spheres:
+        bmesh.ops.create_uvsphere(bm, u_segments=segments, v_segments=rings, radius=float(r),
+                                  matrix=Matrix.Translation((float(x), float(y), float(z))))
+    return _finish(bm, name)

@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 
 from ..model import helix, params as P
+from ..structure import shape
 from . import meshes
 from .start_layout import inflate_layout
 from .physics import check_world_free, ensure_world, keep_bake
@@ -87,6 +88,7 @@ def bond_pivots(p: P.Params) -> np.ndarray:
     pos = chain_positions(p)
     a, b = pos[:, :-1], pos[:, 1:]
     ra = np.asarray(p.chain_radii()[:-1])
+    ra[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
     frac = ra / np.asarray(p.rest_lengths())
     return a + (b - a) * np.minimum(frac, 1.0)[None, :, None]
 
@@ -279,8 +281,7 @@ class _LayerBuilder:
             elif role == "slab":
                 self.mesh[role] = meshes.box("FibrilFit slab", p.slab)
             elif role == "globule":
-                self.mesh[role] = meshes.uv_sphere("FibrilFit globule", p.globule_radius,
-                                                   P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
+                self.mesh[role] = globule_mesh(p)
             else:  # the anchor and the linker's residues are the same bead
                 self.mesh[role] = meshes.uv_sphere("FibrilFit residue", p.residue_radius,
                                                    P.RESIDUE_SEGMENTS, P.RESIDUE_RINGS)
@@ -332,9 +333,12 @@ class _LayerBuilder:
         c = k * self.pfs + j
         role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
         mesh = self._shared_mesh("globule" if role == "globule" else "residue")
+        shape = GLOBULE_SHAPES[p.domain_shape] if role == "globule" else "SPHERE"
         ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
-                   "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
+                   "PASSIVE" if i == 0 else "ACTIVE", shape)
         ob[INDEX], ob[PROTOFILAMENT] = i, j
+        if role == "globule" and p.domain_shape != "sphere":
+            self._real_globule(ob, k)
         self.placed[role].append((ob, c, i))
         chain = self.model.chain
         if i == 0:
@@ -343,6 +347,33 @@ class _LayerBuilder:
         chain[c].append(ob)
         if i > 0:
             self._bond(k, j, i - 1)
+
+    def _real_globule(self, ob, k):
+        """A hull keeps Bullet's surface HULL_MARGIN outside its mesh (the mesh is what the
+        check tests); spheres become a compound of child spheres, like the concave cores."""
+        if self.p.domain_shape == "hull":
+            ob.rigid_body.use_margin = True
+            ob.rigid_body.collision_margin = HULL_MARGIN
+            return
+        if "sphere_meshes" not in self.mesh:
+            self.mesh["sphere_meshes"] = [
+                meshes.uv_sphere(f"FibrilFit globule sphere {n}", r, P.GLOBULE_SEGMENTS,
+                                 P.GLOBULE_RINGS) for n, (*_, r) in enumerate(self.p.domain_spheres)]
+            self.spheres_coll = new_collection("FibrilFit globule spheres", "globule_spheres",
+                                               self.parts["globule"])
+        for n, ((x, y, z, _), mesh) in enumerate(zip(self.p.domain_spheres,
+                                                     self.mesh["sphere_meshes"])):
+            child = tag(bpy.data.objects.new(f"{ob.name} sphere {n}", mesh), "globule_sphere")
+            child[LAYER], child[INDEX] = k, n
+            child.parent = ob
+            child.location = (x, y, z)
+            child.hide_render = True
+            child.display_type = "WIRE"
+            self.spheres_coll.objects.link(child)
+            self.bodies.objects.link(child)
+            child.rigid_body.type = "ACTIVE"
+            child.rigid_body.collision_shape = "SPHERE"
+            self.placed.setdefault("globule_sphere", []).append((child, ob))
 
     def _bond(self, k, j, i):
         """The POINT constraint between members i and i + 1 of protofilament j's chain in layer k."""
@@ -395,6 +426,8 @@ class _LayerBuilder:
         a seed); only their transforms come later, with the same float32 values as one by one.
         """
         for role, placed in self.placed.items():
+            if role == "globule_sphere":  # children of their globule: placed with it, below
+                continue
             if role == "core_piece":  # children of their slab: the slab's frame
                 objects = _in_order(self.pieces_coll, [ob for ob, _, _ in placed])
                 k = np.array([ki for _, ki, _ in placed], dtype=np.intp)
@@ -414,6 +447,8 @@ class _LayerBuilder:
                      self.angle[k] if role == "slab" else self.chain_angle[k])
             scale = self._domain_scale(i) if role == "globule" else None
             _place(objects, loc, rot_z, scale=scale)
+            if role == "globule" and self.p.domain_shape != "sphere":  # one domain a chain
+                self._turn_globules(objects, k, loc)
             if role == "bond":
                 objects.foreach_set("empty_display_size",
                                     np.full(len(k), self.p.residue_radius, np.float32))
@@ -421,6 +456,81 @@ class _LayerBuilder:
                 pf = k % self.pfs if role != "slab" else np.zeros(len(k), dtype=np.intp)
                 tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
                 objects.foreach_set("color", tints[pf].ravel())
+
+    def _turn_globules(self, objects, c, loc) -> None:
+        """Put each real-shaped globule's joint (its terminal CA) on its last bond's pivot, the
+        surface nearest the joint facing back along the bond: the body then reaches past the
+        pivot towards the linker by only the joint's depth. Children (spheres) follow."""
+        p = self.p
+        joint = np.asarray(p.domain_joint, float).reshape(3)
+        if p.domain_shape == "hull":
+            out = shape.outward(p.domain_atoms, joint)
+        else:  # the union of spheres is not convex: its nearest way out
+            out = shape.union_exit(p.domain_spheres, joint)[0]
+        pivot = self.pivots[c, -1]
+        rot = joint_rotations(out, loc - pivot)
+        loc = pivot - rot @ joint
+        objects.foreach_set("location", loc.astype(np.float32).ravel())
+        objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
+        mat = np.zeros((len(c), 4, 4))
+        mat[:, :3, :3], mat[:, :3, 3], mat[:, 3, 3] = rot, loc, 1.0
+        objects.foreach_set("matrix_world", mat.transpose(0, 2, 1).astype(np.float32).ravel())
+        children = self.placed.get("globule_sphere", [])
+        if children:  # their location is their place in the globule's frame, set when made
+            world = {ob.session_uid: m for ob, m in zip(objects, mat)}
+            local = np.tile(np.eye(4), (len(children), 1, 1))
+            local[:, :3, 3] = [tuple(child.location) for child, _ in children]
+            child_world = np.array([world[parent.session_uid] for _, parent in children]) @ local
+            coll = _in_order(self.spheres_coll, [child for child, _ in children])
+            coll.foreach_set("matrix_world",
+                             child_world.transpose(0, 2, 1).astype(np.float32).ravel())
+
+
+GLOBULE_SHAPES = {"sphere": "SPHERE", "hull": "CONVEX_HULL", "spheres": "COMPOUND"}
+# Bullet's surface around a hull globule's mesh: resting contacts interpenetrate by ~0.05 Å
+# (docs/model/domain-shapes.md#margin), so a margin of 0.1 Å keeps two resting meshes, and
+# so the atoms, apart, and the BVH test on the mesh counts only a real overlap.
+HULL_MARGIN = 0.1
+
+
+def globule_mesh(p: P.Params):
+    """The globule's mesh: the sphere (32 × 16), the domain's grown hull, or its covering
+    spheres joined, in the domain's body frame (structure.domain.body_frame)."""
+    if p.domain_shape == "hull":
+        return meshes.convex_hull("FibrilFit globule", shape.hull_points(p.domain_atoms))
+    if p.domain_shape == "spheres":
+        return meshes.sphere_union("FibrilFit globule", p.domain_spheres, P.GLOBULE_SEGMENTS,
+                                   P.GLOBULE_RINGS)
+    return meshes.uv_sphere("FibrilFit globule", p.globule_radius, P.GLOBULE_SEGMENTS,
+                            P.GLOBULE_RINGS)
+
+
+def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) rotations taking the body-frame direction `joint` onto -outward (each row of
+    outward: from the pivot to the globule's centre), by the smallest turn."""
+    a = joint / np.linalg.norm(joint)
+    b = -outward / np.linalg.norm(outward, axis=1, keepdims=True)
+    v = np.cross(a[None], b)
+    cos = b @ a
+    vx = np.zeros((len(b), 3, 3))
+    vx[:, 0, 1], vx[:, 0, 2], vx[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
+    vx[:, 1, 0], vx[:, 2, 0], vx[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
+    opposite = cos < -1 + 1e-9  # a half turn about any axis perpendicular to a
+    k = np.where(opposite, 0.0, 1.0 / np.maximum(1.0 + cos, 1e-12))
+    rot = np.eye(3)[None] + vx + (vx @ vx) * k[:, None, None]
+    if opposite.any():
+        perp = np.cross(a, [1.0, 0, 0] if abs(a[0]) < 0.9 else [0, 1.0, 0])
+        perp /= np.linalg.norm(perp)
+        rot[opposite] = 2 * np.outer(perp, perp) - np.eye(3)
+    return rot
+
+
+def euler_xyz(rot: np.ndarray) -> np.ndarray:
+    """Blender's XYZ Euler angles (n, 3) of rotations (n, 3, 3): R = Rz·Ry·Rx."""
+    beta = -np.arcsin(np.clip(rot[:, 2, 0], -1.0, 1.0))
+    alpha = np.arctan2(rot[:, 2, 1], rot[:, 2, 2])
+    gamma = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
+    return np.column_stack([alpha, beta, gamma])
 
 
 def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:

@@ -60,7 +60,8 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     direction over two steps, each with a random wobble (`seed`), never turning back towards
     the core (in a periodic cell, no axial tilt: fan_directions). Every bond keeps its rest
     length, and each pivot is the contact point of the new layout: member i's radius along the
-    bond, so the globule's joint sits on its full-size surface whatever scale it starts at.
+    bond (the last: Params.joint_lever), so the globule's joint sits on its full-size surface,
+    or at its real joint, whatever scale it starts at.
     """
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
@@ -80,5 +81,7 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
             low = (d * u).sum(axis=1) < MIN_OUTWARD
         pos[:, i] = pos[:, i - 1] + lengths[i - 1] * d
     bond = _unit(pos[:, 1:] - pos[:, :-1])
-    pivots = pos[:, :-1] + radii[None, :-1, None] * bond
+    lever = radii[:-1].copy()
+    lever[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
+    pivots = pos[:, :-1] + lever[None, :, None] * bond
     return pos, pivots

@@ -72,6 +72,8 @@ ANGLE_UNITS = {"degrees": math.pi / 180, "degree": math.pi / 180, "deg": math.pi
 # A twist beyond this per layer is refused without force: measured amyloid fibrils twist 0-8°
 # per layer (the six fibrils of tests/data: 0.5-1.8°), so -0.961 is degrees typed as radians.
 MAX_TWIST = 0.2
+DOMAIN_SHAPES = ("sphere", "hull", "spheres")  # docs/model/domain-shapes.md#domain-shapes
+MAX_SHAPE_ROWS = 5_000
 
 
 @dataclass(frozen=True)
@@ -212,11 +214,49 @@ class Params:
                                         "Residues between consecutive domains of a chain, one "
                                         "per gap, comma-separated", kind="list", item=int,
                                         section="Globule")
+    # ---- the domain's real shape (issue #24): docs/model/domain-shapes.md#domain-shapes ----
+    domain_shape: str = _spec("sphere", None, None, "",
+                              "The globule's body: sphere (of globule_diameter, anywhere on its "
+                              "surface joined), hull (the convex hull of the domain's atoms grown "
+                              "by their van der Waals radius) or spheres (a few overlapping "
+                              "spheres covering them); hull and spheres need --domain and join the "
+                              "linker at the domain's terminal CA",
+                              kind=str, choices=DOMAIN_SHAPES, section="Globule")
+    domain_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "hull: the domain's outermost heavy atoms [x, y, z, r] in "
+                                       "its body frame (structure.shape.hull_atoms)",
+                                       kind="rows", size=4, ui=False, cli=False, section="Globule",
+                                       derived="none: the sphere")
+    domain_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                         "spheres: the covering spheres [x, y, z, r] in the "
+                                         "domain's body frame (structure.shape.covering_spheres)",
+                                         kind="rows", size=4, ui=False, cli=False,
+                                         section="Globule", derived="none: the sphere")
+    domain_joint: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "hull, spheres: the linker's joint in the domain's body "
+                                       "frame, its terminal residue's CA: one row [x, y, z]",
+                                       kind="rows", size=3, ui=False, cli=False,
+                                       section="Globule", derived="on the sphere's surface")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
         return self.globule_diameter / 2.0
+
+    @property
+    def globule_offset(self) -> float:
+        """From the last bond's pivot to the globule's centre: the sphere's radius, or with a real
+        shape the joint's distance from the domain's centroid."""
+        if self.domain_shape == "sphere" or self.domain_joint is None:
+            return self.globule_radius
+        return math.sqrt(sum(x * x for x in self.domain_joint[0]))
+
+    @property
+    def joint_lever(self) -> float:
+        """From the last linker bead's centre to the globule's joint: its radius (the sphere's
+        surface), or with a real shape one residue spacing (the joint is the domain's terminal
+        CA, the next residue along the chain)."""
+        return self.residue_radius if self.domain_shape == "sphere" else self.residue_spacing
 
     @property
     def anchor_x(self) -> float:
@@ -267,12 +307,19 @@ class Params:
         """Distance of each chain member (anchor, residues, globules) from the axis, for a
         radial linker (the tutorial's); in general the anchor's distance plus the distance along
         the chain: consecutive residues `residue_spacing` apart, a globule touching its
-        neighbours."""
+        neighbours; a real-shaped domain (hull, spheres) joined at its terminal CA, one residue
+        spacing from the last bead (joint_lever, globule_offset)."""
         radii, globules = self.chain_radii(), set(self.globule_members())
+        first = min(globules)
         xs = [self.anchor_x]
         for i in range(len(radii) - 1):
-            beads = i not in globules and i + 1 not in globules
-            xs.append(xs[-1] + (self.residue_spacing if beads else radii[i] + radii[i + 1]))
+            if i not in globules and i + 1 not in globules:
+                step = self.residue_spacing
+            elif i + 1 == first:  # the sphere's radius + the bead's, or the real joint
+                step = self.joint_lever + self.globule_offset
+            else:
+                step = radii[i] + radii[i + 1]
+            xs.append(xs[-1] + step)
         return xs
 
     def chain_radii(self) -> list[float]:
@@ -316,6 +363,9 @@ class Params:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
             d["core_outline"] = [list(xy) for xy in self.core_outline]
+        for name in ("domain_atoms", "domain_spheres", "domain_joint"):
+            if d[name] is not None:
+                d[name] = [list(row) for row in d[name]]
         return d
 
     def replace(self, **changes) -> "Params":
@@ -546,6 +596,8 @@ def make_params(*, force: bool = False, **values) -> Params:
         if meta["derived"] and (value is None or (isinstance(value, str)
                                                   and value.strip().lower() in DERIVED_WORDS)):
             clean[f.name] = None
+        elif meta["kind"] == "rows":
+            clean[f.name] = None if value is None else _rows(f.name, value, meta)
         elif meta["kind"] == "points":
             if isinstance(value, str) and value.strip().startswith("["):
                 try:
@@ -585,6 +637,30 @@ def _list(name: str, value, meta: dict) -> tuple | None:
     out = tuple(meta["item"](_coerce(name, v, item_meta)) for v in items)
     return out or None
 
+def _rows(name: str, value, meta: dict) -> tuple:
+    """A list of rows of meta["size"] numbers each (kind "rows"), as a tuple of tuples; one
+    row may be given flat."""
+    size = meta["size"]
+    if isinstance(value, str):
+        try:
+            value = json.loads(value)
+        except ValueError:
+            raise ParamError(name, f"is not a JSON list of rows of {size} numbers "
+                                   f"(got {value[:40]!r})") from None
+    try:
+        rows = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParamError(name, f"must be a list of rows of {size} numbers") from None
+    if rows.ndim == 1 and rows.size == size:
+        rows = rows[None]
+    if rows.ndim != 2 or rows.shape[1] != size or not 1 <= len(rows) <= MAX_SHAPE_ROWS:
+        raise ParamError(name, f"must be a list of 1 to {MAX_SHAPE_ROWS} rows of {size} numbers "
+                               f"(got shape {rows.shape})")
+    if not np.isfinite(rows).all() or np.abs(rows).max() > meta["max"]:
+        raise ParamError(name, f"every number must be finite, from {meta['min']:g} to "
+                               f"{meta['max']:g} {meta['unit']}")
+    return tuple(tuple(float(x) for x in row) for row in rows)
+
 
 def _vector(name: str, value, meta: dict, size: int) -> tuple:
     what = {3: "three sizes X Y Z", 2: "two coordinates X Y"}.get(size, f"{size} numbers")
@@ -608,6 +684,7 @@ def _check_combination(p: Params, force: bool) -> None:
                                             f"through each other (got {p.residue_spacing:g})")
     if p.periodic:
         _check_periodic(p)
+    _check_shape(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
@@ -640,6 +717,26 @@ def _check_domains(p: Params) -> None:
     if more and p.protocol == "inflate":
         raise ParamError("domain_diameters", "several domains per chain: not with protocol "
                                              "inflate (use tutorial)")
+
+
+def _check_shape(p: Params) -> None:
+    need = {"hull": "domain_atoms", "spheres": "domain_spheres"}.get(p.domain_shape)
+    if need and (getattr(p, need) is None or p.domain_joint is None):
+        raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
+                                         f"FILE) to take its shape and joint from")
+    if p.domain_shape != "sphere" and p.periodic:
+        raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with periodic yet: a "
+                                         f"cell's images follow only their originals' centres "
+                                         f"(spheres); use --layers")
+    if p.domain_shape == "spheres" and p.protocol == "inflate":
+        raise ParamError("domain_shape", "spheres cannot be grown by the inflate protocol: "
+                                         "Bullet does not scale a compound's child spheres; use "
+                                         "hull, or --protocol tutorial")
+    if p.domain_shape != "sphere" and p.domain_diameters:
+        raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with several domains "
+                                         f"per chain yet (their bodies are spheres); use sphere")
+    if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
+        raise ParamError("domain_spheres", "every sphere's radius must be positive")
 
 
 def _check_periodic(p: Params) -> None:

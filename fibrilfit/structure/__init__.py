@@ -6,10 +6,11 @@ Geometry only: no bpy. gemmi is imported only when a file is read.
     dom = measure_domain("1ubq.pdb")          # DomainSize: rg, globule_diameter
     model_values(fib, dom)                    # {"rise": ..., "twist": ..., "globule_diameter": ...}
 """
-from .domain import DomainSize, measure as measure_domain, parse_range
+from .domain import DomainSize, body_frame, measure as measure_domain, parse_range
 from .errors import StructureError
 from .fibril import FibrilGeometry, measure as measure_fibril
 from .mapping import model_values
 
-__all__ = ["DomainSize", "FibrilGeometry", "StructureError", "measure_domain", "measure_fibril",
+__all__ = ["DomainSize", "FibrilGeometry", "StructureError", "body_frame", "measure_domain",
+           "measure_fibril",
            "model_values", "parse_range"]

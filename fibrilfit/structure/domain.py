@@ -7,7 +7,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from . import fibril, reading
+from . import fibril, reading, shape as shapes
 from .errors import StructureError
 
 RG_TO_DIAMETER = 2.0 * math.sqrt(5.0 / 3.0)  # the uniform sphere with the same Rg
@@ -27,9 +27,17 @@ class DomainSize:
     globule_diameter: float  # Å, 2·√(5/3)·Rg
     max_dimension: float  # Å, largest heavy-atom distance (for comparison: an upper bound)
     notes: list = field(default_factory=list)
+    # The real shape (docs/model/domain-shapes.md#domain-shapes): which residue carries the
+    # joint, its CA's depth below the grown hull, the shape's sizes.
+    shape: dict = field(default_factory=dict)
+    # In the body frame (body_frame): hull atoms [x, y, z, r], covering spheres, the joint; not
+    # in the JSON (the model's parameters carry them when a run uses them).
+    geometry: dict = field(default_factory=dict, repr=False)
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        out = asdict(self)
+        out.pop("geometry")
+        return out
 
 
 def parse_range(text) -> tuple:
@@ -81,14 +89,17 @@ def select(loaded, *, chain: str | None = None, residues=None,
     return c, keep, notes
 
 
-def measure(path, *, chain: str | None = None, residues=None,
-            option: str = "--domain") -> DomainSize:
+def measure(path, *, chain: str | None = None, residues=None, option: str = "--domain",
+            follows: bool = True) -> DomainSize:
+    """Measure the domain of `path`. `follows`: the domain comes after the fibril core in
+    sequence (the core's C-terminus carries the linker), so its first residue is the joint; else
+    its last."""
     loaded = reading.load(path, option)
-    return measure_loaded(loaded, chain=chain, residues=residues, option=option)
+    return measure_loaded(loaded, chain=chain, residues=residues, option=option, follows=follows)
 
 
 def measure_loaded(loaded, *, chain: str | None = None, residues=None,
-                   option: str = "--domain") -> DomainSize:
+                   option: str = "--domain", follows: bool = True) -> DomainSize:
     """`measure` of a file already read (reading.load)."""
     name = loaded.path.name
     c, keep, notes = select(loaded, chain=chain, residues=residues, option=option)
@@ -100,5 +111,46 @@ def measure_loaded(loaded, *, chain: str | None = None, residues=None,
     for i in range(0, len(hull), 512):
         d = np.linalg.norm(hull[i:i + 512, None, :] - hull[None, :, :], axis=-1)
         dmax = max(dmax, float(d.max()))
+    ca_keep = (c.residues >= used[0]) & (c.residues <= used[-1])
+    summary, geometry = measure_shape(xyz, c.heavy_radius[keep], c.ca[ca_keep],
+                                      c.residues[ca_keep], follows)
     return DomainSize(name, loaded.sha256, c.name, [int(used[0]), int(used[-1])], int(len(xyz)),
-                      round(rg, 3), round(RG_TO_DIAMETER * rg, 3), round(dmax, 2), notes)
+                      round(rg, 3), round(RG_TO_DIAMETER * rg, 3), round(dmax, 2), notes,
+                      summary, geometry)
+
+
+def measure_shape(heavy, radii, ca, residues, follows: bool = True) -> tuple[dict, dict]:
+    """The domain's real shape in its body frame: (summary for inspect and the JSON, geometry
+    for the model's parameters domain_atoms, domain_spheres, domain_joint)."""
+    centroid, local = body_frame(heavy)
+    hull = shapes.hull_atoms(local, radii)
+    spheres = shapes.covering_spheres(local, radii)
+    joint = shapes.joint_point(ca, follows) - centroid
+    residue = int(residues[0] if follows else residues[-1])
+    reach = float((np.linalg.norm(hull[:, :3], axis=1) + hull[:, 3]
+                   + shapes.grow(hull[:, 3])).max())
+    summary = {"joint_residue": residue, "joint_terminus": "N" if follows else "C",
+               "joint_depth": round(shapes.depth_below(local, radii, joint), 2),
+               "joint_distance": round(float(np.linalg.norm(joint)), 2),
+               "hull_atoms": int(len(hull)), "bounding_radius": round(reach, 2),
+               "spheres": int(len(spheres)),
+               "joint_depth_spheres": round(shapes.union_exit(spheres, joint)[1], 2),
+               "spheres_radius": [round(float(r), 2) for r in spheres[:, 3]]}
+    geometry = {"domain_atoms": np.round(hull, 3).tolist(),
+                "domain_spheres": np.round(spheres, 3).tolist(),
+                "domain_joint": np.round(joint, 3).tolist()}
+    return summary, geometry
+
+
+def body_frame(atoms) -> tuple:
+    """The domain's rigid-body frame: (centroid (3,), local_xyz (m, 3)).
+
+    The globule object's local frame is the domain file's coordinates minus the heavy-atom
+    centroid, with no rotation; its shape meshes (hull, spheres) are built in it, and an atom at
+    `local` in it lies at `matrix_world @ local` once the body has moved. `atoms`: (m, 3) heavy
+    atoms in the file's frame (Å)."""
+    xyz = np.asarray(atoms, dtype=float).reshape(-1, 3)
+    if not len(xyz):
+        raise ValueError("body_frame: no atoms")
+    centroid = xyz.mean(axis=0)
+    return centroid, xyz - centroid

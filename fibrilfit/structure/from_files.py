@@ -11,7 +11,8 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     for key, m in (("fibril", fibril), ("domain", domain)):
         if m is not None:
             out[key] = {"file": m.file, "sha256": m.sha256, "measured": m.to_dict()}
-    out["applied"] = applied
+    out["applied"] = {k: ("[... %d rows]" % len(v) if k in ("domain_atoms", "domain_spheres")
+                          else v) for k, v in applied.items()}
     out["overridden"] = sorted(overridden)  # measured, but an explicit option set the value
     out["not_in_model"] = not_in_model  # measured, but this model has no such parameter
     return out
@@ -62,11 +63,12 @@ def sources(fibril, domain, applied) -> dict:
 
 
 def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75,
-          more_domains=()):
+          more_domains=(), shape: str = "sphere"):
     """(values to apply, structure block). `explicit`: parameters given as options (they win);
-    `known`: the model's parameter names; `more_domains`: the domains after `domain`."""
+    `known`: the model's parameter names; `more_domains`: the domains after `domain`; `shape`:
+    the domain_shape asked for."""
     values = model_values(fibril, domain, residue_radius=residue_radius,
-                          more_domains=more_domains)
+                          more_domains=more_domains, shape=shape)
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)

@@ -97,7 +97,8 @@ def measure_all(args) -> tuple:
         raise UsageError(f"--full-length: no folded domain (pLDDT >= 70 over at least 40 "
                          f"residues) on the linker's side of the core in {seg.file}")
     option = "--full-length" if seg is not None else "--domain"
-    doms = [structure.measure_domain(f, chain=c, residues=r, option=option)
+    doms = [structure.measure_domain(f, chain=c, residues=r, option=option,
+                                       follows=args.terminus == "C")
             for f, c, r in specs]
     return fib, doms, seg
 
@@ -124,9 +125,10 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
         radius = float(radius)
     except (TypeError, ValueError):
         radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
+    shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
     applied, block = from_files.split(fib, dom, explicit=set(explicit),
                                       known={f.name for f in P.fields()}, residue_radius=radius,
-                                      more_domains=doms[1:])
+                                      more_domains=doms[1:], shape=shape)
     if block["not_in_model"]:
         block["warnings"].append(f"measured but not in this model: "
                                  f"{', '.join(block['not_in_model'])}")

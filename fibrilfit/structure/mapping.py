@@ -12,7 +12,8 @@ RESIDUE_RADIUS = 1.75  # Å: the model's anchor bead (params.residue_radius's de
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
                  "anchor", "linker")
-DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker")
+DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker", "domain_atoms",
+                 "domain_spheres", "domain_joint")
 
 
 def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
@@ -35,14 +36,16 @@ def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
 
 
 def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None = None, *,
-                 residue_radius: float = RESIDUE_RADIUS, more_domains=()) -> dict:
+                 residue_radius: float = RESIDUE_RADIUS, more_domains=(),
+                 shape: str = "sphere") -> dict:
     """Parameter name -> value for the model, in its units (Å, rad).
 
     The layer frame is the fibril's: Z = the helical axis through the origin, layer 0 of the model
     = the structure's reference layer, X along the long axis of its section. `anchor` is the bead
     touching the outline nearest protofilament 0's anchor CA (anchor_outside); `linker` (anchor +
     tail) only when the file models residues beyond the anchor (e.g. 2N0A's 98-140), since they
-    are linker too.
+    are linker too. A `shape` other than the sphere also takes the domain's real shape and
+    joint (docs/model/domain-shapes.md#domain-shapes); the sphere's model keeps its values.
     """
     values = {}
     if fibril is not None:
@@ -57,6 +60,8 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
             values["linker"] = 1 + tail[1] - tail[0] + 1
     if domain is not None:
         values["globule_diameter"] = domain.globule_diameter
+        if shape != "sphere" and domain.geometry:
+            values.update(domain.geometry)
     numbered = linker_from_numbering(fibril, domain)
     if numbered is not None:  # covers a modelled tail too: the residues between, all of them
         values["linker"] = numbered[0]

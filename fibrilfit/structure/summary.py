@@ -40,6 +40,15 @@ def domain_lines(d) -> list:
     lines += [f"  note: {n}" for n in d.notes]
     lines.append(f"  rg {d.rg:.2f} Å, globule_diameter {d.globule_diameter:.2f} Å "
                  f"(2·√(5/3)·Rg; largest dimension {d.max_dimension:.1f} Å)")
+    if d.shape:
+        s = d.shape
+        first = "first: it follows the core" if s["joint_terminus"] == "N" else "last: it precedes"
+        lines.append(f"  joint: CA of residue {s['joint_residue']} (the domain's {first}), "
+                     f"{s['joint_depth']:.2f} Å below the hull, {s['joint_depth_spheres']:.2f} Å "
+                     f"below the spheres")
+        lines.append(f"  shapes: hull of {s['hull_atoms']} outer atoms within "
+                     f"{s['bounding_radius']:.1f} Å of the centroid; {s['spheres']} covering "
+                     f"spheres of {min(s['spheres_radius']):.1f}-{max(s['spheres_radius']):.1f} Å")
     return lines
 
 

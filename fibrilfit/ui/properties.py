@@ -64,8 +64,13 @@ def _scale(field) -> float:
     return P.SHOWN_IN[shown][1] if shown else 1.0
 
 
+JSON_KINDS = ("points", "rows")  # held as JSON text in the panel, read back exactly
+
+
 def _description(field) -> str:
     meta = field.metadata
+    if meta["kind"] == "rows":
+        return f"{meta['doc']}. JSON rows; empty for {meta['derived']}"
     if meta["kind"] == "points":
         return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
                 f"Load one from a file with Load outline")
@@ -86,13 +91,14 @@ def switch_name(name: str) -> str:
 
 
 def derived_fields() -> list:
-    return [f for f in P.fields() if f.metadata.get("derived") and f.metadata["kind"] != "points"]
+    return [f for f in P.fields() if f.metadata.get("derived")
+            and f.metadata["kind"] not in JSON_KINDS]
 
 
 def _param_property(field):
     meta, default = field.metadata, field.default
     common = {"name": label(field), "description": _description(field)}
-    if meta["kind"] in ("points", "list"):
+    if meta["kind"] in (*JSON_KINDS, "list"):
         return StringProperty(default="", **common)
     if default is None:
         default = _SHOWN_DEFAULTS[field.name]
@@ -177,7 +183,7 @@ def _plain(value):
 
 
 def _value(settings, field):
-    if field.metadata["kind"] == "points":  # JSON text, read exactly: no float32 rounding
+    if field.metadata["kind"] in JSON_KINDS:  # JSON text, read exactly: no float32 rounding
         text = getattr(settings, field.name).strip()
         if not text:
             return None
@@ -230,8 +236,8 @@ def write_params(settings, p: P.Params) -> None:
     for name, value in p.to_dict().items():
         if name in scaled:
             setattr(settings, name, value * scaled[name])
-        elif name == "core_outline":
-            settings.core_outline = "" if value is None else json.dumps(value)
+        elif name == "core_outline" or P.field_spec(name)["kind"] == "rows":
+            setattr(settings, name, "" if value is None else json.dumps(value))
         elif P.field_spec(name)["kind"] == "list":
             setattr(settings, name, "" if value is None else ", ".join(f"{v:g}" for v in value))
         elif name in derived:
@@ -269,7 +275,7 @@ def changed_fields(settings, p: P.Params, sections=SECTIONS, *,
     for f in P.fields():
         if section_of(f) in sections:
             old = then[f.name]
-            if f.metadata["kind"] == "points":
+            if f.metadata["kind"] in JSON_KINDS:
                 old = None if old is None else tuple(map(tuple, old))
                 if old != now[f.name]:
                     out.append((f.name, old, now[f.name]))

@@ -70,3 +70,19 @@ def test_the_panel_draws_with_imports(ui, scene):
     labels = [t for kind, t in log if kind == "label"]
     assert labels[:3] == ["Fibril 2n0a.pdb.gz", labels[1], labels[2]]
     assert labels[1].startswith("rise 4.89") and labels[2].startswith("right-handed")
+
+
+def test_an_imported_domain_builds_as_its_hull(ui, scene, ff):
+    """Import domain… keeps the domain's real shape, so choosing Domain shape: hull later
+    builds the hull without a new import; the sphere's model ignores it."""
+    assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
+    sphere = properties.read_params(ui)
+    assert sphere.domain_shape == "sphere" and sphere.domain_atoms is not None
+    assert sphere.chain_x() == ff.model.params.make_params(
+        globule_diameter=sphere.globule_diameter).chain_x()  # the sphere's model as before
+    ui.domain_shape = "hull"
+    ui.layers = 2
+    p = properties.read_params(ui)
+    assert p.domain_shape == "hull" and p.domain_joint == sphere.domain_joint
+    model = ff.pipeline.build(p, scene)
+    assert model.globules[0].rigid_body.collision_shape == "CONVEX_HULL"

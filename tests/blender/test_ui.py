@@ -66,8 +66,8 @@ def test_one_property_per_parameter_with_its_metadata(ui):
             assert prop.type == "ENUM" and prop.default == f.default, f.name
             assert tuple(item.identifier for item in prop.enum_items) == meta["choices"], f.name
             continue
-        if meta["kind"] in ("points", "list"):  # the outline: JSON text, empty for the slab's
-            # box; a list ("31, 30"), empty for none
+        if meta["kind"] in ("points", "list", "rows"):  # JSON or list text, empty for the
+            # default (the slab's box, one domain, the sphere's shape)
             assert prop.type == "STRING" and prop.default == "" and f.default is None
             continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name

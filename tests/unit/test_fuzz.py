@@ -87,6 +87,9 @@ def test_validation_accepts_or_refuses_with_paramerror_only(values):
         if f.metadata["kind"] == "points":
             v = [x for xy in v for x in xy]
             assert len(v) >= 6
+        if f.metadata["kind"] == "rows":  # rows of `size` numbers (a domain's shape)
+            assert all(len(row) == f.metadata["size"] for row in v)
+            v = [x for row in v for x in row]
         for x in (v if isinstance(v, (tuple, list)) else (v,)):
             assert isinstance(x, (int, float)) and math.isfinite(x)
             if f.metadata["kind"] is not bool:

@@ -15,9 +15,11 @@ GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
 def _fill(context, fib, dom) -> list:
     """Write the measured values into the panel. Returns the names written."""
     current = common.panel_params(context)
+    # The domain's real shape is kept whatever the panel's Domain shape is now, so that choosing
+    # hull or spheres later needs no new import (the sphere ignores it).
     applied, block = from_files.split(fib, dom, explicit=set(),
                                       known={f.name for f in P.fields()},
-                                      residue_radius=current.residue_radius)
+                                      residue_radius=current.residue_radius, shape="hull")
     properties.write_params(common.settings(context), current.replace(**applied))
     return sorted(applied), block["not_in_model"]
 

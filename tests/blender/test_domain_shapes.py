@@ -1,0 +1,137 @@
+"""Real domain shapes in Blender (issue #24): the hull mesh holds every atom, both clash checks
+find hulls pushed into each other, and an accommodated hull model keeps the atoms apart."""
+import numpy as np
+import pytest
+from helpers import ROOT
+
+DATA = ROOT / "tests" / "data"
+
+
+def _hull_params(ff, name, shape="hull", **values):
+    from fibrilfit.structure import measure_domain, model_values
+    dom = measure_domain(DATA / f"{name}.pdb.gz")
+    return ff.model.params.make_params(domain_shape=shape,
+                                       **model_values(None, dom, shape=shape), **values)
+
+
+def _atoms(name):
+    from fibrilfit.structure import body_frame, reading
+    c = reading.load(DATA / f"{name}.pdb.gz", "--domain").chains[0]
+    return body_frame(c.heavy)[1], c.heavy_radius
+
+
+@pytest.mark.parametrize("name", ["1gfl", "1ubq"])
+def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
+    from fibrilfit.analysis.clashes import mesh_arrays
+    from fibrilfit.builders.model import globule_mesh
+    mesh = globule_mesh(_hull_params(ff, name))
+    verts, starts, loops = mesh_arrays(mesh)
+    normals = np.empty(len(mesh.polygons) * 3, np.float32)
+    mesh.polygons.foreach_get("normal", normals)
+    normals = normals.reshape(-1, 3).astype(float)
+    offset = (normals * verts[loops[starts]]).sum(1)  # each face's plane: n·x = offset
+    local, radii = _atoms(name)
+    inside = offset[None] - local @ normals.T  # (atoms, faces): depth below each face's plane
+    assert (inside.min(axis=1) >= radii - 1e-3).all()  # float32 vertices
+    # and it is the atoms' hull: no face farther out than the grown points reach
+    assert (inside.min(axis=0) <= radii.max() + 0.15).all()
+
+
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape):
+    from fibrilfit.analysis.clashes import (bvh_clashes, float_tolerance, hull_clashes,
+                                            sphere_band, spheres_clashes)
+    from fibrilfit.builders.model import globule_mesh
+    p = _hull_params(ff, "1ubq", shape)
+    mesh = globule_mesh(p)
+    turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])  # the second one turned 90° about Z
+    found = []
+    for x in np.linspace(20.0, 45.0, 26):
+        m = np.tile(np.eye(4), (2, 1, 1))
+        m[1, :3, :3], m[1, 0, 3] = turn, x
+        if shape == "hull":  # the same faces: only rounding between the checks
+            band = slack = float_tolerance(m[:, :3, 3])
+            analytic, depth = hull_clashes(mesh, m, band)
+        else:  # the spheres' meshes are faceted: grazing contacts up to the band
+            band, slack = sphere_band(max(r for *_, r in p.domain_spheres)), 1e-4
+            analytic, depth = spheres_clashes(p.domain_spheres, m, band)
+        faces, pairs = bvh_clashes(mesh, m)
+        d = depth(0, 1)
+        if d > band:  # overlapping beyond the mesh's resolution: both find it
+            assert analytic and pairs, (x, d)
+        elif d < -slack:  # apart: neither does
+            assert not analytic and not pairs, (x, d)
+        found.append(d)
+    assert max(found) > 1.0 and min(found) < -1.0  # deep overlaps and clear gaps both tested
+
+
+def test_gjk_distance_of_two_boxes(ff):
+    from fibrilfit.analysis.clashes import hull_distance
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    assert hull_distance(cube, cube + [3.0, 0, 0]) == pytest.approx(2.0, abs=1e-5)
+    assert hull_distance(cube, cube + [2.0, 2.0, 0]) == pytest.approx(np.sqrt(2.0), abs=1e-5)
+    assert hull_distance(cube, cube + [0.5, 0.5, 0.5]) == 0.0
+
+
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
+    """The closest heavy atoms of two domains are at least two radii apart, less the resting
+    overlap (0.05 Å): the shape holds the atoms (a hull's mesh with HULL_MARGIN around it for
+    Bullet; spheres each holding their atoms). Spheres start 12 Å apart along the axis: from the
+    tutorial's 4.8 Å start, deeply interpenetrated compounds can lock
+    (docs/model/domain-shapes.md#spheres)."""
+    rise = 4.8 if shape == "hull" else 12.0
+    p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, rise=rise, frames=120)
+    model = ff.pipeline.build(p, scene)
+    want = {"hull": "CONVEX_HULL", "spheres": "COMPOUND"}[shape]
+    assert model.globules[0].rigid_body.collision_shape == want
+    ff.pipeline.bake(model, scene)
+    r = ff.pipeline.check(model, scene)
+    assert r["accommodated"] and r["checks_agree"], r["warnings"]
+    local, radii = _atoms("1ubq")
+    placed = []
+    for ob in model.globules:
+        m = np.array(ob.matrix_world)
+        placed.append(local @ m[:3, :3].T + m[:3, 3])
+    closest = np.inf
+    for i in range(len(placed)):
+        for j in range(i + 1, len(placed)):
+            d = np.linalg.norm(placed[i][:, None] - placed[j][None], axis=-1)
+            closest = min(closest, float((d - radii[:, None] - radii[None]).min()))
+    assert closest >= -0.05
+    # the joint sits on its bond's pivot: the last bead one residue spacing from the CA
+    joint = np.asarray(p.domain_joint, float).reshape(3)
+    for members in model.chain:
+        m = np.array(members[-1].matrix_world)
+        ca = m[:3, :3] @ joint + m[:3, 3]
+        bead = np.array(members[-2].matrix_world)[:3, 3]
+        assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=0.05)
+
+
+@pytest.mark.parametrize("protocol", ["tutorial", "inflate"])
+def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, protocol):
+    """Both start layouts put the last bond's pivot at the domain's terminal CA, one residue
+    spacing from the last linker bead, on the surface side facing the linker."""
+    p = _hull_params(ff, "1ubq", layers=3, linker=6, protocol=protocol)
+    model = ff.pipeline.build(p, scene)
+    joint = np.asarray(p.domain_joint, float).reshape(3)
+    for members, bonds in zip(model.chain, model.constraints):
+        m = np.array(members[-1].matrix_world)
+        ca = m[:3, :3] @ joint + m[:3, 3]
+        bead = np.array(members[-2].matrix_world)[:3, 3]
+        assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=1e-3)
+        assert np.allclose(np.array(bonds[-1].matrix_world)[:3, 3], ca, atol=1e-3)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--domain-shape", "hull"], "domain_shape: hull needs a domain structure (--domain FILE)"),
+    (["--domain-shape", "cube"], "invalid choice: 'cube'"),
+    (["--domain-shape", "spheres", "--domain", str(DATA / "1ubq.pdb.gz"), "--protocol",
+      "inflate"], "domain_shape: spheres cannot be grown by the inflate protocol"),
+])
+def test_cli_refuses_a_shape_it_cannot_build_in_one_line(tmp_path, args, message):
+    from helpers import run_cli
+    out = tmp_path / "r.json"
+    r = run_cli("run", "--layers", "2", "--json", str(out), *args)
+    assert r.returncode == 2 and message in r.stderr and not out.exists()
+    assert len(r.stderr.strip().splitlines()) <= 3  # argparse's usage lines, or one line

@@ -1,0 +1,71 @@
+"""The domain's real shape (structure/shape.py, issue #24): hull atoms, covering spheres, joint,
+and the parameters that carry them. No bpy: the built meshes are tested in
+tests/blender/test_domain_shapes.py."""
+import numpy as np
+import pytest
+from fibrilfit.model import params as P
+from fibrilfit.structure import body_frame, measure_domain, model_values, reading, shape
+from helpers import ROOT
+
+DATA = ROOT / "tests" / "data"
+
+
+@pytest.fixture(scope="module", params=["1gfl", "1ubq"])
+def chain(request):
+    return reading.load(DATA / f"{request.param}.pdb.gz", "--domain").chains[0]
+
+
+def test_body_frame_is_the_file_minus_the_centroid(chain):
+    centroid, local = body_frame(chain.heavy)
+    assert np.allclose(local + centroid, chain.heavy)
+    assert np.allclose(local.mean(axis=0), 0.0, atol=1e-9)
+
+
+def test_hull_points_reach_past_every_atom_in_every_direction(chain):
+    _, local = body_frame(chain.heavy)
+    atoms = shape.hull_atoms(local, chain.heavy_radius)
+    pts = shape.hull_points(atoms)
+    u = shape.directions(5000)
+    need = shape.grown_support(local, chain.heavy_radius, u)
+    have = (pts @ u.T).max(axis=0)
+    assert (have >= need - 1e-9).all()  # every atom's ball lies within the points' hull
+    assert (have - need).max() <= shape.grow(1.8) + 1e-9  # and it departs by at most `grow`
+
+
+def test_covering_spheres_cover_every_atom_and_are_reproducible(chain):
+    _, local = body_frame(chain.heavy)
+    s = shape.covering_spheres(local, chain.heavy_radius)
+    reach = np.linalg.norm(local[:, None] - s[None, :, :3], axis=-1) + chain.heavy_radius[:, None]
+    assert (reach <= s[None, :, 3] + 1e-9).any(axis=1).all()
+    assert len(s) == shape.SPHERES
+    assert np.array_equal(s, shape.covering_spheres(local, chain.heavy_radius))
+
+
+def test_the_joint_is_the_terminal_ca_and_its_depth_at_least_its_radius():
+    after = measure_domain(DATA / "1ubq.pdb.gz", follows=True)
+    before = measure_domain(DATA / "1ubq.pdb.gz", follows=False)
+    assert after.shape["joint_residue"] == 1 and before.shape["joint_residue"] == 76
+    c = reading.load(DATA / "1ubq.pdb.gz", "--domain").chains[0]
+    centroid, _ = body_frame(c.heavy)
+    assert np.allclose(after.geometry["domain_joint"], c.ca[0] - centroid, atol=1e-3)
+    for d in (after, before):  # a CA is a heavy atom: its own ball is inside the grown hull
+        assert d.shape["joint_depth"] >= 1.7 - 0.01
+    assert "geometry" not in after.to_dict() and after.to_dict()["shape"]["hull_atoms"] > 10
+
+
+def test_params_take_a_shape_only_with_its_geometry():
+    assert P.DEFAULTS.domain_shape == "sphere"
+    assert P.DEFAULTS.chain_x()[-1] == P.DEFAULTS.chain_x()[-2] + 1.75 + 15.0  # unchanged
+    with pytest.raises(P.ParamError, match="^domain_shape: must be one of sphere, hull, spheres"):
+        P.make_params(domain_shape="cube")
+    with pytest.raises(P.ParamError, match="^domain_shape: hull needs a domain structure"):
+        P.make_params(domain_shape="hull")
+    dom = measure_domain(DATA / "1ubq.pdb.gz")
+    assert "domain_atoms" not in model_values(None, dom)  # the sphere's model: as before
+    p = P.make_params(domain_shape="hull", **model_values(None, dom, shape="hull"))
+    assert p.globule_offset == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
+    assert P.make_params(**p.to_dict()) == p  # the case file / sweep round trip
+    with pytest.raises(P.ParamError, match="^domain_shape: hull cannot be used with periodic"):
+        p.replace(periodic=20)
+    with pytest.raises(P.ParamError, match="^domain_atoms: must be a list"):
+        p.replace(domain_atoms=[[1, 2, 3]])

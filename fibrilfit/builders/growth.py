@@ -72,6 +72,15 @@ def _closest(centres: np.ndarray) -> float | None:
     return best
 
 
+def settle_tags(scene) -> None:
+    """Evaluate what has been tagged in `scene` (every view layer's depsgraph), at the current
+    frame: a bake hook that tags bodies calls this before the next frame is stepped, so the
+    step reads settled data whatever order the depsgraph's threads run in."""
+    for layer in scene.view_layers:
+        if layer.depsgraph is not None:
+            layer.update()
+
+
 def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     """The fallback judgement: no scored globule pair overlapping by more than
     OVERLAP_TOLERANCE and every scored bond within the stretch tolerance."""
@@ -117,7 +126,7 @@ class Inflate:
         # are split, so the schedule's frames and speeds are counted in the shorter ones
         self.k = self.p.image_updates if self.p.periodic else 1
 
-    def _set_scale(self, s: float) -> None:
+    def _set_scale(self, scene, s: float) -> None:
         if s == self.scale:
             return
         objects = self.globules.objects
@@ -126,6 +135,11 @@ class Inflate:
         # matrix_world and Bullet's shape stay at full size)
         for ob in objects:
             ob.update_tag(refresh={"OBJECT"})
+        # ...and the tags are evaluated now, in a pass of their own, not inside the frame's
+        # step: evaluated together, the scale Bullet read differed by a float32 ulp with the
+        # order the depsgraph's threads ran in, and the bake diverged from the first contact
+        # (measured: docs/model/search.md#determinism)
+        settle_tags(scene)
         self.scale = s
 
     def before_frame(self, scene, frame: int) -> None:
@@ -138,7 +152,7 @@ class Inflate:
         if self.holding:
             return
         t = min(1.0, (frame - self.grow_start) / (p.grow_frames * self.k))
-        self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
+        self._set_scale(scene, self.grow_from + (1.0 - self.grow_from) * t)
         scene.gravity = tuple(self.gravity * (1.0 - t))
 
     def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:

@@ -113,7 +113,7 @@ class Inflate:
     busy = True  # the schedule, not the tutorial's settling, ends this bake
 
     def __init__(self, model, scene, judge: Callable | None = None):
-        self.model, self.p, self.judge = model, model.params, judge
+        self.model, self.p, self.judge, self.scene = model, model.params, judge, scene
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
         n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
         self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
@@ -126,7 +126,7 @@ class Inflate:
         # are split, so the schedule's frames and speeds are counted in the shorter ones
         self.k = self.p.image_updates if self.p.periodic else 1
 
-    def _set_scale(self, scene, s: float) -> None:
+    def _set_scale(self, s: float) -> None:
         if s == self.scale:
             return
         objects = self.globules.objects
@@ -139,7 +139,7 @@ class Inflate:
         # step: evaluated together, the scale Bullet read differed by a float32 ulp with the
         # order the depsgraph's threads ran in, and the bake diverged from the first contact
         # (measured: docs/model/search.md#determinism)
-        settle_tags(scene)
+        settle_tags(self.scene)
         self.scale = s
 
     def before_frame(self, scene, frame: int) -> None:
@@ -152,7 +152,7 @@ class Inflate:
         if self.holding:
             return
         t = min(1.0, (frame - self.grow_start) / (p.grow_frames * self.k))
-        self._set_scale(scene, self.grow_from + (1.0 - self.grow_from) * t)
+        self._set_scale(self.grow_from + (1.0 - self.grow_from) * t)
         scene.gravity = tuple(self.gravity * (1.0 - t))
 
     def after_frame(self, scene, frame: int, positions: np.ndarray) -> None:

@@ -164,6 +164,12 @@ class Params:
     regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
                                 "inflate: globule scale a jammed layout is shrunk to",
                                 section="Search")
+    polish_factor: int = _spec(4, 1, 100, "times",
+                               "inflate: a jammed layout that is nearly accommodated (deepest "
+                               "overlap at most 1 Å, stretch at most 3 times the tolerance) is "
+                               "held once more, gravity off, with this many times the substeps "
+                               "and solver iterations before it is regrown (1 = off)",
+                               kind=int, section="Search")
 
     periodic: int = _spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
@@ -235,8 +241,9 @@ class Params:
         """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
         if self.protocol == "inflate":
             # each cycle: grow_frames + 1 frames from the start scale to full size inclusive,
-            # then at most hold_frames
-            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + self.hold_frames)
+            # then at most hold_frames, and at most hold_frames more when it is polished
+            holds = 2 if self.polish_factor > 1 else 1
+            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + holds * self.hold_frames)
         return self.frames
 
     def estimated_objects(self) -> int:

@@ -27,3 +27,28 @@ def test_a_capped_periodic_verdict_at_linker_6_against_12(scene, ff, linker, fit
     else:
         assert r["verdict"] == "successful"
         assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] < 0.02
+
+
+# The slow test's model (30 Å globules, 20 layers, inflate) with fewer regrows. A fibril of a few
+# layers is no place for a "never": its end layers fan out along the axis, and 6, 8 and 10 layers
+# (all scored, or 10 with 3 unscored at each end) fitted linker 4 in their first cycle, seeds 0-2
+# (docs/model/search.md#evidence).
+SHORT_SEARCH = {"protocol": "inflate", "regrow_cycles": 1}
+
+
+def test_inflate_fits_linker_5_on_twenty_layers(scene, ff):
+    r = ff.pipeline.run(P.make_params(linker=5, seed=2, **SHORT_SEARCH), scene)
+    assert r["accommodated"] is True and r["intersecting_faces"] == 0
+    assert r["max_bond_stretch"] <= 0.05 and r["checks_agree"]
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_inflate_never_fits_linker_4_on_twenty_layers(scene, ff, seed):
+    """Every judgement of every cycle (and polish) is far from a fit: clashes, or linkers
+    stretched by more than three times the tolerance."""
+    r = ff.pipeline.run(P.make_params(linker=4, seed=seed, **SHORT_SEARCH), scene)
+    assert r["accommodated"] is False and r["verdict"] == "intersection"
+    cycles = r["inflate"]["cycles"]
+    assert [c["cycle"] for c in cycles if not c["polished"]] == [0, 1]
+    assert all(not c["accommodated"] for c in cycles)
+    assert all(c["clashing_pairs"] > 0 or c["max_bond_stretch"] > 0.15 for c in cycles)

@@ -5,9 +5,14 @@ The slow tests (`make test-slow`) hold the full claims: the periodic verdicts at
 thresholds (tests/blender/test_search.py). These are the same physics, capped so that each case
 runs in a few seconds of CPU, with the margins measured in docs/model/search.md#evidence.
 """
+import json
+
 import pytest
+from helpers import ROOT, run_cli
 
 from fibrilfit.model import params as P
+
+DATA = ROOT / "tests" / "data"
 
 # 60 frames of the tutorial protocol in the auto cell (13 layers, 30 Å globules, seed 0): the
 # verdict there is already the full bake's (docs/model/search.md#evidence)
@@ -52,3 +57,17 @@ def test_inflate_never_fits_linker_4_on_twenty_layers(scene, ff, seed):
     assert [c["cycle"] for c in cycles if not c["polished"]] == [0, 1]
     assert all(not c["accommodated"] for c in cycles)
     assert all(c["clashing_pairs"] > 0 or c["max_bond_stretch"] > 0.15 for c in cycles)
+
+
+def test_a_sweep_from_files_records_the_structure_in_its_worker(tmp_path):
+    """The fast case of tests/blender/test_structure_run.py's sweep: one linker, one seed, one
+    worker; the worker's record holds the structure and the model built from it."""
+    out = tmp_path / "s"
+    cp = run_cli("sweep", "--fibril", str(DATA / "8a9l.pdb.gz"), "--domain",
+                 str(DATA / "1ubq.pdb.gz"), "--linker", "2", "--layers", "4", "--frames", "10",
+                 "--seeds", "1", "--workers", "1", "--no-plot", "--quiet", "--out", str(out))
+    assert cp.returncode == 0, cp.stderr
+    (r,) = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    assert r["status"] == "ok" and r["structure"]["fibril"]["file"] == "8a9l.pdb.gz"
+    assert r["params"]["twist"] == r["structure"]["fibril"]["measured"]["twist"] > 0
+    assert r["params"]["globule_diameter"] == pytest.approx(30.3, abs=0.5)

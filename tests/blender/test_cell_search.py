@@ -1,0 +1,36 @@
+"""The inflate search in a periodic cell reaches the independent optimizer's threshold
+(docs/model/periodic-cell.md#cell-search): at 30 Å, linker 7 accommodated in at least 4 of
+seeds 0-4 and linker 5 in none, on the auto cell and on one twice as long.
+
+Not met yet (measured 2026-11-25: 2 of 5 at linker 7 before the polish; with it, seed 0 fitted
+and seed 2 did not, and seed 0 of the 26-layer cell did not), so the threshold case is a strict
+xfail: it fails the run the day it passes, so that the mark is taken off then.
+"""
+import pytest
+
+from fibrilfit.model import params as P
+
+
+def _fits(scene, ff, linker, cell):
+    fits = 0
+    for seed in range(5):
+        r = ff.pipeline.run(P.make_params(protocol="inflate", periodic=cell, linker=linker,
+                                          seed=seed), scene)
+        assert r["checks_agree"]
+        if r["accommodated"]:
+            assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05
+        fits += r["accommodated"]
+    return fits
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="not met: docs/model/periodic-cell.md#cell-search")
+@pytest.mark.parametrize("cell", ["auto", 26])
+def test_the_cell_fits_linker_7_in_four_of_five_seeds(scene, ff, cell):
+    assert _fits(scene, ff, 7, cell) >= 4
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("cell", ["auto", 26])
+def test_the_cell_never_fits_linker_5(scene, ff, cell):
+    assert _fits(scene, ff, 5, cell) == 0

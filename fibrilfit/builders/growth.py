@@ -25,9 +25,10 @@ from .scene import TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
 OVERLAP_TOLERANCE = 0.05  # Å: sphere overlap the fallback judge lets pass (resting contacts)
-# A jammed layout is polished (held again with polish_factor times the substeps and solver
-# iterations) when it is this near a fit: the usual miss in a cell is clash-free or grazing with
-# linkers stretched 6-10 % (docs/model/search.md#polish)
+# With polish_factor > 1 (off by default) a jammed layout is polished (held again with
+# polish_factor times the substeps and solver iterations) when it is this near a fit: the usual
+# miss in a cell is clash-free or grazing with linkers stretched 6-10 %
+# (docs/model/search.md#polish)
 POLISH_STRETCH = 3.0  # at most this many times the stretch tolerance
 POLISH_OVERLAP = 1.0  # Å: the deepest globule overlap at most this
 

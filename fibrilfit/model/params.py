@@ -164,11 +164,14 @@ class Params:
     regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
                                 "inflate: globule scale a jammed layout is shrunk to",
                                 section="Search")
-    polish_factor: int = _spec(4, 1, 100, "times",
+    # Off by default: measured in a cell it rescued 1 of 3 near misses it was tried on and made
+    # most polishes worse (docs/model/search.md#polish)
+    polish_factor: int = _spec(1, 1, 100, "times",
                                "inflate: a jammed layout that is nearly accommodated (deepest "
                                "overlap at most 1 Å, stretch at most 3 times the tolerance) is "
                                "held once more, gravity off, with this many times the substeps "
-                               "and solver iterations before it is regrown (1 = off)",
+                               "and solver iterations before it is regrown (1 = off; 4 was "
+                               "tried)",
                                kind=int, section="Search")
 
     periodic: int = _spec(0, 0, 10_000, "layers",

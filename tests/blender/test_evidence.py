@@ -5,6 +5,7 @@ The slow tests (`make test-slow`) hold the full claims: the periodic verdicts at
 thresholds (tests/blender/test_search.py). These are the same physics, capped so that each case
 runs in a few seconds of CPU, with the margins measured in docs/model/search.md#evidence.
 """
+import importlib
 import json
 
 import pytest
@@ -71,3 +72,20 @@ def test_a_sweep_from_files_records_the_structure_in_its_worker(tmp_path):
     assert r["status"] == "ok" and r["structure"]["fibril"]["file"] == "8a9l.pdb.gz"
     assert r["params"]["twist"] == r["structure"]["fibril"]["measured"]["twist"] > 0
     assert r["params"]["globule_diameter"] == pytest.approx(30.3, abs=0.5)
+
+
+def test_a_near_miss_gets_near_cycles_and_a_clear_miss_does_not():
+    """docs/model/search.md#near-cycles: the judgements of seed 0 (a near miss) and of linker 5
+    (a clear miss) in the auto cell after their fifth cycle."""
+    growth = importlib.import_module("fibrilfit.builders.growth")
+    hook = growth.Inflate.__new__(growth.Inflate)
+    hook.p, hook.extended = P.make_params(protocol="inflate", regrow_cycles=4, near_cycles=5), False
+    near = {"accommodated": False, "max_overlap": 0.0601, "max_bond_stretch": 0.079408}
+    far = {"accommodated": False, "max_overlap": 1.1341, "max_bond_stretch": 0.975223}
+    hook.cycle = 3
+    assert hook.last_cycle(near) == 4 and not hook.extended  # only from the last regular cycle
+    hook.cycle = 4
+    assert hook.last_cycle(far) == 4 and not hook.extended
+    assert hook.last_cycle(near) == 9 and hook.extended
+    hook.cycle = 6
+    assert hook.last_cycle(far) == 9  # granted once, for the whole run

@@ -3,8 +3,8 @@
 seeds 0-4 and linker 5 in none, on the auto cell and on one twice as long.
 
 Measured 2026-11-25 on the auto cell: 2 of 5 at linker 7 with 4 regrows; with near_cycles (5
-more regrows for a near miss) 4 of 5 (seed 2 does not fit). The 26-layer cell: seeds 0 and 1
-fitted; seeds 2-4 did not finish in time on the loaded machine, so its case is not yet shown.
+more regrows for a near miss) 4 of 5 (seed 2 does not fit; seeds 5-9: 5 of 5), and 4 of 5 on the
+26-layer cell (seed 2 does not fit).
 """
 import pytest
 

@@ -188,6 +188,20 @@ class Params:
     regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
                                 "inflate: globule scale a jammed layout is shrunk to",
                                 section="Search", label="Regrow scale")
+    near_cycles: int = _spec(5, 0, 1000, "cycles",
+                             "inflate: more regrow cycles for a layout still nearly accommodated "
+                             "after regrow_cycles (deepest overlap at most 1 Å, stretch at most 3 "
+                             "times the tolerance); a clear miss gets none",
+                             kind=int, section="Search")
+    # Off by default: measured in a cell it rescued 1 of 3 near misses it was tried on and made
+    # most polishes worse (docs/model/search.md#polish)
+    polish_factor: int = _spec(1, 1, 100, "times",
+                               "inflate: a jammed layout that is nearly accommodated (deepest "
+                               "overlap at most 1 Å, stretch at most 3 times the tolerance) is "
+                               "held once more, gravity off, with this many times the substeps "
+                               "and solver iterations before it is regrown (1 = off; 4 was "
+                               "tried)",
+                               kind=int, section="Search")
 
     periodic: int = _spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
@@ -338,8 +352,11 @@ class Params:
         """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
         if self.protocol == "inflate":
             # each cycle: grow_frames + 1 frames from the start scale to full size inclusive,
-            # then at most hold_frames
-            return (1 + self.regrow_cycles) * (self.grow_frames + 1 + self.hold_frames)
+            # then at most hold_frames, and at most hold_frames more when it is polished
+            # (near_cycles more cycles for a near miss)
+            holds = 2 if self.polish_factor > 1 else 1
+            cycles = 1 + self.regrow_cycles + self.near_cycles
+            return cycles * (self.grow_frames + 1 + holds * self.hold_frames)
         return self.frames
 
     def estimated_objects(self) -> int:

@@ -14,7 +14,10 @@ def test_protocol_is_a_choice_named_in_its_error():
     with pytest.raises(P.ParamError, match="protocol: must be one of tutorial, inflate"):
         P.make_params(protocol="anneal")
     p = P.make_params(protocol="inflate", grow_frames=10, hold_frames=5, regrow_cycles=2)
-    assert p.bake_frames() == 3 * 16
+    assert p.bake_frames() == (3 + 5) * 16  # near_cycles (5) more for a near miss
+    assert p.replace(near_cycles=0).bake_frames() == 3 * 16
+    # polishing on: each cycle may be polished, one hold more
+    assert p.replace(polish_factor=4, near_cycles=0).bake_frames() == 3 * (11 + 2 * 5)
 
 
 def test_sweeps_take_the_protocol_as_an_axis():

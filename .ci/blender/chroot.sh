@@ -13,7 +13,14 @@ set -eu
 
 SUITE=trixie
 PACKAGES="blender python3-numpy xvfb xauth xdotool imagemagick libgl1-mesa-dri libglx-mesa0"
-MIRROR=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
+# The Debian mirror: DEBIAN_MIRROR, else the first .../debian archive the host's apt sources name
+# (deb822 .sources or a one-line sources.list)
+host_mirror() {
+    { cat /etc/apt/sources.list.d/*.sources 2>/dev/null | sed -n 's|^URIs:[[:space:]]*\([^[:space:]]*/debian\)/*$|\1|p'
+      cat /etc/apt/sources.list 2>/dev/null | sed -n 's|^deb[[:space:]]\{1,\}\(\[[^]]*\][[:space:]]\{1,\}\)\{0,1\}\([^[:space:]]*/debian\)/*[[:space:]].*|\2|p'
+    } | head -n 1
+}
+MIRROR=${DEBIAN_MIRROR:-$(host_mirror)}
 CACHE=${FIBRILFIT_CHROOT_CACHE:-/var/cache/fibrilfit}
 KEY=$(printf '%s %s\n' "$SUITE" "$PACKAGES" | sha256sum | cut -c1-12)
 DIR=$CACHE/$SUITE-$KEY
@@ -33,6 +40,7 @@ build() {
         { apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap; } \
             >>"$LOG" 2>&1 || die "cannot install debootstrap on the host (see $LOG)"
     fi
+    [ -n "$MIRROR" ] || die "no Debian mirror: the host's apt sources name no .../debian archive; set DEBIAN_MIRROR"
     tmp=$DIR.partial
     rm -rf "$tmp"
     echo "test-blender: building the $SUITE chroot in $DIR (a few minutes; log $LOG)" >&2

@@ -177,6 +177,8 @@ def draw_result(box, s):
                    f"({'intact' if s.linker_intact else 'stretched'})")
     box.label(text=f"Accommodated: {'yes' if s.accommodated else 'no'}",
               icon="CHECKMARK" if s.accommodated else "CANCEL")
+    if s.answer:  # the honest word: one failed run is "no layout found", not "does not fit"
+        box.label(text=f"Answer: {s.answer}")
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")
 

@@ -137,6 +137,10 @@ class FIBRILFIT_PG_settings(bpy.types.PropertyGroup):
     accommodated: BoolProperty(
         name="Accommodated",
         description="No intersection and every linker intact: the domains fit on the fibril")
+    answer: StringProperty(
+        name="Answer",
+        description="What this one relaxation shows: fits, borderline (at the criterion) or no "
+                    "layout found (in this run; restarts or minimal-linker say more)")
 
 
 RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
@@ -292,6 +296,7 @@ def store_result(settings, result: dict) -> None:
     settings.max_bond_stretch = result["max_bond_stretch"]
     settings.linker_intact = result["linker_intact"]
     settings.accommodated = result["accommodated"]
+    settings.answer = result.get("answer") or ""  # docs/model/verdict.md#answer
 
 
 def clear_result(settings) -> None:

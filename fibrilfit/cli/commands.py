@@ -89,7 +89,8 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
         else:
             group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
     parser.add_argument("--force", action="store_true",
-                        help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects")
+                        help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects, or with a "
+                             f"twist beyond ±{P.MAX_TWIST} rad per layer")
 
 
 def add_case_option(parser: argparse.ArgumentParser) -> None:

@@ -5,7 +5,7 @@ deposited, turned and raised onto the model's chain pose (helix.chain_transforms
 the linker's beads as CA-only residues (residue UNK, numbered on from the anchor in the protein's
 numbering; B-factor = bead radius); each domain of the chain is a chain of its own, its atoms
 placed by its globule's world matrix after the bake (the body frame of
-structure.atoms.body_coordinates). Chain names: layer number, protofilament letter, and for a
+structure.domain.body_frame). Chain names: layer number, protofilament letter, and for a
 domain its number in chain order ("0A", "0A1", "1B", "1B1", ...). The model's parameters, seed
 and verdict are in the header (_struct.title, _struct.pdbx_model_details, and a
 _fibrilfit_param loop). docs/guide/atoms-and-domains.md#pdb-atoms

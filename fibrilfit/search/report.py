@@ -189,7 +189,7 @@ def _pictures(best: dict, out, look: dict) -> tuple[dict, list[str]]:
     return pictures, problems
 
 
-def answer_of(best: dict, summary: dict) -> str:
+def answer_of(best: dict) -> str:
     """The best restart's answer, by the one rule (model/answer.py): 'fits', 'borderline' (at
     the criterion) or 'no layout found'."""
     from ..model import answer
@@ -242,7 +242,7 @@ def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources
                      f"linkers to every {'chain' if p.protofilaments > 1 else 'layer'} of this "
                      f"fibril, all fit without clashing, and how long must the linker be?"),
         "command": list(getattr(args, "command_line", None) or []),
-        "answer": answer_of(best, summary),
+        "answer": answer_of(best),
         "model": p.to_dict(),
         "sources": {**sources, **(best.get("sources") or {})},
         "warnings": warnings_of(best, structure_block, summary, row, problems),

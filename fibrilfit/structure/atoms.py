@@ -1,7 +1,7 @@
 """The atoms a decorated fibril is written with (`--pdb-atoms`): each protofilament's core chain
 in its own chain frame and each domain in its body frame. Plain numpy; gemmi reads the files.
 
-The body frame of a domain (the globule object's local frame) is the rule of `body_coordinates`:
+The body frame of a domain (the globule object's local frame) is the rule of `domain.body_frame`:
 the domain's heavy atoms minus their centroid, not rotated. A globule's world matrix after the
 bake then places the domain's atoms (docs/guide/atoms-and-domains.md#body-frame).
 """
@@ -38,14 +38,6 @@ class AtomSet:
     def moved(self, xyz: np.ndarray) -> "AtomSet":
         return AtomSet(np.asarray(xyz, float), self.name, self.element, self.resname,
                        self.resnum, self.b)
-
-
-def body_coordinates(heavy_xyz) -> tuple[np.ndarray, np.ndarray]:
-    """(local coordinates, centroid): a domain's body frame is its heavy atoms' centroid, axes
-    those of the file (no rotation). The globule object carries this frame."""
-    xyz = np.asarray(heavy_xyz, float)
-    centroid = xyz.mean(axis=0)
-    return xyz - centroid, centroid
 
 
 @dataclass
@@ -98,7 +90,7 @@ def domain_atoms(path, *, chain: str | None = None, residues=None,
     loaded = reading.load(path, option)
     c, keep, _ = D.select(loaded, chain=chain, residues=residues)
     atoms = AtomSet.of_chain(c, keep)
-    return atoms.moved(body_coordinates(atoms.xyz)[0])
+    return atoms.moved(D.body_frame(atoms.xyz)[1])
 
 
 def sources(fibril_path=None, geometry=None, domains=()) -> Sources:

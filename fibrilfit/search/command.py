@@ -196,7 +196,8 @@ def _minimal_plan(args, values: dict) -> tuple:
         base.replace(linker=args.max_linker, seed=seeds[-1])
         walks.append(minimal.Walk(base.globule_diameter,
                                   min(minimal.first_guess(base.globule_diameter), args.max_linker),
-                                  args.max_linker, known_fit=args.known_fit))
+                                  args.max_linker, known_fit=args.known_fit,
+                                  restarts=len(seeds)))
     return values, seeds, walks
 
 
@@ -213,22 +214,26 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
     with contextlib.ExitStack() as stack:
         executor = None
         while True:
-            wanted = [(w, w.next_linker()) for w in walks]
-            wanted = [(w, L) for w, L in wanted if L is not None]
+            steps = [(w, w.next_step()) for w in walks]
+            wanted = [(w, step[0], seeds[:step[1] or len(seeds)])
+                      for w, step in steps if step is not None]
             if not wanted:
                 return
             done = runner.done_keys(runner.read_lines(results)[0])
-            todo = [pt for w, L in wanted for pt in restarts.points(base_of(w, L), seeds)
+            todo = [pt for w, L, some in wanted for pt in restarts.points(base_of(w, L), some)
                     if pt.key not in done]
             if todo:
                 if executor is None:
                     executor = stack.enter_context(make_executor(args, log_path=out / LOG))
                 if not args.quiet:
                     print("minimal-linker: trying " + ", ".join(
-                        f"{w.diameter:g} Å at linker {L}" for w, L in wanted), file=sys.stderr)
+                        f"{w.diameter:g} Å at linker {L} ({len(some)} restarts)"
+                        for w, L, some in wanted), file=sys.stderr)
                 runner.run(executor, todo, results, force=args.force,
                            progress=not args.quiet, version=pipeline.version())
-            for w, L in wanted:
+            for w, L, some in wanted:
+                # every restart of L run so far counts (a screened length completed later, or
+                # a resumed walk's records), none beyond the walk's seeds
                 recs = [r for r in restarts.read(results, base_of(w, L))
                         if r["params"]["seed"] in seeds]
                 ok = [r for r in recs if r.get("status") == "ok"]

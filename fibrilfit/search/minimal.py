@@ -1,14 +1,21 @@
 """The minimal linker for one domain size: a walk over linker lengths, each judged by R restarts.
 
-Method (and why it is sound): a linker length L counts as "fits" when at least one of its R
+Method (and why it is sound): a linker length L counts as "fits" when at least one of its
 restarts is accommodated; each accommodated layout passed the model's check at the frame it was
 reported for, so a "fits" is a proof by example. A "no" is only "no layout found in R restarts".
-The walk starts at a guess; from a "no" it steps up one residue at a time until a "fits", from a
-"fits" it steps down until a "no" (or L = 1). So every reported minimum L has a layout at L
-and R failed restarts at L - 1, measured, not inferred, whatever the guess. It relies on one
-assumption only to skip the lengths below L - 1: a longer linker never fits worse (a longer
-tether reaches everything a shorter one reaches). The guess changes the cost, never the answer
-under that assumption.
+The walk starts at a guess and moves away from it in doubling steps (1, 2, 4, ... residues)
+until a fit and a miss bracket the minimum, then bisects; it ends at a length L with a fit and
+R failed restarts at L - 1, both measured with all R restarts, whatever the guess and the path.
+It relies on one assumption only to skip the lengths it did not try: a longer linker never fits
+worse (a longer tether reaches everything a shorter one reaches). The guess changes the cost,
+never the answer under that assumption.
+
+Screening (issue #25, docs/model/search.md#screening): a length on the way is first tried with
+only SCREEN of its R restarts. A fit there is already a proof by example; a miss only steers the
+walk, so the two lengths the answer rests on (L and L - 1), and the cap when nothing fits, get
+all R before the walk ends, and a screened miss that then fits moves the walk down again. A miss
+costs about ten times a fit (every regrow and near-miss cycle runs to its end), so screening
+saves most of the cost of the lengths far below the minimum without changing what is reported.
 """
 from __future__ import annotations
 
@@ -16,6 +23,9 @@ import math
 from dataclasses import dataclass, field
 
 from ..sweep.stats import wilson
+
+# restarts run at a length the walk passes through (the rest only at the minimum and one below)
+SCREEN = 2
 
 
 def first_guess(diameter: float, smallest: float = 15.0) -> int:
@@ -25,7 +35,8 @@ def first_guess(diameter: float, smallest: float = 15.0) -> int:
 
 @dataclass
 class Walk:
-    """The walk for one diameter. `tried`: linker -> (accommodated, runs)."""
+    """The walk for one diameter. `tried`: linker -> (accommodated, runs). `restarts`: R, the
+    restarts the answer's two lengths get (None: whatever `record` is given, no screening)."""
 
     diameter: float
     start: int
@@ -33,8 +44,9 @@ class Walk:
     tried: dict = field(default_factory=dict)
     error: str | None = None  # set when every restart of a length failed to run
     # a length at which a layout is known from elsewhere (e.g. a case's seeds at its real linker):
-    # the walk then brackets the minimum below it and bisects (next_linker)
+    # the bracket's ceiling until the walk measures a fit below it
     known_fit: int | None = None
+    restarts: int | None = None
 
     def record(self, linker: int, fits: int, runs: int) -> None:
         self.tried[linker] = (fits, runs)
@@ -45,51 +57,68 @@ class Walk:
     def _misses(self):
         return sorted(L for L, (k, n) in self.tried.items() if k == 0 and n > 0)
 
+    def _complete(self, linker: int) -> bool:
+        """Every restart run at `linker` (a fit's first success counts only with all R)."""
+        return self.restarts is None or self.tried.get(linker, (0, 0))[1] >= self.restarts
+
+    @property
+    def screen(self) -> int | None:
+        return None if self.restarts is None else min(SCREEN, self.restarts)
+
     @property
     def minimal(self) -> int | None:
         fits = self._fits()
-        if fits and (fits[0] == 1 or fits[0] - 1 in self._misses()):
-            return fits[0]
+        if not fits or not self._complete(fits[0]):
+            return None
+        m = fits[0]
+        if m == 1 or (m - 1 in self._misses() and self._complete(m - 1)):
+            return m
         return None
 
     def next_linker(self) -> int | None:
-        """The next length to try, or None when the walk is over (found, or none up to the cap)."""
+        step = self.next_step()
+        return None if step is None else step[0]
+
+    def next_step(self) -> tuple | None:
+        """(the next length, how many restarts it needs), or None when the walk is over (the
+        minimum found with both neighbours measured, or nothing up to the cap)."""
         if self.minimal is not None or self.error:
             return None
         fits, misses = self._fits(), self._misses()
-        if self.known_fit is not None and self.known_fit not in misses:
-            return self._bracketed(fits, misses)
-        if fits:
-            return fits[0] - 1
-        if misses:
-            top = max(misses)
-            return None if top >= self.max_linker else top + 1
-        return min(self.start, self.max_linker)
-
-    def _bracketed(self, fits: list, misses: list) -> int | None:
-        """With a known fit: the minimum lies in (lo, hi], hi the shortest fit (measured or
-        known), lo the longest miss below it. Away from the guess in steps that double (1, 2,
-        4, ...) until a fit and a miss bracket the minimum, then bisection; the walk ends, as
-        the linear one, with R restarts measured at the minimum and at one residue below. Runs
-        cost more the longer the linker (bodies per chain), so the walk does not bisect down
-        from the known fit itself (200 residues for Orb2) but brackets from the guess."""
-        hi = min(fits + [self.known_fit])
+        full = self.restarts
+        if fits and (fits[0] == 1 or fits[0] - 1 in misses):  # bracketed: measure both fully
+            m = fits[0]
+            return (m - 1, full) if m > 1 and not self._complete(m - 1) else (m, full)
+        known = self.known_fit
+        if known is not None and known in misses and self._complete(known):
+            known = None  # all R missed there: the known fit came from other seeds or protocol
+        hi = min(fits + ([known] if known is not None else []), default=math.inf)
         lo = max([m for m in misses if m < hi], default=0)
-        if lo >= self.max_linker:
-            return None  # none up to the cap (the known fit lies beyond it)
-        if hi - lo <= 1:  # bracketed to one length: measure it (if only known), or done
-            return None if hi in fits or hi > self.max_linker else hi
+        if lo >= self.max_linker:  # none up to the cap: the cap itself gets all R
+            return None if self._complete(self.max_linker) else (self.max_linker, full)
+        if hi - lo <= 1:  # hi only known: measure it
+            return (hi, self.screen) if hi <= self.max_linker else None
+        return (self._between(lo, hi, bool(fits)), self.screen)
+
+    def _between(self, lo: int, hi: float, measured_fit: bool) -> int:
+        """Away from the guess in steps that double until a fit and a miss bracket the
+        minimum, then bisection. Runs cost more the longer the linker (bodies per chain), so
+        the walk does not bisect down from a known fit far above (200 residues for Orb2) but
+        gallops from the guess."""
+        start = self.start
         if not self.tried:
-            return max(1, min(self.start, hi - 1, self.max_linker))
-        if not fits and lo >= self.start:  # misses from the guess up: gallop up
-            step = lo - self.start + 1
+            return max(1, min(start, hi - 1, self.max_linker))
+        if not measured_fit and lo >= start:  # misses from the guess up: gallop up
+            step = lo - start + 1
             if lo + step < hi:
-                return None if lo >= self.max_linker else min(lo + step, self.max_linker)
-        if fits and lo == 0 and hi <= self.start:  # fits from the guess down: gallop down
-            step = self.start - hi + 1
+                return min(lo + step, self.max_linker)
+        if measured_fit and lo == 0 and hi <= start:  # fits from the guess down: gallop down
+            step = start - hi + 1
             if hi - step > lo:
                 return max(1, hi - step)
-        return min((lo + hi) // 2, self.max_linker)
+        if hi == math.inf:  # misses only, all below the guess (a resumed walk): go up one
+            return min(max(lo + 1, start), self.max_linker)
+        return min((lo + int(hi)) // 2, self.max_linker)
 
     def row(self) -> dict:
         """The map's row: the minimal linker, P(fit) there and one residue below."""

@@ -122,7 +122,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         # asked linker costs more than it saves; the asked length's runs are reused if reached
         walk = minimal.Walk(p.globule_diameter,
                             min(minimal.first_guess(p.globule_diameter), args.max_linker),
-                            args.max_linker)
+                            args.max_linker, restarts=len(seeds))
         try:
             command._walk(args, walk_values, seeds, [walk], out)
         except SweepError as exc:

@@ -91,7 +91,52 @@ def test_walk_finds_the_minimum_with_a_miss_just_below_it(start):
     row = w.row()
     assert row["minimal_linker"] == 5 and row["linker_below"] == 4
     assert row["p_fit"] == 0.4 and row["p_fit_below"] == 0.0 and row["p_fit_below_interval"][1] < 0.5
-    assert set(w.tried) == set(range(min(start, 4), max(start, 5) + 1))
+    # every length between the guess and the minimum costs at most about log2 of the distance
+    assert {4, 5} <= set(w.tried) and len(w.tried) <= 2 * abs(start - 5).bit_length() + 3
+
+
+def _screened(w, minimum, p_fit=lambda L, seed: True):
+    """Drive a walk with restarts as minimal-linker does: a fit needs L >= minimum and the
+    seed's own luck (p_fit), seeds run in order; returns the (length, restarts) asked."""
+    asked = []
+    while (step := w.next_step()) is not None:
+        L, n = step
+        assert len(asked) < 60 and 1 <= L <= w.max_linker
+        asked.append((L, n))
+        fits = sum(L >= minimum and p_fit(L, s) for s in range(n))
+        w.record(L, fits, n)
+    return asked
+
+
+@pytest.mark.parametrize("start", [1, 3, 9, 19])
+@pytest.mark.parametrize("minimum", [1, 2, 11, 20])
+def test_a_screened_walk_measures_the_answer_with_every_restart(start, minimum):
+    """Issue #25: lengths on the way get SCREEN restarts; the minimum and one below get all R,
+    so the row is what a walk with R everywhere reports."""
+    w = minimal.Walk(30.0, start, max_linker=20, restarts=5)
+    asked = _screened(w, minimum)
+    assert w.minimal == minimum and w.tried[minimum] == (5, 5)
+    assert minimum == 1 or w.tried[minimum - 1] == (0, 5)
+    full = sum(n for _, n in asked)
+    assert all(n in (minimal.SCREEN, 5) for _, n in asked)
+    # only the answer's two lengths cost all five
+    assert sorted(L for L, n in asked if n == 5) == sorted({minimum, max(1, minimum - 1)})
+    assert full <= 5 * 2 + minimal.SCREEN * (2 * abs(start - minimum).bit_length() + 3)
+
+
+def test_a_screened_miss_that_fits_with_more_restarts_moves_the_walk_down():
+    """Linker 7 fits only with seed 3 (a screen of 2 misses it); 8 and up fit with any seed.
+    The walk must not report 8: completing 7 finds the fit, and 6 is then measured in full."""
+    w = minimal.Walk(30.0, 5, max_linker=20, restarts=5)
+    _screened(w, 7, p_fit=lambda L, s: L >= 8 or s == 3)
+    assert w.minimal == 7 and w.tried[7] == (1, 5) and w.tried[6] == (0, 5)
+
+
+def test_a_screened_walk_that_finds_nothing_runs_the_cap_in_full():
+    w = minimal.Walk(60.0, 3, max_linker=12, restarts=5)
+    asked = _screened(w, 99)
+    assert w.minimal is None and w.tried[12] == (0, 5) and asked[-1] == (12, 5)
+    assert w.row()["linker_below"] == 12 and w.row()["restarts"] == 5
 
 
 def test_walk_gives_up_at_the_cap_and_at_one_needs_no_miss():
@@ -141,16 +186,16 @@ def test_a_walk_below_a_known_fit_finds_the_same_minimum_and_measures_its_neighb
     missed restarts one below)."""
     w = minimal.Walk(30.0, start, max_linker=20, known_fit=20)
     order = _walk(w, minimum)
-    one_by_one = minimal.Walk(30.0, start, max_linker=20)
-    linear = _walk(one_by_one, minimum)
-    assert w.row()["minimal_linker"] == one_by_one.row()["minimal_linker"] == minimum
+    without = minimal.Walk(30.0, start, max_linker=20)
+    _walk(without, minimum)
+    assert w.row()["minimal_linker"] == without.row()["minimal_linker"] == minimum
     assert w.tried[minimum] == (2, 3)
     assert minimum == 1 or w.tried[minimum - 1] == (0, 3)
     assert w.row()["p_fit_below"] == (None if minimum == 1 else 0.0)
     # a guess far off costs steps that grow like log2 of the distance, not the distance itself
     assert len(order) <= 2 * abs(start - minimum).bit_length() + 3
-    if abs(start - minimum) >= 8:
-        assert len(order) < len(linear)
+    if abs(start - minimum) >= 8:  # fewer than a one-residue walk's lengths
+        assert len(order) < abs(start - minimum) + 1
 
 
 def test_a_walk_below_a_known_fit_past_its_cap_gives_up_at_the_cap():

@@ -59,7 +59,8 @@ def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
                    help="a linker length at which a layout is known (e.g. a case's seeds fitted "
                         "at its real linker): the walk brackets the minimum below L, from the "
                         "guess in doubling steps, and bisects; the minimum and one residue "
-                        "below are measured as always [default: step one residue at a time]")
+                        "below are measured as always [default: none; the walk brackets from "
+                        "the guess alone]")
     g.add_argument("--out", metavar="DIR", default="out/minimal_linker",
                    help=f"{RESULTS}, {CSV}, {JSON}, {PNG} and {LOG} go here")
     g.add_argument("--resume", action="store_true",
@@ -248,12 +249,12 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
     from .. import pipeline
     document = {
         "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
-        "method": ("walk: from a guess, up one residue from a miss, down one from a fit, until "
-                   "a fit at L and R missed restarts at L - 1 (search/minimal.py)"
-                   if args.known_fit is None else
-                   f"bracketed walk below the known fit at {args.known_fit}: from a guess in "
-                   f"doubling steps until a fit and a miss bracket the minimum, then bisection, "
-                   f"until a fit at L and R missed restarts at L - 1 (search/minimal.py)"),
+        "method": ("walk from a guess in doubling steps until a fit and a miss bracket the "
+                   "minimum, then bisection"
+                   + ("" if args.known_fit is None else f", below the known fit at {args.known_fit}")
+                   + f"; lengths on the way screened with {min(minimal.SCREEN, args.restarts)} "
+                   "restarts; ends at a fit at L and R missed restarts at L - 1, both with all R "
+                   "(search/minimal.py)"),
         "known_fit": args.known_fit,
         "model": {**values, "seeds": list(seeds)}, "protocol": values["protocol"],
         "restarts": args.restarts,

@@ -21,7 +21,7 @@ PYTEST := -m pytest tests
 TEST_MARK ?= not slow
 
 .PHONY: run test test-unit test-latest test-lts test-52 test-slow test-cluster test-blender \
-	extension bench validate docs clean
+	extension bench validate validate-shapes docs clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -114,6 +114,11 @@ bench: $(VENV)/.bench-installed
 # table in docs/validation.md. Results stay in out/validate, so running it again resumes.
 validate: $(VENV)/.installed
 	$(VENV)/bin/python tools/validate.py $(VALIDATE_ARGS)
+
+# The gallery's cases that read a domain structure file again, with the domain's real shape
+# (its convex hull); a second table in docs/validation.md#real-shapes. Results in out/validate-hull.
+validate-shapes: $(VENV)/.installed
+	$(VENV)/bin/python tools/validate.py --domain-shape hull $(VALIDATE_ARGS)
 
 $(VENV)/.docs-installed: $(VENV)/.installed requirements-docs.txt
 	$(VENV)/bin/python -m pip install --quiet -r requirements-docs.txt

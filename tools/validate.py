@@ -50,14 +50,15 @@ def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
 
 
 def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
-                   until: float | None = None, fits_at_real: bool = False) -> dict:
+                   until: float | None = None, fits_at_real: bool = False,
+                   extra: tuple = ()) -> dict:
     """`headless.py minimal-linker --case` (issue #13's walk, protocol inflate unless the case
     sets one), up to the real linker or MAX_LINKER. A case that fits at its real linker tells
     the walk so (--known-fit): it brackets the minimum below it and bisects (issue #25)."""
     top = min(p.linker, MAX_LINKER)
     cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
            "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
-           "--workers", str(workers), "--quiet", "--no-plot"]
+           "--workers", str(workers), "--quiet", "--no-plot", *extra]
     if fits_at_real:  # beyond MAX_LINKER too: the walk then still stops at the cap
         cmd += ["--known-fit", str(p.linker)]
     if (out / "results.jsonl").exists():
@@ -90,7 +91,7 @@ def contour_radius(p) -> float:
     return p.chain_x()[-1]
 
 
-def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = ()) -> dict:
     """The real linker's seeds (the minimal linker comes in a second pass, see main)."""
     row = {"case": case_path.name}
     try:
@@ -100,7 +101,7 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int) -> dict:
         return row
     p = case.make_params()
     row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
-    records = sweep(case_path, out / case_path.stem / "real", workers)
+    records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
     if records and "params" in records[0]:  # as run: structure files may have filled some
         p = P.make_params(force=True, **records[0]["params"])
         row["params"] = p.to_dict()
@@ -196,7 +197,23 @@ def table(rows: list[dict]) -> str:
 PAGE = ROOT / "docs" / "validation.md"  # the page whose table this writes
 
 
-def write_page(text: str, page: pathlib.Path = PAGE) -> None:
+def markers(shape: str | None) -> tuple:
+    """The page's markers around the table: the gallery's, or its re-run with a domain shape."""
+    if shape is None:
+        return START, END
+    return (f"<!-- validation table, domain shape {shape}: written by make validate-shapes -->",
+            f"<!-- end of validation table, domain shape {shape} -->")
+
+
+def has_domain_file(case_path) -> bool:
+    try:
+        return bool(cases.load(case_path).structure.get("domain"))
+    except Exception:  # noqa: BLE001 (not a structure case)
+        return False
+
+
+def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None) -> None:
+    START, END = markers(shape)  # noqa: N806 (the module's names, for this shape)
     body = page.read_text(encoding="utf-8")
     if START not in body or END not in body:
         raise SystemExit(f"{page.relative_to(ROOT)} has no {START} ... {END} markers")
@@ -207,7 +224,11 @@ def write_page(text: str, page: pathlib.Path = PAGE) -> None:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("cases", nargs="*", type=pathlib.Path)
-    ap.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "validate")
+    ap.add_argument("--out", type=pathlib.Path,
+                    help="results (resumed) [default out/validate, or out/validate-SHAPE]")
+    ap.add_argument("--domain-shape", choices=("hull", "spheres"),
+                    help="re-run the cases that read a domain structure file with this shape "
+                         "(issue #24), into their own table on the page")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--parallel", type=int, default=2, metavar="N",
                     help="cases run at the same time, each on --workers processes [default 2]")
@@ -227,6 +248,12 @@ def main(argv=None) -> int:
         args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
     paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
                                  key=lambda q: (q.stem != "tutorial", q.stem))
+    extra = ()
+    if args.domain_shape:
+        paths = [q for q in paths if has_domain_file(q)]
+        extra = ("--domain-shape", args.domain_shape)
+    if args.out is None:
+        args.out = ROOT / "out" / ("validate" + (f"-{args.domain_shape}" if args.domain_shape else ""))
     rows = [None] * len(paths)  # in the gallery's order, whichever case finishes first
 
     def save():
@@ -249,7 +276,7 @@ def main(argv=None) -> int:
                                                    "lack of time; make validate runs it"}
             return
         said(f"{path.name} at its real linker")
-        rows[i] = validate(path, args.out, args.workers)
+        rows[i] = validate(path, args.out, args.workers, extra)
         said(f"{path.name} at its real linker: done")
         with lock:
             save()
@@ -262,7 +289,7 @@ def main(argv=None) -> int:
         minimal = minimal_linker(path, P.make_params(force=True, **row["params"]),
                                  args.out / path.stem / "minimal-linker", args.workers,
                                  args.restarts, args.until,
-                                 fits_at_real=row["fit"]["accommodated"] > 0)
+                                 fits_at_real=row["fit"]["accommodated"] > 0, extra=extra)
         said(f"minimal linker of {path.name}: done")
         with lock:
             row["minimal"] = minimal
@@ -286,7 +313,7 @@ def main(argv=None) -> int:
     text = table(rows)
     print(text)
     if not args.no_docs:
-        write_page(text)
+        write_page(text, shape=args.domain_shape)
     return 0
 
 

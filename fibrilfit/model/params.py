@@ -750,8 +750,12 @@ def _check_shape(p: Params) -> None:
                                          "Bullet does not scale a compound's child spheres; use "
                                          "hull, or --protocol tutorial")
     if p.domain_shape != "sphere" and p.domain_diameters:
+        # docs/guide/atoms-and-domains.md#shapes-of-several-domains: measured, the outgoing
+        # linker would leave a straight start layout sideways (61° for GFP, 96° for ubiquitin)
         raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with several domains "
-                                         f"per chain yet (their bodies are spheres); use sphere")
+                                         f"per chain yet (each domain would need its own mesh "
+                                         f"and an outgoing joint at its other terminal CA); "
+                                         f"use sphere")
     if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
         raise ParamError("domain_spheres", "every sphere's radius must be positive")
 

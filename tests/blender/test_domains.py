@@ -306,3 +306,45 @@ def test_contacts_with_images_of_further_domains_are_counted_and_named(ff, scene
         for name, g in ((a, i), (b, j)):
             assert name["chain"] == g % n // 3 and name["domain"] == g % 3
             assert name["layer"] == g % n // 3 + g // n * p.layers
+
+
+def test_inspect_gives_both_linker_points_of_a_domain_with_a_next_one(ff, tmp_path, capsys):
+    """Two domains on a chain (ubiquitin 128-203, then 230-305): domain 1's incoming linker
+    joins at its first residue's CA, the outgoing one leaves from its last (the domain follows
+    the core); inspect reports both points' depths and where they are, checked here against
+    the file read directly. The outermost domain has no outgoing point."""
+    near, far, js = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "i.json"
+    assert ff.cli.main(["inspect", "--domain", str(near), "--domain", str(far), "--json",
+                        str(js)]) == 0
+    text = capsys.readouterr().out
+    first, second = json.loads(js.read_text())["domains_measured"]
+    s = first["shape"]
+    assert (s["joint_residue"], s["joint_terminus"], s["exit_residue"], s["exit_terminus"]) == (
+        128, "N", 203, "C")
+    assert "exit_residue" not in second["shape"] and second["shape"]["joint_residue"] == 230
+    st = gemmi.read_structure(str(near))
+    st.remove_hydrogens()
+    chain = st[0][0]
+    protein = [r for r in chain if gemmi.find_tabulated_residue(r.name).is_amino_acid()]
+    heavy = np.array([a.pos.tolist() for r in protein for a in r])
+    ca = {r.seqid.num: np.array(r["CA"][0].pos.tolist()) for r in protein}
+    centroid = heavy.mean(axis=0)
+    assert s["joint_distance"] == pytest.approx(np.linalg.norm(ca[128] - centroid), abs=0.01)
+    assert s["exit_distance"] == pytest.approx(np.linalg.norm(ca[203] - centroid), abs=0.01)
+    assert s["joint_exit_distance"] == pytest.approx(np.linalg.norm(ca[203] - ca[128]), abs=0.01)
+    # a CA lies at least its own van der Waals radius (1.7 Å) below the grown hull
+    assert s["exit_depth"] >= 1.7 - 0.01 and s["exit_depth_spheres"] > 0
+    assert (f"exit: CA of residue 203 (the domain's other end, towards the next domain), "
+            f"{s['exit_depth']:.2f} Å below the hull") in text
+
+
+def test_real_shapes_of_several_domains_are_refused_in_one_line(ff, scene, tmp_path, capsys):
+    near, far, out = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "r.json"
+    for shape in ("hull", "spheres"):
+        assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--domain", str(near),
+                            "--domain", str(far), "--domain-shape", shape, *FAST, "--json",
+                            str(out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and not out.exists()
+        assert err[0].startswith(f"fibrilfit: error: domain_shape: {shape} cannot be used with "
+                                 f"several domains per chain yet")

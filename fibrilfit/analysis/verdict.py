@@ -144,9 +144,6 @@ def _clash_checks(model) -> dict:
     globules = model.globules
     mesh = globules[0].data
     domains = len(p.globule_members())  # globule g: domain g % D of chain g // D
-    # further domains share the mesh, scaled: its facets' sag scales with them
-    radius = (p.globule_radius if domains == 1 else
-              np.tile(np.asarray(p.domain_radii), p.chains))
     band = (grazing_depth(mesh) * max(p.domain_radii) / p.globule_radius
             if p.domain_shape == "sphere" else 0.0)
     matrices = world_matrices(globules, model.root.children)
@@ -155,6 +152,10 @@ def _clash_checks(model) -> dict:
     if p.periodic:
         matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
+    # further domains share the mesh, scaled: its facets' sag scales with them; an image's
+    # radius is its original's (blocks of n: globule g is domain g % D)
+    radius = (p.globule_radius if domains == 1 else
+              np.tile(np.asarray(p.domain_radii), len(everything) // domains))
     scored = np.zeros(len(everything), dtype=bool)
     scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
 
@@ -229,10 +230,12 @@ def _domain_blocks(p, clashing, centres, scored) -> dict:
     domains = len(p.globule_members())
     layer_of, pf_of = helix.chain_layers(p)
 
-    def name(g):
-        c = g // domains
-        return {"chain": int(c), "layer": int(layer_of[c]), "protofilament": int(pf_of[c]),
-                "domain": int(g % domains)}
+    n = len(centres)
+
+    def name(g):  # a periodic cell: image m of chain c lies in layer (its layer + m·M)
+        c, m = g % n // domains, g // n
+        return {"chain": int(c), "layer": int(layer_of[c]) + m * p.layers,
+                "protofilament": int(pf_of[c]), "domain": int(g % domains)}
 
     which = np.arange(len(centres)) % domains
     return {

@@ -21,7 +21,7 @@ from typing import Callable
 import numpy as np
 
 from ..model import helix
-from .scene import TAG
+from .scene import INDEX, TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
 OVERLAP_TOLERANCE = 0.05  # Å: sphere overlap the fallback judge lets pass (resting contacts)
@@ -43,11 +43,50 @@ def cycle_gravity(p, cycle: int, first) -> np.ndarray:
 
 def start_scale(p, centres: np.ndarray) -> float:
     """`grow_start`, or less if the start layout's globules would overlap at that scale (in a
-    periodic cell, also with the images of the cell's globules)."""
+    periodic cell, also with the images of the cell's globules). `centres`: every globule, in
+    the order of Model.globules (several domains: each grows to its own size, so a pair meets at
+    the scale d / (r_i + r_j))."""
+    if len(p.globule_members()) > 1:
+        return _start_scale_domains(p, centres)
     d = _closest(with_images(p, centres)[0])
     if d is None:
         return p.grow_start
     return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
+
+
+def _start_scale_domains(p, centres: np.ndarray) -> float:
+    """start_scale for several domains per chain: the smallest d / (r_i + r_j) over pairs."""
+    points, _ = with_images(p, centres)
+    radii = globule_radii(p, len(points))
+    order = np.argsort(points[:, 2])
+    c, r = points[order], radii[order]
+    best, widest = np.inf, 2.0 * float(radii.max(initial=0.0))
+    for shift in range(1, len(c)):
+        dz = c[shift:, 2] - c[:-shift, 2]
+        if dz.min() >= best * widest:
+            break
+        d = np.linalg.norm(c[shift:] - c[:-shift], axis=1) / (r[shift:] + r[:-shift])
+        best = min(best, float(d.min()))
+    if not np.isfinite(best):
+        return p.grow_start
+    return float(min(p.grow_start, max(0.01, 0.95 * best)))
+
+
+def globule_radii(p, n: int) -> np.ndarray:
+    """Full-size radii of n globules in the order of Model.globules, chain after chain (and
+    image block after block): globule g is domain g % D."""
+    radii = np.asarray(p.domain_radii, dtype=float)
+    return np.tile(radii, -(-n // len(radii)))[:n]
+
+
+def globule_scales(p, objects) -> np.ndarray | None:
+    """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
+    which they share (builders.model); None for one domain (every full size is 1)."""
+    members = p.globule_members()
+    if len(members) == 1:
+        return None
+    size = dict(zip(members, np.asarray(p.domain_radii) / p.globule_radius))
+    return np.array([size[int(ob[INDEX])] for ob in objects], dtype=float)
 
 
 def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
@@ -57,7 +96,7 @@ def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
     centres = np.asarray(centres, dtype=float)
     if not p.periodic or not len(centres):
         return centres, len(centres)
-    cells = helix.check_cells(p, centres[:, 2], p.globule_diameter / 2.0)
+    cells = helix.check_cells(p, centres[:, 2], p.widest_diameter / 2.0)
     m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
     images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
     return np.concatenate([centres, images]), len(centres)
@@ -93,24 +132,28 @@ def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     rest = np.asarray(p.rest_lengths(), dtype=float)
     stretch = np.linalg.norm(np.diff(positions[scored], axis=1), axis=-1) / rest - 1.0
     worst = float(stretch.max()) if stretch.size else 0.0
-    centres = positions[:, -1]
+    members = p.globule_members()
+    centres = positions[:, members].reshape(-1, 3)  # one domain: positions[:, -1]
+    domains = len(members)
     keep = np.zeros(len(centres), dtype=bool)
-    keep[scored] = True
+    keep[scored.start * domains:scored.stop * domains] = True
     centres, _ = with_images(p, centres)
     keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
+    radii = globule_radii(p, len(centres))
     deep, overlap = 0, 0.0
     order = np.argsort(centres[:, 2])
-    c, k = centres[order], keep[order]
+    c, k, r = centres[order], keep[order], radii[order]
     for shift in range(1, len(c)):
         dz = c[shift:, 2] - c[:-shift, 2]
-        if dz.min() >= p.globule_diameter:
+        if dz.min() >= p.widest_diameter:
             break
         d = np.linalg.norm(c[shift:] - c[:-shift], axis=1)
+        touch = p.globule_diameter if domains == 1 else r[shift:] + r[:-shift]
         mine = k[shift:] | k[:-shift]
-        hit = (p.globule_diameter - d > OVERLAP_TOLERANCE) & mine
+        hit = (touch - d > OVERLAP_TOLERANCE) & mine
         deep += int(hit.sum())
         if mine.any():
-            overlap = max(overlap, float((p.globule_diameter - d)[mine].max()))
+            overlap = max(overlap, float((touch - d)[mine].max()))
     return {"accommodated": deep == 0 and worst <= p.stretch_tolerance,
             "max_bond_stretch": round(worst, 6), "clashing_pairs": deep,
             "max_overlap": round(overlap, 6)}
@@ -133,6 +176,7 @@ class Inflate:
     def __init__(self, model, scene, judge: Callable | None = None):
         self.model, self.p, self.judge, self.scene = model, model.params, judge, scene
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
+        self.full = globule_scales(self.p, self.globules.objects)  # None: one domain
         n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
         self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
@@ -150,7 +194,10 @@ class Inflate:
         if s == self.scale:
             return
         objects = self.globules.objects
-        objects.foreach_set("scale", np.full(3 * len(objects), s, dtype=np.float32))
+        if self.full is None:
+            objects.foreach_set("scale", np.full(3 * len(objects), s, dtype=np.float32))
+        else:  # several domains: each its own fraction s of its own full size
+            objects.foreach_set("scale", np.repeat(s * self.full, 3).astype(np.float32))
         # foreach_set tags nothing: without this the depsgraph keeps the old scale (measured:
         # matrix_world and Bullet's shape stay at full size)
         for ob in objects:
@@ -165,7 +212,7 @@ class Inflate:
     def before_frame(self, scene, frame: int) -> None:
         p = self.p
         if frame == 1:
-            centres = np.array([c[-1].matrix_world.translation[:] for c in self.model.chain])
+            centres = np.array([ob.matrix_world.translation[:] for ob in self.model.globules])
             self.grow_from = self.start = start_scale(p, centres)
             self.first = tuple(scene.gravity)
             self.gravity = cycle_gravity(p, 0, self.first)

@@ -147,7 +147,9 @@ class ImageFollower:
         self.imaged = (self.chain, self.member)
         # each image's original: an image carries its scale (inflate grows and shrinks globules)
         self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
-        self.scale = np.ones(len(obs), dtype=np.float32)
+        # several domains per chain: the further globules share domain 1's mesh at their own
+        # scale (builders.model), and their images must carry it under every protocol
+        self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
         radii = np.asarray(self.p.chain_radii(), dtype=float)
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's

@@ -201,7 +201,8 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
                        f"{n} chains per cell, in cells "
                        + ", ".join(f"{m:+d}" for m in image_cells(images))
                        + " (S^m: turn m*M*twist about Z, raise m*M*rise)")
-        p = dataclasses.replace(p, layers=len(models[0][1]))
+        # PDB chains, one per chain of the cell and its images: layers × protofilaments
+        p = dataclasses.replace(p, layers=len(models[0][1]) // p.protofilaments)
     text = pdb_text(p, models, remarks)
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,

@@ -126,8 +126,9 @@ def body_reach(p) -> float:
 
 
 def min_cell_layers(p) -> int:
-    """The shortest cell: M·rise > D, so a globule clears its own image in the next cell."""
-    return int(math.floor(p.globule_diameter / p.rise)) + 1
+    """The shortest cell: M·rise > D (the widest domain's), so a globule clears its own image
+    in the next cell."""
+    return int(math.floor(p.widest_diameter / p.rise)) + 1
 
 
 # `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured
@@ -141,7 +142,7 @@ AUTO_FACTOR = 2.0
 
 
 def auto_cell_layers(p) -> int:
-    return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.globule_diameter / p.rise - 1e-9)))
+    return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.widest_diameter / p.rise - 1e-9)))
 
 
 def image_gap(p, m: int, k: int) -> float:

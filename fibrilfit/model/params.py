@@ -310,6 +310,12 @@ class Params:
         """Radius of each domain of a chain, from the core outward (one: globule_radius)."""
         return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
 
+    @property
+    def widest_diameter(self) -> float:
+        """The largest domain's diameter (one domain: globule_diameter): what a periodic cell
+        must exceed so that no globule meets its own image."""
+        return max([self.globule_diameter, *(self.domain_diameters or ())])
+
     def globule_members(self) -> list[int]:
         """The member index of each domain along a chain (one domain: [linker], the last)."""
         out = [self.linker]
@@ -720,20 +726,14 @@ def _check_combination(p: Params, force: bool) -> None:
 
 
 def _check_domains(p: Params) -> None:
-    """Several domains per chain: one linker per gap; the tutorial protocol on a fibril with
-    ends only, for now (inflate grows globules by their scale, which several domain sizes
-    already use; a periodic cell's images are not built for them)."""
+    """Several domains per chain: one linker per gap. They run under every protocol and in a
+    periodic cell: inflate grows each globule to its own size, a cell images every member
+    (docs/guide/atoms-and-domains.md#several-domains)."""
     more, gaps = len(p.domain_diameters or ()), len(p.domain_linker or ())
     if gaps != more:
         raise ParamError("domain_linker", f"needs one value per gap between consecutive "
                                           f"domains: {more + 1} domain(s) per chain have {more} "
                                           f"gap(s), got {gaps} value(s)")
-    if more and p.periodic:
-        raise ParamError("domain_diameters", "several domains per chain: not with periodic "
-                                             "(a periodic cell's images are not built for them)")
-    if more and p.protocol == "inflate":
-        raise ParamError("domain_diameters", "several domains per chain: not with protocol "
-                                             "inflate (use tutorial)")
 
 
 def _check_shape(p: Params) -> None:
@@ -750,8 +750,12 @@ def _check_shape(p: Params) -> None:
                                          "Bullet does not scale a compound's child spheres; use "
                                          "hull, or --protocol tutorial")
     if p.domain_shape != "sphere" and p.domain_diameters:
+        # docs/guide/atoms-and-domains.md#shapes-of-several-domains: measured, the outgoing
+        # linker would leave a straight start layout sideways (61° for GFP, 96° for ubiquitin)
         raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with several domains "
-                                         f"per chain yet (their bodies are spheres); use sphere")
+                                         f"per chain yet (each domain would need its own mesh "
+                                         f"and an outgoing joint at its other terminal CA); "
+                                         f"use sphere")
     if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
         raise ParamError("domain_spheres", "every sphere's radius must be positive")
 
@@ -767,9 +771,9 @@ def _check_periodic(p: Params) -> None:
     least = helix.min_cell_layers(p)
     if p.periodic < least:
         raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
-                                     f"{p.globule_diameter:g} Å globules at a rise of {p.rise:g} Å: "
+                                     f"{p.widest_diameter:g} Å globules at a rise of {p.rise:g} Å: "
                                      f"at least {least} layers (cell × rise must exceed the "
-                                     f"globule diameter), or 'auto'")
+                                     f"widest globule's diameter), or 'auto'")
 
 
 # Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).

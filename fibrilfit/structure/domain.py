@@ -90,16 +90,19 @@ def select(loaded, *, chain: str | None = None, residues=None,
 
 
 def measure(path, *, chain: str | None = None, residues=None, option: str = "--domain",
-            follows: bool = True) -> DomainSize:
+            follows: bool = True, outgoing: bool = False) -> DomainSize:
     """Measure the domain of `path`. `follows`: the domain comes after the fibril core in
     sequence (the core's C-terminus carries the linker), so its first residue is the joint; else
-    its last."""
+    its last. `outgoing`: a further domain follows on the chain, so the outgoing linker's point
+    (terminals) is reported too."""
     loaded = reading.load(path, option)
-    return measure_loaded(loaded, chain=chain, residues=residues, option=option, follows=follows)
+    return measure_loaded(loaded, chain=chain, residues=residues, option=option, follows=follows,
+                          outgoing=outgoing)
 
 
 def measure_loaded(loaded, *, chain: str | None = None, residues=None,
-                   option: str = "--domain", follows: bool = True) -> DomainSize:
+                   option: str = "--domain", follows: bool = True,
+                   outgoing: bool = False) -> DomainSize:
     """`measure` of a file already read (reading.load)."""
     name = loaded.path.name
     c, keep, notes = select(loaded, chain=chain, residues=residues, option=option)
@@ -113,29 +116,51 @@ def measure_loaded(loaded, *, chain: str | None = None, residues=None,
         dmax = max(dmax, float(d.max()))
     ca_keep = (c.residues >= used[0]) & (c.residues <= used[-1])
     summary, geometry = measure_shape(xyz, c.heavy_radius[keep], c.ca[ca_keep],
-                                      c.residues[ca_keep], follows)
+                                      c.residues[ca_keep], follows, outgoing)
     return DomainSize(name, loaded.sha256, c.name, [int(used[0]), int(used[-1])], int(len(xyz)),
                       round(rg, 3), round(RG_TO_DIAMETER * rg, 3), round(dmax, 2), notes,
                       summary, geometry)
 
 
-def measure_shape(heavy, radii, ca, residues, follows: bool = True) -> tuple[dict, dict]:
+def terminals(ca, residues, follows: bool = True) -> dict:
+    """Where the linkers meet a domain (docs/model/domain-shapes.md#joint): the incoming linker
+    (from the core, or from the domain before it) joins at the CA of the domain's first residue
+    when the domain follows the core in sequence, of its last when it precedes; the outgoing
+    linker (towards the next domain outward) leaves from the opposite terminal CA. `ca`: (n, 3)
+    in residue order, `residues` their numbers. Returns {"entry": (CA, residue, terminus),
+    "exit": (CA, residue, terminus)}, terminus "N" or "C"."""
+    ca = np.asarray(ca, float).reshape(-1, 3)
+    first, last = (ca[0], int(residues[0]), "N"), (ca[-1], int(residues[-1]), "C")
+    return {"entry": first, "exit": last} if follows else {"entry": last, "exit": first}
+
+
+def measure_shape(heavy, radii, ca, residues, follows: bool = True,
+                  outgoing: bool = False) -> tuple[dict, dict]:
     """The domain's real shape in its body frame: (summary for inspect and the JSON, geometry
-    for the model's parameters domain_atoms, domain_spheres, domain_joint)."""
+    for the model's parameters domain_atoms, domain_spheres, domain_joint). `outgoing`: a
+    further domain follows on the chain; the summary also gives the outgoing linker's point
+    (exit_*), as deep as the joint is reported."""
     centroid, local = body_frame(heavy)
     hull = shapes.hull_atoms(local, radii)
     spheres = shapes.covering_spheres(local, radii)
-    joint = shapes.joint_point(ca, follows) - centroid
-    residue = int(residues[0] if follows else residues[-1])
+    ends = terminals(ca, residues, follows)
+    joint = ends["entry"][0] - centroid
     reach = float((np.linalg.norm(hull[:, :3], axis=1) + hull[:, 3]
                    + shapes.grow(hull[:, 3])).max())
-    summary = {"joint_residue": residue, "joint_terminus": "N" if follows else "C",
+    summary = {"joint_residue": ends["entry"][1], "joint_terminus": ends["entry"][2],
                "joint_depth": round(shapes.depth_below(local, radii, joint), 2),
                "joint_distance": round(float(np.linalg.norm(joint)), 2),
                "hull_atoms": int(len(hull)), "bounding_radius": round(reach, 2),
                "spheres": int(len(spheres)),
                "joint_depth_spheres": round(shapes.union_exit(spheres, joint)[1], 2),
                "spheres_radius": [round(float(r), 2) for r in spheres[:, 3]]}
+    if outgoing:
+        out = ends["exit"][0] - centroid
+        summary.update(exit_residue=ends["exit"][1], exit_terminus=ends["exit"][2],
+                       exit_depth=round(shapes.depth_below(local, radii, out), 2),
+                       exit_depth_spheres=round(shapes.union_exit(spheres, out)[1], 2),
+                       exit_distance=round(float(np.linalg.norm(out)), 2),
+                       joint_exit_distance=round(float(np.linalg.norm(out - joint)), 2))
     geometry = {"domain_atoms": np.round(hull, 3).tolist(),
                 "domain_spheres": np.round(spheres, 3).tolist(),
                 "domain_joint": np.round(joint, 3).tolist()}

@@ -98,8 +98,9 @@ def measure_all(args) -> tuple:
                          f"residues) on the linker's side of the core in {seg.file}")
     option = "--full-length" if seg is not None else "--domain"
     doms = [structure.measure_domain(f, chain=c, residues=r, option=option,
-                                       follows=args.terminus == "C")
-            for f, c, r in specs]
+                                       follows=args.terminus == "C",
+                                       outgoing=i < len(specs) - 1)
+            for i, (f, c, r) in enumerate(specs)]
     return fib, doms, seg
 
 

@@ -104,13 +104,6 @@ def depth_below(local, radii, point, n: int = SUPPORT_DIRECTIONS) -> float:
     return float((grown_support(local, radii, u) - u @ np.asarray(point, float)).min())
 
 
-def joint_point(ca, follows: bool) -> np.ndarray:
-    """The linker's entry into the domain: the CA of its first residue when the domain follows
-    the fibril core in sequence, of its last when it precedes. `ca`: (n, 3) in residue order."""
-    ca = np.asarray(ca, float).reshape(-1, 3)
-    return ca[0] if follows else ca[-1]
-
-
 def covering_spheres(local, radii, n: int = SPHERES, rounds: int = KMEANS_ROUNDS) -> np.ndarray:
     """n spheres [x, y, z, r] covering every atom's ball: k-means of the atoms (started from
     farthest points, so the same atoms give the same spheres), each cluster then held by the

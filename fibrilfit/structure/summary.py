@@ -46,6 +46,11 @@ def domain_lines(d) -> list:
         lines.append(f"  joint: CA of residue {s['joint_residue']} (the domain's {first}), "
                      f"{s['joint_depth']:.2f} Å below the hull, {s['joint_depth_spheres']:.2f} Å "
                      f"below the spheres")
+        if "exit_residue" in s:  # a further domain follows: the outgoing linker's point
+            lines.append(f"  exit: CA of residue {s['exit_residue']} (the domain's other end, "
+                         f"towards the next domain), {s['exit_depth']:.2f} Å below the hull, "
+                         f"{s['exit_depth_spheres']:.2f} Å below the spheres; "
+                         f"{s['joint_exit_distance']:.1f} Å from the joint")
         lines.append(f"  shapes: hull of {s['hull_atoms']} outer atoms within "
                      f"{s['bounding_radius']:.1f} Å of the centroid; {s['spheres']} covering "
                      f"spheres of {min(s['spheres_radius']):.1f}-{max(s['spheres_radius']):.1f} Å")

@@ -3,6 +3,7 @@ import json
 
 import gemmi
 import numpy as np
+import pytest
 from helpers import ROOT
 
 DATA = ROOT / "tests" / "data"
@@ -143,7 +144,7 @@ def test_a_domain_linker_count_that_does_not_match_is_refused(ff, scene, tmp_pat
     out = tmp_path / "r.json"
     for extra in (["--domain-diameters", "30,20", "--domain-linker", "5"],
                   ["--domain", str(DATA / "1ubq.pdb.gz"), "--domain", str(DATA / "1gfl.pdb.gz")],
-                  ["--domain-diameters", "30", "--domain-linker", "5", "--protocol", "inflate"]):
+                  ["--domain-diameters", "30", "--domain-linker", "5,5"]):
         assert ff.cli.main(["run", *FAST, *extra, "--json", str(out)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and not out.exists()
@@ -169,3 +170,181 @@ def test_several_domain_files_fill_the_chain(ff, scene, tmp_path):
     gap = chains["0A1"]  # domain 1, then its 26 beads numbered on to 229
     assert [r.seqid.num for r in gap][-27:] == [203] + list(range(204, 230))
     assert chains["0A2"][0].seqid.num == 230
+
+
+# ---- several domains under inflate and in a periodic cell -----------------------------------
+INFLATE = dict(protocol="inflate", grow_frames=15, hold_frames=15, regrow_cycles=1,
+               near_cycles=0)
+
+
+def _spheres_of_the_cell(p, centres, cells):
+    """Independently of the check: every pair of the infinite fibril's globules (cell globules
+    with cell globules or with images m = 1..cells above) overlapping by more than `tol`, with
+    each globule's own domain radius; returns {(i, j): depth} over indices of cell + images."""
+    import importlib
+    helix = importlib.import_module("fibrilfit.model.helix")
+    n = len(centres)
+    blocks = [centres] + [helix.apply_points(p, np.full(n, float(m)), centres)
+                          for m in range(1, cells + 1)]
+    pts = np.concatenate(blocks)
+    radii = np.tile(p.domain_radii, len(pts) // len(p.domain_radii))
+    d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
+    depth = radii[:, None] + radii[None] - d
+    return {(int(i), int(j)): float(depth[i, j]) for i, j in zip(*np.nonzero(depth > 0))
+            if i < j and i < n}
+
+
+def test_a_tdp43_like_chain_grows_each_domain_to_its_own_size_under_inflate(ff, scene):
+    """Inflate scales every globule by the schedule's fraction of its OWN full size (the
+    further domains share domain 1's mesh at their size / domain 1's), starts small enough that
+    no two globules of any size overlap, and is judged as a single domain is."""
+    import importlib
+    growth = importlib.import_module("fibrilfit.builders.growth")
+    p = ff.model.params.make_params(**{**TDP43, **INFLATE})
+    model = ff.builders.build_model(p, scene)
+    hook = growth.Inflate(model, scene)
+    full = {51: 1.0, 75: 1.0, 100: 30 / 31}
+    hook._set_scale(0.5)
+    for ob in model.globules:
+        assert ob.scale[:] == pytest.approx([0.5 * full[ob["fibrilfit_index"]]] * 3, abs=1e-6)
+    r = ff.pipeline.run(p, scene)
+    model = ff.pipeline.current_model(scene)
+    assert [round(ob.scale[0], 4) for ob in model.globules[:3]] == [1.0, 1.0, round(30 / 31, 4)]
+    assert r["inflate"]["cycles"] and r["verdict"] in ("successful", "intersection")
+    assert 0.01 <= r["inflate"]["start_scale"] <= p.grow_start
+    assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8] and r["checks_agree"]
+    # at the start scale no two globules (each its own size) overlapped in the start layout
+    start = ff.builders.model.chain_positions(p)
+    start = ff.builders.start_layout.inflate_layout(p, start, p.seed)[0]
+    centres = start[:, p.globule_members()].reshape(-1, 3)
+    s = r["inflate"]["start_scale"]
+    radii = np.tile(p.domain_radii, len(centres) // 3)
+    gap = np.linalg.norm(centres[:, None] - centres[None], axis=-1) - s * (radii[:, None]
+                                                                          + radii[None])
+    np.fill_diagonal(gap, np.inf)
+    assert gap.min() > 0
+    # the verdict's sphere check is every pair of each domain's own radius
+    mine = {k for k, d in _spheres_of_the_cell(p, np.array(r["globule_centres"]), 0).items()
+            if d > r["sphere_check"]["tolerance"]}
+    assert mine == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+
+
+def test_the_fallback_judge_counts_each_domain_with_its_own_radius(ff):
+    import importlib
+    growth = importlib.import_module("fibrilfit.builders.growth")
+    p = ff.model.params.make_params(layers=3, linker=2, globule_diameter=20,
+                                    domain_diameters="10", domain_linker="1")
+    pos = ff.builders.model.chain_positions(p)  # 3 chains x [anchor, bead, g0, bead, g1]
+    pos[:, 2] = [[0, 0, 0], [0, 0, 50], [0, 0, 200]]  # the big domains apart (z 0, 50, 200)
+    pos[:, 4] = [[0, 0, 400], [0, 0, 500], [14, 0, 50]]  # small ones apart, but one 14 Å from
+    # a big one: radii 10 + 5 = 15
+    out = growth.sphere_judge(p, pos, slice(0, 3))
+    assert out["clashing_pairs"] == 1 and out["max_overlap"] == pytest.approx(1.0)
+    pos[2, 4] = [15.5, 0, 50]  # 15.5 Å: apart for 10 + 5, a clash for 10 + 10
+    assert growth.sphere_judge(p, pos, slice(0, 3))["clashing_pairs"] == 0
+
+
+# A short cell of the TDP-43-like chain (shorter linkers than the protein's, so that the images
+# a chain of 100 residues can reach, ~55,000 at linkers 51/23/24, stay few for a fast test).
+TDP43_CELL = {**TDP43, "layers": None, "periodic": "auto", "linker": 8, "domain_linker": "4,4",
+              "frames": 20}
+
+
+def _images_follow_with_their_scale(ff, model):
+    """Every image carries its original's scale, and so its size (several domains share one
+    mesh at their own scale). Where an image stands is not tested here: images follow their
+    originals a frame behind (the bake's `image_lag`), and the check recomputes them from the
+    originals. Returns the members imaged."""
+    import importlib
+    periodic = importlib.import_module("fibrilfit.builders.periodic")
+    seen = set()
+    for ob in periodic.image_collection(model).objects:
+        c, i, m = ob[periodic.CHAIN], ob["fibrilfit_index"], ob[periodic.CELL]
+        src = model.chain[c][i]
+        assert ob.scale[:] == pytest.approx(src.scale[:], abs=1e-6), (c, i, m)
+        assert np.array(ob.matrix_world.to_scale()) == pytest.approx(src.scale[:], abs=1e-5)
+        seen.add(i)
+    return seen
+
+
+def test_a_tdp43_like_chain_in_a_periodic_cell_images_every_member(ff, scene):
+    p = ff.model.params.make_params(**{k: v for k, v in TDP43_CELL.items() if v is not None})
+    assert p.periodic == 13 and p.globule_members() == [8, 13, 18]  # ceil(2 · 31 / 4.78)
+    r = ff.pipeline.run(p, scene)
+    model = ff.pipeline.current_model(scene)
+    # images of every member kind: beads, each domain, each at its original's scale
+    seen = _images_follow_with_their_scale(ff, model)
+    assert {8, 13, 18} <= seen and set(range(1, 19)) - {8, 13, 18} <= seen
+    assert r["periodic"]["images"]["moving"] > 0 and r["verdict"] in ("successful",
+                                                                      "intersection")
+    assert [e["n"] for e in r["domain_envelopes"]] == [26, 26, 26] and r["checks_agree"]
+    mine = {k for k, d in _spheres_of_the_cell(p, np.array(r["globule_centres"]),
+                                               r["periodic"]["check_cells"]).items()
+            if d > r["sphere_check"]["tolerance"]}
+    assert mine == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+
+
+@pytest.mark.parametrize("protocol", ["tutorial", "inflate"])
+def test_contacts_with_images_of_further_domains_are_counted_and_named(ff, scene, protocol):
+    """Crowded short chains (20, 12 and 20 Å domains 1 residue apart) in a cell: the check
+    counts pairs with the images above the cell, each of its own size, and names an image's
+    layer in the infinite fibril (its layer + m · M)."""
+    extra = INFLATE if protocol == "inflate" else {"frames": 10}
+    p = ff.model.params.make_params(linker=2, globule_diameter=20, domain_diameters="12,20",
+                                    domain_linker="1,1", periodic="auto", **extra)
+    r = ff.pipeline.run(p, scene)
+    model = ff.pipeline.current_model(scene)
+    _images_follow_with_their_scale(ff, model)
+    n = len(r["globule_centres"])
+    assert n == 3 * p.chains and r["verdict"] == "intersection" and r["checks_agree"]
+    across = [(i, j) for i, j, _ in r["clashing_pairs"] if j >= n]
+    mine = _spheres_of_the_cell(p, np.array(r["globule_centres"]), r["periodic"]["check_cells"])
+    deep = {k for k, d in mine.items() if d > r["sphere_check"]["tolerance"]}
+    assert deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+    assert any(j >= n for i, j in deep) and across  # the cell's ends do meet
+    for (a, b, _), (i, j, _) in zip(r["clashing_domains"], r["clashing_pairs"]):
+        for name, g in ((a, i), (b, j)):
+            assert name["chain"] == g % n // 3 and name["domain"] == g % 3
+            assert name["layer"] == g % n // 3 + g // n * p.layers
+
+
+def test_inspect_gives_both_linker_points_of_a_domain_with_a_next_one(ff, tmp_path, capsys):
+    """Two domains on a chain (ubiquitin 128-203, then 230-305): domain 1's incoming linker
+    joins at its first residue's CA, the outgoing one leaves from its last (the domain follows
+    the core); inspect reports both points' depths and where they are, checked here against
+    the file read directly. The outermost domain has no outgoing point."""
+    near, far, js = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "i.json"
+    assert ff.cli.main(["inspect", "--domain", str(near), "--domain", str(far), "--json",
+                        str(js)]) == 0
+    text = capsys.readouterr().out
+    first, second = json.loads(js.read_text())["domains_measured"]
+    s = first["shape"]
+    assert (s["joint_residue"], s["joint_terminus"], s["exit_residue"], s["exit_terminus"]) == (
+        128, "N", 203, "C")
+    assert "exit_residue" not in second["shape"] and second["shape"]["joint_residue"] == 230
+    st = gemmi.read_structure(str(near))
+    st.remove_hydrogens()
+    chain = st[0][0]
+    protein = [r for r in chain if gemmi.find_tabulated_residue(r.name).is_amino_acid()]
+    heavy = np.array([a.pos.tolist() for r in protein for a in r])
+    ca = {r.seqid.num: np.array(r["CA"][0].pos.tolist()) for r in protein}
+    centroid = heavy.mean(axis=0)
+    assert s["joint_distance"] == pytest.approx(np.linalg.norm(ca[128] - centroid), abs=0.01)
+    assert s["exit_distance"] == pytest.approx(np.linalg.norm(ca[203] - centroid), abs=0.01)
+    assert s["joint_exit_distance"] == pytest.approx(np.linalg.norm(ca[203] - ca[128]), abs=0.01)
+    # a CA lies at least its own van der Waals radius (1.7 Å) below the grown hull
+    assert s["exit_depth"] >= 1.7 - 0.01 and s["exit_depth_spheres"] > 0
+    assert (f"exit: CA of residue 203 (the domain's other end, towards the next domain), "
+            f"{s['exit_depth']:.2f} Å below the hull") in text
+
+
+def test_real_shapes_of_several_domains_are_refused_in_one_line(ff, scene, tmp_path, capsys):
+    near, far, out = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "r.json"
+    for shape in ("hull", "spheres"):
+        assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--domain", str(near),
+                            "--domain", str(far), "--domain-shape", shape, *FAST, "--json",
+                            str(out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and not out.exists()
+        assert err[0].startswith(f"fibrilfit: error: domain_shape: {shape} cannot be used with "
+                                 f"several domains per chain yet")

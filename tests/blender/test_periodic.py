@@ -459,21 +459,28 @@ def test_panel_checkbox_and_m(ui, ff):
         assert properties.changed_fields(ui, p) == []
 
 
-def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path):
+@pytest.mark.parametrize("extra", [{}, {"protofilaments": 2},
+                                   {"protofilaments": 2, "domain_diameters": "20",
+                                    "domain_linker": "2"}])
+def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path, extra):
+    """One PDB chain per chain of the cell and of its images (every protofilament; several
+    domains per chain make longer chains)."""
     import gemmi
     from fibrilfit.exports import pdb
     S = _screw(ff)
-    p = ff.model.params.make_params(periodic=8, linker=3)
+    p = ff.model.params.make_params(periodic=8, linker=3, **extra)
+    n = p.chains
     model = ff.pipeline.build(p, scene)
     info = pdb.write_pdb(tmp_path / "cell.pdb", model, scene, images=1)
     st = gemmi.read_structure(str(tmp_path / "cell.pdb"))
     chains = [np.array([[a.pos.x, a.pos.y, a.pos.z] for r in ch for a in r]) for ch in st[0]]
-    assert len(chains) == 3 * 8 and info["image_cells"] == [-1, 1]
-    cell = np.array(chains[:8])
-    assert np.allclose(np.array(chains[8:16]), S.apply_points(p, -1, cell), atol=2e-3)
-    assert np.allclose(np.array(chains[16:]), S.apply_points(p, 1, cell), atol=2e-3)
+    assert len(chains) == 3 * n and info["image_cells"] == [-1, 1]
+    assert {len(c) for c in chains} == {len(p.chain_radii())}
+    cell = np.array(chains[:n])
+    assert np.allclose(np.array(chains[n:2 * n]), S.apply_points(p, -1, cell), atol=2e-3)
+    assert np.allclose(np.array(chains[2 * n:]), S.apply_points(p, 1, cell), atol=2e-3)
     assert len(list(gemmi.read_structure(str(pdb.write_pdb(tmp_path / "c.pdb", model, scene)
-                                              ["path"]))[0])) == 8
+                                              ["path"]))[0])) == n
 
 
 # ---- two protofilaments ------------------------------------------------------------------

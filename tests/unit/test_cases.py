@@ -58,3 +58,14 @@ def test_integer_parameters_that_take_a_word():
     assert p.periodic > 0 and p.score_layers == 0
     with pytest.raises(cases.CaseError, match="params.periodic: must be a number"):
         cases.from_dict({"params": {"periodic": "some"}})
+
+
+def test_a_case_of_several_domains_in_a_cell_under_inflate_loads(tmp_path):
+    """Several domains per chain with inflate and a periodic cell, from a case file (#24)."""
+    path = tmp_path / "tdp.toml"
+    path.write_text('name = "three domains"\n[params]\nprotofilaments = 2\nlinker = 8\n'
+                    'globule_diameter = 31.0\ndomain_diameters = [31.0, 30.0]\n'
+                    'domain_linker = [4, 4]\nrise = 4.78\nperiodic = "auto"\n'
+                    'protocol = "inflate"\n')
+    p = cases.load(path).make_params()
+    assert p.protocol == "inflate" and p.periodic == 13 and p.globule_members() == [8, 13, 18]

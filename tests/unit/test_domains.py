@@ -145,11 +145,17 @@ def test_several_domains_in_the_one_parameter_definition():
     assert p.estimated_objects() == 20 * (1 + 2 * 12 - 1)
     assert P.make_params(**p.to_dict()) == p and p.to_dict()["domain_linker"] == [3, 2]
     assert P.make_params(domain_diameters="none").domain_diameters is None
+    # under every protocol and in a periodic cell (docs/guide/atoms-and-domains.md#several-domains)
+    cell = P.make_params(globule_diameter=20, domain_diameters="40", domain_linker="1",
+                         periodic="auto", protocol="inflate")
+    assert cell.widest_diameter == 40 and cell.periodic == 17  # ceil(2 · 40 / 4.8)
+    assert P.DEFAULTS.widest_diameter == P.DEFAULTS.globule_diameter
     for bad, words in (({"domain_diameters": "30", "domain_linker": "2,3"}, "got 2 value"),
                        ({"domain_diameters": "30,x", "domain_linker": "1,1"}, "must be a number"),
                        ({"domain_diameters": "30", "domain_linker": "-1"}, "from 0 to 500"),
-                       ({"domain_diameters": "30", "domain_linker": "1", "periodic": 20},
-                        "not with periodic")):
+                       # a cell must clear the widest domain's own image: 40 / 4.8 -> 9 layers
+                       ({"globule_diameter": 20, "domain_diameters": "40", "domain_linker": "1",
+                         "periodic": 8}, "40 Å globules .* at least 9 layers")):
         with pytest.raises(P.ParamError, match=words):
             P.make_params(**bad)
 

@@ -213,11 +213,11 @@ def has_domain_file(case_path) -> bool:
 
 
 def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None) -> None:
-    START, END = markers(shape)  # noqa: N806 (the module's names, for this shape)
+    start, end = markers(shape)
     body = page.read_text(encoding="utf-8")
-    if START not in body or END not in body:
-        raise SystemExit(f"{page.relative_to(ROOT)} has no {START} ... {END} markers")
-    a, b = body.index(START) + len(START), body.index(END)
+    if start not in body or end not in body:
+        raise SystemExit(f"{page.relative_to(ROOT)} has no {start} ... {end} markers")
+    a, b = body.index(start) + len(start), body.index(end)
     page.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
 
 

@@ -126,8 +126,6 @@ def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, prot
 @pytest.mark.parametrize("args, message", [
     (["--domain-shape", "hull"], "domain_shape: hull needs a domain structure (--domain FILE)"),
     (["--domain-shape", "cube"], "invalid choice: 'cube'"),
-    (["--domain-shape", "spheres", "--domain", str(DATA / "1ubq.pdb.gz"), "--protocol",
-      "inflate"], "domain_shape: spheres cannot be grown by the inflate protocol"),
 ])
 def test_cli_refuses_a_shape_it_cannot_build_in_one_line(tmp_path, args, message):
     from helpers import run_cli
@@ -135,3 +133,66 @@ def test_cli_refuses_a_shape_it_cannot_build_in_one_line(tmp_path, args, message
     r = run_cli("run", "--layers", "2", "--json", str(out), *args)
     assert r.returncode == 2 and message in r.stderr and not out.exists()
     assert len(r.stderr.strip().splitlines()) <= 3  # argparse's usage lines, or one line
+
+
+def _sweep_hits(scene, probe, spheres, centre, directions, far=300.0):
+    """Bullet's first contact of `probe` swept from centre + far·d towards centre, for each d,
+    beside the contact a union of spheres [x, y, z, r] (world) gives: the probe's centre (Å)."""
+    rp = probe.dimensions[0] / 2.0
+    got, want = [], []
+    for d in directions:
+        start = centre + far * d
+        r = scene.rigidbody_world.convex_sweep_test(probe, tuple(start), tuple(centre))
+        assert r[3], d
+        got.append(np.array(r[0]))
+        # the sweep's earliest t with |start - t·d - c| = r + rp, over the spheres
+        rel = start[None] - spheres[:, :3]
+        b = rel @ d
+        disc = b * b - (rel * rel).sum(1) + (spheres[:, 3] + rp) ** 2
+        t = np.where(disc >= 0, b - np.sqrt(np.maximum(disc, 0)), np.inf)
+        want.append(start - t.min() * d)
+    return np.array(got), np.array(want)
+
+
+def test_spheres_grow_under_inflate_to_their_covering_geometry(scene, ff):
+    """Mid-growth (scale about 0.6) and once grown, Bullet's compound is the covering spheres
+    at the globule's scale, where the globule is: a probe swept onto it stops where the
+    spheres say (docs/model/domain-shapes.md#compound-growth)."""
+    import bpy
+    from fibrilfit.structure.shape import directions
+    p = _hull_params(ff, "1ubq", "spheres", layers=1, linker=6, protocol="inflate",
+                     grow_frames=20, grow_start=0.3, regrow_cycles=0, hold_frames=5,
+                     gravity=100.0)  # strong: the globule swings far from where it started
+    model = ff.pipeline.build(p, scene)
+    mesh = bpy.data.meshes.new("probe")
+    mesh.from_pydata([(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in directions(200)], [], [])
+    probe = bpy.data.objects.new("probe", mesh)  # a 0.5 Å ball, kinematic, far away
+    scene.collection.objects.link(probe)
+    scene.rigidbody_world.collection.objects.link(probe)
+    probe.rigid_body.type, probe.rigid_body.kinematic = "PASSIVE", True
+    probe.rigid_body.collision_shape = "SPHERE"
+    probe.location = (0.0, 0.0, 5000.0)
+    s = np.array(p.domain_spheres, float)
+    seen = []
+
+    def look(frame, positions):
+        g = model.globules[0]
+        m = np.array(g.matrix_world)
+        scale = float(np.cbrt(np.linalg.det(m[:3, :3])))
+        if frame not in (12, 22):  # mid-growth, and grown (from frame 21)
+            return False
+        world = np.column_stack([s[:, :3] @ m[:3, :3].T + m[:3, 3], s[:, 3] * scale])
+        centre = m[:3, 3]
+        out = np.array([centre[0], centre[1], 0.0])
+        out /= np.linalg.norm(out)
+        dirs = [out] + [d for d in directions(60) if d @ out > 0.6]  # away from the core
+        got, want = _sweep_hits(scene, probe, world, centre, dirs)
+        seen.append((frame, scale, float(np.abs(got - want).max())))
+        return frame == 22
+
+    ff.pipeline.bake(model, scene, on_frame=look)
+    assert [f for f, *_ in seen] == [12, 22], seen
+    (_, mid, err_mid), (_, grown, err_grown) = seen
+    assert 0.4 < mid < 0.8 and grown == pytest.approx(1.0)
+    assert err_mid < 0.02 and err_grown < 0.02, seen
+

@@ -77,11 +77,10 @@ def test_gjk_distance_of_two_boxes(ff):
 def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
     """The closest heavy atoms of two domains are at least two radii apart, less the resting
     overlap (0.05 Å): the shape holds the atoms (a hull's mesh with HULL_MARGIN around it for
-    Bullet; spheres each holding their atoms). Spheres start 12 Å apart along the axis: from the
-    tutorial's 4.8 Å start, deeply interpenetrated compounds can lock
-    (docs/model/domain-shapes.md#spheres)."""
-    rise = 4.8 if shape == "hull" else 12.0
-    p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, rise=rise, frames=120)
+    Bullet; spheres each holding their atoms). Spheres start spread (start_layout.spread_layout):
+    from the tutorial's layout, deeply interpenetrated compounds locked
+    (docs/model/domain-shapes.md#spheres-start)."""
+    p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, frames=120)
     model = ff.pipeline.build(p, scene)
     want = {"hull": "CONVEX_HULL", "spheres": "COMPOUND"}[shape]
     assert model.globules[0].rigid_body.collision_shape == want
@@ -108,11 +107,12 @@ def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
         assert np.linalg.norm(ca - bead) == pytest.approx(p.residue_spacing, abs=0.05)
 
 
-@pytest.mark.parametrize("protocol", ["tutorial", "inflate"])
-def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, protocol):
-    """Both start layouts put the last bond's pivot at the domain's terminal CA, one residue
+@pytest.mark.parametrize("shape, protocol", [("hull", "tutorial"), ("hull", "inflate"),
+                                             ("spheres", "tutorial")])
+def test_the_joint_starts_one_residue_spacing_from_the_last_bead(scene, ff, shape, protocol):
+    """Every start layout puts the last bond's pivot at the domain's terminal CA, one residue
     spacing from the last linker bead, on the surface side facing the linker."""
-    p = _hull_params(ff, "1ubq", layers=3, linker=6, protocol=protocol)
+    p = _hull_params(ff, "1ubq", shape, layers=3, linker=6, protocol=protocol)
     model = ff.pipeline.build(p, scene)
     joint = np.asarray(p.domain_joint, float).reshape(3)
     for members, bonds in zip(model.chain, model.constraints):
@@ -330,3 +330,25 @@ def test_an_original_pushed_into_an_image_is_found_by_both_checks(scene, ff, sha
             assert [n - 1, n] in [[i, j] for i, j, _ in r["grazing_pairs"]], (x, r["warnings"])
         assert r["checks_agree"], (x, r["warnings"])
     assert seen[0][1] and seen[0][2] and not seen[-1][1] and not seen[-1][2], seen
+
+
+def test_spheres_from_the_tutorial_start_do_not_start_overlapping(scene, ff):
+    """The 4-layer ubiquitin model at the tutorial's 4.8 Å rise: its rest layout put the
+    compounds 13.8 Å into each other; spread, none overlaps, every bond at rest and every bead
+    clear of the core (docs/model/domain-shapes.md#spheres-start)."""
+    from fibrilfit.analysis.clashes import spheres_clashes
+    p = _hull_params(ff, "1ubq", "spheres", layers=4, linker=10)
+    model = ff.pipeline.build(p, scene)
+    mats = np.array([np.array(g.matrix_world) for g in model.globules])
+    assert spheres_clashes(p.domain_spheres, mats, 0.0)[0] == []
+    rest = np.asarray(p.rest_lengths())
+    for members in model.chain:
+        pos = np.array([np.array(ob.matrix_world)[:3, 3] for ob in members])
+        assert np.allclose(np.linalg.norm(np.diff(pos[:-1], axis=0), axis=1), rest[:-1],
+                           atol=1e-3)
+        assert (np.abs(pos[1:, 0]) > p.slab[0] / 2 + p.residue_radius - 1e-3).all()
+    # the sphere's tutorial start is not spread: its globules stand on the rest layout
+    q = ff.model.params.make_params(layers=4, linker=10)
+    sphere = ff.pipeline.build(q, scene)
+    x = np.array([np.array(g.matrix_world)[:3, 3] for g in sphere.globules])
+    assert np.allclose(np.hypot(x[:, 0], x[:, 1]), q.chain_x()[-1], atol=1e-3)

@@ -20,9 +20,10 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 2  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24)
+MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+# 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "5d0fa77bdd1919601089d5a041804813c5364467c0b357b42f200df4884a0190"
+MODEL_SOURCES_SHA256 = "ee8fd658aa4079c7869aaab16a36ec2997d95fa51908dc21a794e09539cc3238"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -509,16 +509,19 @@ def globule_mesh(p: P.Params):
 
 
 def spheres_body(p: P.Params):
-    """body(pivot, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
-    world, turned as _turn_globules turns it when its last bond points along d."""
+    """body(pivots, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
+    world, turned as _turn_globules turns it when its last bond's pivot is at `pivots` and the
+    bond points along `d` (k of each)."""
     joint = np.asarray(p.domain_joint, float).reshape(3)
     spheres = np.asarray(p.domain_spheres, float).reshape(-1, 4)
     out = shape.union_exit(spheres, joint)[0]
 
-    def body(pivot, d):
-        rot = joint_rotations(out, np.asarray(d, float)[None])[0]
-        centre = pivot - rot @ joint
-        return np.column_stack([spheres[:, :3] @ rot.T + centre, spheres[:, 3]])
+    def body(pivots, d):  # (k, 3) each -> (k, spheres, 4)
+        rot = joint_rotations(out, np.asarray(d, float).reshape(-1, 3))
+        centre = np.asarray(pivots, float).reshape(-1, 3) - rot @ joint
+        world = np.einsum("kij,sj->ksi", rot, spheres[:, :3]) + centre[:, None]
+        return np.concatenate([world, np.broadcast_to(spheres[None, :, 3:], world[..., :1].shape)],
+                              axis=-1)
     return body
 
 

@@ -57,6 +57,10 @@ def build_images(model, scene) -> dict:
              for role, title in COLLECTIONS.items()}
     bodies = scene.rigidbody_world.collection
     made = {MOVING: [], STATIC: []}
+    spheres = {}  # a `spheres` globule's child spheres, by the globule (one pass, not .children)
+    for coll in (c for c in model.root.children_recursive if c.get(TAG) == "globule_spheres"):
+        for child in coll.objects:
+            spheres.setdefault(child.parent.session_uid, []).append(child)
     for m, what, j in todo["static"]:
         source = model.chain[j][0] if what == "anchor" else model.slabs[j]
         ob = _copy(source, STATIC, m, j, 0, colls[STATIC], bodies)
@@ -72,7 +76,8 @@ def build_images(model, scene) -> dict:
             if "spheres" not in colls:
                 colls["spheres"] = new_collection("FibrilFit image spheres", "image_spheres",
                                                   colls[MOVING])
-            _copy_pieces(model.chain[c][i], ob, colls["spheres"], bodies, "globule_sphere")
+            _copy_pieces(model.chain[c][i], ob, colls["spheres"], bodies, "globule_sphere",
+                         spheres.get(model.chain[c][i].session_uid, ()))
     follower = ImageFollower(model)
     rest = np.array([[np.array(ob.matrix_world.translation) for ob in members]
                      for members in model.chain])
@@ -105,12 +110,13 @@ def _copy(source, role, m, chain, index, coll, bodies):
     return ob
 
 
-def _copy_pieces(source, image, coll, bodies, role: str = "core_piece") -> None:
+def _copy_pieces(source, image, coll, bodies, role: str = "core_piece", children=None) -> None:
     """The children of a COMPOUND body for its image: an outline core's solid convex pieces
     (children of its slab, builders.model), or a `spheres` globule's spheres (`role`
     "globule_sphere", each at its place in the globule's frame). A COMPOUND shape without them
-    would collide with nothing."""
-    for child in source.children:
+    would collide with nothing. `children`: the source's, when known (else source.children,
+    which scans every object of the file)."""
+    for child in (source.children if children is None else children):
         if child.get(TAG) != role:
             continue
         ob = tag(bpy.data.objects.new(f"FF image {image[CELL]:+d} {child.name}", child.data),
@@ -259,6 +265,8 @@ class ImageFollower:
         for dg in self.depsgraphs:
             for k in idx:
                 self.objects[k].evaluated_get(dg).matrix_world = _to_blender(mat[k].T)
+        if self.turned is not None and self.turned.kids:
+            self.turned.write_children(moving, mat, self.depsgraphs)
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they
@@ -298,6 +306,12 @@ class TurnedImages:
         self.screw[:, 1, 1], self.screw[:, 2, 2] = c, 1.0
         self.follower = follower
         self.turn = self.screw.copy()  # until the first update: the screw's turn alone
+        # a `spheres` image's child spheres: (image's index, child, its place in the frame)
+        row = {follower.objects[k].session_uid: k for k in self.rows.tolist()}
+        self.kids = [(row[ob.parent.session_uid], ob, np.append(ob.location[:], 1.0))
+                     for coll in (follower.coll.children if follower.coll is not None else ())
+                     for ob in coll.objects
+                     if ob.parent is not None and ob.parent.session_uid in row]
 
     def update(self, moving: np.ndarray) -> None:
         """Read the originals' turns now; the images that move take S^m of them."""
@@ -308,6 +322,21 @@ class TurnedImages:
         now = moving[self.rows]
         self.turn[now] = self.screw[now] @ own[now]
         self.follower.rotation[self.rows[now]] = euler_xyz(self.turn[now]).astype(np.float32)
+
+    def write_children(self, moving: np.ndarray, mat: np.ndarray, graphs) -> None:
+        """Keep the evaluated copies of the moved images' child spheres at their place in the
+        image (`mat` as Blender stores it): Blender rebuilds a compound from them when it is
+        tagged or the world is rebuilt, and the depsgraph never moves them (their parents are
+        moved by their evaluated matrices alone). Stale, a rebuild put the spheres where the
+        image was built (docs/model/domain-shapes.md#periodic)."""
+        for k, child, local in self.kids:
+            if moving[k]:
+                world = mat[k].T.astype(float)
+                w = world.copy()
+                w[:, 3] = world @ local
+                m = _to_blender(w)
+                for dg in graphs:
+                    child.evaluated_get(dg).matrix_world = m
 
     def apply(self, mat: np.ndarray, scale: np.ndarray) -> None:
         """Put the turns, scaled, into `mat` (n, 4, 4) as Blender stores it (transposed)."""

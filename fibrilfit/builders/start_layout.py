@@ -102,8 +102,9 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
     order against those before them, then each is placed again against all the others,
     `rounds` times. The first bond points straight out, as in inflate_layout.
 
-    `body(pivot, d)` gives the globule's covering spheres [x, y, z, r] in the world when its
-    last bond's pivot is `pivot` and the bond points along `d` (builders.model turns it so).
+    `body(pivots, d)` gives the globule's covering spheres [x, y, z, r] in the world, (k, s, 4),
+    when its last bond's pivot is at pivots (k, 3) and the bond points along d (k, 3)
+    (builders.model turns it so).
     Deterministic: no seed (docs/model/domain-shapes.md#spheres-start)."""
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
@@ -122,7 +123,7 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
             pivot = first[c][None] + (reach[-2] + lever[-1]) * dirs
         else:
             pivot = rest[c, 0][None] + lever[-1] * dirs
-        options.append((dirs, np.array([body(q, d) for q, d in zip(pivot, dirs)])))
+        options.append((dirs, body(pivot, dirs)))
     choice = np.zeros(n, dtype=int)
 
     def best(c, others):

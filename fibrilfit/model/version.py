@@ -23,7 +23,7 @@ import tomllib
 MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "ee8fd658aa4079c7869aaab16a36ec2997d95fa51908dc21a794e09539cc3238"
+MODEL_SOURCES_SHA256 = "d3323e786a337cfc0bfbe06b1bdf175ac970cd7d962b14b8d01e06f52eba9046"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

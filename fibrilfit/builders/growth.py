@@ -159,6 +159,56 @@ def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
             "max_overlap": round(overlap, 6)}
 
 
+def compound_children(globules) -> list[list[tuple]]:
+    """Per globule of a `spheres` model (in the collection's order): its child spheres, each
+    (object, its place in the globule's frame)."""
+    index = {ob.session_uid: k for k, ob in enumerate(globules.objects)}
+    out = [[] for _ in globules.objects]
+    for coll in globules.children:
+        for child in coll.objects:
+            k = index.get(child.parent.session_uid) if child.parent is not None else None
+            if k is not None:
+                out[k].append((child, np.array(child.location, dtype=float)))
+    return out
+
+
+def sync_compound_places(objects) -> None:
+    """Give each compound globule's own location and rotation its simulated place.
+
+    Tagged, a COMPOUND body is rebuilt from its parent's own location and rotation and its
+    children's world matrices; left at the start layout, the children land where the body
+    started, not where it is (measured: docs/model/domain-shapes.md#compound-growth)."""
+    from .model import euler_xyz  # (model imports this module through physics and hooks)
+    n = len(objects)
+    mats = np.empty(16 * n, dtype=np.float32)
+    objects.foreach_get("matrix_world", mats)
+    m = mats.reshape(n, 4, 4).transpose(0, 2, 1).astype(float)  # row-major
+    rot = m[:, :3, :3] / np.linalg.norm(m[:, :3, :3], axis=1, keepdims=True)  # unit columns
+    objects.foreach_set("location", m[:, :3, 3].astype(np.float32).ravel())
+    objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
+
+
+def place_compound_children(scene, objects, children, s: float) -> None:
+    """Write each child sphere's world matrix at the new scale `s` into the evaluated copies
+    Bullet rebuilds the compound from: the depsgraph would update them only after the rebuild,
+    which then keeps the previous scale's offsets (measured:
+    docs/model/domain-shapes.md#compound-growth)."""
+    from mathutils import Matrix
+    graphs = [vl.depsgraph for vl in scene.view_layers if vl.depsgraph is not None]
+    n = len(objects)
+    mats = np.empty(16 * n, dtype=np.float32)
+    objects.foreach_get("matrix_world", mats)
+    m = mats.reshape(n, 4, 4).transpose(0, 2, 1).astype(float)
+    m[:, :3, :3] *= s / np.linalg.norm(m[:, :3, :3], axis=1, keepdims=True)
+    for parent, kids in zip(m, children):
+        for child, local in kids:
+            world = parent.copy()
+            world[:3, 3] = parent[:3, :3] @ local + parent[:3, 3]
+            w = Matrix(world.tolist())  # (not the child's own: that would move its location)
+            for dg in graphs:
+                child.evaluated_get(dg).matrix_world = w
+
+
 def near_fit(p, verdict: dict) -> bool:
     """A jammed layout worth polishing: shallow overlaps only, linkers stretched at most
     POLISH_STRETCH times the tolerance."""
@@ -177,6 +227,8 @@ class Inflate:
         self.model, self.p, self.judge, self.scene = model, model.params, judge, scene
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
         self.full = globule_scales(self.p, self.globules.objects)  # None: one domain
+        self.compounds = compound_children(self.globules) if self.p.domain_shape == "spheres" \
+            else None
         n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
         self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
@@ -194,6 +246,8 @@ class Inflate:
         if s == self.scale:
             return
         objects = self.globules.objects
+        if self.compounds is not None:  # before the scale: the parents' places now
+            sync_compound_places(objects)
         if self.full is None:
             objects.foreach_set("scale", np.full(3 * len(objects), s, dtype=np.float32))
         else:  # several domains: each its own fraction s of its own full size
@@ -207,6 +261,8 @@ class Inflate:
         # order the depsgraph's threads ran in, and the bake diverged from the first contact
         # (measured: docs/model/search.md#determinism)
         settle_tags(self.scene)
+        if self.compounds is not None:  # what the next step rebuilds each compound from
+            place_compound_children(self.scene, objects, self.compounds, s)
         self.scale = s
 
     def before_frame(self, scene, frame: int) -> None:

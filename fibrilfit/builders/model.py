@@ -10,7 +10,7 @@ import numpy as np
 from ..model import helix, params as P
 from ..structure import shape
 from . import meshes
-from .start_layout import inflate_layout
+from .start_layout import inflate_layout, spread_layout
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
                     tag)
@@ -264,6 +264,9 @@ class _LayerBuilder:
         self.pfs = p.protofilaments
         if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
             self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
+        elif p.domain_shape == "spheres":  # full size from the start: spread, or they can lock
+            # (docs/model/domain-shapes.md#spheres-start)
+            self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
         self.globule_members = p.globule_members()
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
@@ -503,6 +506,23 @@ def globule_mesh(p: P.Params):
                                    P.GLOBULE_RINGS)
     return meshes.uv_sphere("FibrilFit globule", p.globule_radius, P.GLOBULE_SEGMENTS,
                             P.GLOBULE_RINGS)
+
+
+def spheres_body(p: P.Params):
+    """body(pivots, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
+    world, turned as _turn_globules turns it when its last bond's pivot is at `pivots` and the
+    bond points along `d` (k of each)."""
+    joint = np.asarray(p.domain_joint, float).reshape(3)
+    spheres = np.asarray(p.domain_spheres, float).reshape(-1, 4)
+    out = shape.union_exit(spheres, joint)[0]
+
+    def body(pivots, d):  # (k, 3) each -> (k, spheres, 4)
+        rot = joint_rotations(out, np.asarray(d, float).reshape(-1, 3))
+        centre = np.asarray(pivots, float).reshape(-1, 3) - rot @ joint
+        world = np.einsum("kij,sj->ksi", rot, spheres[:, :3]) + centre[:, None]
+        return np.concatenate([world, np.broadcast_to(spheres[None, :, 3:], world[..., :1].shape)],
+                              axis=-1)
+    return body
 
 
 def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:

@@ -12,6 +12,8 @@ import numpy as np
 from mathutils import Matrix
 
 from ..model import helix
+from .model import euler_xyz
+from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
 MOVING, STATIC = "image", "image_static"  # roles of the two kinds of image
@@ -55,6 +57,10 @@ def build_images(model, scene) -> dict:
              for role, title in COLLECTIONS.items()}
     bodies = scene.rigidbody_world.collection
     made = {MOVING: [], STATIC: []}
+    spheres = {}  # a `spheres` globule's child spheres, by the globule (one pass, not .children)
+    for coll in (c for c in model.root.children_recursive if c.get(TAG) == "globule_spheres"):
+        for child in coll.objects:
+            spheres.setdefault(child.parent.session_uid, []).append(child)
     for m, what, j in todo["static"]:
         source = model.chain[j][0] if what == "anchor" else model.slabs[j]
         ob = _copy(source, STATIC, m, j, 0, colls[STATIC], bodies)
@@ -65,6 +71,13 @@ def build_images(model, scene) -> dict:
         ob = _copy(model.chain[c][i], MOVING, m, c, i, colls[MOVING], bodies)
         ob.rigid_body.kinematic = True
         made[MOVING].append(ob)
+        if ob.rigid_body.collision_shape == "COMPOUND":  # a `spheres` globule's, kept apart
+            # from the images ImageFollower moves (it sets every object of their collection)
+            if "spheres" not in colls:
+                colls["spheres"] = new_collection("FibrilFit image spheres", "image_spheres",
+                                                  colls[MOVING])
+            _copy_pieces(model.chain[c][i], ob, colls["spheres"], bodies, "globule_sphere",
+                         spheres.get(model.chain[c][i].session_uid, ()))
     follower = ImageFollower(model)
     rest = np.array([[np.array(ob.matrix_world.translation) for ob in members]
                      for members in model.chain])
@@ -97,22 +110,28 @@ def _copy(source, role, m, chain, index, coll, bodies):
     return ob
 
 
-def _copy_pieces(source, image, coll, bodies) -> None:
-    """An outline core's solid convex pieces (children of its slab, builders.model) for its
-    image: a COMPOUND shape without them would collide with nothing."""
-    for child in source.children:
-        if child.get(TAG) != "core_piece":
+def _copy_pieces(source, image, coll, bodies, role: str = "core_piece", children=None) -> None:
+    """The children of a COMPOUND body for its image: an outline core's solid convex pieces
+    (children of its slab, builders.model), or a `spheres` globule's spheres (`role`
+    "globule_sphere", each at its place in the globule's frame). A COMPOUND shape without them
+    would collide with nothing. `children`: the source's, when known (else source.children,
+    which scans every object of the file)."""
+    for child in (source.children if children is None else children):
+        if child.get(TAG) != role:
             continue
         ob = tag(bpy.data.objects.new(f"FF image {image[CELL]:+d} {child.name}", child.data),
-                 "core_piece")
+                 role)
         ob[LAYER], ob[INDEX] = child[LAYER], child[INDEX]
         ob.parent = image
         ob.hide_render, ob.display_type = True, "WIRE"
         coll.objects.link(ob)
         bodies.objects.link(ob)
         ob.rigid_body.type = "PASSIVE"
-        ob.rigid_body.collision_shape = "CONVEX_HULL"
-        ob.matrix_world = image.matrix_world
+        ob.rigid_body.collision_shape = child.rigid_body.collision_shape
+        if role == "core_piece":
+            ob.matrix_world = image.matrix_world
+        else:
+            ob.location = child.location
 
 
 def image_collection(model, role: str = MOVING):
@@ -125,8 +144,9 @@ def image_collection(model, role: str = MOVING):
 class ImageFollower:
     """After each frame, moves every kinematic image to S^m of its original: one foreach_set.
 
-    Images are spheres, so only their centres matter to the physics: each gets its original's
-    centre under S^m and the screw's turn (the check and the exports use exact matrices).
+    Spheres' images need only their centres: each gets its original's centre under S^m and the
+    screw's turn (the check and the exports use exact matrices). A real shape's globule images
+    (hull, spheres) also carry their originals' turn (TurnedImages).
     Only images that can touch a cell body now are moved for Bullet (their evaluated copies'
     matrices written, see _write): an image whose place, old and new, lies farther along Z from
     every cell body than its radius plus the largest cell body's plus twice this frame's largest
@@ -150,7 +170,7 @@ class ImageFollower:
         # several domains per chain: the further globules share domain 1's mesh at their own
         # scale (builders.model), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
-        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        radii = helix.body_radii(self.p)  # a real shape's globule: its reach
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
@@ -161,6 +181,7 @@ class ImageFollower:
         self.prev = None
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
         self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
+        self.turned = TurnedImages(model, self) if self.p.domain_shape != "sphere" else None
 
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
@@ -169,7 +190,7 @@ class ImageFollower:
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
         z = positions[..., 2]
-        radii = np.asarray(self.p.chain_radii(), dtype=float)
+        radii = helix.body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
         out = np.zeros(self.count, dtype=bool)
@@ -211,6 +232,8 @@ class ImageFollower:
             loc = np.where(moving[:, None], loc, self.current)
         self.current = loc
         self.scale = self.source_scales()
+        if self.turned is not None:
+            self.turned.update(moving)
         self.tagged.append(int(moving.sum()))
         self.near_now = moving
         self._write(moving)
@@ -228,6 +251,8 @@ class ImageFollower:
         mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c * sc, s * sc, -s * sc, c * sc
         mat[:, 2, 2], mat[:, 3, 3] = sc, 1.0
         mat[:, 3, :3] = loc
+        if self.turned is not None:
+            self.turned.apply(mat, sc)
         objects.foreach_set("matrix_world", mat.ravel())
         # foreach_set tags nothing, so Bullet, which reads the evaluated copies, would never see
         # the move. Tagging an image costs ~30 us of depsgraph work a frame; writing the copy's
@@ -242,6 +267,8 @@ class ImageFollower:
         for dg in self.depsgraphs:
             for k in idx:
                 self.objects[k].evaluated_get(dg).matrix_world = _to_blender(mat[k].T)
+        if self.turned is not None and self.turned.kids:
+            self.turned.write_children(moving, mat, self.depsgraphs)
 
     def after_frame(self, scene, frame, positions) -> None:
         """Move the images to where this frame left their originals. During the frame they
@@ -262,3 +289,59 @@ class ImageFollower:
                               "max_frame": int(lag.argmax()) + 1,
                               "last": round(float(lag[-1]), 4)},
                 "images_moved_per_frame": round(float(np.mean(self.tagged or [0])), 1)}
+
+
+class TurnedImages:
+    """The globule images of a real shape (hull, spheres): each carries S^m of its original's
+    whole turn, not only the screw's, or Bullet would hold the image's hull turned otherwise
+    than the check's (docs/model/domain-shapes.md#periodic)."""
+
+    def __init__(self, model, follower):
+        self.rows = np.flatnonzero(follower.member == model.params.linker)
+        sources = [follower.sources[k] for k in self.rows.tolist()]
+        globules = [c for c in model.root.children if c.get(TAG) == "globules"]
+        self.reader = MatrixReader(sources, globules)
+        angle = follower.rotation[self.rows, 2].astype(float)
+        c, s = np.cos(angle), np.sin(angle)
+        self.screw = np.zeros((len(self.rows), 3, 3))
+        self.screw[:, 0, 0], self.screw[:, 0, 1], self.screw[:, 1, 0] = c, -s, s
+        self.screw[:, 1, 1], self.screw[:, 2, 2] = c, 1.0
+        self.follower = follower
+        self.turn = self.screw.copy()  # until the first update: the screw's turn alone
+        # a `spheres` image's child spheres: (image's index, child, its place in the frame)
+        row = {follower.objects[k].session_uid: k for k in self.rows.tolist()}
+        self.kids = [(row[ob.parent.session_uid], ob, np.append(ob.location[:], 1.0))
+                     for coll in (follower.coll.children if follower.coll is not None else ())
+                     for ob in coll.objects
+                     if ob.parent is not None and ob.parent.session_uid in row]
+
+    def update(self, moving: np.ndarray) -> None:
+        """Read the originals' turns now; the images that move take S^m of them."""
+        if not len(self.rows):
+            return
+        m = self.reader.matrices()[:, :3, :3]
+        own = m / np.linalg.norm(m, axis=1, keepdims=True)  # unit columns: the turn alone
+        now = moving[self.rows]
+        self.turn[now] = self.screw[now] @ own[now]
+        self.follower.rotation[self.rows[now]] = euler_xyz(self.turn[now]).astype(np.float32)
+
+    def write_children(self, moving: np.ndarray, mat: np.ndarray, graphs) -> None:
+        """Keep the evaluated copies of the moved images' child spheres at their place in the
+        image (`mat` as Blender stores it): Blender rebuilds a compound from them when it is
+        tagged or the world is rebuilt, and the depsgraph never moves them (their parents are
+        moved by their evaluated matrices alone). Stale, a rebuild put the spheres where the
+        image was built (docs/model/domain-shapes.md#periodic)."""
+        for k, child, local in self.kids:
+            if moving[k]:
+                world = mat[k].T.astype(float)
+                w = world.copy()
+                w[:, 3] = world @ local
+                m = _to_blender(w)
+                for dg in graphs:
+                    child.evaluated_get(dg).matrix_world = m
+
+    def apply(self, mat: np.ndarray, scale: np.ndarray) -> None:
+        """Put the turns, scaled, into `mat` (n, 4, 4) as Blender stores it (transposed)."""
+        if len(self.rows):
+            mat[self.rows, :3, :3] = (self.turn * scale[self.rows, None, None]
+                                      ).transpose(0, 2, 1)

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..structure.shape import directions
+
 FAN_AXIAL = 0.9       # tan of the largest tilt along the fibril axis (chains at the ends): ~42°
 FAN_SIDE = 0.6        # tan of the sideways tilt, alternating layer by layer: ~31°
 WALK_NOISE = 0.25     # spread of each step's direction about the chain's fan direction (rad)
@@ -83,5 +85,70 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     bond = _unit(pos[:, 1:] - pos[:, :-1])
     lever = radii[:-1].copy()
     lever[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
+    pivots = pos[:, :-1] + lever[None, :, None] * bond
+    return pos, pivots
+
+
+SPREAD_DIRECTIONS = 400  # candidate directions for each chain of spread_layout
+SPREAD_OUTWARD = 0.5     # each keeps at least this cosine with the chain's outward direction
+SPREAD_ROUNDS = 3        # times each chain is placed again against all the others
+
+
+def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Start positions and bond pivots (as inflate_layout) for full-size real-shaped globules
+    (`spheres` under the tutorial protocol): each chain straight along the candidate direction
+    that leaves its globule clear of the others, or least deep in them. Chains are placed in
+    order against those before them, then each is placed again against all the others,
+    `rounds` times. The first bond points straight out, as in inflate_layout.
+
+    `body(pivots, d)` gives the globule's covering spheres [x, y, z, r] in the world, (k, s, 4),
+    when its last bond's pivot is at pivots (k, 3) and the bond points along d (k, 3)
+    (builders.model turns it so).
+    Deterministic: no seed (docs/model/domain-shapes.md#spheres-start)."""
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    lengths = np.asarray(p.rest_lengths(), dtype=float)
+    lever = np.asarray(p.chain_radii(), dtype=float)[:-1].copy()
+    lever[-1] = p.joint_lever
+    u = fan_frames(rest)[0]
+    cand = directions(SPREAD_DIRECTIONS)
+    # member i >= 2 along d after the first bond (straight out): first + reach[i - 1]·d
+    reach = np.concatenate([[0.0], np.cumsum(lengths[1:])])
+    first = rest[:, 0] + lengths[0] * u
+    options = []  # per chain: (directions, their globules' spheres (k, s, 4))
+    for c in range(n):
+        dirs = np.vstack([u[c], cand[cand @ u[c] >= SPREAD_OUTWARD]])  # rest direction first
+        if m > 2:
+            pivot = first[c][None] + (reach[-2] + lever[-1]) * dirs
+        else:
+            pivot = rest[c, 0][None] + lever[-1] * dirs
+        options.append((dirs, body(pivot, dirs)))
+    choice = np.zeros(n, dtype=int)
+
+    def best(c, others):
+        if not len(others):
+            return 0
+        s = options[c][1]  # (k, spheres, 4)
+        gap = (np.linalg.norm(s[:, :, None, :3] - others[None, None, :, :3], axis=-1)
+               - s[:, :, None, 3] - others[None, None, :, 3]).min(axis=(1, 2))
+        return int(np.argmax(gap >= 0.0)) if (gap >= 0.0).any() else int(np.argmax(gap))
+
+    for c in range(n):
+        choice[c] = best(c, np.concatenate([options[k][1][choice[k]] for k in range(c)])
+                         if c else np.empty((0, 4)))
+    for _ in range(rounds):
+        for c in range(n):
+            others = [options[k][1][choice[k]] for k in range(n) if k != c]
+            choice[c] = best(c, np.concatenate(others) if others else np.empty((0, 4)))
+    pos = np.empty_like(rest)
+    pos[:, 0] = rest[:, 0]
+    d = np.array([options[c][0][choice[c]] for c in range(n)])
+    if m > 2:
+        pos[:, 1] = first
+        pos[:, 2:] = first[:, None] + reach[None, 1:, None] * d[:, None]
+    else:
+        pos[:, 1] = rest[:, 0] + lengths[0] * d
+    bond = _unit(pos[:, 1:] - pos[:, :-1])
     pivots = pos[:, :-1] + lever[None, :, None] * bond
     return pos, pivots

@@ -117,7 +117,35 @@ def chain_reach(p) -> np.ndarray:
     stretch tolerance) of the anchor; its surface one radius further.
     """
     x = np.asarray(p.chain_x(), dtype=float)
-    return (x - x[0]) * (1.0 + p.stretch_tolerance) + np.asarray(p.chain_radii())
+    return (x - x[0]) * (1.0 + p.stretch_tolerance) + body_radii(p)
+
+
+# A hull's points lie r/0.934 + 0.01 Å from their atom's centre (structure/shape.py, grow) and
+# Bullet's surface 0.1 Å beyond them (builders/model.py, HULL_MARGIN): 1/0.93 and 0.11 Å bound
+# both (docs/model/domain-shapes.md#periodic).
+HULL_REACH_FACTOR, HULL_REACH_SLACK = 1.0 / 0.93, 0.11
+
+
+def globule_reach(p) -> float:
+    """How far the globule's body reaches from its centre (Å): the sphere's radius, or a bound
+    of a real shape's (hull: its atoms grown as its points are; spheres: the farthest sphere)."""
+    if p.domain_shape == "hull" and p.domain_atoms is not None:
+        a = np.asarray(p.domain_atoms, dtype=float).reshape(-1, 4)
+        return float((np.linalg.norm(a[:, :3], axis=1) + a[:, 3] * HULL_REACH_FACTOR).max()
+                     + HULL_REACH_SLACK)
+    if p.domain_shape == "spheres" and p.domain_spheres is not None:
+        s = np.asarray(p.domain_spheres, dtype=float).reshape(-1, 4)
+        return float((np.linalg.norm(s[:, :3], axis=1) + s[:, 3]).max())
+    return p.globule_radius
+
+
+def body_radii(p) -> np.ndarray:
+    """How far each chain member's body reaches from its centre (Å): chain_radii, with a real
+    shape's globule reaching globule_reach (one domain a chain)."""
+    radii = np.asarray(p.chain_radii(), dtype=float)
+    if p.domain_shape != "sphere":
+        radii[p.linker] = max(radii[p.linker], globule_reach(p))
+    return radii
 
 
 def body_reach(p) -> float:

@@ -741,14 +741,6 @@ def _check_shape(p: Params) -> None:
     if need and (getattr(p, need) is None or p.domain_joint is None):
         raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
                                          f"FILE) to take its shape and joint from")
-    if p.domain_shape != "sphere" and p.periodic:
-        raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with periodic yet: a "
-                                         f"cell's images follow only their originals' centres "
-                                         f"(spheres); use --layers")
-    if p.domain_shape == "spheres" and p.protocol == "inflate":
-        raise ParamError("domain_shape", "spheres cannot be grown by the inflate protocol: "
-                                         "Bullet does not scale a compound's child spheres; use "
-                                         "hull, or --protocol tutorial")
     if p.domain_shape != "sphere" and p.domain_diameters:
         # docs/guide/atoms-and-domains.md#shapes-of-several-domains: measured, the outgoing
         # linker would leave a straight start layout sideways (61° for GFP, 96° for ubiquitin)

@@ -20,9 +20,10 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 2  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24)
+MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+# 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "8e2c8f1d6e6e141fa850f66894252e6365cc173fa38af9b36ee3d0e7de92945c"
+MODEL_SOURCES_SHA256 = "1385f0d4a652f2b29e7d746e9c96f7bb259ee90aa6ea5d165386cec9f5071d40"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -65,7 +65,29 @@ def test_params_take_a_shape_only_with_its_geometry():
     p = P.make_params(domain_shape="hull", **model_values(None, dom, shape="hull"))
     assert p.globule_offset == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
     assert P.make_params(**p.to_dict()) == p  # the case file / sweep round trip
-    with pytest.raises(P.ParamError, match="^domain_shape: hull cannot be used with periodic"):
-        p.replace(periodic=20)
+    assert p.replace(periodic=20).periodic == 20  # a cell's images carry the whole turn
+    spheres = P.make_params(domain_shape="spheres", **model_values(None, dom, shape="spheres"))
+    assert spheres.replace(protocol="inflate").protocol == "inflate"  # the children grow
     with pytest.raises(P.ParamError, match="^domain_atoms: must be a list"):
         p.replace(domain_atoms=[[1, 2, 3]])
+
+
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_a_real_shapes_reach_holds_its_body(shape):
+    """A cell's images are built and moved by the shape's reach (helix.globule_reach): it holds
+    the hull's points plus Bullet's margin (the spheres), and exceeds GFP's Rg sphere
+    (docs/model/domain-shapes.md#periodic)."""
+    from fibrilfit.model import helix
+    from fibrilfit.structure import shape as sh
+    dom = measure_domain(DATA / "1gfl.pdb.gz")
+    p = P.make_params(domain_shape=shape, **model_values(None, dom, shape=shape))
+    reach = helix.globule_reach(p)
+    if shape == "hull":
+        far = np.linalg.norm(sh.hull_points(p.domain_atoms), axis=1).max() + 0.1  # HULL_MARGIN
+        assert far <= reach < far + 0.2
+    else:
+        s = np.asarray(p.domain_spheres)
+        assert reach == pytest.approx((np.linalg.norm(s[:, :3], axis=1) + s[:, 3]).max())
+    assert reach > p.globule_radius + 5.0
+    assert helix.body_radii(p)[p.linker] == reach
+    assert list(helix.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()  # the sphere's: as before

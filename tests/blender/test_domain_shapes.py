@@ -164,14 +164,7 @@ def test_spheres_grow_under_inflate_to_their_covering_geometry(scene, ff):
                      grow_frames=20, grow_start=0.3, regrow_cycles=0, hold_frames=5,
                      gravity=100.0)  # strong: the globule swings far from where it started
     model = ff.pipeline.build(p, scene)
-    mesh = bpy.data.meshes.new("probe")
-    mesh.from_pydata([(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in directions(200)], [], [])
-    probe = bpy.data.objects.new("probe", mesh)  # a 0.5 Å ball, kinematic, far away
-    scene.collection.objects.link(probe)
-    scene.rigidbody_world.collection.objects.link(probe)
-    probe.rigid_body.type, probe.rigid_body.kinematic = "PASSIVE", True
-    probe.rigid_body.collision_shape = "SPHERE"
-    probe.location = (0.0, 0.0, 5000.0)
+    probe = _probe(scene)
     s = np.array(p.domain_spheres, float)
     seen = []
 
@@ -236,14 +229,7 @@ def test_a_cells_images_carry_the_whole_turn(scene, ff, shape):
               if ob["fibrilfit_index"] == p.linker]  # the globules' images
     want = {"hull": "CONVEX_HULL", "spheres": "COMPOUND"}[shape]
     assert images and images[0].rigid_body.collision_shape == want
-    mesh = bpy.data.meshes.new("probe")
-    mesh.from_pydata([(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in directions(200)], [], [])
-    probe = bpy.data.objects.new("probe", mesh)  # a 0.5 Å ball, kinematic, far away
-    scene.collection.objects.link(probe)
-    scene.rigidbody_world.collection.objects.link(probe)
-    probe.rigid_body.type, probe.rigid_body.kinematic = "PASSIVE", True
-    probe.rigid_body.collision_shape = "SPHERE"
-    probe.location = (0.0, 0.0, 5000.0)
+    probe = _probe(scene)
     verts = mesh_arrays(images[0].data)[0]
     spheres = np.asarray(p.domain_spheres, float) if shape == "spheres" else None
 
@@ -352,3 +338,18 @@ def test_spheres_from_the_tutorial_start_do_not_start_overlapping(scene, ff):
     sphere = ff.pipeline.build(q, scene)
     x = np.array([np.array(g.matrix_world)[:3, 3] for g in sphere.globules])
     assert np.allclose(np.hypot(x[:, 0], x[:, 1]), q.chain_x()[-1], atol=1e-3)
+
+
+def _probe(scene):
+    """A 0.5 Å ball, a kinematic rigid body parked far away, for convex_sweep_test probes."""
+    import bpy
+    from fibrilfit.structure.shape import directions
+    mesh = bpy.data.meshes.new("probe")
+    mesh.from_pydata([(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in directions(200)], [], [])
+    probe = bpy.data.objects.new("probe", mesh)
+    scene.collection.objects.link(probe)
+    scene.rigidbody_world.collection.objects.link(probe)
+    probe.rigid_body.type, probe.rigid_body.kinematic = "PASSIVE", True
+    probe.rigid_body.collision_shape = "SPHERE"
+    probe.location = (0.0, 0.0, 5000.0)
+    return probe

@@ -96,8 +96,10 @@ class Walk:
         lo = max([m for m in misses if m < hi], default=0)
         if lo >= self.max_linker:  # none up to the cap: the cap itself gets all R
             return None if self._complete(self.max_linker) else (self.max_linker, full)
-        if hi - lo <= 1:  # hi only known: measure it
-            return (hi, self.screen) if hi <= self.max_linker else None
+        if hi - lo <= 1:  # hi only known: measure it (all R once a screen missed there)
+            if hi > self.max_linker:
+                return None
+            return (hi, full if hi in self.tried else self.screen)
         return (self._between(lo, hi, bool(fits)), self.screen)
 
     def _between(self, lo: int, hi: float, measured_fit: bool) -> int:

@@ -212,3 +212,12 @@ def test_a_known_fit_the_walk_cannot_reproduce_falls_back_to_stepping_up():
     w = minimal.Walk(30.0, 5, max_linker=12, known_fit=6)
     order = _walk(w, 9)
     assert order[:2] == [5, 6] and w.minimal == 9 and w.tried[8] == (0, 3)
+
+
+def test_a_known_fit_that_a_screen_misses_is_measured_in_full_before_it_is_dropped():
+    """The known fit at 6 fits only with seed 3: the screen (seeds 0-1) misses it, all five find
+    it; the walk must neither loop on the screen nor drop the known fit after it."""
+    w = minimal.Walk(30.0, 5, max_linker=12, known_fit=6, restarts=5)
+    asked = _screened(w, 6, p_fit=lambda L, s: L >= 7 or s == 3)
+    assert (6, 5) in asked and w.minimal == 6 and w.tried[5] == (0, 5)
+    assert len(asked) == len(set(asked))  # nothing asked twice

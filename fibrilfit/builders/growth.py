@@ -20,6 +20,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..geom.rigid import euler_xyz
 from ..model import helix
 from .scene import INDEX, TAG
 
@@ -178,7 +179,6 @@ def sync_compound_places(objects) -> None:
     Tagged, a COMPOUND body is rebuilt from its parent's own location and rotation and its
     children's world matrices; left at the start layout, the children land where the body
     started, not where it is (measured: docs/model/domain-shapes.md#compound-growth)."""
-    from .model import euler_xyz  # (model imports this module through physics and hooks)
     n = len(objects)
     mats = np.empty(16 * n, dtype=np.float32)
     objects.foreach_get("matrix_world", mats)

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
+from ..geom.rigid import euler_xyz
 from ..model import helix, params as P
 from ..structure import shape
 from . import meshes
@@ -543,14 +544,6 @@ def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:
         perp /= np.linalg.norm(perp)
         rot[opposite] = 2 * np.outer(perp, perp) - np.eye(3)
     return rot
-
-
-def euler_xyz(rot: np.ndarray) -> np.ndarray:
-    """Blender's XYZ Euler angles (n, 3) of rotations (n, 3, 3): R = Rz·Ry·Rx."""
-    beta = -np.arcsin(np.clip(rot[:, 2, 0], -1.0, 1.0))
-    alpha = np.arctan2(rot[:, 2, 1], rot[:, 2, 2])
-    gamma = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
-    return np.column_stack([alpha, beta, gamma])
 
 
 def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:

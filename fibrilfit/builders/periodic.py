@@ -11,8 +11,8 @@ import bpy
 import numpy as np
 from mathutils import Matrix
 
+from ..geom.rigid import euler_xyz
 from ..model import helix
-from .model import euler_xyz
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 

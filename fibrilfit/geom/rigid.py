@@ -58,3 +58,11 @@ def wrap(angle: float) -> float:
     """Angle in (-pi, pi]."""
     a = math.remainder(angle, 2 * math.pi)
     return math.pi if a == -math.pi else a
+
+
+def euler_xyz(rot: np.ndarray) -> np.ndarray:
+    """Blender's XYZ Euler angles (n, 3) of rotations (n, 3, 3): R = Rz·Ry·Rx."""
+    beta = -np.arcsin(np.clip(rot[:, 2, 0], -1.0, 1.0))
+    alpha = np.arctan2(rot[:, 2, 1], rot[:, 2, 2])
+    gamma = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
+    return np.column_stack([alpha, beta, gamma])

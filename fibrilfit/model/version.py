@@ -23,7 +23,7 @@ import tomllib
 MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "1385f0d4a652f2b29e7d746e9c96f7bb259ee90aa6ea5d165386cec9f5071d40"
+MODEL_SOURCES_SHA256 = "1c33a8ec62858cbc64ea0e380a8bb3da0cf8823582e37365150f1e1e37471bc9"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -113,6 +113,8 @@ class DaskExecutor:
     single-threaded processes. Each Dask worker process hands its jobs, one at a time, to a bpy
     subprocess of its own (pool.run_here), so bpy never runs in Dask's threads."""
 
+    KEEP_EVERY = 10.0  # seconds a result is waited for between keep() calls
+
     def __init__(self, workers: int, *, scheduler: str | None = None,
                  timeout: float | None = None):
         self.size, self.scheduler, self.timeout = workers, scheduler, timeout
@@ -156,15 +158,36 @@ class DaskExecutor:
         self.futures[future.key] = job
         self.done.add(future)
 
+    def keep(self) -> None:
+        """Called while a result is awaited: nothing to look after here (SlurmExecutor replaces
+        lost jobs)."""
+
+    def next_done(self):
+        return next(self.done)
+
     def wait(self) -> tuple[dict, dict]:
-        future = next(self.done)
+        future = self.next_done()
         job = self.futures.pop(future.key)
-        try:
-            reply = future.result()
-        except Exception as exc:  # KilledWorker, a lost connection, ...: the runner retries
-            reply = {"id": job["id"], "ok": False, "error": f"{type(exc).__name__}: {exc}"}
+        reply = self.reply(future, job)
         future.release()
         return job, reply
+
+    def reply(self, future, job: dict) -> dict:
+        """The future's reply, waited for KEEP_EVERY seconds at a time with keep() between.
+        A finished future is lost again when the worker holding its result goes before the
+        result is fetched (a cancelled SLURM job), and Dask computes it again on the workers
+        left; a wait that blocked in result() could not replace the jobs that rerun needs, and
+        the sweep waited forever with none (measured in CI, 2026-11-25:
+        docs/guide/cluster.md#lost-results)."""
+        while True:
+            try:
+                return future.result(timeout=self.KEEP_EVERY)
+            except TimeoutError as exc:
+                if future.status == "error":  # the task itself raised it
+                    return {"id": job["id"], "ok": False, "error": f"TimeoutError: {exc}"}
+                self.keep()
+            except Exception as exc:  # KilledWorker, a lost connection, ...: the runner retries
+                return {"id": job["id"], "ok": False, "error": f"{type(exc).__name__}: {exc}"}
 
 
 class SlurmExecutor(DaskExecutor):
@@ -267,13 +290,17 @@ class SlurmExecutor(DaskExecutor):
               f"submitted {len(lost)} replacement{'s' * (len(lost) > 1)}", file=sys.stderr)
         return len(lost)
 
-    def wait(self) -> tuple[dict, dict]:
+    def keep(self) -> None:
+        """The watchdog, at most every KEEP_EVERY seconds."""
+        if time.monotonic() - self.kept > self.KEEP_EVERY:
+            self.watch()
+            self.kept = time.monotonic()
+
+    def next_done(self):
         while not self.done.has_ready():
-            if time.monotonic() - self.kept > self.KEEP_EVERY:
-                self.watch()
-                self.kept = time.monotonic()
+            self.keep()
             time.sleep(0.1)
-        return super().wait()
+        return next(self.done)
 
 
 def make_executor(args, *, out=None, runs: int = 0, log_path=None):

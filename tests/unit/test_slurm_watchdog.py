@@ -112,6 +112,75 @@ def test_jobs_that_never_start_a_worker_stop_the_sweep(executor):
         ex.watch()
 
 
+class LostFuture:
+    """A future that as_completed gave out as finished, then lost with its worker's job: Dask
+    computes it again, so it finishes only once a job runs it (here: once the watchdog has
+    replaced the lost jobs)."""
+
+    key, status = "fibrilfit-0-0-x", "lost"
+
+    def __init__(self, cluster):
+        self.cluster, self.waits = cluster, 0
+
+    def result(self, timeout=None):
+        self.waits += 1
+        if not {"w3", "w4"} & set(self.cluster.workers):
+            raise TimeoutError  # what Future.result(timeout) raises while it is computed again
+        self.status = "finished"
+        return {"id": 0, "ok": True, "result": "rerun"}
+
+    def release(self):
+        pass
+
+
+class Done:
+    def __init__(self, future):
+        self.future = future
+
+    def has_ready(self):
+        return True
+
+    def __next__(self):
+        return self.future
+
+
+def lost_result(ex, monkeypatch):
+    future = LostFuture(ex.cluster)
+    ex.done, ex.futures = Done(future), {future.key: {"id": 0, "attempt": 0}}
+    monkeypatch.setattr(ex, "KEEP_EVERY", 0.0)
+    return future
+
+
+def test_a_result_lost_after_it_finished_is_waited_for_with_the_watchdog(executor, monkeypatch):
+    """CI, 2026-11-25: every job cancelled just after a run finished; its result went with its
+    worker, and a wait blocked in Future.result() never replaced the jobs its rerun needed."""
+    ex, alive = executor
+    future = lost_result(ex, monkeypatch)
+    alive["ids"] = set()  # scancel of every job
+    job, reply = ex.wait()
+    assert reply == {"id": 0, "ok": True, "result": "rerun"} and job["id"] == 0
+    assert future.waits == 2 and ex.replaced == 2  # one timed-out wait, the watchdog, the rerun
+
+
+def test_a_lost_result_with_sbatch_refusing_stops_in_one_line(executor, monkeypatch):
+    ex, alive = executor
+    lost_result(ex, monkeypatch)
+    alive["ids"] = set()
+    ex.cluster.refuse = "sbatch: error: Batch job submission failed: Required partition not " \
+                        "available (inactive or drain)"
+    with pytest.raises(executors.SweepError, match="SLURM refused the replacement jobs"):
+        ex.wait()
+
+
+def test_an_error_the_task_raised_is_its_reply(executor, monkeypatch):
+    """A TimeoutError raised by the run itself is its reply, not a reason to wait again."""
+    ex, _ = executor
+    future = lost_result(ex, monkeypatch)
+    future.status = "error"
+    job, reply = ex.wait()
+    assert reply["ok"] is False and reply["error"].startswith("TimeoutError")
+
+
 def test_alive_jobs_reads_squeue(tmp_path, monkeypatch):
     squeue = tmp_path / "squeue"
     squeue.write_text("#!/bin/sh\nprintf '11 RUNNING\\n12 PENDING\\n13 COMPLETING\\n"

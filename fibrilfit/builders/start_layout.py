@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geom.rigid import joint_rotations, turn_about
+from ..structure import shape
 from ..structure.shape import directions
 
 FAN_AXIAL = 0.9       # tan of the largest tilt along the fibril axis (chains at the ends): ~42°
@@ -152,3 +154,195 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
     bond = _unit(pos[:, 1:] - pos[:, :-1])
     pivots = pos[:, :-1] + lever[None, :, None] * bond
     return pos, pivots
+
+
+# ---- several real-shaped domains per chain: a bent start layout --------------------------------
+# (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
+EXIT_STRAIGHT = 2    # bonds the outgoing linker runs along its exit's outward normal
+EXIT_TURN = 2        # bonds over which it then turns towards the chain's heading
+EXIT_OUTWARD = 0.3   # every later bond keeps at least this cosine with the exit's normal
+TWISTS = 12          # turns of the domains about their incoming bond tried (30° apart)
+CLEAR_DIRECTIONS = 400  # directions a separating plane is looked for in (clearance)
+
+
+def domain_terminals(p) -> list[dict]:
+    """Per domain of a real-shaped chain (0 nearest the core): its shape rows [x, y, z, r]
+    in its body frame, each row's reach beyond its centre (hull: the grown points'; spheres:
+    the radius), the incoming joint and the outward normal of the surface nearest it, and
+    (all but the last) the exit and its normal (structure.shape.outward; union_exit for the
+    non-convex union of spheres)."""
+    out = []
+    joints, exits = p.domain_joints(), list(p.domain_exits or ())
+    for k, joint in enumerate(joints):
+        rows = p.domain_rows(k)
+        if p.domain_shape == "hull":
+            normal = lambda q: shape.outward(rows, q)  # noqa: E731
+            reach = rows[:, 3] + shape.grow(rows[:, 3])
+        else:
+            normal = lambda q: shape.union_exit(rows, q)[0]  # noqa: E731
+            reach = rows[:, 3]
+        entry = {"rows": rows[:, :3], "reach": reach, "joint": joint, "joint_out": normal(joint)}
+        if k < len(exits):
+            e = np.asarray(exits[k], float)
+            entry.update(exit=e, exit_out=normal(e))
+        out.append(entry)
+    return out
+
+
+def _turn_towards(rot, d, normal, heading):
+    """rot (n, 3, 3) turned about d (n, 3) so that rot @ normal leans as far as it can towards
+    heading (n, 3)."""
+    n0 = rot @ normal
+    perp = n0 - (n0 * d).sum(1, keepdims=True) * d
+    want = heading - (heading * d).sum(1, keepdims=True) * d
+    ok = (np.linalg.norm(perp, axis=1) > 1e-6) & (np.linalg.norm(want, axis=1) > 1e-6)
+    angle = np.where(ok, np.arctan2((np.cross(perp, want) * d).sum(1), (perp * want).sum(1)), 0.0)
+    return turn_about(d, angle) @ rot
+
+
+def bent_layout(p, rest: np.ndarray, wanted: np.ndarray, frames: list[dict], twist: float = 0.0
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Start positions (n, m, 3), bond pivots (n, m - 1, 3) and each domain's turn
+    (n, D, 3, 3) of chains of real-shaped domains, bond i pointing along wanted[:, i] (unit)
+    except where a domain bends the chain:
+
+    - a domain's incoming bond ends at its joint (its terminal CA, one residue spacing from the
+      bead before it, the bond's pivot), and the domain is turned so that the surface nearest
+      the joint faces back along the bond (as one domain: builders.model), then about that
+      bond so that its exit's normal leans towards the chain's heading, plus `twist`;
+    - the outgoing linker leaves from the exit (the pivot), one residue spacing to its first
+      bead, along the exit's outward normal for EXIT_STRAIGHT bonds, then turns towards the
+      heading over EXIT_TURN bonds, never below EXIT_OUTWARD along the normal, so that its
+      beads move away from the surface they left."""
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    members = p.globule_members()
+    dom_of = {i: k for k, i in enumerate(members)}
+    spacing, bead = p.residue_spacing, p.residue_radius
+    pos = np.empty_like(rest)
+    pos[:, 0] = rest[:, 0]
+    pivots = np.empty((n, m - 1, 3))
+    rot = np.tile(np.eye(3), (n, len(members), 1, 1))
+    normal, since = None, 0
+    for i in range(m - 1):
+        h = wanted[:, i]
+        if i in dom_of:  # leaving a domain at its exit
+            f, r = frames[dom_of[i]], rot[:, dom_of[i]]
+            start = pos[:, i] + r @ f["exit"]
+            normal, since = r @ f["exit_out"], 0
+            pivots[:, i] = start
+        else:
+            start = pos[:, i]
+        if normal is None:
+            d = h
+        else:
+            w = min(1.0, max(0.0, (since - EXIT_STRAIGHT + 1) / EXIT_TURN))
+            d = _unit((1.0 - w) * normal + w * h)
+            low = (d * normal).sum(1) < EXIT_OUTWARD
+            while low.any():
+                d[low] = _unit(d[low] + 0.5 * normal[low])
+                low = (d * normal).sum(1) < EXIT_OUTWARD
+            since += 1
+        if i + 1 in dom_of:  # into a domain at its joint
+            k = dom_of[i + 1]
+            f = frames[k]
+            joint = start + spacing * d
+            r = joint_rotations(f["joint_out"], d)
+            if "exit" in f:
+                ahead = wanted[:, i + 1] if i + 1 < m - 1 else h
+                r = turn_about(d, twist) @ _turn_towards(r, d, f["exit_out"], ahead)
+            rot[:, k] = r
+            pos[:, i + 1] = joint - r @ f["joint"]
+            pivots[:, i] = joint
+            normal = None
+        else:
+            pos[:, i + 1] = start + spacing * d
+            if i not in dom_of:
+                pivots[:, i] = start + bead * d
+    return pos, pivots, rot
+
+
+def _support(points, reach, u):
+    """max over rows of x·u + reach, per direction u (k, 3): a convex body's support."""
+    return (points @ u.T + reach[:, None]).max(axis=0)
+
+
+def chain_clearance(p, pos: np.ndarray, rot: np.ndarray, frames: list[dict]) -> np.ndarray:
+    """Per chain, the smallest gap (Å) between two of its bodies that are not bonded: domain
+    with domain, domain with anchor or bead. A gap is the widest of CLEAR_DIRECTIONS planes
+    between the two bodies' convex hulls (and the line of their centres): positive proves them
+    apart; zero or less means no separating plane was found among them."""
+    members = p.globule_members()
+    dom_of = {i: k for k, i in enumerate(members)}
+    u = directions(CLEAR_DIRECTIONS)
+    n, m, _ = pos.shape
+    beads = [i for i in range(m) if i not in dom_of]
+    gaps = np.full(n, np.inf)
+    for c in range(n):
+        world = []
+        for k, i in enumerate(members):
+            f = frames[k]
+            pts = f["rows"] @ rot[c, k].T + pos[c, i]
+            world.append((pts, f["reach"]))
+        for a, ia in enumerate(members):
+            pa, ra = world[a]
+            for b in range(a + 1, len(members)):
+                pb, rb = world[b]
+                axis = _unit(pos[c, members[b]] - pos[c, ia])[None]
+                dirs = np.vstack([u, axis])
+                gap = (-_support(pb, rb, -dirs) - _support(pa, ra, dirs)).max()
+                gaps[c] = min(gaps[c], gap)
+            near = [i for i in beads if abs(i - ia) > 1]  # bonded neighbours do not collide
+            if near:
+                centres = pos[c, near]
+                s = _support(pa, ra, u)  # (dirs,)
+                gap = (-(centres @ (-u).T) - p.residue_radius - s[None]).max(axis=1)
+                gaps[c] = min(gaps[c], float(gap.min()))
+    return gaps
+
+
+def real_chain_layout(p, rest: np.ndarray, wanted: np.ndarray | None = None
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """bent_layout with the turn about each domain's incoming bond that leaves every chain
+    clear of itself: the best-leaning turn first, then TWISTS - 1 others 30° apart; a chain
+    that none clears takes the turn with the widest gap. `wanted`: each bond's direction,
+    default every bond straight out (the tutorial's rest direction, anchor to the outermost
+    member). Returns positions, pivots and the domains' turns (n, D, 3, 3)."""
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    if wanted is None:
+        wanted = np.repeat(fan_frames(rest)[0][:, None], m - 1, axis=1)
+    frames = domain_terminals(p)
+    best, best_gap = None, np.full(n, -np.inf)
+    for t in range(TWISTS):
+        layout = bent_layout(p, rest, wanted, frames, twist=2 * np.pi * t / TWISTS)
+        gap = chain_clearance(p, layout[0], layout[2], frames)
+        if best is None:
+            best = [a.copy() for a in layout]
+        better = (best_gap <= 0) & (gap > best_gap)
+        for a, b in zip(best, layout):
+            a[better] = b[better]
+        best_gap = np.where(better, gap, best_gap)
+        if (best_gap > 0).all():
+            break
+    return tuple(best)
+
+
+def walk_directions(p, rest: np.ndarray, seed: int) -> np.ndarray:
+    """The inflate protocol's bond directions (n, m - 1, 3), drawn as inflate_layout draws
+    them (the same stream for the same seed), for the bent layout of real-shaped domains."""
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    rng = np.random.default_rng([int(seed), SEED_SALT])
+    u = fan_frames(rest)[0]
+    fan = fan_directions(rest, rng, periodic=bool(getattr(p, "periodic", 0)))
+    out = np.empty((n, m - 1, 3))
+    for i in range(1, m):
+        w = min(1.0, (i - 1) / 2.0)
+        d = _unit((1.0 - w) * u + w * fan + WALK_NOISE * w * rng.normal(size=(n, 3)))
+        low = (d * u).sum(axis=1) < MIN_OUTWARD
+        while low.any():
+            d[low] = _unit(d[low] + 0.5 * u[low])
+            low = (d * u).sum(axis=1) < MIN_OUTWARD
+        out[:, i - 1] = d
+    return out

@@ -11,7 +11,8 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     for key, m in (("fibril", fibril), ("domain", domain)):
         if m is not None:
             out[key] = {"file": m.file, "sha256": m.sha256, "measured": m.to_dict()}
-    out["applied"] = {k: ("[... %d rows]" % len(v) if k in ("domain_atoms", "domain_spheres")
+    out["applied"] = {k: ("[... %d rows]" % len(v) if k in ("domain_atoms", "domain_spheres",
+                                                             "further_atoms", "further_spheres")
                           else v) for k, v in applied.items()}
     out["overridden"] = sorted(overridden)  # measured, but an explicit option set the value
     out["not_in_model"] = not_in_model  # measured, but this model has no such parameter

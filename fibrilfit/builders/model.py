@@ -342,7 +342,9 @@ class _LayerBuilder:
         p = self.p
         c = k * self.pfs + j
         role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
-        domain = self.globule_members.index(i) if role == "globule" else 0
+        # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
+        domain = (self.globule_members.index(i) if role == "globule" and p.several_shapes
+                  else 0)
         mesh = self._shared_mesh(("globule" if not domain else f"globule {domain}")
                                  if role == "globule" else "residue")
         shape = GLOBULE_SHAPES[p.domain_shape] if role == "globule" else "SPHERE"

@@ -138,6 +138,15 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
     e0 = np.ptp([x.co[:] for x in model.globules[0].data.vertices], axis=0)
     e1 = np.ptp([x.co[:] for x in model.globules[1].data.vertices], axis=0)
     assert e1.max() > e0.max() + 10
+    # the sidebar's joined copy (for Mesh Analysis) is each globule's own mesh, placed
+    from fibrilfit.ui.joined import join_globules
+    joined = join_globules(model).data
+    assert len(joined.vertices) == sum(len(ob.data.vertices) for ob in model.globules)
+    co = np.array([v.co[:] for v in joined.vertices])
+    n0 = len(model.globules[0].data.vertices)
+    first = _world(np.array(model.globules[1].matrix_world),
+                   np.array([v.co[:] for v in model.globules[1].data.vertices]))
+    assert np.allclose(co[n0:n0 + len(first)], first, atol=1e-3)
 
 
 @pytest.mark.parametrize("shape, protocol", [("hull", "tutorial"), ("spheres", "tutorial"),

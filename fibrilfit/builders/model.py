@@ -11,7 +11,8 @@ from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, params as P
 from ..structure import shape
 from . import meshes
-from .start_layout import inflate_layout, real_chain_layout, spread_layout, walk_directions
+from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
+                           spread_layout, walk_directions)
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
                     tag)
@@ -168,6 +169,7 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
 def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> Model:
     """Validate `p`, remove any previous model, and make the model's empty collections and world."""
     p = P.validate(p, force=force)
+    check_real_start(p)
     check_world_free(scene)
     clear_model(scene)
     rbw = ensure_world(scene)
@@ -178,6 +180,25 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
     rbw.constraints = tag(bpy.data.collections.new("FibrilFit constraints"), "rigid_constraints")
     return Model(root, p, [], [], [])
+
+
+def check_real_start(p: P.Params) -> None:
+    """Several real-shaped domains at full size from frame 1 (the tutorial protocol): refuse,
+    before anything is built, a chain that no turn of its domains lays out clear of itself
+    (start_layout.real_chain_layout): the covering spheres bulge past the atoms by up to 6.4 Å
+    (docs/model/domain-shapes.md#spheres), and one residue between two domains cannot hold
+    them apart. Under inflate the domains start small (growth.start_scale)."""
+    if not p.several_shapes or p.protocol != "tutorial":
+        return
+    pos, _, rot = real_chain_layout(p, chain_positions(p)[:1])
+    gap = float(chain_clearance(p, pos, rot, domain_terminals(p))[0])
+    if gap <= 0:
+        raise P.ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
+                                            f"between the domains cannot start the chain clear "
+                                            f"of itself with {p.domain_shape} ({-gap:.1f} Å "
+                                            f"into each other at the best of its turns): give "
+                                            f"more residues, or --protocol inflate (the "
+                                            f"domains start small)")
 
 
 def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:

@@ -269,15 +269,17 @@ def _support(points, reach, u):
 
 def chain_clearance(p, pos: np.ndarray, rot: np.ndarray, frames: list[dict]) -> np.ndarray:
     """Per chain, the smallest gap (Å) between two of its bodies that are not bonded: domain
-    with domain, domain with anchor or bead. A gap is the widest of CLEAR_DIRECTIONS planes
-    between the two bodies' convex hulls (and the line of their centres): positive proves them
-    apart; zero or less means no separating plane was found among them."""
+    with domain, domain with anchor or bead. For hulls a gap is the widest of CLEAR_DIRECTIONS
+    planes between the two bodies' convex hulls (and the line of their centres): positive
+    proves them apart; zero or less means no separating plane was found among them. For
+    spheres it is exact: the closest two balls."""
     members = p.globule_members()
     dom_of = {i: k for k, i in enumerate(members)}
     u = directions(CLEAR_DIRECTIONS)
     n, m, _ = pos.shape
     beads = [i for i in range(m) if i not in dom_of]
     gaps = np.full(n, np.inf)
+    balls = p.domain_shape == "spheres"  # a union of spheres: exact, ball by ball
     for c in range(n):
         world = []
         for k, i in enumerate(members):
@@ -286,6 +288,14 @@ def chain_clearance(p, pos: np.ndarray, rot: np.ndarray, frames: list[dict]) -> 
             world.append((pts, f["reach"]))
         for a, ia in enumerate(members):
             pa, ra = world[a]
+            if balls:
+                others = [world[b] for b in range(a + 1, len(members))]
+                others += [(pos[c, [i]], np.array([p.residue_radius])) for i in beads
+                           if abs(i - ia) > 1]
+                for pb, rb in others:
+                    d = np.linalg.norm(pa[:, None] - pb[None], axis=-1)
+                    gaps[c] = min(gaps[c], float((d - ra[:, None] - rb[None]).min()))
+                continue
             for b in range(a + 1, len(members)):
                 pb, rb = world[b]
                 axis = _unit(pos[c, members[b]] - pos[c, ia])[None]

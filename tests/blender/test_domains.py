@@ -355,12 +355,18 @@ def test_real_shapes_of_several_domains_run_and_what_they_lack_is_refused_in_one
         assert r["sources"]["domain_exits"] == "ubq127.pdb: measured, the outgoing terminal CAs"
         out.unlink()
     for extra, message in (
-            (["--domain", str(near), "--domain-diameters", "30", "--domain-linker", "4"],
+            (["--domain", str(near), "--domain-diameters", "30", "--domain-linker", "4",
+              "--domain-shape", "hull"],
              "domain_shape: hull with 2 domains per chain needs every domain's structure"),
-            (["--domain", str(near), "--domain", str(far), "--domain-linker", "0"],
-             "domain_linker: must be at least 1 residue between real-shaped domains")):
+            (["--domain", str(near), "--domain", str(far), "--domain-linker", "0",
+              "--domain-shape", "hull"],
+             "domain_linker: must be at least 1 residue between real-shaped domains"),
+            # the covering spheres bulge past the atoms: one bead cannot hold them apart
+            (["--domain", str(near), "--domain", str(far), "--domain-linker", "1",
+              "--domain-shape", "spheres"],
+             "domain_linker: 1 residue(s) between the domains cannot start the chain clear")):
         assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), *extra,
-                            "--domain-shape", "hull", *FAST, "--json", str(out)]) == 2
+                            *FAST, "--json", str(out)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and not out.exists()
         assert err[0].startswith(f"fibrilfit: error: {message}"), err

@@ -211,6 +211,7 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
     place."""
     import bpy
     from mathutils import Matrix
+    from mathutils.bvhtree import BVHTree
     from fibrilfit.analysis.clashes import hull_distance
     from fibrilfit.analysis.verdict import check_model
     from fibrilfit.structure.shape import hull_points
@@ -233,8 +234,19 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
         bpy.context.view_layer.update()
         r = check_model(model)
         truth = hull_distance(_world(a, ubq), _world(m, gfp))
+        # the BVH on each globule's own whole mesh, every pair, one tree each (no pruning)
+        trees = []
+        for ob in g:
+            w = np.array(ob.matrix_world)
+            verts = _world(w, np.array([v.co[:] for v in ob.data.vertices]))
+            trees.append(BVHTree.FromPolygons(verts.tolist(),
+                                              [list(f.vertices) for f in ob.data.polygons],
+                                              epsilon=1e-5))
+        brute = sorted([i, j] for i in range(len(g)) for j in range(i + 1, len(g))
+                       if trees[i].overlap(trees[j]))
         pairs = [q[:2] for q in r["clashing_pairs"]]
         analytic = [q[:2] for q in r["sphere_check"]["clashing_pairs"]]
+        assert pairs == brute
         assert r["checks_agree"], r["warnings"]
         if truth > 0.01:  # apart: neither check names them
             assert pairs == [] and analytic == [], (x, truth, pairs, analytic)

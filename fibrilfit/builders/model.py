@@ -12,7 +12,7 @@ from ..model import helix, params as P
 from ..structure import shape
 from . import meshes
 from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
-                           spread_layout, walk_directions)
+                           spread_chains, spread_layout, walk_directions)
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
                     tag)
@@ -286,8 +286,11 @@ class _LayerBuilder:
         self.pfs = p.protofilaments
         self.turns = None  # several real shapes: each domain's turn (chains, D, 3, 3)
         if p.several_shapes:  # bent at every domain (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-            wanted = (walk_directions(p, self.pos, p.seed) if p.protocol == "inflate" else None)
-            self.pos, self.pivots, self.turns = real_chain_layout(p, self.pos, wanted)
+            if p.protocol == "tutorial" and p.domain_shape == "spheres":  # full size: spread
+                self.pos, self.pivots, self.turns = spread_chains(p, self.pos)
+            else:
+                wanted = walk_directions(p, self.pos, p.seed) if p.protocol == "inflate" else None
+                self.pos, self.pivots, self.turns = real_chain_layout(p, self.pos, wanted)
         elif p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
             self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
         elif p.domain_shape == "spheres":  # full size from the start: spread, or they can lock

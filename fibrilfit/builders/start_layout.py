@@ -126,23 +126,7 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
         else:
             pivot = rest[c, 0][None] + lever[-1] * dirs
         options.append((dirs, body(pivot, dirs)))
-    choice = np.zeros(n, dtype=int)
-
-    def best(c, others):
-        if not len(others):
-            return 0
-        s = options[c][1]  # (k, spheres, 4)
-        gap = (np.linalg.norm(s[:, :, None, :3] - others[None, None, :, :3], axis=-1)
-               - s[:, :, None, 3] - others[None, None, :, 3]).min(axis=(1, 2))
-        return int(np.argmax(gap >= 0.0)) if (gap >= 0.0).any() else int(np.argmax(gap))
-
-    for c in range(n):
-        choice[c] = best(c, np.concatenate([options[k][1][choice[k]] for k in range(c)])
-                         if c else np.empty((0, 4)))
-    for _ in range(rounds):
-        for c in range(n):
-            others = [options[k][1][choice[k]] for k in range(n) if k != c]
-            choice[c] = best(c, np.concatenate(others) if others else np.empty((0, 4)))
+    choice = _choose([o[1] for o in options], rounds)
     pos = np.empty_like(rest)
     pos[:, 0] = rest[:, 0]
     d = np.array([options[c][0][choice[c]] for c in range(n)])
@@ -163,6 +147,70 @@ EXIT_TURN = 2        # bonds over which it then turns towards the chain's headin
 EXIT_OUTWARD = 0.3   # every later bond keeps at least this cosine with the exit's normal
 TWISTS = 12          # turns of the domains about their incoming bond tried (30° apart)
 CLEAR_DIRECTIONS = 400  # directions a separating plane is looked for in (clearance)
+
+
+def _choose(spheres: list, rounds: int) -> np.ndarray:
+    """Per chain, which of its options to take: spheres[c] (k, s, 4) are option k's covering
+    spheres in the world. The first option clear of the chains placed before it (or least deep
+    in them), chain by chain, then each chain again against all the others, `rounds` times."""
+    n = len(spheres)
+    choice = np.zeros(n, dtype=int)
+
+    def best(c, others):
+        if not len(others):
+            return 0
+        s = spheres[c]  # (k, spheres, 4)
+        gap = (np.linalg.norm(s[:, :, None, :3] - others[None, None, :, :3], axis=-1)
+               - s[:, :, None, 3] - others[None, None, :, 3]).min(axis=(1, 2))
+        return int(np.argmax(gap >= 0.0)) if (gap >= 0.0).any() else int(np.argmax(gap))
+
+    for c in range(n):
+        choice[c] = best(c, np.concatenate([spheres[k][choice[k]] for k in range(c)])
+                         if c else np.empty((0, 4)))
+    for _ in range(rounds):
+        for c in range(n):
+            others = [spheres[k][choice[k]] for k in range(n) if k != c]
+            choice[c] = best(c, np.concatenate(others) if others else np.empty((0, 4)))
+    return choice
+
+
+def spread_chains(p, rest: np.ndarray, rounds: int = SPREAD_ROUNDS
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """spread_layout for chains of several `spheres` domains under the tutorial protocol: each
+    chain's first bond straight out, then its bent layout (bent_layout) heading along the
+    candidate direction that leaves its domains' covering spheres and its beads clear of the
+    other chains', or least deep in them, among the headings that lay the chain out clear of itself (all of
+    them if none does). Full-size compounds started inside each other lock: a 10-layer chain of
+    ubiquitin then GFP (linker 10, 4 residues between) from the unspread start ended with two
+    compounds 14.3 Å into each other (docs/guide/atoms-and-domains.md#shapes-of-several-domains).
+    Returns positions, pivots and the domains' turns, as real_chain_layout."""
+    rest = np.asarray(rest, dtype=float)
+    n, m, _ = rest.shape
+    frames = domain_terminals(p)
+    members = p.globule_members()
+    u = fan_frames(rest)[0]
+    cand = directions(SPREAD_DIRECTIONS)
+    options, spheres = [], []
+    for c in range(n):
+        dirs = np.vstack([u[c], cand[cand @ u[c] >= SPREAD_OUTWARD]])  # rest direction first
+        wanted = np.repeat(dirs[:, None], m - 1, axis=1)
+        wanted[:, 0] = u[c]
+        layout = bent_layout(p, np.repeat(rest[c:c + 1], len(dirs), axis=0), wanted, frames)
+        clear = chain_clearance(p, layout[0], layout[2], frames) > 0
+        keep = clear if clear.any() else np.ones(len(dirs), dtype=bool)
+        layout = [a[keep] for a in layout]
+        world = [np.concatenate([np.einsum("kij,sj->ksi", layout[2][:, d], f["rows"])
+                                 + layout[0][:, i, None], np.broadcast_to(
+                                     f["reach"][None, :, None], (int(keep.sum()),
+                                                                 len(f["reach"]), 1))], axis=-1)
+                 for d, (i, f) in enumerate(zip(members, frames))]
+        beads = [i for i in range(1, m) if i not in members]  # and its beads
+        world.append(np.concatenate([layout[0][:, beads], np.full(
+            (int(keep.sum()), len(beads), 1), p.residue_radius)], axis=-1))
+        options.append(layout)
+        spheres.append(np.concatenate(world, axis=1))
+    choice = _choose(spheres, rounds)
+    return tuple(np.stack([options[c][a][choice[c]] for c in range(n)]) for a in range(3))
 
 
 def domain_terminals(p) -> list[dict]:

@@ -313,3 +313,13 @@ def test_inflate_grows_each_real_domain_to_its_own_full_size(scene, ff, shape):
     assert all(ob.matrix_world.to_scale()[:] == pytest.approx((1, 1, 1), abs=1e-4)
                for ob in model.globules)
     assert r["checks_agree"], r["warnings"]
+
+
+def test_spheres_of_several_domains_start_spread_under_the_tutorial_protocol(scene, ff):
+    """Full-size compounds started inside each other lock (measured: a 10-layer chain of
+    ubiquitin then GFP ended with two compounds 14.3 Å deep); spread, the 4-layer model starts
+    with no body overlapping another, across chains too (its bent straight layout put
+    covering spheres of neighbouring layers 19.4 Å into each other)."""
+    p = _params(ff, "spheres", layers=4, linker=10, domain_linker=[4])
+    model = ff.pipeline.build(p, scene)
+    assert _overlaps_at_frame_1(model, p, "spheres", chains=range(4)) == []

@@ -138,6 +138,10 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
     e0 = np.ptp([x.co[:] for x in model.globules[0].data.vertices], axis=0)
     e1 = np.ptp([x.co[:] for x in model.globules[1].data.vertices], axis=0)
     assert e1.max() > e0.max() + 10
+    # every domain's mesh takes the globules' material (renders read the object's colour)
+    from fibrilfit.exports.dressing import ensure_materials
+    mat = ensure_materials(model)["globule"]
+    assert all(ob.data.materials[:] == [mat] for ob in model.globules)
     # the sidebar's joined copy (for Mesh Analysis) is each globule's own mesh, placed
     from fibrilfit.ui.joined import join_globules
     joined = join_globules(model).data

@@ -14,16 +14,16 @@ INFLATE = dict(protocol="inflate", grow_frames=15, hold_frames=15, regrow_cycles
 
 
 @functools.lru_cache(maxsize=None)
-def _measured():
+def _measured(gfp_first=False):
     from fibrilfit.structure import measure_domain
-    ubq = measure_domain(DATA / "1ubq.pdb.gz", outgoing=True)  # domain 0: it has an exit
-    gfp = measure_domain(DATA / "1gfl.pdb.gz")
-    return ubq, gfp
+    ubq = measure_domain(DATA / "1ubq.pdb.gz", outgoing=not gfp_first)  # domain 0 has an exit
+    gfp = measure_domain(DATA / "1gfl.pdb.gz", outgoing=gfp_first)
+    return (gfp, ubq) if gfp_first else (ubq, gfp)
 
 
-def _params(ff, shape, **values):
+def _params(ff, shape, gfp_first=False, **values):
     from fibrilfit.structure import model_values
-    ubq, gfp = _measured()
+    ubq, gfp = _measured(gfp_first)
     given = {"linker": 6, "domain_linker": [6], "layers": 3, "frames": 20, **values}
     given = {k: v for k, v in given.items() if v is not None}
     return ff.model.params.make_params(domain_shape=shape, **{
@@ -327,3 +327,14 @@ def test_spheres_of_several_domains_start_spread_under_the_tutorial_protocol(sce
     p = _params(ff, "spheres", layers=4, linker=10, domain_linker=[4])
     model = ff.pipeline.build(p, scene)
     assert _overlaps_at_frame_1(model, p, "spheres", chains=range(4)) == []
+
+
+@pytest.mark.parametrize("shape", ["hull", "spheres"])
+def test_a_short_linker_after_gfp_starts_clear_of_itself(scene, ff, shape):
+    """GFP's exit faces back towards its joint (their normals 44° apart): with 2 residues to
+    ubiquitin a linker turning outward swung ubiquitin into GFP (0.1-1.8 Å at every turn of
+    the domains); the layout then runs the linker straight along the exit's normal, and the
+    chain starts clear of itself and of the core."""
+    p = _params(ff, shape, gfp_first=True, layers=1, linker=3, domain_linker=[2])
+    model = ff.pipeline.build(p, scene)
+    assert _overlaps_at_frame_1(model, p, shape, chains=[0]) == []

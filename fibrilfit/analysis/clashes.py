@@ -62,13 +62,16 @@ def candidate_pairs(mesh, matrices: np.ndarray) -> np.ndarray:
     return np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
 
 
-def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 4096) -> np.ndarray:
+def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 4096,
+                 partner_radius: float | None = None) -> np.ndarray:
     """Which faces of each globule can reach the other globule of one of its `pairs`: (n, faces).
 
     A face can only cross a face of globule j where it enters j's bounding sphere, so a face
     whose own bounding sphere (about its centroid) stays outside every partner's is left out.
     Distances are taken in each globule's own frame (its partner's centre mapped back), and
     divided by the matrix's smallest stretch, so scaled globules stay on the safe side.
+    `partner_radius`: the partners' bounding radius in world units when they have other meshes
+    (default: this mesh's).
     """
     verts, starts, loops = mesh_arrays(mesh)
     sizes = np.diff(np.append(starts, len(loops)))
@@ -83,7 +86,8 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
     singular = stretch[:, -1] < 1e-9  # flat globules: keep all their faces
     smallest = np.where(singular, 1.0, stretch[:, -1])
     inverse = np.linalg.inv(np.where(singular[:, None, None], np.eye(3), linear))
-    reach = bounding_radius(mesh, matrices) + stretch[:, 0].max() * face_radius + _margin(centres)
+    partner = bounding_radius(mesh, matrices) if partner_radius is None else partner_radius
+    reach = partner + stretch[:, 0].max() * face_radius + _margin(centres)
     keep = np.zeros((len(matrices), len(starts)), dtype=bool)
     keep[singular] = True
     for lo in range(0, len(pairs), chunk):
@@ -100,7 +104,7 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
     return keep
 
 
-def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None
+def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None, kinds=None
                 ) -> tuple[int, set[tuple[int, int]]]:
     """BVH overlap of the globules in world space (epsilon 1e-5), as in the tutorial's step 8.
 
@@ -113,7 +117,12 @@ def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None
     faces that can reach one of its partners (same world coordinates, same polygons, same
     epsilon): the same faces and pairs, without testing each globule against itself, against
     far-away globules, or with its far side.
+
+    `kinds`: several meshes (`mesh` a list of them), globule g having mesh[kinds[g]] (several
+    real-shaped domains per chain, each its own mesh: bvh_clashes_kinds).
     """
+    if kinds is not None:
+        return bvh_clashes_kinds(mesh, kinds, matrices, keep)
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
     candidates = candidate_pairs(mesh, matrices)
     if keep is not None:
@@ -143,6 +152,77 @@ def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None
                 hits = np.array(hits, dtype=np.int64)
                 faces += [gi * per + kept[i][hits[:, 0]], gj * per + kept[j][hits[:, 1]]]
     return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
+
+
+def bounding_radius_kinds(meshes, matrices: np.ndarray) -> float:
+    """bounding_radius over several meshes: the largest."""
+    return max(bounding_radius(m, matrices) for m in meshes)
+
+
+def bvh_clashes_kinds(meshes, kinds, matrices: np.ndarray, keep: np.ndarray | None = None
+                      ) -> tuple[int, set[tuple[int, int]]]:
+    """bvh_clashes of globules with their own meshes: globule g is meshes[kinds[g]] at
+    matrices[g]. The same test (each globule's facing faces in its own tree, the same epsilon)
+    over each pair of globules whose bounding spheres meet; faces are counted per globule."""
+    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    kinds = np.asarray(kinds, dtype=np.intp)
+    centres = matrices[:, :3, 3]
+    if len(centres) < 2:
+        return 0, set()
+    radius = bounding_radius_kinds(meshes, matrices)
+    a, b, _ = close_pairs(centres, 2.0 * radius + _margin(centres))
+    candidates = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+    if keep is not None:
+        keep = np.asarray(keep, dtype=bool)
+        candidates = candidates[keep[candidates[:, 0]] | keep[candidates[:, 1]]]
+    if not len(candidates):
+        return 0, set()
+    involved, local = np.unique(candidates, return_inverse=True)
+    local = local.reshape(-1, 2)
+    sub, sub_kind = matrices[involved], kinds[involved]
+    arrays = [mesh_arrays(m) for m in meshes]
+    polys = [[q.tolist() for q in np.split(loops, starts[1:])] if len(starts) else []
+             for _, starts, loops in arrays]
+    facing = {k: facing_faces(meshes[k], sub, local, partner_radius=radius)
+              for k in np.unique(sub_kind).tolist()}
+    count = np.array([len(polys[k]) for k in kinds.tolist()], dtype=np.int64)
+    offset = np.concatenate([[0], np.cumsum(count)[:-1]])  # globule g's faces start here
+    faces, pairs, trees, kept = [], set(), {}, {}
+    with _gc_paused():
+        for g in range(len(sub)):
+            k = int(sub_kind[g])
+            chosen = np.flatnonzero(facing[k][g])
+            if not len(chosen):
+                continue
+            verts = arrays[k][0]
+            world = verts @ sub[g, :3, :3].T + sub[g, :3, 3]
+            kept[g] = chosen
+            trees[g] = BVHTree.FromPolygons(world.tolist(), [polys[k][f] for f in chosen],
+                                            epsilon=BVH_EPSILON)
+        for i, j in local.tolist():
+            if i not in trees or j not in trees:
+                continue
+            hits = trees[i].overlap(trees[j])
+            if hits:
+                gi, gj = int(involved[i]), int(involved[j])
+                pairs.add((gi, gj))
+                hits = np.array(hits, dtype=np.int64)
+                faces += [offset[gi] + kept[i][hits[:, 0]], offset[gj] + kept[j][hits[:, 1]]]
+    return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
+
+
+def reach_from_axis(meshes, kinds, matrices: np.ndarray) -> np.ndarray:
+    """Each globule's farthest vertex from the fibril axis (Z), globule g having
+    meshes[kinds[g]] (one mesh: kinds all 0)."""
+    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    kinds = np.asarray(kinds, dtype=np.intp)
+    out = np.empty(len(matrices))
+    for k, mesh in enumerate(meshes):
+        rows = np.flatnonzero(kinds == k)
+        if len(rows):
+            world, _ = joined_globules(mesh, matrices[rows])
+            out[rows] = np.hypot(world[..., 0], world[..., 1]).max(axis=1)
+    return out
 
 
 @contextlib.contextmanager
@@ -307,31 +387,42 @@ def face_normals(mesh) -> np.ndarray:
     return np.unique(np.round(normals.reshape(-1, 3).astype(float), 6), axis=0)
 
 
-def hull_clashes(mesh, matrices: np.ndarray, tolerance: float
+def hull_clashes(mesh, matrices: np.ndarray, tolerance: float, kinds=None
                  ) -> tuple[list[tuple[int, int, float]], callable]:
     """The analytic check of convex hull globules: pairs whose hulls (the mesh's vertices, in
     world space) are closer than -tolerance, i.e. overlap by more than it, with a depth (the
     smallest overlap along the two hulls' face normals), and the signed depth function of any
-    pair (-distance when apart). Only pairs whose bounding spheres meet are looked at."""
-    verts = mesh_arrays(mesh)[0]
-    normals = face_normals(mesh)
+    pair (-distance when apart). Only pairs whose bounding spheres meet are looked at.
+    `kinds`: several meshes (`mesh` a list), globule g's hull is mesh[kinds[g]]'s."""
+    single = kinds is None
+    meshes = [mesh] if single else list(mesh)
+    kinds = np.zeros(len(matrices), dtype=np.intp) if single else np.asarray(kinds)
+    verts = [mesh_arrays(m)[0] for m in meshes]
+    normals = [face_normals(m) for m in meshes]
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
     cache = {}
 
     def depth(i, j):
         if (i, j) not in cache:
-            wa = verts @ matrices[i, :3, :3].T + matrices[i, :3, 3]
-            wb = verts @ matrices[j, :3, :3].T + matrices[j, :3, 3]
+            ki, kj = int(kinds[i]), int(kinds[j])
+            wa = verts[ki] @ matrices[i, :3, :3].T + matrices[i, :3, 3]
+            wb = verts[kj] @ matrices[j, :3, :3].T + matrices[j, :3, 3]
             gap = hull_distance(wa, wb)
             if gap > 0.0:
                 cache[i, j] = -gap
             else:
-                n = np.vstack([normals @ _rotation(matrices[i]).T,
-                               normals @ _rotation(matrices[j]).T])
+                n = np.vstack([normals[ki] @ _rotation(matrices[i]).T,
+                               normals[kj] @ _rotation(matrices[j]).T])
                 cache[i, j] = max(face_overlap(wa, wb, n), 0.0)
         return cache[i, j]
 
-    pairs = candidate_pairs(mesh, matrices)
+    if single:
+        pairs = candidate_pairs(mesh, matrices)
+    else:
+        centres = matrices[:, :3, 3]
+        a, b, _ = close_pairs(centres, 2.0 * bounding_radius_kinds(meshes, matrices)
+                              + _margin(centres))
+        pairs = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
     out = [(int(i), int(j), depth(int(i), int(j))) for i, j in pairs.tolist()]
     return [(i, j, d) for i, j, d in sorted(out) if d > tolerance], depth
 
@@ -342,23 +433,33 @@ def _rotation(matrix: np.ndarray) -> np.ndarray:
     return m / np.cbrt(np.linalg.det(m))
 
 
-def spheres_clashes(spheres, matrices: np.ndarray, tolerance: float
+def spheres_clashes(spheres, matrices: np.ndarray, tolerance: float, kinds=None
                     ) -> tuple[list[tuple[int, int, float]], callable]:
     """The analytic check of globules made of spheres [x, y, z, r] (their body frame): pairs
     of globules with two spheres overlapping by more than `tolerance`, with the deepest overlap,
-    and the depth function of any pair (the deepest sphere overlap; negative when apart)."""
-    s = np.asarray(spheres, dtype=float).reshape(-1, 4)
+    and the depth function of any pair (the deepest sphere overlap; negative when apart).
+    `kinds`: several sets of spheres (`spheres` a list of them), globule g's being
+    spheres[kinds[g]]."""
+    sets = [np.asarray(spheres, dtype=float).reshape(-1, 4)] if kinds is None else \
+        [np.asarray(x, dtype=float).reshape(-1, 4) for x in spheres]
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
+    kinds = np.zeros(len(matrices), dtype=np.intp) if kinds is None else np.asarray(kinds)
     scale = np.cbrt(np.abs(np.linalg.det(matrices[:, :3, :3])))
-    centres = np.einsum("nij,kj->nki", matrices[:, :3, :3], s[:, :3]) + matrices[:, None, :3, 3]
-    radii = scale[:, None] * s[None, :, 3]
+    if len(sets) == 1:
+        s = sets[0]
+        centres = (np.einsum("nij,kj->nki", matrices[:, :3, :3], s[:, :3])
+                   + matrices[:, None, :3, 3])
+        radii = scale[:, None] * s[None, :, 3]
+    else:
+        centres = [sets[k][:, :3] @ m[:3, :3].T + m[:3, 3] for k, m in zip(kinds.tolist(), matrices)]
+        radii = [sc * sets[k][:, 3] for k, sc in zip(kinds.tolist(), scale)]
 
     def depth(i, j):
         d = np.linalg.norm(centres[i][:, None] - centres[j][None], axis=-1)
         return float((radii[i][:, None] + radii[j][None] - d).max())
 
-    reach = 2.0 * float(np.max(np.linalg.norm(s[:, :3], axis=1) + s[:, 3])) * \
-        (float(scale.max()) if len(scale) else 1.0) + _margin(matrices[:, :3, 3])
+    far = max(float(np.max(np.linalg.norm(s[:, :3], axis=1) + s[:, 3])) for s in sets)
+    reach = 2.0 * far * (float(scale.max()) if len(scale) else 1.0) + _margin(matrices[:, :3, 3])
     a, b, _ = close_pairs(matrices[:, :3, 3], reach)
     out = sorted((int(min(i, j)), int(max(i, j))) for i, j in zip(a.tolist(), b.tolist()))
     hits = [(i, j, depth(i, j)) for i, j in out]

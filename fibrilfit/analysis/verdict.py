@@ -6,8 +6,9 @@ import numpy as np
 from ..model import helix
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
-from .clashes import (bounding_radius, bvh_clashes, float_tolerance, grazing_depth, hull_clashes,
-                      joined_globules, sphere_band, sphere_clashes, spheres_clashes)
+from .clashes import (bounding_radius, bounding_radius_kinds, bvh_clashes, float_tolerance,
+                      grazing_depth, hull_clashes, joined_globules, reach_from_axis, sphere_band,
+                      sphere_clashes, spheres_clashes)
 from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_stretch
@@ -95,7 +96,8 @@ def check_model(model) -> dict:
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
     chains = _chain_blocks(p, clashing, chain_clash, n, domains)
     if domains > 1:
-        chains.update(_domain_blocks(p, clashing, clashes["centres"], scored[:n]))
+        chains.update(_domain_blocks(p, clashing, clashes["centres"], scored[:n],
+                                     clashes["reach"]))
     warnings += _cell_warnings(p)
     if p.core_outline is not None:  # (the tutorial's box core: no key, its JSON as before)
         chains["inside_core"] = members_inside_core(p, positions)
@@ -149,8 +151,13 @@ def _clash_checks(model) -> dict:
     matrices = world_matrices(globules, model.root.children)
     n = len(matrices)
     cells = 0
+    # several real shapes: each domain its own mesh (docs/guide/atoms-and-domains.md#shapes-of-several-domains);
+    # globule g (and its images, blocks of n) is domain g % D
+    meshes = [globules[d].data for d in range(domains)] if p.several_shapes else None
     if p.periodic:
-        matrices, cells = with_images(p, matrices, bounding_radius(mesh, matrices) + band)
+        reach = (bounding_radius(mesh, matrices) if meshes is None
+                 else bounding_radius_kinds(meshes, matrices))
+        matrices, cells = with_images(p, matrices, reach + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
     # further domains share the mesh, scaled: its facets' sag scales with them; an image's
     # radius is its original's (blocks of n: globule g is domain g % D)
@@ -163,16 +170,23 @@ def _clash_checks(model) -> dict:
         touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
         return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
-    faces, bvh_pairs = bvh_clashes(mesh, matrices, keep=scored)
+    kinds = None if meshes is None else np.arange(len(everything)) % domains
+    faces, bvh_pairs = bvh_clashes(mesh if meshes is None else meshes, matrices, keep=scored,
+                                   kinds=kinds)
     slack = TOUCH_SLACK
     if p.domain_shape == "sphere":
         found = sphere_clashes(everything, radius, band)
     elif p.domain_shape == "hull":  # the same faces, exactly: only rounding between the checks
         band = slack = float_tolerance(everything)
-        found, depth = hull_clashes(mesh, matrices, band)
-    else:  # the covering spheres, each drawn as a 32 × 16 mesh as the sphere's globule
+        found, depth = hull_clashes(mesh if meshes is None else meshes, matrices, band,
+                                    kinds=kinds)
+    elif meshes is None:  # the covering spheres, each drawn as a 32 × 16 mesh as the sphere's
         band = sphere_band(max(r for *_, r in p.domain_spheres))
         found, depth = spheres_clashes(p.domain_spheres, matrices, band)
+    else:  # each domain's own covering spheres
+        sets = [p.domain_rows(d) for d in range(domains)]
+        band = sphere_band(max(float(s[:, 3].max()) for s in sets))
+        found, depth = spheres_clashes(sets, matrices, band, kinds=kinds)
     spheres = [(i, j, d) for i, j, d in found if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
     grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band, slack)
@@ -183,7 +197,9 @@ def _clash_checks(model) -> dict:
             + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
     reach = None
-    if p.domain_shape != "sphere":  # each domain's farthest point from the axis, for the envelope
+    if meshes is not None:  # each domain's farthest point from the axis, for the envelope
+        reach = reach_from_axis(meshes, kinds[:n], matrices[:n])
+    elif p.domain_shape != "sphere":
         world, _ = joined_globules(mesh, matrices[:n])
         reach = np.hypot(world[..., 0], world[..., 1]).max(axis=1)
     return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces, "reach": reach,
@@ -224,7 +240,7 @@ def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
             "chain_clashes": chain_clash}
 
 
-def _domain_blocks(p, clashing, centres, scored) -> dict:
+def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
     """Several domains per chain: which domain of which chain clashes (layer, protofilament,
     domain from the core outward, 0 first), and the envelope of each domain and of all."""
     domains = len(p.globule_members())
@@ -238,6 +254,14 @@ def _domain_blocks(p, clashing, centres, scored) -> dict:
                 "protofilament": int(pf_of[c]), "domain": int(g % domains)}
 
     which = np.arange(len(centres)) % domains
+    if reach is not None and p.several_shapes:  # real shapes: each body's farthest point
+        return {
+            "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
+            "domain_envelopes": [envelope(centres[scored & (which == d)], r,
+                                          reach[scored & (which == d)])
+                                 for d, r in enumerate(p.domain_radii)],
+            "envelope": envelope(centres[scored], max(p.domain_radii), reach[scored]),
+        }
     return {
         "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
         "domain_envelopes": [envelope(centres[scored & (which == d)], r)

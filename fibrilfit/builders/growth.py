@@ -59,6 +59,9 @@ def _start_scale_domains(p, centres: np.ndarray) -> float:
     """start_scale for several domains per chain: the smallest d / (r_i + r_j) over pairs."""
     points, _ = with_images(p, centres)
     radii = globule_radii(p, len(points))
+    if p.several_shapes:  # each body's reach, not its Rg sphere's (helix.domain_reaches)
+        reach = helix.domain_reaches(p)
+        radii = np.tile(reach, -(-len(points) // len(reach)))[:len(points)]
     order = np.argsort(points[:, 2])
     c, r = points[order], radii[order]
     best, widest = np.inf, 2.0 * float(radii.max(initial=0.0))
@@ -84,7 +87,7 @@ def globule_scales(p, objects) -> np.ndarray | None:
     """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
     which they share (builders.model); None for one domain (every full size is 1)."""
     members = p.globule_members()
-    if len(members) == 1:
+    if len(members) == 1 or p.several_shapes:  # real shapes: each its own mesh at full size
         return None
     size = dict(zip(members, np.asarray(p.domain_radii) / p.globule_radius))
     return np.array([size[int(ob[INDEX])] for ob in objects], dtype=float)
@@ -97,7 +100,8 @@ def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
     centres = np.asarray(centres, dtype=float)
     if not p.periodic or not len(centres):
         return centres, len(centres)
-    cells = helix.check_cells(p, centres[:, 2], p.widest_diameter / 2.0)
+    reach = max(helix.domain_reaches(p)) if p.several_shapes else p.widest_diameter / 2.0
+    cells = helix.check_cells(p, centres[:, 2], reach)
     m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
     images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
     return np.concatenate([centres, images]), len(centres)

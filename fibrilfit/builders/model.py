@@ -7,11 +7,12 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..geom.rigid import euler_xyz
+from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, params as P
 from ..structure import shape
 from . import meshes
-from .start_layout import inflate_layout, spread_layout
+from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
+                           spread_chains, spread_layout, walk_directions)
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
                     tag)
@@ -168,6 +169,7 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
 def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> Model:
     """Validate `p`, remove any previous model, and make the model's empty collections and world."""
     p = P.validate(p, force=force)
+    check_real_start(p)
     check_world_free(scene)
     clear_model(scene)
     rbw = ensure_world(scene)
@@ -178,6 +180,25 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
     rbw.constraints = tag(bpy.data.collections.new("FibrilFit constraints"), "rigid_constraints")
     return Model(root, p, [], [], [])
+
+
+def check_real_start(p: P.Params) -> None:
+    """Several real-shaped domains at full size from frame 1 (the tutorial protocol): refuse,
+    before anything is built, a chain that no turn of its domains lays out clear of itself
+    (start_layout.real_chain_layout): the covering spheres bulge past the atoms by up to 6.4 Å
+    (docs/model/domain-shapes.md#spheres), and one residue between two domains cannot hold
+    them apart. Under inflate the domains start small (growth.start_scale)."""
+    if not p.several_shapes or p.protocol != "tutorial":
+        return
+    pos, _, rot = real_chain_layout(p, chain_positions(p)[:1])
+    gap = float(chain_clearance(p, pos, rot, domain_terminals(p))[0])
+    if gap <= 0:
+        raise P.ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
+                                            f"between the domains cannot start the chain clear "
+                                            f"of itself with {p.domain_shape} ({-gap:.1f} Å "
+                                            f"into each other at the best of its turns): give "
+                                            f"more residues, or --protocol inflate (the "
+                                            f"domains start small)")
 
 
 def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:
@@ -263,7 +284,14 @@ class _LayerBuilder:
         self.chain_angle = helix.chain_transforms(p)[0]     # per chain: its members
         self.pos, self.pivots = chain_positions(p), bond_pivots(p)
         self.pfs = p.protofilaments
-        if p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
+        self.turns = None  # several real shapes: each domain's turn (chains, D, 3, 3)
+        if p.several_shapes:  # bent at every domain (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
+            if p.protocol == "tutorial" and p.domain_shape == "spheres":  # full size: spread
+                self.pos, self.pivots, self.turns = spread_chains(p, self.pos)
+            else:
+                wanted = walk_directions(p, self.pos, p.seed) if p.protocol == "inflate" else None
+                self.pos, self.pivots, self.turns = real_chain_layout(p, self.pos, wanted)
+        elif p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
             self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
         elif p.domain_shape == "spheres":  # full size from the start: spread, or they can lock
             # (docs/model/domain-shapes.md#spheres-start)
@@ -286,6 +314,8 @@ class _LayerBuilder:
                 self.mesh[role] = meshes.box("FibrilFit slab", p.slab)
             elif role == "globule":
                 self.mesh[role] = globule_mesh(p)
+            elif role.startswith("globule "):  # several real shapes: domain k's own
+                self.mesh[role] = globule_mesh(p, int(role.split()[1]))
             else:  # the anchor and the linker's residues are the same bead
                 self.mesh[role] = meshes.uv_sphere("FibrilFit residue", p.residue_radius,
                                                    P.RESIDUE_SEGMENTS, P.RESIDUE_RINGS)
@@ -336,13 +366,17 @@ class _LayerBuilder:
         p = self.p
         c = k * self.pfs + j
         role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
-        mesh = self._shared_mesh("globule" if role == "globule" else "residue")
+        # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
+        domain = (self.globule_members.index(i) if role == "globule" and p.several_shapes
+                  else 0)
+        mesh = self._shared_mesh(("globule" if not domain else f"globule {domain}")
+                                 if role == "globule" else "residue")
         shape = GLOBULE_SHAPES[p.domain_shape] if role == "globule" else "SPHERE"
         ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", shape)
         ob[INDEX], ob[PROTOFILAMENT] = i, j
         if role == "globule" and p.domain_shape != "sphere":
-            self._real_globule(ob, k)
+            self._real_globule(ob, k, domain)
         self.placed[role].append((ob, c, i))
         chain = self.model.chain
         if i == 0:
@@ -352,21 +386,26 @@ class _LayerBuilder:
         if i > 0:
             self._bond(k, j, i - 1)
 
-    def _real_globule(self, ob, k):
+    def _real_globule(self, ob, k, domain=0):
         """A hull keeps Bullet's surface HULL_MARGIN outside its mesh (the mesh is what the
-        check tests); spheres become a compound of child spheres, like the concave cores."""
+        check tests); spheres become a compound of child spheres, like the concave cores.
+        `domain`: which domain of the chain (several real shapes: each its own spheres)."""
         if self.p.domain_shape == "hull":
             ob.rigid_body.use_margin = True
             ob.rigid_body.collision_margin = HULL_MARGIN
             return
-        if "sphere_meshes" not in self.mesh:
-            self.mesh["sphere_meshes"] = [
-                meshes.uv_sphere(f"FibrilFit globule sphere {n}", r, P.GLOBULE_SEGMENTS,
-                                 P.GLOBULE_RINGS) for n, (*_, r) in enumerate(self.p.domain_spheres)]
+        key = "sphere_meshes" if not domain else f"sphere_meshes {domain}"
+        spheres = (self.p.domain_spheres if not domain else
+                   [tuple(row) for row in self.p.domain_rows(domain)])
+        if key not in self.mesh:
+            name = "FibrilFit globule sphere" if not domain else f"FibrilFit domain {domain} sphere"
+            self.mesh[key] = [
+                meshes.uv_sphere(f"{name} {n}", r, P.GLOBULE_SEGMENTS,
+                                 P.GLOBULE_RINGS) for n, (*_, r) in enumerate(spheres)]
+        if not hasattr(self, "spheres_coll"):
             self.spheres_coll = new_collection("FibrilFit globule spheres", "globule_spheres",
                                                self.parts["globule"])
-        for n, ((x, y, z, _), mesh) in enumerate(zip(self.p.domain_spheres,
-                                                     self.mesh["sphere_meshes"])):
+        for n, ((x, y, z, _), mesh) in enumerate(zip(spheres, self.mesh[key])):
             child = tag(bpy.data.objects.new(f"{ob.name} sphere {n}", mesh), "globule_sphere")
             child[LAYER], child[INDEX] = k, n
             child.parent = ob
@@ -418,7 +457,7 @@ class _LayerBuilder:
         """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
         sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
         one domain (no scale set: the build as before)."""
-        if len(self.globule_members) == 1:
+        if len(self.globule_members) == 1 or self.p.several_shapes:  # each its own mesh
             return None
         radius = dict(zip(self.globule_members, self.p.domain_radii))
         return np.array([radius[int(i)] / self.p.globule_radius for i in members])
@@ -451,7 +490,10 @@ class _LayerBuilder:
                      self.angle[k] if role == "slab" else self.chain_angle[k])
             scale = self._domain_scale(i) if role == "globule" else None
             _place(objects, loc, rot_z, scale=scale)
-            if role == "globule" and self.p.domain_shape != "sphere":  # one domain a chain
+            if role == "globule" and self.turns is not None:  # several real shapes
+                dom = np.array([self.globule_members.index(int(m)) for m in i])
+                self._turn_globules(objects, k, loc, self.turns[k, dom])
+            elif role == "globule" and self.p.domain_shape != "sphere":  # one domain a chain
                 self._turn_globules(objects, k, loc)
             if role == "bond":
                 objects.foreach_set("empty_display_size",
@@ -461,19 +503,22 @@ class _LayerBuilder:
                 tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
                 objects.foreach_set("color", tints[pf].ravel())
 
-    def _turn_globules(self, objects, c, loc) -> None:
+    def _turn_globules(self, objects, c, loc, rot=None) -> None:
         """Put each real-shaped globule's joint (its terminal CA) on its last bond's pivot, the
         surface nearest the joint facing back along the bond: the body then reaches past the
-        pivot towards the linker by only the joint's depth. Children (spheres) follow."""
+        pivot towards the linker by only the joint's depth. Children (spheres) follow.
+        `rot`: the turns of several real-shaped domains, laid out with their places `loc`
+        (start_layout.real_chain_layout)."""
         p = self.p
-        joint = np.asarray(p.domain_joint, float).reshape(3)
-        if p.domain_shape == "hull":
-            out = shape.outward(p.domain_atoms, joint)
-        else:  # the union of spheres is not convex: its nearest way out
-            out = shape.union_exit(p.domain_spheres, joint)[0]
-        pivot = self.pivots[c, -1]
-        rot = joint_rotations(out, loc - pivot)
-        loc = pivot - rot @ joint
+        if rot is None:
+            joint = np.asarray(p.domain_joint, float).reshape(3)
+            if p.domain_shape == "hull":
+                out = shape.outward(p.domain_atoms, joint)
+            else:  # the union of spheres is not convex: its nearest way out
+                out = shape.union_exit(p.domain_spheres, joint)[0]
+            pivot = self.pivots[c, -1]
+            rot = joint_rotations(out, loc - pivot)
+            loc = pivot - rot @ joint
         objects.foreach_set("location", loc.astype(np.float32).ravel())
         objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
         mat = np.zeros((len(c), 4, 4))
@@ -497,9 +542,16 @@ GLOBULE_SHAPES = {"sphere": "SPHERE", "hull": "CONVEX_HULL", "spheres": "COMPOUN
 HULL_MARGIN = 0.1
 
 
-def globule_mesh(p: P.Params):
+def globule_mesh(p: P.Params, domain: int = 0):
     """The globule's mesh: the sphere (32 × 16), the domain's grown hull, or its covering
-    spheres joined, in the domain's body frame (structure.domain.body_frame)."""
+    spheres joined, in the domain's body frame (structure.domain.body_frame). `domain`: which
+    domain of the chain, 0 nearest the core (several real shapes: each its own mesh)."""
+    if domain:
+        name = f"FibrilFit globule {domain}"
+        if p.domain_shape == "hull":
+            return meshes.convex_hull(name, shape.hull_points(p.domain_rows(domain)))
+        return meshes.sphere_union(name, [tuple(r) for r in p.domain_rows(domain)],
+                                   P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
     if p.domain_shape == "hull":
         return meshes.convex_hull("FibrilFit globule", shape.hull_points(p.domain_atoms))
     if p.domain_shape == "spheres":
@@ -524,26 +576,6 @@ def spheres_body(p: P.Params):
         return np.concatenate([world, np.broadcast_to(spheres[None, :, 3:], world[..., :1].shape)],
                               axis=-1)
     return body
-
-
-def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:
-    """(n, 3, 3) rotations taking the body-frame direction `joint` onto -outward (each row of
-    outward: from the pivot to the globule's centre), by the smallest turn."""
-    a = joint / np.linalg.norm(joint)
-    b = -outward / np.linalg.norm(outward, axis=1, keepdims=True)
-    v = np.cross(a[None], b)
-    cos = b @ a
-    vx = np.zeros((len(b), 3, 3))
-    vx[:, 0, 1], vx[:, 0, 2], vx[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
-    vx[:, 1, 0], vx[:, 2, 0], vx[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
-    opposite = cos < -1 + 1e-9  # a half turn about any axis perpendicular to a
-    k = np.where(opposite, 0.0, 1.0 / np.maximum(1.0 + cos, 1e-12))
-    rot = np.eye(3)[None] + vx + (vx @ vx) * k[:, None, None]
-    if opposite.any():
-        perp = np.cross(a, [1.0, 0, 0] if abs(a[0]) < 0.9 else [0, 1.0, 0])
-        perp /= np.linalg.norm(perp)
-        rot[opposite] = 2 * np.outer(perp, perp) - np.eye(3)
-    return rot
 
 
 def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:

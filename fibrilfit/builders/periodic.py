@@ -297,7 +297,7 @@ class TurnedImages:
     than the check's (docs/model/domain-shapes.md#periodic)."""
 
     def __init__(self, model, follower):
-        self.rows = np.flatnonzero(follower.member == model.params.linker)
+        self.rows = np.flatnonzero(np.isin(follower.member, model.params.globule_members()))
         sources = [follower.sources[k] for k in self.rows.tolist()]
         globules = [c for c in model.root.children if c.get(TAG) == "globules"]
         self.reader = MatrixReader(sources, globules)

@@ -81,6 +81,12 @@ def ensure_materials(model) -> dict:
             mesh.materials.append(mat)
         mat.diffuse_color = viewport[part]  # solid viewport in Material mode
         out[part] = mat
+    # several real-shaped domains: each domain's own mesh takes the globules' material too
+    if "globule" in out:
+        for ob in first:
+            if ob.get(TAG) == "globule" and out["globule"] not in ob.data.materials[:]:
+                ob.data.materials.clear()
+                ob.data.materials.append(out["globule"])
     return out
 
 

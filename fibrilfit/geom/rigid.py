@@ -66,3 +66,34 @@ def euler_xyz(rot: np.ndarray) -> np.ndarray:
     alpha = np.arctan2(rot[:, 2, 1], rot[:, 2, 2])
     gamma = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
     return np.column_stack([alpha, beta, gamma])
+
+
+def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) rotations taking the body-frame direction `joint` onto -outward (each row of
+    outward: from the pivot to the globule's centre), by the smallest turn."""
+    a = joint / np.linalg.norm(joint)
+    b = -outward / np.linalg.norm(outward, axis=1, keepdims=True)
+    v = np.cross(a[None], b)
+    cos = b @ a
+    vx = np.zeros((len(b), 3, 3))
+    vx[:, 0, 1], vx[:, 0, 2], vx[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
+    vx[:, 1, 0], vx[:, 2, 0], vx[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
+    opposite = cos < -1 + 1e-9  # a half turn about any axis perpendicular to a
+    k = np.where(opposite, 0.0, 1.0 / np.maximum(1.0 + cos, 1e-12))
+    rot = np.eye(3)[None] + vx + (vx @ vx) * k[:, None, None]
+    if opposite.any():
+        perp = np.cross(a, [1.0, 0, 0] if abs(a[0]) < 0.9 else [0, 1.0, 0])
+        perp /= np.linalg.norm(perp)
+        rot[opposite] = 2 * np.outer(perp, perp) - np.eye(3)
+    return rot
+
+
+def turn_about(axis: np.ndarray, angle) -> np.ndarray:
+    """(n, 3, 3) rotations by `angle` (n,) about the unit vectors `axis` (n, 3) (Rodrigues)."""
+    k = np.asarray(axis, float).reshape(-1, 3)
+    a = np.broadcast_to(np.asarray(angle, float), (len(k),))
+    kx = np.zeros((len(k), 3, 3))
+    kx[:, 0, 1], kx[:, 0, 2], kx[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
+    kx[:, 1, 0], kx[:, 2, 0], kx[:, 2, 1] = k[:, 2], -k[:, 1], k[:, 0]
+    return (np.eye(3)[None] + np.sin(a)[:, None, None] * kx
+            + (1.0 - np.cos(a))[:, None, None] * (kx @ kx))

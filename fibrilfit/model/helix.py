@@ -139,11 +139,29 @@ def globule_reach(p) -> float:
     return p.globule_radius
 
 
+def domain_reaches(p) -> list[float]:
+    """globule_reach of each domain of a chain (0 nearest the core): the same bound of each
+    real shape (several real shapes), or each domain's radius."""
+    if not p.several_shapes:
+        return [globule_reach(p)] + [d / 2.0 for d in p.domain_diameters or ()]
+    out = []
+    for k in range(len(p.globule_members())):
+        rows = p.domain_rows(k)
+        grow = HULL_REACH_FACTOR if p.domain_shape == "hull" else 1.0
+        slack = HULL_REACH_SLACK if p.domain_shape == "hull" else 0.0
+        out.append(float((np.linalg.norm(rows[:, :3], axis=1) + rows[:, 3] * grow).max()
+                         + slack))
+    return out
+
+
 def body_radii(p) -> np.ndarray:
     """How far each chain member's body reaches from its centre (Å): chain_radii, with a real
-    shape's globule reaching globule_reach (one domain a chain)."""
+    shape's globule reaching globule_reach (several real shapes: each domain its own)."""
     radii = np.asarray(p.chain_radii(), dtype=float)
-    if p.domain_shape != "sphere":
+    if p.several_shapes:
+        for i, reach in zip(p.globule_members(), domain_reaches(p)):
+            radii[i] = max(radii[i], reach)
+    elif p.domain_shape != "sphere":
         radii[p.linker] = max(radii[p.linker], globule_reach(p))
     return radii
 

@@ -74,6 +74,9 @@ ANGLE_UNITS = {"degrees": math.pi / 180, "degree": math.pi / 180, "deg": math.pi
 MAX_TWIST = 0.2
 DOMAIN_SHAPES = ("sphere", "hull", "spheres")  # docs/model/domain-shapes.md#domain-shapes
 MAX_SHAPE_ROWS = 5_000
+# The parameters that carry the domains' real shapes, as rows of numbers
+SHAPE_ROWS = ("domain_atoms", "domain_spheres", "domain_joint", "further_atoms",
+              "further_spheres", "further_joints", "domain_exits")
 
 
 @dataclass(frozen=True)
@@ -251,6 +254,33 @@ class Params:
                                        "frame, its terminal residue's CA: one row [x, y, z]",
                                        kind="rows", size=3, ui=False, cli=False,
                                        section="Globule", derived="on the sphere's surface")
+    # Several real-shaped domains per chain (docs/guide/atoms-and-domains.md#shapes-of-several-domains):
+    # the domains after the first, each in its own body frame, and where each domain but the
+    # last lets its outgoing linker go (its other terminal CA).
+    further_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                        "hull, several domains: the outermost heavy atoms of the "
+                                        "domains after the first, rows [domain, x, y, z, r] "
+                                        "(domain 1 is the second on the chain), each in its own "
+                                        "body frame", kind="rows", size=5, ui=False, cli=False,
+                                        section="Globule", derived="none: one domain")
+    further_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                          "spheres, several domains: the covering spheres of the "
+                                          "domains after the first, rows [domain, x, y, z, r], "
+                                          "each in its own body frame", kind="rows", size=5,
+                                          ui=False, cli=False, section="Globule",
+                                          derived="none: one domain")
+    further_joints: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                         "hull, spheres, several domains: the incoming linker's "
+                                         "joint (terminal CA) of each domain after the first, "
+                                         "one row [x, y, z] each, in its own body frame",
+                                         kind="rows", size=3, ui=False, cli=False,
+                                         section="Globule", derived="none: one domain")
+    domain_exits: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+                                       "hull, spheres, several domains: the outgoing linker's "
+                                       "joint (the other terminal CA) of each domain but the "
+                                       "last, one row [x, y, z] each, in its own body frame",
+                                       kind="rows", size=3, ui=False, cli=False,
+                                       section="Globule", derived="none: one domain")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
@@ -311,6 +341,26 @@ class Params:
         return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
 
     @property
+    def several_shapes(self) -> bool:
+        """Several domains per chain, each with its real shape (hull, spheres)."""
+        return self.domain_shape != "sphere" and bool(self.domain_diameters)
+
+    def domain_rows(self, k: int) -> np.ndarray:
+        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame: its hull
+        atoms (hull) or covering spheres (spheres)."""
+        first, more = ((self.domain_atoms, self.further_atoms) if self.domain_shape == "hull"
+                       else (self.domain_spheres, self.further_spheres))
+        if k == 0:
+            return np.asarray(first, dtype=float).reshape(-1, 4)
+        rows = np.asarray(more, dtype=float).reshape(-1, 5)
+        return rows[np.round(rows[:, 0]).astype(int) == k, 1:]
+
+    def domain_joints(self) -> list:
+        """Each domain's incoming joint (terminal CA) in its body frame, (3,) each."""
+        rows = [self.domain_joint[0], *(self.further_joints or ())]
+        return [np.asarray(r, dtype=float) for r in rows]
+
+    @property
     def widest_diameter(self) -> float:
         """The largest domain's diameter (one domain: globule_diameter): what a periodic cell
         must exceed so that no globule meets its own image."""
@@ -331,12 +381,25 @@ class Params:
         spacing from the last bead (joint_lever, globule_offset)."""
         radii, globules = self.chain_radii(), set(self.globule_members())
         first = min(globules)
+        # several real shapes: into domain k at its joint, out of it at its exit, each one
+        # residue spacing from the bead beside it (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
+        into, out = {}, {}
+        if self.several_shapes:
+            members = self.globule_members()
+            into = {i: self.residue_spacing + float(np.linalg.norm(j))
+                    for i, j in zip(members, self.domain_joints())}
+            out = {i: float(np.linalg.norm(e)) + self.residue_spacing
+                   for i, e in zip(members, self.domain_exits)}
         xs = [self.anchor_x]
         for i in range(len(radii) - 1):
             if i not in globules and i + 1 not in globules:
                 step = self.residue_spacing
             elif i + 1 == first:  # the sphere's radius + the bead's, or the real joint
                 step = self.joint_lever + self.globule_offset
+            elif i + 1 in into:
+                step = into[i + 1]
+            elif i in out:
+                step = out[i]
             else:
                 step = radii[i] + radii[i + 1]
             xs.append(xs[-1] + step)
@@ -386,7 +449,7 @@ class Params:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
             d["core_outline"] = [list(xy) for xy in self.core_outline]
-        for name in ("domain_atoms", "domain_spheres", "domain_joint"):
+        for name in SHAPE_ROWS:
             if d[name] is not None:
                 d[name] = [list(row) for row in d[name]]
         return d
@@ -741,15 +804,33 @@ def _check_shape(p: Params) -> None:
     if need and (getattr(p, need) is None or p.domain_joint is None):
         raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
                                          f"FILE) to take its shape and joint from")
-    if p.domain_shape != "sphere" and p.domain_diameters:
-        # docs/guide/atoms-and-domains.md#shapes-of-several-domains: measured, the outgoing
-        # linker would leave a straight start layout sideways (61° for GFP, 96° for ubiquitin)
-        raise ParamError("domain_shape", f"{p.domain_shape} cannot be used with several domains "
-                                         f"per chain yet (each domain would need its own mesh "
-                                         f"and an outgoing joint at its other terminal CA); "
-                                         f"use sphere")
-    if p.domain_spheres is not None and min(r for *_, r in p.domain_spheres) <= 0:
-        raise ParamError("domain_spheres", "every sphere's radius must be positive")
+    if p.several_shapes:
+        _check_several_shapes(p)
+    for name in ("domain_spheres", "further_spheres"):
+        rows = getattr(p, name)
+        if rows is not None and min(row[-1] for row in rows) <= 0:
+            raise ParamError(name, "every sphere's radius must be positive")
+
+
+def _check_several_shapes(p: Params) -> None:
+    """hull, spheres with several domains: every domain's own shape and joint, and an exit on
+    every domain but the last (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
+    more = len(p.domain_diameters)
+    rows = p.further_atoms if p.domain_shape == "hull" else p.further_spheres
+    have = set() if rows is None else {int(round(r[0])) for r in rows}
+    if (have != set(range(1, more + 1)) or len(p.further_joints or ()) != more
+            or len(p.domain_exits or ()) != more):
+        raise ParamError("domain_shape", f"{p.domain_shape} with {more + 1} domains per chain "
+                                         f"needs every domain's structure (--domain FILE once "
+                                         f"per domain) to take its shape, joint and exit from")
+    if min(p.domain_linker) < 1:
+        # the exit CA and the next domain's joint CA would be one bond apart, with both a few
+        # Å inside their hulls: the two shapes start inside each other
+        raise ParamError("domain_linker", f"must be at least 1 residue between real-shaped "
+                                          f"domains ({p.domain_shape}): the outgoing linker "
+                                          f"leaves one domain's terminal CA and enters the "
+                                          f"next one's through at least one bead "
+                                          f"(got {', '.join(map(str, p.domain_linker))})")
 
 
 def _check_periodic(p: Params) -> None:

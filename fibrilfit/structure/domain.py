@@ -164,6 +164,8 @@ def measure_shape(heavy, radii, ca, residues, follows: bool = True,
     geometry = {"domain_atoms": np.round(hull, 3).tolist(),
                 "domain_spheres": np.round(spheres, 3).tolist(),
                 "domain_joint": np.round(joint, 3).tolist()}
+    if outgoing:  # the outgoing linker's joint (mapping.model_values: domain_exits)
+        geometry["exit"] = np.round(ends["exit"][0] - centroid, 3).tolist()
     return summary, geometry
 
 

@@ -11,7 +11,8 @@ def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -
     for key, m in (("fibril", fibril), ("domain", domain)):
         if m is not None:
             out[key] = {"file": m.file, "sha256": m.sha256, "measured": m.to_dict()}
-    out["applied"] = {k: ("[... %d rows]" % len(v) if k in ("domain_atoms", "domain_spheres")
+    out["applied"] = {k: ("[... %d rows]" % len(v) if k in ("domain_atoms", "domain_spheres",
+                                                             "further_atoms", "further_spheres")
                           else v) for k, v in applied.items()}
     out["overridden"] = sorted(overridden)  # measured, but an explicit option set the value
     out["not_in_model"] = not_in_model  # measured, but this model has no such parameter
@@ -28,7 +29,7 @@ def warnings(fibril, domain, *more_domains) -> list[str]:
     return out
 
 
-def sources(fibril, domain, applied) -> dict:
+def sources(fibril, domain, applied, more_domains=()) -> dict:
     """Parameter name -> where its measured value came from, for each applied value: the file
     and what in it ('2n0a.pdb.gz: modelled tail 98-140 ...', '1ubq.pdb.gz: measured, ...')."""
     out = {}
@@ -59,6 +60,18 @@ def sources(fibril, domain, applied) -> dict:
         d = domain
         out["globule_diameter"] = (f"{d.file}: measured, 2·√(5/3)·Rg, Rg {d.rg:g} Å, chain "
                                    f"{d.chain} residues {d.residues[0]}-{d.residues[1]}")
+    if domain is not None:  # the real shapes (docs/model/domain-shapes.md#domain-shapes)
+        files = [d.file for d in (domain, *more_domains)]
+        said = {"domain_atoms": (files[:1], "hull atoms"),
+                "domain_spheres": (files[:1], "covering spheres"),
+                "domain_joint": (files[:1], "the incoming terminal CA"),
+                "further_atoms": (files[1:], "hull atoms"),
+                "further_spheres": (files[1:], "covering spheres"),
+                "further_joints": (files[1:], "the incoming terminal CAs"),
+                "domain_exits": (files[:-1], "the outgoing terminal CAs"),
+                "domain_diameters": (files[1:], "2·√(5/3)·Rg of each")}
+        out.update({k: f"{', '.join(f)}: measured, {what}" for k, (f, what) in said.items()
+                    if k in applied and f})
     return out
 
 
@@ -74,7 +87,7 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     missing = sorted(k for k in values if k not in known)
     out = block(fibril, domain, applied, overridden, missing)
     out["warnings"] = warnings(fibril, domain, *more_domains)
-    out["sources"] = sources(fibril, domain, applied)
+    out["sources"] = sources(fibril, domain, applied, more_domains)
     # the linker from the files' numbering (a modelled tail is said above), and an option's
     # linker with what the numbering would have given
     said = linker_source(fibril, domain, explicit="linker" in explicit)

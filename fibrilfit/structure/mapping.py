@@ -13,7 +13,8 @@ RESIDUE_RADIUS = 1.75  # Å: the model's anchor bead (params.residue_radius's de
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
                  "anchor", "linker")
 DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker", "domain_atoms",
-                 "domain_spheres", "domain_joint")
+                 "domain_spheres", "domain_joint", "further_atoms", "further_spheres",
+                 "further_joints", "domain_exits")
 
 
 def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
@@ -61,7 +62,7 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
     if domain is not None:
         values["globule_diameter"] = domain.globule_diameter
         if shape != "sphere" and domain.geometry:
-            values.update(domain.geometry)
+            values.update({k: v for k, v in domain.geometry.items() if k != "exit"})
     numbered = linker_from_numbering(fibril, domain)
     if numbered is not None:  # covers a modelled tail too: the residues between, all of them
         values["linker"] = numbered[0]
@@ -71,7 +72,25 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
                            "N" if fibril is not None and fibril.terminus == "N" else "C")
         if gaps is not None:
             values["domain_linker"] = gaps
+        if shape != "sphere" and domain is not None:
+            values.update(further_shapes([domain, *more_domains]))
     return values
+
+
+def further_shapes(domains: list) -> dict:
+    """The real shapes of several domains (chain order from the core outward) as the model's
+    parameters: the domains after the first, each row led by its domain's index, their joints,
+    and the exit of every domain but the last
+    (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
+    more = list(enumerate(domains))[1:]
+    out = {"further_atoms": [[k, *row] for k, d in more for row in d.geometry["domain_atoms"]],
+           "further_spheres": [[k, *row] for k, d in more
+                               for row in d.geometry["domain_spheres"]],
+           "further_joints": [d.geometry["domain_joint"] for _, d in more]}
+    exits = [d.geometry.get("exit") for d in domains[:-1]]
+    if all(e is not None for e in exits):
+        out["domain_exits"] = exits
+    return out
 
 
 def domain_gaps(domains: list, side: str = "C"):

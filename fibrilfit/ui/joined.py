@@ -23,31 +23,44 @@ def join_globules(model) -> bpy.types.Object:
     """
     remove_joined(model)
     globules = model.globules
-    mesh = _joined_mesh(globules[0].data, world_matrices(globules))
-    layers = np.repeat(np.array([ob[LAYER] for ob in globules], dtype=np.int32),
-                       len(globules[0].data.polygons))
+    # each globule's own mesh (several real-shaped domains: one per domain; else one shared)
+    mesh = _joined_mesh([ob.data for ob in globules], world_matrices(globules))
+    faces = [len(ob.data.polygons) for ob in globules]
+    layers = np.repeat(np.array([ob[LAYER] for ob in globules], dtype=np.int32), faces)
     mesh.attributes.new(LAYER, "INT", "FACE").data.foreach_set("value", layers)
     pfs = np.repeat(np.array([ob.get(PROTOFILAMENT, 0) for ob in globules], dtype=np.int32),
-                    len(globules[0].data.polygons))
+                    faces)
     mesh.attributes.new(PROTOFILAMENT, "INT", "FACE").data.foreach_set("value", pfs)
     ob = tag(bpy.data.objects.new("FibrilFit joined globules", mesh), ROLE)
     model.root.objects.link(ob)
     return ob
 
 
-def _joined_mesh(shared, matrices: np.ndarray) -> bpy.types.Mesh:
-    """Copies of the mesh `shared` placed by `matrices` (n, 4, 4), as one mesh, in bulk."""
-    verts, starts, loops = mesh_arrays(shared)
-    n = len(matrices)
-    world = np.einsum("nij,vj->nvi", matrices[:, :3, :3], verts) + matrices[:, None, :3, 3]
-    offsets = np.arange(n, dtype=np.int32)[:, None]
+def _joined_mesh(meshes, matrices: np.ndarray) -> bpy.types.Mesh:
+    """Copies of each globule's mesh (`meshes`, one per matrix) placed by `matrices`
+    (n, 4, 4), as one mesh, in bulk."""
+    arrays = {}
+    for m in meshes:
+        if m.session_uid not in arrays:
+            arrays[m.session_uid] = mesh_arrays(m)
+    world, loops_all, starts_all = [], [], []
+    nv = nl = 0
+    for m, mat in zip(meshes, np.asarray(matrices, float)):
+        verts, starts, loops = arrays[m.session_uid]
+        world.append(verts @ mat[:3, :3].T + mat[:3, 3])
+        loops_all.append(loops + nv)
+        starts_all.append(starts + nl)
+        nv, nl = nv + len(verts), nl + len(loops)
     mesh = tag(bpy.data.meshes.new("FibrilFit joined globules"), ROLE)
-    mesh.vertices.add(n * len(verts))
-    mesh.vertices.foreach_set("co", world.astype(np.float32).ravel())
-    mesh.loops.add(n * len(loops))
-    mesh.loops.foreach_set("vertex_index", (loops[None] + offsets * len(verts)).ravel())
-    mesh.polygons.add(n * len(starts))
-    mesh.polygons.foreach_set("loop_start", (starts[None] + offsets * len(loops)).ravel())
+    if not world:
+        return mesh
+    mesh.vertices.add(nv)
+    mesh.vertices.foreach_set("co", np.concatenate(world).astype(np.float32).ravel())
+    mesh.loops.add(nl)
+    mesh.loops.foreach_set("vertex_index", np.concatenate(loops_all).astype(np.int32))
+    starts = np.concatenate(starts_all).astype(np.int32)
+    mesh.polygons.add(len(starts))
+    mesh.polygons.foreach_set("loop_start", starts)
     mesh.update(calc_edges=True)
     return mesh
 

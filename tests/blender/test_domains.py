@@ -338,13 +338,35 @@ def test_inspect_gives_both_linker_points_of_a_domain_with_a_next_one(ff, tmp_pa
             f"{s['exit_depth']:.2f} Å below the hull") in text
 
 
-def test_real_shapes_of_several_domains_are_refused_in_one_line(ff, scene, tmp_path, capsys):
+def test_real_shapes_of_several_domains_run_and_what_they_lack_is_refused_in_one_line(
+        ff, scene, tmp_path, capsys):
+    """Several domains with hull or spheres run from a file per domain (they were refused
+    before: docs/guide/atoms-and-domains.md#shapes-of-several-domains); refused in one line:
+    a further domain with no file to take its shape from, and no residue between two domains."""
     near, far, out = renumbered(tmp_path, 127), renumbered(tmp_path, 229), tmp_path / "r.json"
     for shape in ("hull", "spheres"):
         assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--domain", str(near),
-                            "--domain", str(far), "--domain-shape", shape, *FAST, "--json",
-                            str(out)]) == 2
+                            "--domain", str(far), "--domain-shape", shape, *FAST, "--linker", "6",
+                            "--stop-after", "build", "--json", str(out)]) == 0
+        r = json.loads(out.read_text())
+        assert r["params"]["domain_linker"] == [26] and len(r["params"]["further_joints"]) == 1
+        assert len(r["params"]["domain_exits"]) == 1
+        assert r["sources"]["further_atoms"] == "ubq229.pdb: measured, hull atoms"
+        assert r["sources"]["domain_exits"] == "ubq127.pdb: measured, the outgoing terminal CAs"
+        out.unlink()
+    for extra, message in (
+            (["--domain", str(near), "--domain-diameters", "30", "--domain-linker", "4",
+              "--domain-shape", "hull"],
+             "domain_shape: hull with 2 domains per chain needs every domain's structure"),
+            (["--domain", str(near), "--domain", str(far), "--domain-linker", "0",
+              "--domain-shape", "hull"],
+             "domain_linker: must be at least 1 residue between real-shaped domains"),
+            # the covering spheres bulge past the atoms: one bead cannot hold them apart
+            (["--domain", str(near), "--domain", str(far), "--domain-linker", "1",
+              "--domain-shape", "spheres"],
+             "domain_linker: 1 residue(s) between the domains cannot start the chain clear")):
+        assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), *extra,
+                            *FAST, "--json", str(out)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and not out.exists()
-        assert err[0].startswith(f"fibrilfit: error: domain_shape: {shape} cannot be used with "
-                                 f"several domains per chain yet")
+        assert err[0].startswith(f"fibrilfit: error: {message}"), err

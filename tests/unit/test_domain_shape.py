@@ -91,3 +91,37 @@ def test_a_real_shapes_reach_holds_its_body(shape):
     assert reach > p.globule_radius + 5.0
     assert helix.body_radii(p)[p.linker] == reach
     assert list(helix.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()  # the sphere's: as before
+
+
+def test_several_real_domains_carry_each_domains_shape_joint_and_exit():
+    """Ubiquitin then GFP on one chain (docs/guide/atoms-and-domains.md#shapes-of-several-domains):
+    each domain's own rows, joint and exit in its own body frame; the chain's rest lengths
+    enter each domain at its joint and leave at its exit; the sphere's model takes none."""
+    ubq = measure_domain(DATA / "1ubq.pdb.gz", outgoing=True)
+    gfp = measure_domain(DATA / "1gfl.pdb.gz")
+    assert "exit" in ubq.geometry and "exit" not in gfp.geometry
+    assert not {"further_atoms", "domain_exits"} & set(model_values(None, ubq, more_domains=[gfp]))
+    values = model_values(None, ubq, more_domains=[gfp], shape="hull")
+    p = P.make_params(domain_shape="hull", linker=4, domain_linker=[5], **values)
+    assert p.several_shapes and p.globule_members() == [4, 10]
+    assert np.allclose(p.domain_rows(0), ubq.geometry["domain_atoms"])
+    assert np.allclose(p.domain_rows(1), gfp.geometry["domain_atoms"])
+    assert np.allclose(p.domain_joints()[1], gfp.geometry["domain_joint"])
+    assert np.allclose(p.domain_exits[0], ubq.geometry["exit"])
+    rest = p.rest_lengths()
+    spacing = p.residue_spacing
+    assert rest[3] == pytest.approx(spacing + np.linalg.norm(ubq.geometry["domain_joint"]))
+    assert rest[4] == pytest.approx(np.linalg.norm(ubq.geometry["exit"]) + spacing)
+    assert rest[9] == pytest.approx(spacing + np.linalg.norm(gfp.geometry["domain_joint"]))
+    assert rest[5:9] == [spacing] * 4
+    # spheres: each domain its own covering spheres
+    q = P.make_params(domain_shape="spheres", linker=4, domain_linker=[5],
+                      **model_values(None, ubq, more_domains=[gfp], shape="spheres"))
+    assert np.allclose(q.domain_rows(1), gfp.geometry["domain_spheres"])
+    # what is missing is refused in one line, naming the parameter
+    with pytest.raises(P.ParamError, match="^domain_shape: hull with 2 domains per chain needs "
+                                           "every domain's structure"):
+        P.make_params(domain_shape="hull", domain_diameters=[30], domain_linker=[4],
+                      **model_values(None, ubq, shape="hull"))
+    with pytest.raises(P.ParamError, match="^domain_linker: must be at least 1 residue"):
+        p.replace(domain_linker=[0])

@@ -136,12 +136,22 @@ def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None, kind
     keep = facing_faces(mesh, sub, local)
     world, polys = joined_globules(mesh, sub)
     per = len(polys)
-    faces, pairs, trees, kept = [], set(), {}, {}
+    trees, kept = {}, {}
     with _gc_paused():  # thousands of small lists: the cyclic GC would rescan them again and again
         for g in np.flatnonzero(keep.any(axis=1)).tolist():
             kept[g] = np.flatnonzero(keep[g])
             trees[g] = BVHTree.FromPolygons(world[g].tolist(), [polys[f] for f in kept[g]],
                                             epsilon=BVH_EPSILON)
+    return tree_overlaps(trees, kept, local, involved, lambda g: g * per)
+
+
+def tree_overlaps(trees: dict, kept: dict, local, involved, first_face
+                  ) -> tuple[int, set[tuple[int, int]]]:
+    """The pairs `local` (indices into `involved`) whose BVH trees overlap, as globule pairs,
+    and how many faces take part; trees[i] holds globule involved[i]'s faces kept[i], and
+    first_face(g) is the number of globule g's first face among all globules' faces."""
+    faces, pairs = [], set()
+    with _gc_paused():
         for i, j in local.tolist():
             if i not in trees or j not in trees:
                 continue
@@ -150,7 +160,8 @@ def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None, kind
                 gi, gj = int(involved[i]), int(involved[j])
                 pairs.add((gi, gj))
                 hits = np.array(hits, dtype=np.int64)
-                faces += [gi * per + kept[i][hits[:, 0]], gj * per + kept[j][hits[:, 1]]]
+                faces += [first_face(gi) + kept[i][hits[:, 0]],
+                          first_face(gj) + kept[j][hits[:, 1]]]
     return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
 
 
@@ -187,7 +198,7 @@ def bvh_clashes_kinds(meshes, kinds, matrices: np.ndarray, keep: np.ndarray | No
               for k in np.unique(sub_kind).tolist()}
     count = np.array([len(polys[k]) for k in kinds.tolist()], dtype=np.int64)
     offset = np.concatenate([[0], np.cumsum(count)[:-1]])  # globule g's faces start here
-    faces, pairs, trees, kept = [], set(), {}, {}
+    trees, kept = {}, {}
     with _gc_paused():
         for g in range(len(sub)):
             k = int(sub_kind[g])
@@ -199,16 +210,7 @@ def bvh_clashes_kinds(meshes, kinds, matrices: np.ndarray, keep: np.ndarray | No
             kept[g] = chosen
             trees[g] = BVHTree.FromPolygons(world.tolist(), [polys[k][f] for f in chosen],
                                             epsilon=BVH_EPSILON)
-        for i, j in local.tolist():
-            if i not in trees or j not in trees:
-                continue
-            hits = trees[i].overlap(trees[j])
-            if hits:
-                gi, gj = int(involved[i]), int(involved[j])
-                pairs.add((gi, gj))
-                hits = np.array(hits, dtype=np.int64)
-                faces += [offset[gi] + kept[i][hits[:, 0]], offset[gj] + kept[j][hits[:, 1]]]
-    return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
+    return tree_overlaps(trees, kept, local, involved, lambda g: offset[g])
 
 
 def reach_from_axis(meshes, kinds, matrices: np.ndarray) -> np.ndarray:

@@ -23,7 +23,7 @@ import tomllib
 MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "0dc55ef3aa9b33c351b2b51ef7580afe16939da74ede8e187874e8e245f7ff5b"
+MODEL_SOURCES_SHA256 = "ee8a343f752359cb725daf6c30ae25304dc8904a4a52989b99f23b88ea36b6ac"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

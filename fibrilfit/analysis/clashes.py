@@ -49,17 +49,32 @@ def _margin(centres: np.ndarray) -> float:
     return 1e-3 + 1e-6 * float(np.abs(centres).max(initial=0.0)) + BVH_EPSILON
 
 
-def candidate_pairs(mesh, matrices: np.ndarray) -> np.ndarray:
+def candidate_pairs(mesh, matrices: np.ndarray, radius: float | None = None) -> np.ndarray:
     """Globule pairs (i < j) whose bounding spheres meet: the only ones whose faces can overlap.
+    `radius`: the bounding radius, if not the mesh's (several meshes: the largest).
 
     A margin covers float32 rounding of world coordinates, so no overlapping pair is missed.
     """
     centres = matrices[:, :3, 3]
     if len(centres) < 2:
         return np.empty((0, 2), dtype=np.intp)
-    reach = 2.0 * bounding_radius(mesh, matrices) + _margin(centres)
+    if radius is None:
+        radius = bounding_radius(mesh, matrices)
+    reach = 2.0 * radius + _margin(centres)
     a, b, _ = close_pairs(centres, reach)
     return np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+
+
+def involved_pairs(candidates: np.ndarray, keep: np.ndarray | None = None):
+    """The candidate pairs that touch a kept globule (all if `keep` is None), numbered only over
+    the globules involved: (involved globules, pairs (k, 2) of indices into them)."""
+    if keep is not None:
+        keep = np.asarray(keep, dtype=bool)
+        candidates = candidates[keep[candidates[:, 0]] | keep[candidates[:, 1]]]
+    if not len(candidates):
+        return np.empty(0, dtype=np.intp), np.empty((0, 2), dtype=np.intp)
+    involved, local = np.unique(candidates, return_inverse=True)
+    return involved, local.reshape(-1, 2)
 
 
 def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 4096,
@@ -124,14 +139,9 @@ def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None, kind
     if kinds is not None:
         return bvh_clashes_kinds(mesh, kinds, matrices, keep)
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
-    candidates = candidate_pairs(mesh, matrices)
-    if keep is not None:
-        keep = np.asarray(keep, dtype=bool)
-        candidates = candidates[keep[candidates[:, 0]] | keep[candidates[:, 1]]]
-    if not len(candidates):
+    involved, local = involved_pairs(candidate_pairs(mesh, matrices), keep)
+    if not len(local):
         return 0, set()
-    involved, local = np.unique(candidates, return_inverse=True)
-    local = local.reshape(-1, 2)  # the pairs, numbering only the globules involved
     sub = matrices[involved]
     keep = facing_faces(mesh, sub, local)
     world, polys = joined_globules(mesh, sub)
@@ -177,19 +187,12 @@ def bvh_clashes_kinds(meshes, kinds, matrices: np.ndarray, keep: np.ndarray | No
     over each pair of globules whose bounding spheres meet; faces are counted per globule."""
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
     kinds = np.asarray(kinds, dtype=np.intp)
-    centres = matrices[:, :3, 3]
-    if len(centres) < 2:
+    if len(matrices) < 2:
         return 0, set()
     radius = bounding_radius_kinds(meshes, matrices)
-    a, b, _ = close_pairs(centres, 2.0 * radius + _margin(centres))
-    candidates = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
-    if keep is not None:
-        keep = np.asarray(keep, dtype=bool)
-        candidates = candidates[keep[candidates[:, 0]] | keep[candidates[:, 1]]]
-    if not len(candidates):
+    involved, local = involved_pairs(candidate_pairs(None, matrices, radius), keep)
+    if not len(local):
         return 0, set()
-    involved, local = np.unique(candidates, return_inverse=True)
-    local = local.reshape(-1, 2)
     sub, sub_kind = matrices[involved], kinds[involved]
     arrays = [mesh_arrays(m) for m in meshes]
     polys = [[q.tolist() for q in np.split(loops, starts[1:])] if len(starts) else []

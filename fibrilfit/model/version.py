@@ -23,7 +23,7 @@ import tomllib
 MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "ee8a343f752359cb725daf6c30ae25304dc8904a4a52989b99f23b88ea36b6ac"
+MODEL_SOURCES_SHA256 = "703aa0c8169694b4552a21a6eaa0dcde6c208a0e62633ab4e531beff7703779c"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -262,10 +262,9 @@ def test_results_from_before_a_parameter_existed_resume_and_summarise(ff):
     assert summary.csv_text([row]).splitlines()[1].startswith("6,30,2,0,1,0.5000,")
 
 
-def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path):
-    out = tmp_path / "s"
-    # six runs on two workers: after the first result both are busy (a worker is idle only for
-    # the microseconds between sending a reply and receiving its next job)
+def _sweep_with_a_worker_killed(out):
+    """Six runs on two workers; one worker killed (SIGKILL) once the first result is in: (the
+    killed pid, the records, stdout)."""
     proc = subprocess.Popen([sys.executable, str(ROOT / "headless.py"), "sweep", "--linker",
                              "2,6", "--layers", "8", "--seeds", "3", "--workers", "2", "--out",
                              str(out), "--quiet"], stdout=subprocess.PIPE,
@@ -284,11 +283,23 @@ def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path
     records = lines(out / "results.jsonl")
     assert len(records) == 6 and len(set(keys(records))) == 6
     assert all(r["status"] == "ok" for r in records)
-    hit = [r for r in records if r.get("errors")]
-    assert len(hit) == 1, "the killed worker was between runs; nothing to recover"
+    assert "6 with a verdict, 0 failed" in stdout
+    return victim, records
+
+
+def test_a_worker_killed_mid_run_is_recorded_retried_and_not_duplicated(tmp_path):
+    # After the first result both workers are busy, except in the moment between a worker's
+    # reply and its next job; on a loaded machine that moment grows (bpy 5.2, three suites side
+    # by side, 2026-11-25: the kill landed in it once). A kill there loses no run (checked),
+    # and the sweep is tried again, up to three times, for a kill that does.
+    for attempt in range(3):
+        victim, records = _sweep_with_a_worker_killed(tmp_path / f"s{attempt}")
+        hit = [r for r in records if r.get("errors")]
+        if hit:
+            break
+    assert len(hit) == 1, "the killed worker was between runs three times: nothing recovered"
     assert hit[0]["errors"] == [f"worker pid {victim} killed by SIGKILL"]
     assert hit[0]["attempts"] == 2 and hit[0]["worker"]["pid"] != victim
-    assert "6 with a verdict, 0 failed" in stdout
 
 
 def test_register_and_run_leave_the_sweep_dependencies_alone():

@@ -115,6 +115,22 @@ def test_panel_values_read_back_as_the_decimals_typed(ui):
     assert properties.changed_fields(ui, p) == [("linker", 6, 4)]
 
 
+def test_several_real_shaped_domains_read_back_from_the_panel(ui):
+    """A case with ubiquitin then GFP as hulls (or spheres), loaded into the panel: every
+    domain's own shape, joint and exit read back exactly, so Run all builds what the case says."""
+    from fibrilfit.structure import measure_domain, model_values
+    data = ROOT / "tests" / "data"
+    ubq = measure_domain(data / "1ubq.pdb.gz", outgoing=True)
+    gfp = measure_domain(data / "1gfl.pdb.gz")
+    for shape in ("hull", "spheres"):
+        p = P.make_params(domain_shape=shape, linker=6, domain_linker=[6],
+                          **model_values(None, ubq, more_domains=[gfp], shape=shape))
+        assert p.several_shapes and p.domain_exits is not None
+        properties.write_params(ui, p)
+        assert properties.read_params(ui) == p
+        assert properties.changed_fields(ui, p) == []
+
+
 def test_a_step_validates_the_panel_once_with_an_auto_cell(ui, scene, monkeypatch):
     """model_for reads the panel's Params (one validation) and compares with the 'auto' cell
     resolved from them, not validated a second time."""

@@ -15,6 +15,39 @@ def bond_stretch(positions: np.ndarray, rest_lengths) -> np.ndarray:
     return dist / rest - 1.0
 
 
+def bond_ends(p, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where each linker bond starts and ends in the world, (chains, members − 1, 3) each, and its
+    rest length, from the chain members' world matrices (chains, members, 4, 4).
+
+    A bead or a sphere globule is its centre (the tutorial's bonds: rest length the two radii).
+    A real-shaped domain (hull, spheres) is held by its terminal CAs: the bond into it ends at
+    its joint and the bond out of it (several domains) starts at its exit, each one residue
+    spacing from the bead beside it. Measured from the domain's centre, a joint pulled 0.95 Å
+    apart read as 4 % of GFP's 23.5 Å centre bond, against 27 % of the 3.5 Å bond it is
+    (docs/model/domain-shapes.md#joint-stretch).
+    """
+    matrices = np.asarray(matrices, dtype=float)
+    positions = matrices[..., :3, 3]
+    starts, ends = positions[:, :-1].copy(), positions[:, 1:].copy()
+    rest = np.asarray(p.rest_lengths(), dtype=float).copy()
+    if p.domain_shape == "sphere" or p.domain_joint is None:
+        return starts, ends, rest
+    exits = list(p.domain_exits or ())
+    for k, (g, joint) in enumerate(zip(p.globule_members(), p.domain_joints())):
+        m = matrices[:, g]
+        ends[:, g - 1] = m[:, :3, :3] @ joint + m[:, :3, 3]
+        rest[g - 1] = p.joint_lever
+        if k < len(exits) and g < positions.shape[1] - 1:
+            starts[:, g] = m[:, :3, :3] @ np.asarray(exits[k], dtype=float) + m[:, :3, 3]
+            rest[g] = p.residue_spacing
+    return starts, ends, rest
+
+
+def ends_stretch(starts: np.ndarray, ends: np.ndarray, rest) -> np.ndarray:
+    """bond_stretch for bonds given by their two ends (bond_ends)."""
+    return np.linalg.norm(ends - starts, axis=-1) / np.asarray(rest, dtype=float) - 1.0
+
+
 class StretchLog:
     """The worst bond stretch of every frame of a bake, summarised honestly.
 

@@ -11,7 +11,7 @@ from .clashes import (bounding_radius, bounding_radius_kinds, bvh_clashes, float
                       sphere_clashes, spheres_clashes)
 from .envelope import envelope
 from .leaks import members_inside_core
-from .stretch import bond_stretch
+from .stretch import bond_ends, ends_stretch
 
 # A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
 # coordinates, BVH epsilon 1e-5).
@@ -22,6 +22,12 @@ def chain_positions(model) -> np.ndarray:
     """World centres of every chain member now, shape (chains, linker + 1, 3)."""
     obs = [ob for members in model.chain for ob in members]
     return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
+
+
+def chain_matrices(model) -> np.ndarray:
+    """World matrices of every chain member now, shape (chains, linker + 1, 4, 4)."""
+    obs = [ob for members in model.chain for ob in members]
+    return MatrixReader(obs, model.root.children).matrices().reshape(len(model.chain), -1, 4, 4)
 
 
 def world_matrices(objects, collections=()) -> np.ndarray:
@@ -82,11 +88,12 @@ def check_model(model) -> dict:
     p = model.params
     lo, hi = scored_range(p)
     c_lo, c_hi = scored_chains(p)
-    positions = chain_positions(model)
+    matrices = chain_matrices(model)
+    positions = matrices[..., :3, 3]
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = bond_stretch(positions[c_lo:c_hi], p.rest_lengths())
+    stretch = ends_stretch(*bond_ends(p, matrices[c_lo:c_hi]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.globule_members())
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,

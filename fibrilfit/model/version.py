@@ -20,10 +20,11 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 3  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
-# 3: spheres under the tutorial protocol start spread (#24)
+MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+# 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
+# measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "703aa0c8169694b4552a21a6eaa0dcde6c208a0e62633ab4e531beff7703779c"
+MODEL_SOURCES_SHA256 = "46fbaa0a6562098c7b319c57e9a0ec7e735b631d4c52cd2752ab50e59635dc1e"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -338,3 +338,59 @@ def test_a_short_linker_after_gfp_starts_clear_of_itself(scene, ff, shape):
     p = _params(ff, shape, gfp_first=True, layers=1, linker=3, domain_linker=[2])
     model = ff.pipeline.build(p, scene)
     assert _overlaps_at_frame_1(model, p, shape, chains=[0]) == []
+
+
+
+def _turned_about_centre(ob, radians: float, axis):
+    """The object turned about its own centre (its centre does not move)."""
+    from mathutils import Matrix
+    m = np.array(ob.matrix_world)
+    m[:3, :3] = np.array(Matrix.Rotation(radians, 3, axis)) @ m[:3, :3]
+    ob.matrix_world = Matrix(m.tolist())
+
+
+@pytest.mark.parametrize("which", ["joint", "exit"])
+def test_a_domain_turned_about_its_centre_stretches_the_bond_at_its_terminal_ca(scene, ff, which):
+    """docs/model/domain-shapes.md#joint-stretch: a real domain is held by its terminal CAs, so
+    the bond into it is measured to its joint and the bond out of it from its exit, against one
+    residue spacing. Turning ubiquitin about its own centre leaves every centre where it was
+    (a centre-to-centre measure reads no stretch) but pulls a CA away from its bead; the
+    verdict's stretch is the CA-to-bead distance over 3.5 Å, computed here independently."""
+    import bpy
+    from fibrilfit.analysis.verdict import check_model
+    p = _params(ff, "hull", layers=3)
+    model = ff.pipeline.build(p, scene)
+    assert check_model(model)["max_bond_stretch"] == pytest.approx(0.0, abs=1e-4)
+    members = model.chain[1]
+    g = p.globule_members()[0]  # ubiquitin: a joint from the bead before, an exit to the next
+    ob = members[g]
+    points = {"joint": (p.domain_joints()[0], g - 1),
+              "exit": (np.asarray(p.domain_exits[0], float), g + 1)}
+
+    def pulled(m, name):  # a terminal CA's bond: its distance to its bead over 3.5 Å, minus 1
+        point, bead = points[name]
+        ca = m[:3, :3] @ point + m[:3, 3]
+        return float(np.linalg.norm(ca - np.array(members[bead].matrix_world)[:3, 3])
+                     / p.residue_spacing - 1.0)
+
+    m0 = np.array(ob.matrix_world)
+    lever = m0[:3, :3] @ points[which][0]
+    bond = np.array(members[points[which][1]].matrix_world)[:3, 3] - (lever + m0[:3, 3])
+    axis = np.cross(lever, bond)
+    axis = axis / np.linalg.norm(axis)  # turns the CA in the plane of its lever and its bond
+    best = max((0.12, -0.12), key=lambda a: (_turned_about_centre(ob, a, axis),
+                                             pulled(np.array(ob.matrix_world), which),
+                                             _turned_about_centre(ob, -a, axis))[1])
+    _turned_about_centre(ob, best, axis)  # 7°: the CA, ~15 Å out, moves ~1.8 Å
+    bpy.context.view_layer.update()
+    m = np.array(ob.matrix_world)
+    assert np.allclose(m[:3, 3], m0[:3, 3])
+    assert pulled(m, which) > 0.1
+    r = check_model(model)
+    assert r["max_bond_stretch"] == pytest.approx(max(pulled(m, "joint"), pulled(m, "exit")),
+                                                  abs=1e-4)
+    assert not r["linker_intact"] and not r["accommodated"]
+    centres = np.array([np.array(o.matrix_world)[:3, 3] for o in members])
+    centre_stretch = (np.linalg.norm(np.diff(centres, axis=0), axis=1)
+                      / np.asarray(p.rest_lengths()) - 1.0).max()
+    assert centre_stretch < 0.05  # the centres alone would have said: intact

@@ -18,16 +18,18 @@ from .stretch import bond_ends, ends_stretch
 TOUCH_SLACK = 1e-4
 
 
+def _chain_reader(model) -> MatrixReader:
+    return MatrixReader([ob for members in model.chain for ob in members], model.root.children)
+
+
 def chain_positions(model) -> np.ndarray:
     """World centres of every chain member now, shape (chains, linker + 1, 3)."""
-    obs = [ob for members in model.chain for ob in members]
-    return MatrixReader(obs, model.root.children).positions().reshape(len(model.chain), -1, 3)
+    return _chain_reader(model).positions().reshape(len(model.chain), -1, 3)
 
 
 def chain_matrices(model) -> np.ndarray:
     """World matrices of every chain member now, shape (chains, linker + 1, 4, 4)."""
-    obs = [ob for members in model.chain for ob in members]
-    return MatrixReader(obs, model.root.children).matrices().reshape(len(model.chain), -1, 4, 4)
+    return _chain_reader(model).matrices().reshape(len(model.chain), -1, 4, 4)
 
 
 def world_matrices(objects, collections=()) -> np.ndarray:

@@ -22,6 +22,7 @@ import numpy as np
 
 from ..geom.rigid import euler_xyz
 from ..model import helix
+from .readback import collection_matrices
 from .scene import INDEX, TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
@@ -183,10 +184,7 @@ def sync_compound_places(objects) -> None:
     Tagged, a COMPOUND body is rebuilt from its parent's own location and rotation and its
     children's world matrices; left at the start layout, the children land where the body
     started, not where it is (measured: docs/model/domain-shapes.md#compound-growth)."""
-    n = len(objects)
-    mats = np.empty(16 * n, dtype=np.float32)
-    objects.foreach_get("matrix_world", mats)
-    m = mats.reshape(n, 4, 4).transpose(0, 2, 1).astype(float)  # row-major
+    m = collection_matrices(objects)
     rot = m[:, :3, :3] / np.linalg.norm(m[:, :3, :3], axis=1, keepdims=True)  # unit columns
     objects.foreach_set("location", m[:, :3, 3].astype(np.float32).ravel())
     objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
@@ -199,10 +197,7 @@ def place_compound_children(scene, objects, children, s: float) -> None:
     docs/model/domain-shapes.md#compound-growth)."""
     from mathutils import Matrix
     graphs = [vl.depsgraph for vl in scene.view_layers if vl.depsgraph is not None]
-    n = len(objects)
-    mats = np.empty(16 * n, dtype=np.float32)
-    objects.foreach_get("matrix_world", mats)
-    m = mats.reshape(n, 4, 4).transpose(0, 2, 1).astype(float)
+    m = collection_matrices(objects)
     m[:, :3, :3] *= s / np.linalg.norm(m[:, :3, :3], axis=1, keepdims=True)
     for parent, kids in zip(m, children):
         for child, local in kids:

@@ -395,8 +395,7 @@ class _LayerBuilder:
             ob.rigid_body.collision_margin = HULL_MARGIN
             return
         key = "sphere_meshes" if not domain else f"sphere_meshes {domain}"
-        spheres = (self.p.domain_spheres if not domain else
-                   [tuple(row) for row in self.p.domain_rows(domain)])
+        spheres = [tuple(row) for row in self.p.domain_rows(domain)]
         if key not in self.mesh:
             name = "FibrilFit globule sphere" if not domain else f"FibrilFit domain {domain} sphere"
             self.mesh[key] = [
@@ -511,11 +510,8 @@ class _LayerBuilder:
         (start_layout.real_chain_layout)."""
         p = self.p
         if rot is None:
-            joint = np.asarray(p.domain_joint, float).reshape(3)
-            if p.domain_shape == "hull":
-                out = shape.outward(p.domain_atoms, joint)
-            else:  # the union of spheres is not convex: its nearest way out
-                out = shape.union_exit(p.domain_spheres, joint)[0]
+            (terminal,) = domain_terminals(p)  # the joint and the surface's normal there
+            joint, out = terminal["joint"], terminal["joint_out"]
             pivot = self.pivots[c, -1]
             rot = joint_rotations(out, loc - pivot)
             loc = pivot - rot @ joint
@@ -546,17 +542,12 @@ def globule_mesh(p: P.Params, domain: int = 0):
     """The globule's mesh: the sphere (32 × 16), the domain's grown hull, or its covering
     spheres joined, in the domain's body frame (structure.domain.body_frame). `domain`: which
     domain of the chain, 0 nearest the core (several real shapes: each its own mesh)."""
-    if domain:
-        name = f"FibrilFit globule {domain}"
-        if p.domain_shape == "hull":
-            return meshes.convex_hull(name, shape.hull_points(p.domain_rows(domain)))
+    name = f"FibrilFit globule {domain}" if domain else "FibrilFit globule"
+    if p.domain_shape == "hull":
+        return meshes.convex_hull(name, shape.hull_points(p.domain_rows(domain)))
+    if p.domain_shape == "spheres":
         return meshes.sphere_union(name, [tuple(r) for r in p.domain_rows(domain)],
                                    P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
-    if p.domain_shape == "hull":
-        return meshes.convex_hull("FibrilFit globule", shape.hull_points(p.domain_atoms))
-    if p.domain_shape == "spheres":
-        return meshes.sphere_union("FibrilFit globule", p.domain_spheres, P.GLOBULE_SEGMENTS,
-                                   P.GLOBULE_RINGS)
     return meshes.uv_sphere("FibrilFit globule", p.globule_radius, P.GLOBULE_SEGMENTS,
                             P.GLOBULE_RINGS)
 
@@ -565,9 +556,9 @@ def spheres_body(p: P.Params):
     """body(pivots, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
     world, turned as _turn_globules turns it when its last bond's pivot is at `pivots` and the
     bond points along `d` (k of each)."""
-    joint = np.asarray(p.domain_joint, float).reshape(3)
-    spheres = np.asarray(p.domain_spheres, float).reshape(-1, 4)
-    out = shape.union_exit(spheres, joint)[0]
+    (terminal,) = domain_terminals(p)  # the joint and the spheres' nearest way out there
+    joint, out = terminal["joint"], terminal["joint_out"]
+    spheres = p.domain_rows(0)
 
     def body(pivots, d):  # (k, 3) each -> (k, spheres, 4)
         rot = joint_rotations(out, np.asarray(d, float).reshape(-1, 3))

@@ -9,6 +9,14 @@ from __future__ import annotations
 import numpy as np
 
 
+def collection_matrices(objects) -> np.ndarray:
+    """World matrices (n, 4, 4) row-major, as float64, of every object of a collection's
+    `objects`, in its order: one foreach_get (MatrixReader picks a list of objects out)."""
+    mats = np.empty(16 * len(objects), dtype=np.float32)
+    objects.foreach_get("matrix_world", mats)
+    return mats.reshape(-1, 4, 4).transpose(0, 2, 1).astype(float)
+
+
 class MatrixReader:
     """World matrices of a fixed list of objects, (n, 4, 4) row-major, as float64.
 

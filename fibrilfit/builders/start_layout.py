@@ -68,27 +68,31 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     or at its real joint, whatever scale it starts at.
     """
     rest = np.asarray(rest, dtype=float)
-    n, m, _ = rest.shape
-    rng = np.random.default_rng([int(seed), SEED_SALT])
-    radii = np.asarray(p.chain_radii(), dtype=float)
     lengths = np.asarray(p.rest_lengths(), dtype=float)
-    u = fan_frames(rest)[0]
-    fan = fan_directions(rest, rng, periodic=bool(getattr(p, "periodic", 0)))
+    d = walk_directions(p, rest, seed)
     pos = np.empty_like(rest)
     pos[:, 0] = rest[:, 0]
-    for i in range(1, m):
-        w = min(1.0, (i - 1) / 2.0)
-        d = _unit((1.0 - w) * u + w * fan + WALK_NOISE * w * rng.normal(size=(n, 3)))
-        low = (d * u).sum(axis=1) < MIN_OUTWARD  # too far round: pull back towards outward
-        while low.any():
-            d[low] = _unit(d[low] + 0.5 * u[low])
-            low = (d * u).sum(axis=1) < MIN_OUTWARD
-        pos[:, i] = pos[:, i - 1] + lengths[i - 1] * d
-    bond = _unit(pos[:, 1:] - pos[:, :-1])
-    lever = radii[:-1].copy()
-    lever[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
-    pivots = pos[:, :-1] + lever[None, :, None] * bond
-    return pos, pivots
+    for i in range(1, rest.shape[1]):
+        pos[:, i] = pos[:, i - 1] + lengths[i - 1] * d[:, i - 1]
+    return pos, _pivots(p, pos)
+
+
+def _pivots(p, pos: np.ndarray) -> np.ndarray:
+    """Each bond's pivot for positions (n, m, 3): member i's radius along the bond from it (the
+    last bond's: Params.joint_lever, a real shape's joint one residue spacing on)."""
+    lever = np.asarray(p.chain_radii(), dtype=float)[:-1].copy()
+    lever[-1] = p.joint_lever
+    return pos[:, :-1] + lever[None, :, None] * _unit(pos[:, 1:] - pos[:, :-1])
+
+
+def _keep_outward(d: np.ndarray, normal: np.ndarray, least: float) -> np.ndarray:
+    """Directions d (n, 3) turned back towards `normal` (n, 3) until each keeps at least the
+    cosine `least` with it (a step too far round would turn back towards what it left)."""
+    low = (d * normal).sum(axis=1) < least
+    while low.any():
+        d[low] = _unit(d[low] + 0.5 * normal[low])
+        low = (d * normal).sum(axis=1) < least
+    return d
 
 
 SPREAD_DIRECTIONS = 400  # candidate directions for each chain of spread_layout
@@ -111,8 +115,7 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
     lengths = np.asarray(p.rest_lengths(), dtype=float)
-    lever = np.asarray(p.chain_radii(), dtype=float)[:-1].copy()
-    lever[-1] = p.joint_lever
+    lever_last = p.joint_lever
     u = fan_frames(rest)[0]
     cand = directions(SPREAD_DIRECTIONS)
     # member i >= 2 along d after the first bond (straight out): first + reach[i - 1]·d
@@ -122,9 +125,9 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
     for c in range(n):
         dirs = np.vstack([u[c], cand[cand @ u[c] >= SPREAD_OUTWARD]])  # rest direction first
         if m > 2:
-            pivot = first[c][None] + (reach[-2] + lever[-1]) * dirs
+            pivot = first[c][None] + (reach[-2] + lever_last) * dirs
         else:
-            pivot = rest[c, 0][None] + lever[-1] * dirs
+            pivot = rest[c, 0][None] + lever_last * dirs
         options.append((dirs, body(pivot, dirs)))
     choice = _choose([o[1] for o in options], rounds)
     pos = np.empty_like(rest)
@@ -135,9 +138,7 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
         pos[:, 2:] = first[:, None] + reach[None, 1:, None] * d[:, None]
     else:
         pos[:, 1] = rest[:, 0] + lengths[0] * d
-    bond = _unit(pos[:, 1:] - pos[:, :-1])
-    pivots = pos[:, :-1] + lever[None, :, None] * bond
-    return pos, pivots
+    return pos, _pivots(p, pos)
 
 
 # ---- several real-shaped domains per chain: a bent start layout --------------------------------
@@ -290,11 +291,7 @@ def bent_layout(p, rest: np.ndarray, wanted: np.ndarray, frames: list[dict], twi
             d = h
         else:
             w = min(1.0, max(0.0, (since - EXIT_STRAIGHT + 1) / EXIT_TURN)) if turn else 0.0
-            d = _unit((1.0 - w) * normal + w * h)
-            low = (d * normal).sum(1) < EXIT_OUTWARD
-            while low.any():
-                d[low] = _unit(d[low] + 0.5 * normal[low])
-                low = (d * normal).sum(1) < EXIT_OUTWARD
+            d = _keep_outward(_unit((1.0 - w) * normal + w * h), normal, EXIT_OUTWARD)
             since += 1
         if i + 1 in dom_of:  # into a domain at its joint
             k = dom_of[i + 1]
@@ -395,8 +392,8 @@ def real_chain_layout(p, rest: np.ndarray, wanted: np.ndarray | None = None
 
 
 def walk_directions(p, rest: np.ndarray, seed: int) -> np.ndarray:
-    """The inflate protocol's bond directions (n, m - 1, 3), drawn as inflate_layout draws
-    them (the same stream for the same seed), for the bent layout of real-shaped domains."""
+    """The inflate protocol's bond directions (n, m - 1, 3) from `seed` (inflate_layout walks
+    them; the bent layout of real-shaped domains follows them)."""
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
     rng = np.random.default_rng([int(seed), SEED_SALT])
@@ -406,9 +403,5 @@ def walk_directions(p, rest: np.ndarray, seed: int) -> np.ndarray:
     for i in range(1, m):
         w = min(1.0, (i - 1) / 2.0)
         d = _unit((1.0 - w) * u + w * fan + WALK_NOISE * w * rng.normal(size=(n, 3)))
-        low = (d * u).sum(axis=1) < MIN_OUTWARD
-        while low.any():
-            d[low] = _unit(d[low] + 0.5 * u[low])
-            low = (d * u).sum(axis=1) < MIN_OUTWARD
-        out[:, i - 1] = d
+        out[:, i - 1] = _keep_outward(d, u, MIN_OUTWARD)  # never back towards the core
     return out

@@ -68,16 +68,21 @@ def euler_xyz(rot: np.ndarray) -> np.ndarray:
     return np.column_stack([alpha, beta, gamma])
 
 
+def cross_matrices(v: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) matrices [v]x with [v]x @ w = v × w, for the rows of v (n, 3)."""
+    vx = np.zeros((len(v), 3, 3))
+    vx[:, 0, 1], vx[:, 0, 2], vx[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
+    vx[:, 1, 0], vx[:, 2, 0], vx[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
+    return vx
+
+
 def joint_rotations(joint: np.ndarray, outward: np.ndarray) -> np.ndarray:
     """(n, 3, 3) rotations taking the body-frame direction `joint` onto -outward (each row of
     outward: from the pivot to the globule's centre), by the smallest turn."""
     a = joint / np.linalg.norm(joint)
     b = -outward / np.linalg.norm(outward, axis=1, keepdims=True)
-    v = np.cross(a[None], b)
+    vx = cross_matrices(np.cross(a[None], b))
     cos = b @ a
-    vx = np.zeros((len(b), 3, 3))
-    vx[:, 0, 1], vx[:, 0, 2], vx[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
-    vx[:, 1, 0], vx[:, 2, 0], vx[:, 2, 1] = v[:, 2], -v[:, 1], v[:, 0]
     opposite = cos < -1 + 1e-9  # a half turn about any axis perpendicular to a
     k = np.where(opposite, 0.0, 1.0 / np.maximum(1.0 + cos, 1e-12))
     rot = np.eye(3)[None] + vx + (vx @ vx) * k[:, None, None]
@@ -92,8 +97,6 @@ def turn_about(axis: np.ndarray, angle) -> np.ndarray:
     """(n, 3, 3) rotations by `angle` (n,) about the unit vectors `axis` (n, 3) (Rodrigues)."""
     k = np.asarray(axis, float).reshape(-1, 3)
     a = np.broadcast_to(np.asarray(angle, float), (len(k),))
-    kx = np.zeros((len(k), 3, 3))
-    kx[:, 0, 1], kx[:, 0, 2], kx[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
-    kx[:, 1, 0], kx[:, 2, 0], kx[:, 2, 1] = k[:, 2], -k[:, 1], k[:, 0]
+    kx = cross_matrices(k)
     return (np.eye(3)[None] + np.sin(a)[:, None, None] * kx
             + (1.0 - np.cos(a))[:, None, None] * (kx @ kx))

@@ -129,14 +129,17 @@ HULL_REACH_FACTOR, HULL_REACH_SLACK = 1.0 / 0.93, 0.11
 def globule_reach(p) -> float:
     """How far the globule's body reaches from its centre (Å): the sphere's radius, or a bound
     of a real shape's (hull: its atoms grown as its points are; spheres: the farthest sphere)."""
-    if p.domain_shape == "hull" and p.domain_atoms is not None:
-        a = np.asarray(p.domain_atoms, dtype=float).reshape(-1, 4)
-        return float((np.linalg.norm(a[:, :3], axis=1) + a[:, 3] * HULL_REACH_FACTOR).max()
-                     + HULL_REACH_SLACK)
-    if p.domain_shape == "spheres" and p.domain_spheres is not None:
-        s = np.asarray(p.domain_spheres, dtype=float).reshape(-1, 4)
-        return float((np.linalg.norm(s[:, :3], axis=1) + s[:, 3]).max())
-    return p.globule_radius
+    rows = {"hull": p.domain_atoms, "spheres": p.domain_spheres}.get(p.domain_shape)
+    if rows is None:
+        return p.globule_radius
+    return shape_reach(np.asarray(rows, dtype=float).reshape(-1, 4), p.domain_shape == "hull")
+
+
+def shape_reach(rows: np.ndarray, hull: bool) -> float:
+    """The farthest a real shape reaches from its centre, from its rows [x, y, z, r]: hull
+    atoms grown as its points are (plus Bullet's margin), or covering spheres."""
+    grow, slack = (HULL_REACH_FACTOR, HULL_REACH_SLACK) if hull else (1.0, 0.0)
+    return float((np.linalg.norm(rows[:, :3], axis=1) + rows[:, 3] * grow).max() + slack)
 
 
 def domain_reaches(p) -> list[float]:
@@ -144,14 +147,8 @@ def domain_reaches(p) -> list[float]:
     real shape (several real shapes), or each domain's radius."""
     if not p.several_shapes:
         return [globule_reach(p)] + [d / 2.0 for d in p.domain_diameters or ()]
-    out = []
-    for k in range(len(p.globule_members())):
-        rows = p.domain_rows(k)
-        grow = HULL_REACH_FACTOR if p.domain_shape == "hull" else 1.0
-        slack = HULL_REACH_SLACK if p.domain_shape == "hull" else 0.0
-        out.append(float((np.linalg.norm(rows[:, :3], axis=1) + rows[:, 3] * grow).max()
-                         + slack))
-    return out
+    return [shape_reach(p.domain_rows(k), p.domain_shape == "hull")
+            for k in range(len(p.globule_members()))]
 
 
 def body_radii(p) -> np.ndarray:

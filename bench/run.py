@@ -94,7 +94,7 @@ def worker_job(layers: int) -> dict:
     ff = _fibrilfit()
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    r = ff.pipeline.run(ff.model.params.make_params(layers=layers), bpy.context.scene)
+    r = ff.pipeline.run_model(ff.model.params.make_params(layers=layers), bpy.context.scene)
     t = r["timings_s"]
     return {**t, "total": t["build"] + t["bake"] + t["check"], "verdict": r["verdict"],
             "frames": r["frames_simulated"]}

@@ -6,21 +6,21 @@ bodies), `analysis` (how it is judged), `pipeline` (one run, for every entry poi
 (how results are written), `batch`, `sweep` and `search` (many runs), `cli` and `ui` (how a
 user drives it, thin over the rest).
 
-Importing the package imports nothing else: `cli`, `model`, `run` and every submodule load on
-first use, so `headless.py inspect` never loads bpy, and an old Blender reaches register()'s
+Importing the package imports nothing else: `cli`, `model`, `run_model` and every submodule load
+on first use, so `headless.py inspect` never loads bpy, and an old Blender reaches register()'s
 version check (one line) rather than an import error from a module it cannot run.
 """
 import importlib
 import pathlib
 
-__all__ = ["cli", "params", "run", "register", "unregister"]
+__all__ = ["cli", "params", "run_model", "register", "unregister"]
 
 def __getattr__(name):
-    """`run` and the submodules load on first use."""
+    """`run_model` and the submodules load on first use."""
     if name == "bl_info":
         return _old_blender_info()
-    if name == "run":
-        return importlib.import_module(".pipeline", __name__).run
+    if name == "run_model":
+        return importlib.import_module(".pipeline", __name__).run_model
     here = pathlib.Path(__file__).parent
     if not name.startswith("__") and ((here / name).is_dir() or (here / f"{name}.py").is_file()):
         return importlib.import_module(f".{name}", __name__)

@@ -117,8 +117,8 @@ def describe(p: P.Params) -> dict:
     }
 
 
-def run(p: P.Params | None = None, scene=None, *, stop_after: str = "check", force: bool = False,
-        on_frame: Callable | None = None) -> dict:
+def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check",
+              force: bool = False, on_frame: Callable | None = None) -> dict:
     """Build, bake and check; return the JSON-ready result (docs/guide/headless.md#result-json)."""
     if stop_after not in STAGES:
         raise ValueError(f"stop_after must be one of {STAGES}")

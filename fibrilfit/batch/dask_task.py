@@ -11,7 +11,7 @@ def make_task():
     """The task function. Made here, nested, because pickle cannot find a nested function by
     name: Dask's serializer then falls back to cloudpickle, which ships its code by value."""
 
-    def run(pool_file: str, job: dict, timeout: float | None = None) -> dict:
+    def run_task(pool_file: str, job: dict, timeout: float | None = None) -> dict:
         import importlib.util
         import sys
 
@@ -24,4 +24,4 @@ def make_task():
             pool = sys.modules.setdefault(name, pool)
         return pool.run_here(job, timeout)
 
-    return run
+    return run_task

@@ -67,7 +67,7 @@ def main() -> int:
             force = bool(job.get("force"))
             p = ff.model.params.make_params(force=force, **job["params"])
             bpy.ops.wm.read_factory_settings(use_empty=True)
-            result = ff.pipeline.run(p, bpy.context.scene, force=force)
+            result = ff.pipeline.run_model(p, bpy.context.scene, force=force)
             reply = {"id": job["id"], "ok": True, "result": json.loads(json.dumps(result))}
         except Exception as exc:  # recorded with the point; the worker stays up for the next one
             traceback.print_exc()

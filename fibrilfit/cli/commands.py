@@ -406,7 +406,7 @@ def _run_here(args, p) -> dict:
     from .. import pipeline
     fresh_scene()
     frames = p.bake_frames() * (p.image_updates if p.periodic else 1)
-    return pipeline.run(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
+    return pipeline.run_model(p, bpy.context.scene, stop_after=args.stop_after, force=args.force,
                         on_frame=progress_printer(frames) if args.progress else None)
 
 
@@ -524,7 +524,7 @@ def command_inspect(args) -> int:
 
 def command_sweep(args) -> int:
     from ..sweep import command
-    return command.run(args)
+    return command.run_sweep(args)
 
 
 def command_minimal_linker(args) -> int:

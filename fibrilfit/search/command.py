@@ -106,10 +106,11 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
             if args.executor == "dask":
                 outdir.need("distributed")
             with make_executor(args, log_path=f"{tmp}/{LOG}") as executor:
-                records = restarts.run(executor, p.to_dict(), seeds, results,
-                                       stop_on_fit=args.stop_on_fit,
-                                       window=args.workers or cpu_count(), force=args.force,
-                                       progress=not args.quiet, version=version)
+                records = restarts.run_restarts(executor, p.to_dict(), seeds, results,
+                                                stop_on_fit=args.stop_on_fit,
+                                                window=args.workers or cpu_count(),
+                                                force=args.force, progress=not args.quiet,
+                                                version=version)
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
     summary = restarts.summarise(records)
@@ -230,8 +231,8 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
                     print("minimal-linker: trying " + ", ".join(
                         f"{w.diameter:g} Å at linker {L} ({len(some)} restarts)"
                         for w, L, some in wanted), file=sys.stderr)
-                runner.run(executor, todo, results, force=args.force,
-                           progress=not args.quiet, version=pipeline.version())
+                runner.run_points(executor, todo, results, force=args.force,
+                                  progress=not args.quiet, version=pipeline.version())
             for w, L, some in wanted:
                 # every restart of L run so far counts (a screened length completed later, or
                 # a resumed walk's records), none beyond the walk's seeds

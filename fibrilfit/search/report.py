@@ -161,9 +161,9 @@ def _restarts(args, p: P.Params, seeds: range, out) -> list[dict]:
     from .. import pipeline
     try:
         with make_executor(args, log_path=out / command.LOG) as executor:
-            return restarts.run(executor, p.to_dict(), seeds, out / outdir.RESULTS,
-                                window=args.workers or cpu_count(), force=args.force,
-                                progress=not args.quiet, version=pipeline.version())
+            return restarts.run_restarts(executor, p.to_dict(), seeds, out / outdir.RESULTS,
+                                         window=args.workers or cpu_count(), force=args.force,
+                                         progress=not args.quiet, version=pipeline.version())
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
 

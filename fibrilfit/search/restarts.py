@@ -19,8 +19,9 @@ def points(base: dict, seeds) -> list[Point]:
     return [Point({**base, "seed": int(s)}, {"seed": int(s)}) for s in seeds]
 
 
-def run(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
-        window: int = 1, force: bool = False, progress: bool = False, version: str = "") -> list[dict]:
+def run_restarts(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
+                 window: int = 1, force: bool = False, progress: bool = False,
+                 version: str = "") -> list[dict]:
     """Run `base` at each seed; return their records (results.jsonl lines), in seed order.
 
     With `stop_on_fit`, seeds go out `window` at a time and no more are started once one is
@@ -29,8 +30,8 @@ def run(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
     todo = points(base, seeds)
     batch = max(1, window) if stop_on_fit else len(todo)
     for start in range(0, len(todo), batch):
-        runner.run(executor, todo[start:start + batch], results_path, force=force,
-                   progress=progress, version=version)
+        runner.run_points(executor, todo[start:start + batch], results_path, force=force,
+                          progress=progress, version=version)
         if stop_on_fit and any(r.get("accommodated") for r in read(results_path, base)):
             break
     return read(results_path, base)

@@ -46,7 +46,7 @@ def _case(args) -> dict | None:
     return case.resolved(P.DEFAULTS, case.overridden)
 
 
-def run(args) -> int:
+def run_sweep(args) -> int:
     points, requirements, structure_block, out = _plan(args)
     results = out / RESULTS
     with slurm.ctrl_c_kept():
@@ -64,10 +64,10 @@ def run(args) -> int:
         from .. import pipeline
         try:
             with make_executor(args, out=out, runs=len(todo), log_path=out / LOG) as executor:
-                runner.run(executor, todo, results, force=args.force,
-                           progress=not args.quiet, version=pipeline.version(),
-                           extra={"structure": structure_block} if structure_block else None,
-                           case=_case(args))
+                runner.run_points(executor, todo, results, force=args.force,
+                                  progress=not args.quiet, version=pipeline.version(),
+                                  extra={"structure": structure_block} if structure_block
+                                  else None, case=_case(args))
         except SweepError as exc:
             kept, _ = runner.read_lines(results)
             print(f"fibrilfit: error: {exc}" + (f"; {len(kept)} results kept in {results}, "

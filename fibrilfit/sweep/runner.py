@@ -98,9 +98,9 @@ class Counts:
                 + (f", failed {self.failed}" if self.failed else ""))
 
 
-def run(executor, points: list[Point], results_path, *, force: bool = False,
-        progress: bool = True, version: str = "", extra: dict | None = None,
-        case: dict | None = None) -> Counts:
+def run_points(executor, points: list[Point], results_path, *, force: bool = False,
+               progress: bool = True, version: str = "", extra: dict | None = None,
+               case: dict | None = None) -> Counts:
     """Run every point on `executor` (already entered); append each record as it finishes,
     with `extra` (e.g. the structure block) in every record, and `case` (the --case,
     Case.resolved) with the point's params."""

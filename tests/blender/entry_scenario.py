@@ -24,7 +24,7 @@ elif mode == "crash":
 
     def broken(*_args, **_kwargs):
         raise ZeroDivisionError("float division by zero")
-    fibrilfit.pipeline.run = broken
+    fibrilfit.pipeline.run_model = broken
 else:
     raise SystemExit(f"unknown mode {mode!r}")
 sys.argv = [str(HEADLESS), *args]

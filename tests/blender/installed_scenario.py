@@ -87,7 +87,8 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
     out["run_all"] = [sorted(bpy.ops.fibrilfit.run_all()), len(scene.objects), settings.verdict]
     out["run_all_result"] = stored()
     out["clear"] = [sorted(bpy.ops.fibrilfit.clear()), sorted(o.name for o in scene.objects)]
-    api = ff.run(ff.model.params.make_params(**values), scene)  # the API of the installed copy
+    # the API of the installed copy
+    api = ff.run_model(ff.model.params.make_params(**values), scene)
     out["api_result"] = {k: v for k, v in api.items() if k != "timings_s"}
     bpy.ops.fibrilfit.clear()
 

@@ -203,7 +203,7 @@ def test_stretch_log_of_a_linker_that_never_recovers():
 # Short linkers leave many shallow contacts: the hardest case for matching the two checks.
 @pytest.mark.parametrize("linker,seed", [(3, 0), (4, 1), (4, 3), (5, 1)])
 def test_both_checks_name_the_same_pairs_on_baked_models(scene, linker, seed):
-    r = pipeline.run(P.make_params(layers=12, linker=linker, seed=seed, settle=False), scene)
+    r = pipeline.run_model(P.make_params(layers=12, linker=linker, seed=seed, settle=False), scene)
     band = r["sphere_check"]["tolerance"]
     assert r["checks_agree"] and r["warnings"] == []
     bvh = {(i, j): d for i, j, d in r["clashing_pairs"]}

@@ -25,13 +25,13 @@ def test_a_case_round_trips_to_the_same_parameters_and_result(scene, tmp_path):
                             "estimates": ["globule_diameter"], "seeds": [3, 4],
                             "params": {**SMALL, "twist": -0.0843, "slab": [38.5, 20, 4.8]}})
     p = case.make_params()
-    first = pipeline.run(p, scene)
+    first = pipeline.run_model(p, scene)
     path = files.write_case(tmp_path / "saved.toml", case.resolved(p))
     again = cases.load(path)
     assert again.make_params() == p
     assert again.meta == case.meta and again.seeds == [3, 4]
     assert again.sha256 and again.path == path
-    assert same_run(pipeline.run(again.make_params(), scene)) == same_run(first)
+    assert same_run(pipeline.run_model(again.make_params(), scene)) == same_run(first)
 
 
 def test_cli_options_beside_the_case_win(tmp_path):

@@ -14,8 +14,8 @@ from fibrilfit.model import params as P
 def _fits(scene, ff, linker, cell):
     fits = 0
     for seed in range(5):
-        r = ff.pipeline.run(P.make_params(protocol="inflate", periodic=cell, linker=linker,
-                                          seed=seed), scene)
+        r = ff.pipeline.run_model(P.make_params(protocol="inflate", periodic=cell, linker=linker,
+                                                seed=seed), scene)
         assert r["checks_agree"]
         if r["accommodated"]:
             assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05

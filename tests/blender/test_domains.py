@@ -96,7 +96,7 @@ def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scen
     P = ff.model.params
     p = P.make_params(**TDP43)
     assert p.globule_members() == [51, 75, 100]
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert len(model.chain) == 8 and all(len(c) == 101 for c in model.chain)
     assert len(model.globules) == 24
@@ -122,7 +122,7 @@ def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scen
 def test_the_json_names_which_domain_of_which_chain_clashes(ff, scene):
     p = ff.model.params.make_params(layers=4, linker=2, globule_diameter=40,
                                     domain_diameters="40,40", domain_linker="1,1", frames=20)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     assert r["verdict"] == "intersection" and r["clashing_domains"]
     assert len(r["clashing_domains"]) == len(r["clashing_pairs"])
     for (a, b, depth), (i, j, d) in zip(r["clashing_domains"], r["clashing_pairs"]):
@@ -134,7 +134,7 @@ def test_the_json_names_which_domain_of_which_chain_clashes(ff, scene):
     # two protofilaments: the chain blocks count chains, not globules
     p = ff.model.params.make_params(layers=3, protofilaments=2, linker=2, globule_diameter=40,
                                     domain_diameters="40,40", domain_linker="1,1", frames=10)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     assert r["verdict"] == "intersection" and len(r["chain_clashes"]) == 6
     for (a, b, _), (la, lb, _) in zip(r["clashing_domains"], r["clashing_chains"]):
         assert la == [a["layer"], a["protofilament"]] and lb == [b["layer"], b["protofilament"]]
@@ -207,7 +207,7 @@ def test_a_tdp43_like_chain_grows_each_domain_to_its_own_size_under_inflate(ff, 
     hook._set_scale(0.5)
     for ob in model.globules:
         assert ob.scale[:] == pytest.approx([0.5 * full[ob["fibrilfit_index"]]] * 3, abs=1e-6)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert [round(ob.scale[0], 4) for ob in model.globules[:3]] == [1.0, 1.0, round(30 / 31, 4)]
     assert r["inflate"]["cycles"] and r["verdict"] in ("successful", "intersection")
@@ -270,7 +270,7 @@ def _images_follow_with_their_scale(ff, model):
 def test_a_tdp43_like_chain_in_a_periodic_cell_images_every_member(ff, scene):
     p = ff.model.params.make_params(**{k: v for k, v in TDP43_CELL.items() if v is not None})
     assert p.periodic == 13 and p.globule_members() == [8, 13, 18]  # ceil(2 · 31 / 4.78)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     # images of every member kind: beads, each domain, each at its original's scale
     seen = _images_follow_with_their_scale(ff, model)
@@ -292,7 +292,7 @@ def test_contacts_with_images_of_further_domains_are_counted_and_named(ff, scene
     extra = INFLATE if protocol == "inflate" else {"frames": 10}
     p = ff.model.params.make_params(linker=2, globule_diameter=20, domain_diameters="12,20",
                                     domain_linker="1,1", periodic="auto", **extra)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     _images_follow_with_their_scale(ff, model)
     n = len(r["globule_centres"])

@@ -9,8 +9,8 @@ from fibrilfit import pipeline
 
 def test_scored_layers_and_layer_clashes_on_a_baked_model(scene):
     p = P.make_params(layers=10, linker=1, frames=40, settle=False)
-    every = pipeline.run(p, scene)
-    inner = pipeline.run(p.replace(score_layers=3), scene)  # same bake: same seed
+    every = pipeline.run_model(p, scene)
+    inner = pipeline.run_model(p.replace(score_layers=3), scene)  # same bake: same seed
     assert every["globule_centres"] == inner["globule_centres"]
     assert every["scored_layers"] == [0, 9] and inner["scored_layers"] == [3, 6]
     assert None not in every["layer_clashes"]

@@ -50,7 +50,7 @@ def test_built_model_envelope_is_the_geometry(scene, twist, linker):
 
 
 def test_every_result_has_the_envelope_of_its_scored_layers(scene):
-    r = pipeline.run(P.make_params(layers=6, linker=4, frames=40, seed=1), scene)
+    r = pipeline.run_model(P.make_params(layers=6, linker=4, frames=40, seed=1), scene)
     centres = np.asarray(r["globule_centres"])
     radii = np.hypot(centres[:, 0], centres[:, 1])
     assert r["envelope"]["n"] == 6

@@ -24,7 +24,7 @@ CAPPED_CELL = {"periodic": "auto", "frames": 60, "seed": 0}
 def test_a_capped_periodic_verdict_at_linker_6_against_12(scene, ff, linker, fits):
     """An infinite fibril of 30 Å globules does not take linker 6 (clashes and ~50 % stretch at
     every frame from 30 on) and takes linker 12 (clash-free from frame 30 on)."""
-    r = ff.pipeline.run(P.make_params(linker=linker, **CAPPED_CELL), scene)
+    r = ff.pipeline.run_model(P.make_params(linker=linker, **CAPPED_CELL), scene)
     assert r["periodic"]["cell_layers"] == 13 and r["frames_simulated"] == 60 * 5
     assert r["checks_agree"] and r["accommodated"] is fits
     if not fits:
@@ -43,7 +43,7 @@ SHORT_SEARCH = {"protocol": "inflate", "regrow_cycles": 1}
 
 
 def test_inflate_fits_linker_5_on_twenty_layers(scene, ff):
-    r = ff.pipeline.run(P.make_params(linker=5, seed=2, **SHORT_SEARCH), scene)
+    r = ff.pipeline.run_model(P.make_params(linker=5, seed=2, **SHORT_SEARCH), scene)
     assert r["accommodated"] is True and r["intersecting_faces"] == 0
     assert r["max_bond_stretch"] <= 0.05 and r["checks_agree"]
 
@@ -52,7 +52,7 @@ def test_inflate_fits_linker_5_on_twenty_layers(scene, ff):
 def test_inflate_never_fits_linker_4_on_twenty_layers(scene, ff, seed):
     """Every judgement of every cycle (and polish) is far from a fit: clashes, or linkers
     stretched by more than three times the tolerance."""
-    r = ff.pipeline.run(P.make_params(linker=4, seed=seed, **SHORT_SEARCH), scene)
+    r = ff.pipeline.run_model(P.make_params(linker=4, seed=seed, **SHORT_SEARCH), scene)
     assert r["accommodated"] is False and r["verdict"] == "intersection"
     cycles = r["inflate"]["cycles"]
     assert [c["cycle"] for c in cycles if not c["polished"]] == [0, 1]

@@ -102,7 +102,7 @@ def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
         xy, _ = _layer_frame(p, chain)
         assert not polygons.blocked(U_CORE, xy[1:], radii[1:]).any()
         assert not polygons.inside(U_CORE, xy[:1]).any()
-    result = pipeline.run(p, scene)
+    result = pipeline.run_model(p, scene)
     end = np.array([[ob.matrix_world.translation for ob in c] for c in find_model(scene).chain])
     assert np.abs(end - start).max() > 1.0  # they did move
     for chain in end:
@@ -114,7 +114,7 @@ def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
 def test_k2_clashes_name_both_globules_by_layer_and_protofilament(scene):
     # Frame 1 of a 3-layer model: 30 Å globules 4.8 Å apart all overlap.
     p = P.make_params(layers=3, linker=2, frames=1, **TWO_ONE)
-    r = pipeline.run(p, scene)
+    r = pipeline.run_model(p, scene)
     assert r["verdict"] == "intersection" and r["clashing_pairs"]
     layer, pf = helix.chain_layers(p)
     assert r["clashing_chains"] == [[[int(layer[i]), int(pf[i])], [int(layer[j]), int(pf[j])], d]
@@ -123,7 +123,7 @@ def test_k2_clashes_name_both_globules_by_layer_and_protofilament(scene):
     assert r["chain_clashes"] == [c in hit for c in range(6)]
     assert r["layer_clashes"] == [any(c in hit for c in (2 * k, 2 * k + 1)) for k in range(3)]
     assert len(r["globule_centres"]) == 6
-    one = pipeline.run(p.replace(protofilaments=1, pf_rotation=None, pf_rise=0), scene)
+    one = pipeline.run_model(p.replace(protofilaments=1, pf_rotation=None, pf_rise=0), scene)
     assert "clashing_chains" not in one and "chain_clashes" not in one
 
 
@@ -204,7 +204,7 @@ def test_protofilaments_have_their_own_colours_and_clashes_turn_red(scene):
 
 def test_k2_scores_every_protofilament_of_the_scored_layers(scene):
     p = P.make_params(layers=4, linker=2, frames=1, score_layers=1, **TWO_ONE)
-    r = pipeline.run(p, scene)
+    r = pipeline.run_model(p, scene)
     assert r["scored_layers"] == [1, 2]
     assert [v is None for v in r["layer_clashes"]] == [True, False, False, True]
     assert [v is None for v in r["chain_clashes"]] == [True, True, False, False, False, False,

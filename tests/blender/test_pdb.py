@@ -101,7 +101,8 @@ def test_keyframes_follow_the_tutorial_and_end_on_the_last_frame():
 def test_pdb_frames_are_the_baked_positions_and_the_bake_survives(scene, tmp_path):
     seen = {}
     p = P.make_params(layers=5, linker=3, seed=1, frames=110, settle=False)  # all 110 frames
-    r = pipeline.run(p, scene, on_frame=lambda f, pos: seen.__setitem__(f, pos.copy()) and False)
+    r = pipeline.run_model(p, scene,
+                           on_frame=lambda f, pos: seen.__setitem__(f, pos.copy()) and False)
     model = pipeline.current_model(scene)
     final = current_positions(model)
     info = pdb.write_pdb(tmp_path / "all.pdb", model, scene, frames=pdb.keyframes(110), result=r)
@@ -128,7 +129,7 @@ def test_two_protofilaments_give_one_chain_per_molecule(tmp_path, scene):
     outline = [[-25, -11], [25, -11], [25, 11], [-25, 11]]
     p = P.make_params(layers=3, linker=3, protofilaments=2, pf_rotation=3.1294, pf_rise=2.34,
                       anchor=(26.75, 0), core_outline=outline, frames=3)
-    result = pipeline.run(p, scene)
+    result = pipeline.run_model(p, scene)
     path = tmp_path / "k2.pdb"
     from fibrilfit.exports import writers
     info = writers.write_pdb(scene, result, path)

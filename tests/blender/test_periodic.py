@@ -308,7 +308,7 @@ def test_non_periodic_results_are_unchanged(scene, ff):
             {k: (c["verdict"], c["accommodated"]) for k, c in cases.items()}
     for name, case in cases.items():
         p = ff.model.params.make_params(**case["params"])
-        r = ff.pipeline.run(p, scene)
+        r = ff.pipeline.run_model(p, scene)
         assert "periodic" not in r and r["params"]["periodic"] == 0
         assert (r["verdict"], r["accommodated"]) == (case["verdict"], case["accommodated"]), name
         centres = np.array(r["globule_centres"])
@@ -530,7 +530,7 @@ def test_periodic_verdicts_match_the_interior_of_long_fibrils(scene, ff, linker,
     """docs/notebook/periodic-cell.md#agreement: the interior of a 100-layer fibril at seed 0 is
     not accommodated at linker 6 (clashes, 29-45 % stretch) and accommodated at 8; so is the
     cell that `auto` picks (13 layers for 30 Å globules)."""
-    r = ff.pipeline.run(ff.model.params.make_params(periodic="auto", linker=linker), scene)
+    r = ff.pipeline.run_model(ff.model.params.make_params(periodic="auto", linker=linker), scene)
     assert r["accommodated"] is accommodated
     assert r["checks_agree"] and r["periodic"]["cell_layers"] == 13
     if not accommodated:
@@ -542,7 +542,7 @@ def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
     was not measured; the auto cell carries no such warning."""
     S = _screw(ff)
     short = ff.model.params.make_params(periodic=10, frames=2, settle=False)
-    r = ff.pipeline.run(short, scene)
+    r = ff.pipeline.run_model(short, scene)
     assert r["periodic"]["auto_cell_layers"] == S.auto_cell_layers(short) == 13
     assert any("shorter than the measured margin (13" in w for w in r["warnings"])
     assert r["gravity"][:2] == [0.0, 0.0]  # the cell's gravity (cell_gravity), as baked
@@ -551,6 +551,6 @@ def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
     assert "gravity: its axial part only" in report.summary(r)
     assert r["gravity"][2] == pytest.approx(ff.builders.draw_gravity(short)[2], abs=1e-9)
     auto = ff.model.params.make_params(periodic="auto", frames=2, settle=False)
-    r = ff.pipeline.run(auto, scene)
+    r = ff.pipeline.run_model(auto, scene)
     assert r["periodic"]["cell_layers"] == 13
     assert not any("measured margin" in w for w in r["warnings"])

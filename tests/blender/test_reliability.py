@@ -27,11 +27,11 @@ def test_cli_refuses_bad_input(cli_args, api_kwargs, name, tmp_path):
 
 @pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
 def test_api_refuses_bad_input_and_keeps_the_scene(cli_args, api_kwargs, name, scene, user_objects):
-    pipeline.run(P.make_params(layers=2, frames=5), scene)
+    pipeline.run_model(P.make_params(layers=2, frames=5), scene)
     before_user = snapshot_user(user_objects)
     before = sorted(ob.name for ob in scene.objects)
     with pytest.raises(P.ParamError) as err:
-        pipeline.run(P.make_params(**api_kwargs), scene)
+        pipeline.run_model(P.make_params(**api_kwargs), scene)
     assert err.value.param == name and "\n" not in str(err.value)
     assert sorted(ob.name for ob in scene.objects) == before
     assert snapshot_user(user_objects) == before_user

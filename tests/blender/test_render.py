@@ -36,7 +36,7 @@ def red(rgb: np.ndarray) -> np.ndarray:
 
 
 def build(scene, **kw):
-    pipeline.run(P.make_params(**kw), scene, stop_after="build")
+    pipeline.run_model(P.make_params(**kw), scene, stop_after="build")
     return pipeline.current_model(scene)
 
 
@@ -45,7 +45,7 @@ def ours(kind) -> list:
 
 
 def test_colour_globules_reds_only_the_clashing_and_keeps_the_bake(scene):
-    pipeline.run(P.make_params(layers=4, linker=3, seed=1, frames=60), scene)
+    pipeline.run_model(P.make_params(layers=4, linker=3, seed=1, frames=60), scene)
     model = pipeline.current_model(scene)
     final = chain_positions(model)
     assert colour_globules(model, [2, 0], scene) == [0, 2]

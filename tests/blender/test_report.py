@@ -35,7 +35,7 @@ def test_deep_clashes_and_grazes_are_told_apart():
 
 
 def test_clash_and_graze_globules_get_different_colours(scene):
-    pipeline.run(P.make_params(layers=5, linker=2), scene, stop_after="build")
+    pipeline.run_model(P.make_params(layers=5, linker=2), scene, stop_after="build")
     model = pipeline.current_model(scene)
     assert colour_globules(model, [0], scene, grazing=[0, 2]) == [0]  # deep wins over graze
     colours = [tuple(round(c, 3) for c in ob.color) for ob in model.globules]
@@ -68,7 +68,7 @@ def test_legend_is_composed_onto_the_picture(tmp_path):
 
 
 def test_every_render_has_a_legend_with_clash_and_graze(scene, tmp_path):
-    pipeline.run(P.make_params(layers=3, linker=3), scene, stop_after="build")
+    pipeline.run_model(P.make_params(layers=3, linker=3), scene, stop_after="build")
     with_it = render.render_png(scene, tmp_path / "a.png", clashing=[0], grazing=[2],
                                 size=(320, 180), engine="workbench")
     without = render.render_png(scene, tmp_path / "b.png", clashing=[0], grazing=[2],
@@ -201,7 +201,7 @@ def test_periodic_render_frames_the_cell_and_every_image(scene):
 
     from fibrilfit.builders.periodic import MOVING, STATIC, image_collection
     from fibrilfit.exports import dressing
-    pipeline.run(P.make_params(layers=8, linker=3, periodic=8), scene, stop_after="build")
+    pipeline.run_model(P.make_params(layers=8, linker=3, periodic=8), scene, stop_after="build")
     model = pipeline.current_model(scene)
     images = [ob for role in (MOVING, STATIC) if image_collection(model, role) is not None
               for ob in image_collection(model, role).all_objects if ob.type == "MESH"]

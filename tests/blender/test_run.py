@@ -15,7 +15,7 @@ CONTRACT = {"fibrilfit_version", "blender_version", "params", "seed", "gravity",
 
 
 def test_result_contract(scene):
-    r = pipeline.run(P.make_params(layers=6, frames=60), scene)
+    r = pipeline.run_model(P.make_params(layers=6, frames=60), scene)
     assert CONTRACT <= set(r)
     assert r["params"]["layers"] == 6 and r["seed"] == 0
     assert r["blender_version"] == bpy.app.version_string
@@ -30,22 +30,22 @@ def test_result_contract(scene):
 
 def test_same_seed_same_result(scene):
     p = P.make_params(layers=10, linker=3, seed=7, frames=120)
-    a, b = pipeline.run(p, scene), pipeline.run(p, scene)
+    a, b = pipeline.run_model(p, scene), pipeline.run_model(p, scene)
     for key in ("verdict", "gravity", "clashing_pairs", "max_bond_stretch", "globule_centres"):
         assert a[key] == b[key], key
-    c = pipeline.run(p.replace(seed=8), scene)
+    c = pipeline.run_model(p.replace(seed=8), scene)
     assert c["gravity"] != a["gravity"]
 
 
 def test_gravity_is_drawn_within_the_bound(scene):
     for seed in range(20):
-        g = pipeline.run(P.make_params(layers=1, seed=seed, gravity=0.3), scene,
+        g = pipeline.run_model(P.make_params(layers=1, seed=seed, gravity=0.3), scene,
                          stop_after="build")["gravity"]
         assert all(-0.3 <= v <= 0.3 for v in g)
 
 
 def test_short_linker_stretches_and_is_not_accommodated(scene):
-    r = pipeline.run(P.make_params(layers=20, linker=2), scene)
+    r = pipeline.run_model(P.make_params(layers=20, linker=2), scene)
     assert r["max_bond_stretch"] > 0.05 and not r["linker_intact"] and not r["accommodated"]
 
 

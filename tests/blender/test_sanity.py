@@ -29,8 +29,8 @@ SEEDS = (0, 1, 2)
 @lru_cache(maxsize=None)
 def run(globule: float, linker: int, seed: int) -> tuple:
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    r = pipeline.run(P.make_params(layers=12, globule_diameter=globule, linker=linker, seed=seed),
-                     bpy.context.scene)
+    r = pipeline.run_model(P.make_params(layers=12, globule_diameter=globule, linker=linker,
+                                         seed=seed), bpy.context.scene)
     return r["verdict"], r["accommodated"], r["max_bond_stretch"], len(r["clashing_pairs"])
 
 

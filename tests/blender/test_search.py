@@ -66,7 +66,7 @@ def test_inflate_layout_over_protofilaments_and_an_anchor_off_the_x_axis():
 
 def test_inflate_bakes_several_protofilaments(scene, ff):
     p = P.make_params(layers=3, linker=6, protofilaments=2, **FAST)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     assert len(r["globule_centres"]) == 6 and r["inflate"]["cycles"]
     assert r["frames_simulated"] == r["inflate"]["cycles"][-1]["judged_at"]
     assert r["gravity"] == pytest.approx(list(ff.builders.draw_gravity(p)))  # the seed's
@@ -130,7 +130,7 @@ def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
     """An accommodated inflate verdict holds at the frame it is reported for: spheres apart,
     bonds intact, and the BVH check run again after scrubbing away and back."""
     p = P.make_params(layers=6, linker=7, **FAST)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     assert r["accommodated"], r["inflate"]
     frame = r["frames_simulated"]
     assert r["inflate"]["cycles"][-1]["judged_at"] == frame
@@ -150,8 +150,8 @@ def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
 
 def test_inflate_is_reproducible(scene, ff):
     p = P.make_params(layers=4, linker=5, seed=2, **FAST)
-    a = ff.pipeline.run(p, scene)
-    b = ff.pipeline.run(p, scene)
+    a = ff.pipeline.run_model(p, scene)
+    b = ff.pipeline.run_model(p, scene)
     for key in ("timings_s",):
         a.pop(key), b.pop(key)
     assert a == b
@@ -180,7 +180,8 @@ def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
     never (the independent optimizer finds no layout there in 256 restarts)."""
     fits = 0
     for seed in range(5):
-        r = ff.pipeline.run(P.make_params(protocol="inflate", linker=linker, seed=seed), scene)
+        r = ff.pipeline.run_model(P.make_params(protocol="inflate", linker=linker, seed=seed),
+                                  scene)
         fits += r["accommodated"]
         if r["accommodated"]:
             assert r["intersecting_faces"] == 0 and r["max_bond_stretch"] <= 0.05
@@ -210,7 +211,7 @@ def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
     finally:
         ff.unregister()
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    api = pipeline.run(P.make_params(**small), bpy.context.scene)
+    api = pipeline.run_model(P.make_params(**small), bpy.context.scene)
     assert api["inflate"]["cycles"]
     for key in ("verdict", "accommodated", "frames_simulated", "globule_centres"):
         assert mine[key] == api[key], key

@@ -9,18 +9,19 @@ SMALL = dict(layers=12, frames=250)
 
 def test_settle_counts_quiet_frames_exactly(scene):
     # Every body is "settled" at 100 Å/frame: frames 2, 3, 4 are quiet, so the bake stops at 4.
-    r = pipeline.run(P.make_params(layers=3, settle_speed=100.0, settle_frames=3), scene)
+    r = pipeline.run_model(P.make_params(layers=3, settle_speed=100.0, settle_frames=3), scene)
     assert (r["frames_simulated"], r["settled_at"]) == (4, 4)
     assert scene.frame_current == 4
 
 
 def test_frames_cap_the_bake_when_nothing_settles(scene):
-    r = pipeline.run(P.make_params(layers=3, frames=30, settle_speed=0.0), scene)
+    r = pipeline.run_model(P.make_params(layers=3, frames=30, settle_speed=0.0), scene)
     assert (r["frames_simulated"], r["settled_at"]) == (30, None)
 
 
 def test_settling_is_off_with_no_settle(scene):
-    r = pipeline.run(P.make_params(layers=3, frames=40, settle=False, settle_speed=100.0), scene)
+    r = pipeline.run_model(P.make_params(layers=3, frames=40, settle=False, settle_speed=100.0),
+                           scene)
     assert (r["frames_simulated"], r["settled_at"]) == (40, None)
 
 
@@ -32,8 +33,8 @@ def test_settling_is_off_with_no_settle(scene):
 @pytest.mark.parametrize("linker,seed", [(4, 1), (5, 0), (6, 1)])
 def test_settled_verdict_equals_the_full_bake(scene, linker, seed):
     p = P.make_params(linker=linker, seed=seed, **SMALL)
-    full = pipeline.run(p.replace(settle=False), scene)
-    short = pipeline.run(p, scene)
+    full = pipeline.run_model(p.replace(settle=False), scene)
+    short = pipeline.run_model(p, scene)
     assert full["frames_simulated"] == 250
     assert short["settled_at"] == short["frames_simulated"] < 200  # it did stop early
     for key in ("verdict", "accommodated", "linker_intact"):

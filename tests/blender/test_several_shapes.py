@@ -110,7 +110,7 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
     from fibrilfit.builders.model import globule_mesh
     from fibrilfit.structure.shape import hull_points
     p = _params(ff, shape)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert r["verdict"] in ("successful", "intersection") and r["checks_agree"], r["warnings"]
     assert r["sphere_check"]["shape"] == shape and "clashing_domains" in r
@@ -311,7 +311,7 @@ def test_inflate_grows_each_real_domain_to_its_own_full_size(scene, ff, shape):
     hook = growth.Inflate(model, scene)
     hook._set_scale(0.5)
     assert all(ob.scale[:] == pytest.approx((0.5,) * 3) for ob in model.globules)
-    r = ff.pipeline.run(p, scene)
+    r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert r["inflate"]["cycles"] and 0.01 <= r["inflate"]["start_scale"] <= p.grow_start
     assert all(ob.matrix_world.to_scale()[:] == pytest.approx((1, 1, 1), abs=1e-4)

@@ -64,7 +64,7 @@ def same_run(record: dict) -> dict:
 def test_workers_give_the_same_result_as_a_run_in_this_process(done_when, scene):
     out, _ = done_when
     for r in lines(out / "results.jsonl")[:2]:
-        here = json.loads(json.dumps(pipeline.run(P.make_params(**r["params"]), scene)))
+        here = json.loads(json.dumps(pipeline.run_model(P.make_params(**r["params"]), scene)))
         assert same_run(here) == {k: v for k, v in same_run(r).items() if k in here}
 
 

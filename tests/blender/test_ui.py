@@ -212,14 +212,15 @@ def test_no_module_name_is_hard_coded():
 # ---- operators --------------------------------------------------------------------------------
 
 def test_steps_in_order_match_the_api(ui, scene):
-    """The seven steps through bpy.ops give the verdict that pipeline.run gives for that seed."""
+    """The seven steps through bpy.ops give the verdict that pipeline.run_model gives for that
+    seed."""
     run_steps()
     mine = stored_result(scene)
     shown = {name: getattr(ui, name) for name in properties.RESULTS}
     colours = [tuple(round(c, 4) for c in ob.color) for ob in find_model(scene).globules]
 
     bpy.ops.wm.read_factory_settings(use_empty=True)  # frees `scene` and `ui`
-    api = pipeline.run(P.make_params(**SMALL), bpy.context.scene)
+    api = pipeline.run_model(P.make_params(**SMALL), bpy.context.scene)
     for key in ("verdict", "gravity", "intersecting_faces", "clashing_pairs", "max_bond_stretch",
                 "max_bond_stretch_bake", "frames_simulated", "globule_centres", "accommodated",
                 "params", "seed"):
@@ -447,7 +448,7 @@ def test_a_modal_run_all_judges_like_the_api(ui, scene):
     assert state == {"FINISHED"} and ticks == SMALL["frames"]
     mine = stored_result(scene)
     bpy.ops.wm.read_factory_settings(use_empty=True)  # frees `scene` and `ui`
-    api = pipeline.run(P.make_params(**SMALL), bpy.context.scene)
+    api = pipeline.run_model(P.make_params(**SMALL), bpy.context.scene)
     for key in ("verdict", "clashing_pairs", "max_bond_stretch", "max_bond_stretch_bake",
                 "globule_centres"):
         assert mine[key] == api[key], key

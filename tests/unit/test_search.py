@@ -78,7 +78,8 @@ class FakeExecutor:
 def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
     base = P.make_params(linker=5).to_dict()
     ex = FakeExecutor(fits={2, 4})
-    recs = restarts.run(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop, window=window)
+    recs = restarts.run_restarts(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop,
+                                 window=window)
     assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
     assert restarts.summarise(recs)["best_seed"] == 2
 

@@ -61,7 +61,7 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
         sources = {name: "sidebar" for name in p.to_dict()}
         doc = report.make_report(args, p, p.to_dict(), structure_block=None, case=case,
                                  look=look, sources=sources,
-                                 run_here=lambda q: pipeline.run(q, context.scene))
+                                 run_here=lambda q: pipeline.run_model(q, context.scene))
         files.write_case(case_path, case)  # what the page's command reproduces
         self.report({"INFO"}, f"{doc['answer']}: wrote {out / report.HTML}")
         return {"FINISHED"}

@@ -170,7 +170,7 @@ class FIBRILFIT_OT_run_all(ModalBake, bpy.types.Operator):
 
     def _execute(self, context):
         # No timer to serve: the very call headless.py makes.
-        result = pipeline.run(common.panel_params(context), context.scene)
+        result = pipeline.run_model(common.panel_params(context), context.scene)
         model = pipeline.current_model(context.scene)
         common.record_check(context, model, result)
         frame_model(context, model)

@@ -5,8 +5,7 @@ from __future__ import annotations
 import importlib
 import pathlib
 
-from .. import exits
-from ..exports import files
+from .. import exits, files
 
 RESULTS = "results.jsonl"  # every run's record, one JSON line each (sweep.runner)
 

@@ -11,7 +11,7 @@ import re
 import sys
 
 from ..model import cases, params as P
-from ..exports import files
+from .. import files
 from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK,  # noqa: F401 (re-exported)
                      EXIT_OUTPUT_FAILED, EXIT_USAGE, UsageError)
 from ..exports import options as export_options

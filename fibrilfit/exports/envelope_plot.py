@@ -10,7 +10,7 @@ import importlib.util
 
 import numpy as np
 
-from . import files
+from .. import files
 from ..analysis.envelope import radii
 from ..exits import UsageError
 

@@ -18,7 +18,7 @@ import string
 
 import numpy as np
 
-from . import files
+from .. import files
 from ..model import helix
 
 ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",

@@ -18,7 +18,7 @@ import time
 import bpy
 import numpy as np
 
-from . import files
+from .. import files
 from ..analysis import clash_kinds
 from ..builders import find_model
 from ..builders.model import colour_globules

@@ -23,7 +23,7 @@ import textwrap
 import bpy
 import numpy as np
 
-from . import files
+from .. import files
 from .mmcif import shown as _shown
 from ..model import helix
 from ..analysis.verdict import chain_positions

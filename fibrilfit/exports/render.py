@@ -16,7 +16,8 @@ import time
 import bpy
 import numpy as np
 
-from . import files, legend
+from .. import files
+from . import legend
 from ..builders import find_model
 from ..builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR, part_colour
 from ..builders.periodic import FADE, FADE_TO

@@ -14,7 +14,8 @@ import bpy
 from ..analysis import clash_kinds
 from ..builders import find_model, keep_bake
 from ..model import cases
-from . import dressing, envelope_plot, files, mmcif, movie, pdb, render
+from .. import files
+from . import dressing, envelope_plot, mmcif, movie, pdb, render
 from .options import MOVIE_FORMATS
 
 
@@ -152,7 +153,7 @@ OUTPUTS = (  # in the order they run: the slow ones last
            lambda j: write_atoms(j.scene, j.result, j.paths["pdb_atoms"], j.atoms)),
     Output("blend", "--blend", (".blend",), _asked("blend"), _blend, guarded=False),
     Output("save_case", "--save-case", cases.SUFFIXES, _asked("save_case"),
-           lambda j: files.write_case(j.paths["save_case"], j.case) and None, guarded=False),
+           lambda j: cases.write(j.paths["save_case"], j.case) and None, guarded=False),
     Output("envelope_plot", "--envelope-plot", (".png",),
            lambda j: "envelope_plot" in j.paths and "envelope" in j.result,
            lambda j: envelope_plot.write(j.result, j.paths["envelope_plot"])),

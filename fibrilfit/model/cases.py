@@ -24,6 +24,7 @@ import pathlib
 import tomllib
 from typing import Any
 
+from .. import files
 from . import params as P
 
 SUFFIXES = (".toml",)
@@ -348,6 +349,12 @@ def dumps(case: dict, where=None) -> str:
     if json.dumps(back, sort_keys=True) != json.dumps(_plain(want), sort_keys=True):
         raise ValueError("the case did not read back as written")  # a bug, never expected
     return text
+
+
+def write(path, case: dict) -> pathlib.Path:
+    """Write `case` (Case.resolved) as a case file, whole or not at all."""
+    path = pathlib.Path(path).expanduser()
+    return files.write_text(path, dumps(case, path.parent))
 
 
 def _plain(x):

@@ -12,9 +12,9 @@ import io
 import sys
 import tempfile
 
-from .. import exits
-from ..exports import files
+from .. import exits, files
 from ..model import params as P
+from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import outdir
 from ..batch.executors import SweepError, cpu_count, make_executor
@@ -206,7 +206,6 @@ def _minimal_plan(args, values: dict) -> tuple:
 def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
     """Step every walk until each has its minimum: the restarts of each wanted length run on
     one executor (started only if something is left to run), recorded in RESULTS."""
-    from .. import pipeline
     results = out / RESULTS
 
     def base_of(walk, linker):
@@ -232,7 +231,7 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
                         f"{w.diameter:g} Å at linker {L} ({len(some)} restarts)"
                         for w, L, some in wanted), file=sys.stderr)
                 runner.run_points(executor, todo, results, force=args.force,
-                                  progress=not args.quiet, version=pipeline.version())
+                                  progress=not args.quiet, version=fibrilfit_version())
             for w, L, some in wanted:
                 # every restart of L run so far counts (a screened length completed later, or
                 # a resumed walk's records), none beyond the walk's seeds
@@ -247,9 +246,8 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
 def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
     """minimal_linker.json, .csv and .png, and the table on stdout."""
     import bpy
-    from .. import pipeline
     document = {
-        "fibrilfit_version": pipeline.version(), "blender_version": bpy.app.version_string,
+        "fibrilfit_version": fibrilfit_version(), "blender_version": bpy.app.version_string,
         "method": ("walk from a guess in doubling steps until a fit and a miss bracket the "
                    "minimum, then bisection"
                    + ("" if args.known_fit is None else f", below the known fit at {args.known_fit}")

@@ -2,7 +2,7 @@
 matplotlib's Agg canvas (no pyplot, no display), written atomically."""
 from __future__ import annotations
 
-from ..exports import files
+from .. import files
 
 MARKERS = "os^Dv<>p"
 

@@ -17,11 +17,11 @@ import platform
 import sys
 import time
 
-from .. import exits
+from .. import exits, files
 from ..batch import outdir
 from ..batch.executors import SweepError, cpu_count, make_executor
-from ..exports import files
 from ..model import params as P
+from ..model.version import fibrilfit_version
 from ..sweep import runner
 from . import command, minimal, restarts
 
@@ -94,7 +94,6 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     `run_here(p)`: builds, bakes and checks `p` in this process's scene (the command line's
     fresh scene, or the sidebar's) and returns the result. Returns report.json's document.
     """
-    from .. import pipeline
     from ..exports import report_page
     seeds = seeds_of(p, args.restarts)
     out = outdir.out_dir(args)
@@ -149,7 +148,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         stage("page")
         doc = document(args, p, best, summary, row, sources=sources,
                        structure_block=structure_block, case=case, pictures=pictures,
-                       problems=problems, version=pipeline.version())
+                       problems=problems, version=fibrilfit_version())
         timings["total"] = round(time.perf_counter() - t0, 1)
         doc["timings_s"] = timings
         files.write_json(out / JSON, doc)
@@ -158,12 +157,11 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
 
 
 def _restarts(args, p: P.Params, seeds: range, out) -> list[dict]:
-    from .. import pipeline
     try:
         with make_executor(args, log_path=out / command.LOG) as executor:
             return restarts.run_restarts(executor, p.to_dict(), seeds, out / outdir.RESULTS,
                                          window=args.workers or cpu_count(), force=args.force,
-                                         progress=not args.quiet, version=pipeline.version())
+                                         progress=not args.quiet, version=fibrilfit_version())
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
 

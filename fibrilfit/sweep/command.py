@@ -8,8 +8,8 @@ from __future__ import annotations
 import pathlib
 import sys
 
-from .. import exits
-from ..exports import files
+from .. import exits, files
+from ..model.version import fibrilfit_version
 from ..structure import inputs
 from . import gate, grid, runner, summary
 from ..batch import slurm
@@ -61,11 +61,10 @@ def run_sweep(args) -> int:
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     todo = _todo(args, points, results)
     if todo:
-        from .. import pipeline
         try:
             with make_executor(args, out=out, runs=len(todo), log_path=out / LOG) as executor:
                 runner.run_points(executor, todo, results, force=args.force,
-                                  progress=not args.quiet, version=pipeline.version(),
+                                  progress=not args.quiet, version=fibrilfit_version(),
                                   extra={"structure": structure_block} if structure_block
                                   else None, case=_case(args))
         except SweepError as exc:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import json
 
-from ..exports import files
+from .. import files
 from ..model import params as P
 from .summary import fmt_value, order_key, varied
 

@@ -6,7 +6,7 @@ import json
 import pathlib
 import sys
 
-from ..exports import files
+from .. import files
 from ..model.version import MODEL_VERSION
 from .grid import Point, point_key
 

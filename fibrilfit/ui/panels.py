@@ -10,8 +10,8 @@ import math
 import bpy
 
 from ..model import params as P
-from . import properties
-from ..builders import model_stage, structure_trace
+from . import properties, structure_trace
+from ..builders import model_stage
 from ..builders.model import params_of
 from ..builders.scene import find_root
 from ..exports.summary import percent

@@ -4,7 +4,6 @@ import json
 import pytest
 from helpers import ROOT, run_cli
 
-from fibrilfit.exports import files
 from fibrilfit.model import cases, params as P
 from fibrilfit import pipeline
 
@@ -26,7 +25,7 @@ def test_a_case_round_trips_to_the_same_parameters_and_result(scene, tmp_path):
                             "params": {**SMALL, "twist": -0.0843, "slab": [38.5, 20, 4.8]}})
     p = case.make_params()
     first = pipeline.run_model(p, scene)
-    path = files.write_case(tmp_path / "saved.toml", case.resolved(p))
+    path = cases.write(tmp_path / "saved.toml", case.resolved(p))
     again = cases.load(path)
     assert again.make_params() == p
     assert again.meta == case.meta and again.seeds == [3, 4]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fibrilfit.ui import properties
-from fibrilfit.builders import structure_trace
+from fibrilfit.ui import structure_trace
 from fibrilfit.builders.scene import TAG
 from fibrilfit.ui import panels
 from helpers import ROOT

@@ -5,7 +5,7 @@ import json
 import bpy
 
 from ...model import cases
-from ...exports import files
+from ... import files
 from .. import properties
 from . import common
 
@@ -57,7 +57,7 @@ class FIBRILFIT_OT_save_case(_CaseFile, bpy.types.Operator):
         p = properties.read_params(s)
         meta = json.loads(s.case_metadata or "{}")
         case = cases.from_dict(meta)  # checked again: the JSON is the user's file to edit
-        files.write_case(path, case.resolved(p))
+        cases.write(path, case.resolved(p))
         self.report({"INFO"}, f"Wrote {path}")
         return {"FINISHED"}
 

@@ -14,7 +14,7 @@ from ...builders.model import (STAGES, colour_globules, find_model, model_stage,
 from ...builders.physics import SceneConflict
 from ...exports.pdb import PdbError
 from ...exports.render import RenderError
-from ...exports.files import OutputError
+from ...files import OutputError
 from ...exports.dressing import show_colours
 from ...exports.summary import percent
 from ..view import frame_model

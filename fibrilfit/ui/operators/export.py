@@ -3,7 +3,7 @@ import json
 
 import bpy
 
-from ...exports import files
+from ... import files
 from ... import pipeline
 from ...exports import options, writers
 from . import common

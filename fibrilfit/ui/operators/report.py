@@ -5,9 +5,9 @@ import pathlib
 
 import bpy
 
-from ... import pipeline
+from ... import files, pipeline
 from ...exits import UsageError
-from ...exports import files, options
+from ...exports import options
 from ...model import cases
 from ...search import report
 from .. import properties
@@ -62,7 +62,7 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
         doc = report.make_report(args, p, p.to_dict(), structure_block=None, case=case,
                                  look=look, sources=sources,
                                  run_here=lambda q: pipeline.run_model(q, context.scene))
-        files.write_case(case_path, case)  # what the page's command reproduces
+        cases.write(case_path, case)  # what the page's command reproduces
         self.report({"INFO"}, f"{doc['answer']}: wrote {out / report.HTML}")
         return {"FINISHED"}
 

@@ -4,8 +4,7 @@ import bpy
 import numpy as np
 
 from ...model import params as P
-from .. import properties
-from ...builders import structure_trace
+from .. import properties, structure_trace
 from ...structure import StructureError, from_files, measure_domain, measure_fibril, trace
 from . import common
 

@@ -1,4 +1,8 @@
-"""Writing results: every file appears whole or not at all (temporary file, then rename)."""
+"""Writing files: every file appears whole or not at all (temporary file, then rename).
+
+A room of its own, below everything that writes (model's case files, exports, batch, sweep,
+search, cli, ui), and importing nothing of FibrilFit: the drivers of many runs write their
+results.jsonl without loading the exporters."""
 from __future__ import annotations
 
 import contextlib
@@ -87,13 +91,6 @@ def append_line(path, line: str) -> None:
         fh.write(line.rstrip("\n") + "\n")
         fh.flush()
         os.fsync(fh.fileno())
-
-
-def write_case(path, case: dict) -> pathlib.Path:
-    """Write `case` (model.cases.Case.resolved) as a case file, whole or not at all."""
-    from ..model import cases
-    path = pathlib.Path(path).expanduser()
-    return write_text(path, cases.dumps(case, path.parent))
 
 
 @contextlib.contextmanager

@@ -7,7 +7,7 @@ import json
 import bpy
 import numpy as np
 
-from .scene import TAG, is_ours, tag
+from ..builders.scene import TAG, is_ours, tag
 
 COLLECTION = "structures"  # role of the collection holding imported structures
 TRACE = "structure_trace"  # role of a CA trace object

@@ -183,9 +183,6 @@ def file_record(name: str, target, case_path=None) -> dict:
     return {"path": rel, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
 
 
-WORDS = {"score_layers": "all", "periodic": "auto"}  # integers that may also be this word
-
-
 def _is_array(f) -> bool:
     meta = f.metadata
     return isinstance(f.default, tuple) or bool(meta.get("size")) or meta["kind"] == "points"
@@ -211,7 +208,7 @@ def _check_param(path, name: str, value):
             example = list(f.default) if isinstance(f.default, tuple) else "[...]"
             raise _error(path, key, f"must be an array like {example} (got {value!r})")
     elif meta["kind"] in (int, float):
-        special = WORDS.get(name) == value
+        special = P.NUMBER_WORDS.get(name) == value  # "all", "auto"
         if not _is_number(value) and not special:
             raise _error(path, key, f"must be a number, not {type(value).__name__} "
                                     f"(got {value!r})")

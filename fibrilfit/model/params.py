@@ -64,6 +64,9 @@ SHOWN_IN = {"%": ("fraction", 100.0)}
 
 # Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
 DERIVED_WORDS = ("auto", "default", "none", "box", "")
+# Integer parameters that also take one word (the CLI, sweeps, JSON and case files): every
+# layer scored (0), and a periodic cell as long as the geometry needs (helix.auto_cell_layers).
+NUMBER_WORDS = {"score_layers": "all", "periodic": "auto"}
 MAX_OUTLINE_POINTS = 10_000
 PROTOCOLS = ("tutorial", "inflate")
 # Angles (docs/guide/headless.md#angles): a bare number is radians; a value may name its unit.
@@ -675,9 +678,10 @@ def make_params(*, force: bool = False, **values) -> Params:
         if f.name not in values:
             continue
         value, meta = values[f.name], f.metadata
-        if f.name == "score_layers" and isinstance(value, str) and value.strip().lower() == "all":
+        word = isinstance(value, str) and value.strip().lower() == NUMBER_WORDS.get(f.name)
+        if word and f.name == "score_layers":
             value = 0
-        if f.name == "periodic" and isinstance(value, str) and value.strip().lower() == "auto":
+        if word and f.name == "periodic":
             continue  # resolved below, once the geometry it depends on is known
         if meta["derived"] and (value is None or (isinstance(value, str)
                                                   and value.strip().lower() in DERIVED_WORDS)):
@@ -699,7 +703,8 @@ def make_params(*, force: bool = False, **values) -> Params:
             clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
         else:
             clean[f.name] = _coerce(f.name, value, meta)
-    if isinstance(values.get("periodic"), str) and values["periodic"].strip().lower() == "auto":
+    if isinstance(values.get("periodic"), str) \
+            and values["periodic"].strip().lower() == NUMBER_WORDS["periodic"]:
         clean["periodic"] = helix.auto_cell_layers(Params(**{**clean, "periodic": 1}))
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers

@@ -2,7 +2,7 @@
 files, the explicit options winning, and the `structure` block a result records."""
 from __future__ import annotations
 
-from .mapping import linker_source, model_values
+from .mapping import RESIDUE_RADIUS, linker_source, model_values
 
 
 def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -> dict:
@@ -75,7 +75,7 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
     return out
 
 
-def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 1.75,
+def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = RESIDUE_RADIUS,
           more_domains=(), shape: str = "sphere"):
     """(values to apply, structure block). `explicit`: parameters given as options (they win);
     `known`: the model's parameter names; `more_domains`: the domains after `domain`; `shape`:

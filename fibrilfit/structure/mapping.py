@@ -4,10 +4,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..geom import polygons
+from ..model import params as P
 from .domain import DomainSize
 from .fibril import FibrilGeometry
 
-RESIDUE_RADIUS = 1.75  # Å: the model's anchor bead (params.residue_radius's default)
+RESIDUE_RADIUS = P.DEFAULTS.residue_radius  # Å, 1.75: the model's anchor bead, said in params
 
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",

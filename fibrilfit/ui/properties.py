@@ -7,7 +7,6 @@ default Metric system, so lengths are plain numbers with the unit in the label, 
 shows in degrees.
 """
 import json
-import math
 
 import bpy
 import numpy as np
@@ -80,9 +79,13 @@ def _description(field) -> str:
                    else "")
 
 
-# What a derived parameter (default None: worked out from others) shows until the user turns
-# its "use_" switch on. The switch off means None.
-_SHOWN_DEFAULTS = {"pf_rotation": math.pi, "anchor": (21.75, 0.0)}
+def shown_default(name: str):
+    """What a derived parameter (default None: worked out from others) shows until the user
+    turns its "use_" switch on (off means None): the value the model works out at the defaults,
+    the anchor's (21.75, 0) Å, and pf_rotation's at two protofilaments, the fewest where a
+    turn between them means anything (π)."""
+    p = P.DEFAULTS if name != "pf_rotation" else P.make_params(protofilaments=2)
+    return {"pf_rotation": p.pf_angle, "anchor": p.anchor_xy}[name]
 
 
 def switch_name(name: str) -> str:
@@ -101,7 +104,7 @@ def _param_property(field):
     if meta["kind"] in (*JSON_KINDS, "list"):
         return StringProperty(default="", **common)
     if default is None:
-        default = _SHOWN_DEFAULTS[field.name]
+        default = shown_default(field.name)
     if meta["kind"] is bool:
         return BoolProperty(default=default, **common)
     if "choices" in meta:  # a choice: the panel's drop-down, its items the choices
@@ -224,7 +227,7 @@ def values(settings) -> dict:
     if not settings.use_periodic:
         out["periodic"] = 0
     else:  # the cell replaces the fibril's length and its ends
-        out["periodic"] = out["periodic"] or "auto"
+        out["periodic"] = out["periodic"] or P.NUMBER_WORDS["periodic"]  # "auto"
         out["layers"], out["score_layers"] = P.DEFAULTS.layers, 0
     return out
 
@@ -258,7 +261,7 @@ def compared_values(settings, panel: P.Params | None = None) -> dict:
     panel's values already validated (read_params), else by validating them here (left "auto"
     when they are not valid)."""
     now = values(settings)
-    if now["periodic"] == "auto":
+    if now["periodic"] == P.NUMBER_WORDS["periodic"]:
         try:
             now["periodic"] = (panel or P.make_params(**now)).periodic
         except P.ParamError:

@@ -113,7 +113,7 @@ def stdout_to_stderr():
 @contextlib.contextmanager
 def silenced_stdout():
     """Drop what C code prints to standard output in the block (Blender's "Info: Saved copy
-    as ..." when saving): the summary names the file itself."""
+    as ..." when saving): the printed result names the file itself."""
     sys.stdout.flush()
     saved = os.dup(1)
     try:

@@ -1,4 +1,11 @@
-"""The verdict at the current frame: clashes by both checks, linker stretch, accommodation."""
+"""The verdict at the current frame: clashes by both checks, linker stretch, accommodation.
+
+Two of a result's three outcome words are computed here (docs/reference/glossary.md#outcome-words):
+`verdict` is the tutorial's mesh test alone ("intersection" when BVH faces of scored globules
+cross, else "successful"; nothing about linkers); `accommodated` is the run's yes or no: verdict
+successful and the worst scored bond within the stretch tolerance. The third, `answer`
+(model/answer.py), words `accommodated` with its margin: fits, borderline or no layout found.
+"""
 from __future__ import annotations
 
 import numpy as np

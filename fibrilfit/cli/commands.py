@@ -315,7 +315,7 @@ def _command_run(args) -> tuple[int, dict | None]:
     result = _run_here(args, p)
     _annotate(args, p, result, structure_block, restarts)
     problems = _write_outputs(args, p, result, outputs)
-    _report(args, result, restarts, outputs["paths"])
+    _print_result(args, result, restarts, outputs["paths"])
     for problem in problems:
         print(f"fibrilfit: error: {problem}", file=sys.stderr)
     if problems:
@@ -481,19 +481,19 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
         atoms=outputs.get("atoms")))
 
 
-def _report(args, result: dict, restarts, paths: dict) -> None:
-    from ..exports import summary
+def _print_result(args, result: dict, restarts, paths: dict) -> None:
+    from ..exports import run_text
     if restarts is not None:
         from ..search import command as search_command
         print(search_command.restarts_line(restarts, result["params"]["protocol"]))
         if not restarts["reproduced"]:
             print(f"fibrilfit: warning: {restarts['not_reproduced']}", file=sys.stderr)
-    print(summary.summary(result, quiet=args.quiet, files=paths))
+    print(run_text.text(result, quiet=args.quiet, files=paths))
 
 
 def command_inspect(args) -> int:
     from .. import structure
-    from ..structure import summary
+    from ..structure import inspect_text
     from ..structure.inputs import has_structure, measure_all
     if not has_structure(args):
         raise UsageError("inspect: give --fibril FILE, --domain FILE and/or --full-length FILE")
@@ -515,7 +515,7 @@ def command_inspect(args) -> int:
             doc["domains_measured"] = [d.to_dict() for d in doms]
         if path:
             files.write_json(path, doc)
-    print(summary.text(fib, dom, values, segmentation=seg, more_domains=doms[1:]),
+    print(inspect_text.text(fib, dom, values, segmentation=seg, more_domains=doms[1:]),
           file=sys.stderr if to_stdout else sys.stdout)
     if to_stdout:
         print(json.dumps(doc, indent=2))

@@ -98,7 +98,7 @@ def export(result: dict, key: str, label: str, write, *args, **kwargs) -> str | 
 def save_blend(path, scene: bpy.types.Scene | None = None) -> None:
     """--blend: the whole file with the bake kept, so it reopens ready to scrub."""
     keep_bake(scene or bpy.context.scene)  # a bake cancelled part-way is kept too
-    with files.silenced_stdout():  # Blender's "Info: Saved copy as ..." (the summary says it)
+    with files.silenced_stdout():  # Blender's "Info: Saved copy as ..." (the printed result says it)
         files.atomic_write(path, lambda tmp: bpy.ops.wm.save_as_mainfile(
             filepath=str(tmp), copy=True, compress=True, check_existing=False))
 

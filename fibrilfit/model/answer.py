@@ -1,7 +1,13 @@
 """The one-word answer of one relaxation: fits, borderline or no layout found.
 
+The last and widest of a result's three outcome words (docs/reference/glossary.md#outcome-words):
+`verdict` (analysis/verdict.py) says only whether globule meshes cross, `accommodated` (also
+there) whether this run found a layout (no crossing and intact linkers), and `answer`, made here,
+says what that is worth: a fit near the tolerance or one lost only to grazing pairs is borderline,
+and a miss is "no layout found", never "does not fit".
+
 Plain Python over a result's numbers (no bpy), so the verdict (analysis/verdict.py), the printed
-summary and the unit tests read the same rule (docs/model/verdict.md#answer):
+result and the unit tests read the same rule (docs/model/verdict.md#answer):
 
 - **fits**: no globule pair clashes and the worst linker bond is within the stretch tolerance,
   by more than BORDERLINE_STRETCH: a layout was found, which proves one exists;

@@ -95,7 +95,7 @@ def check_restart_options(args) -> None:
 
 
 def run_restarts(args, p: P.Params, version: str) -> dict:
-    """Run seeds p.seed .. p.seed + R - 1 on the executor; the restarts summary."""
+    """Run seeds p.seed .. p.seed + R - 1 on the executor; their tally (restarts.tally)."""
     seeds = range(p.seed, p.seed + args.restarts)
     if seeds[-1] > P.field_spec("seed")["max"]:
         raise P.ParamError("seed", f"seed + restarts - 1 must be at most "
@@ -113,9 +113,9 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
                                                 version=version)
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
-    summary = restarts.summarise(records)
-    summary["stop_on_fit"] = bool(args.stop_on_fit)
-    return summary
+    tally = restarts.tally(records)
+    tally["stop_on_fit"] = bool(args.stop_on_fit)
+    return tally
 
 
 def restarts_line(s: dict, protocol: str | None = None) -> str:

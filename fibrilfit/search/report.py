@@ -107,7 +107,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         stage("restarts")
         t = time.perf_counter()
         records = _restarts(args, p, seeds, out)
-        summary = restarts.summarise(records)
+        tally = restarts.tally(records)
         timings["restarts"] = round(time.perf_counter() - t, 1)
 
         stage("minimal linker")
@@ -131,7 +131,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
 
         stage("best layout")
         t = time.perf_counter()
-        best_seed = summary["best_seed"] if summary["best_seed"] is not None else p.seed
+        best_seed = tally["best_seed"] if tally["best_seed"] is not None else p.seed
         best = run_here(p.replace(seed=best_seed))
         if structure_block:
             best["structure"] = structure_block
@@ -146,7 +146,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         timings["pictures"] = round(time.perf_counter() - t, 1)
 
         stage("page")
-        doc = document(args, p, best, summary, row, sources=sources,
+        doc = document(args, p, best, tally, row, sources=sources,
                        structure_block=structure_block, case=case, pictures=pictures,
                        problems=problems, version=fibrilfit_version())
         timings["total"] = round(time.perf_counter() - t0, 1)
@@ -194,11 +194,11 @@ def answer_of(best: dict) -> str:
     return answer.of_result(best) or answer.NO_LAYOUT
 
 
-def warnings_of(best: dict, structure_block: dict | None, summary: dict, row: dict,
+def warnings_of(best: dict, structure_block: dict | None, tally: dict, row: dict,
                 problems: list[str]) -> list[str]:
     """Every warning the answer rests on, each once: the structures', the run's, the search's."""
     out = list(best.get("warnings") or [])
-    worker = next((r for r in summary["runs"] if r["seed"] == best.get("seed")), None)
+    worker = next((r for r in tally["runs"] if r["seed"] == best.get("seed")), None)
     if worker and worker.get("status") == "ok" and \
             worker.get("accommodated") != best.get("accommodated"):
         out.append(f"the best seed ({best.get('seed')}), run again for the pictures, gave "
@@ -207,8 +207,8 @@ def warnings_of(best: dict, structure_block: dict | None, summary: dict, row: di
     for key in ("fibril", "domain"):
         measured = ((structure_block or {}).get(key) or {}).get("measured") or {}
         out += [f"{key}: {w}" for w in measured.get("warnings") or []]
-    if summary["failed"]:
-        out.append(f"{summary['failed']} of {summary['failed'] + summary['restarts']} restarts "
+    if tally["failed"]:
+        out.append(f"{tally['failed']} of {tally['failed'] + tally['restarts']} restarts "
                    f"failed to run")
     if row.get("error"):
         out.append(f"minimal linker: {row['error']}")
@@ -228,10 +228,10 @@ def versions(version: str) -> dict:
     return out
 
 
-def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources: dict,
+def document(args, p: P.Params, best: dict, tally: dict, row: dict, *, sources: dict,
              structure_block, case, pictures: dict, problems: list[str], version: str) -> dict:
     """report.json: the question, the model and its sources, the answer and what it rests on."""
-    low, high = summary["p_fit_interval"]
+    low, high = tally["p_fit_interval"]
     tol = p.stretch_tolerance
     m = row["minimal_linker"]
     measured_width = (case or {}).get("envelope_width")
@@ -243,12 +243,12 @@ def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources
         "answer": answer_of(best),
         "model": p.to_dict(),
         "sources": {**sources, **(best.get("sources") or {})},
-        "warnings": warnings_of(best, structure_block, summary, row, problems),
-        "p_fit": {"fits": summary["accommodated"], "runs": summary["restarts"],
-                  "low": low, "high": high, "p": summary["p_fit"], "linker": p.linker,
+        "warnings": warnings_of(best, structure_block, tally, row, problems),
+        "p_fit": {"fits": tally["accommodated"], "runs": tally["restarts"],
+                  "low": low, "high": high, "p": tally["p_fit"], "linker": p.linker,
                   "protocol": p.protocol, "seeds": [p.seed, p.seed + args.restarts - 1],
-                  "failed": summary["failed"], "best_seed": summary["best_seed"],
-                  "per_seed": summary["runs"]},
+                  "failed": tally["failed"], "best_seed": tally["best_seed"],
+                  "per_seed": tally["runs"]},
         "minimal_linker": {
             "linker": m, "p_fit": row["p_fit"], "interval": row["p_fit_interval"],
             "linker_below": row["linker_below"], "p_fit_below": row["p_fit_below"],
@@ -267,7 +267,7 @@ def document(args, p: P.Params, best: dict, summary: dict, row: dict, *, sources
             "clashing_pairs": len(best.get("clashing_pairs") or []),
             "grazing_pairs": len(best.get("grazing_pairs") or [])},
         "envelope": {"best_layout": best.get("envelope"),
-                     "outer_diameter_over_restarts": summary.get("outer_diameter"),
+                     "outer_diameter_over_restarts": tally.get("outer_diameter"),
                      "measured_width": measured_width,
                      "measured_width_source": (case or {}).get("envelope_width_source")},
         "structure": structure_block,

@@ -57,7 +57,7 @@ def badness(record: dict) -> tuple:
             record["max_overlap"], record["max_bond_stretch"])
 
 
-def summarise(records: list[dict]) -> dict:
+def tally(records: list[dict]) -> dict:
     """How many restarts were accommodated, P(fit) and its Wilson interval, and the best seed."""
     ok = [r for r in records if r.get("status") == "ok"]
     fits = sum(bool(r["accommodated"]) for r in ok)

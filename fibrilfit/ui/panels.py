@@ -14,7 +14,7 @@ from . import properties, structure_trace
 from ..builders import model_stage
 from ..builders.model import params_of
 from ..builders.scene import find_root
-from ..exports.summary import percent
+from ..exports.run_text import percent
 from .operators.common import reached
 
 STATUS = {

@@ -29,8 +29,8 @@ _FLOAT_UNITS = {
 _LABEL_UNITS = ("Å", "Å/frame", "Å/s²")
 _UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "Å/s²": "Å/s²",
                "rad": "shown in degrees", "×": "", "fraction": "a fraction: 0.05 is 5 %",
-               "%": "in per cent, as the summary prints it; the command line takes the fraction: "
-                    "5 % is 0.05"}
+               "%": "in per cent, as the printed result shows it; the command line takes the "
+                    "fraction: 5 % is 0.05"}
 
 
 def section_of(field) -> str:

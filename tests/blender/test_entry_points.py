@@ -62,10 +62,10 @@ def test_the_command_runs_a_model_exactly_as_headless_does(captured, tmp_path, c
     printed = capsys.readouterr().out
     out = run_cli("run", *SMALL, "--json", str(tmp_path / "h.json"))
     assert out.returncode == 0, out.stderr
-    # the same summary, timings aside
+    # the same printed result, timings aside
     assert "verdict:" in printed
     assert re.sub(r"[\d.]+ s\b", "", printed).replace("c.json", "h.json") == \
-        re.sub(r"[\d.]+ s\b", "", out.stdout)  # (the summary names the file it wrote)
+        re.sub(r"[\d.]+ s\b", "", out.stdout)  # (the printed result names the file it wrote)
     mine, theirs = (json.loads((tmp_path / f"{n}.json").read_text()) for n in "ch")
     assert stable(mine) == stable(theirs)
 

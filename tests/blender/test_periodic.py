@@ -547,8 +547,8 @@ def test_a_cell_shorter_than_auto_is_run_with_a_warning(scene, ff):
     assert any("shorter than the measured margin (13" in w for w in r["warnings"])
     assert r["gravity"][:2] == [0.0, 0.0]  # the cell's gravity (cell_gravity), as baked
     assert r["periodic"]["gravity"] == "axial"
-    report = importlib.import_module(ff.__name__ + ".exports.summary")
-    assert "gravity: its axial part only" in report.summary(r)
+    run_text = importlib.import_module(ff.__name__ + ".exports.run_text")
+    assert "gravity: its axial part only" in run_text.text(r)
     assert r["gravity"][2] == pytest.approx(ff.builders.draw_gravity(short)[2], abs=1e-9)
     auto = ff.model.params.make_params(periodic="auto", frames=2, settle=False)
     r = ff.pipeline.run_model(auto, scene)

@@ -22,7 +22,7 @@ def test_degrees_typed_as_radians_are_refused_and_nothing_is_written(tmp_path):
 def test_degrees_with_a_unit_and_json_to_stdout():
     cp = run_cli("run", "--twist=-0.961deg", *QUICK, "--json", "-")
     assert cp.returncode == 0, cp.stderr
-    r = json.loads(cp.stdout)  # the JSON alone on stdout; the summary went to stderr
+    r = json.loads(cp.stdout)  # the JSON alone on stdout; the printed result went to stderr
     assert r["params"]["twist"] == pytest.approx(-0.016773, abs=1e-6)
     assert "twist -0.961° per layer" in cp.stderr and "answer:" in cp.stderr
     assert r["sources"]["twist"] == "option" and r["sources"]["rise"] == "default"
@@ -87,7 +87,7 @@ def test_quiet_blend_prints_one_line(tmp_path):
     assert len(cp.stdout.strip().splitlines()) == 1 and (tmp_path / "m.blend").exists()
 
 
-def test_summary_lists_files_and_counts_periodic_frames(tmp_path):
+def test_printed_result_lists_files_and_counts_periodic_frames(tmp_path):
     blend, out = tmp_path / "m.blend", tmp_path / "r.json"
     cp = run_cli("run", "--periodic", "auto", "--frames", "20", "--linker", "6",
                  "--blend", str(blend), "--json", str(out))

@@ -84,7 +84,7 @@ def test_one_property_per_parameter_with_its_metadata(ui):
         if meta["unit"].startswith("Å"):  # no Blender unit: Metric would show "30 m"
             assert prop.unit == "NONE" and prop.name.endswith(f"({meta['unit']})"), f.name
     assert (rna["twist"].subtype, rna["twist"].unit) == ("ANGLE", "ROTATION")
-    # the stretch tolerance in per cent, as the summary and the verdict's line print it
+    # the stretch tolerance in per cent, as the printed result and the verdict's line show it
     assert (rna["stretch_tolerance"].subtype, rna["stretch_tolerance"].default) == \
         ("PERCENTAGE", pytest.approx(5.0))
     ui.stretch_tolerance = 7.5

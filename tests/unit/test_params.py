@@ -73,7 +73,7 @@ def test_validate_catches_params_made_directly():
 
 
 def test_one_percent_format_for_every_display():
-    from fibrilfit.exports.summary import percent
+    from fibrilfit.exports.run_text import percent
     assert percent(0.05) == "5.0 %"
     assert percent(-0.00001) == "0.0 %"  # a tiny compression is not "-0.0 %"
     assert percent(-0.0123) == "-1.2 %"

@@ -41,15 +41,15 @@ def _record(seed, fits, pairs=0, stretch=0.0):
             "max_overlap": float(pairs), "max_bond_stretch": stretch, "frames_simulated": 100}
 
 
-def test_restarts_summary_has_p_fit_its_wilson_interval_and_the_best_seed():
+def test_restarts_tally_has_p_fit_its_wilson_interval_and_the_best_seed():
     recs = [_record(0, False, 2, 0.1), _record(1, True), _record(2, False, 1, 0.02),
             {"params": {"seed": 3}, "status": "failed", "error": "boom"}]
-    s = restarts.summarise(recs)
+    s = restarts.tally(recs)
     assert (s["restarts"], s["failed"], s["accommodated"], s["best_seed"]) == (3, 1, 1, 1)
     assert s["p_fit"] == pytest.approx(1 / 3, abs=1e-4)
     lo, hi = s["p_fit_interval"]
     assert 0 < lo < 1 / 3 < hi < 1
-    none = restarts.summarise([_record(0, False, 1), _record(1, False, 3)])
+    none = restarts.tally([_record(0, False, 1), _record(1, False, 3)])
     assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
 
 
@@ -81,7 +81,7 @@ def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
     recs = restarts.run_restarts(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop,
                                  window=window)
     assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
-    assert restarts.summarise(recs)["best_seed"] == 2
+    assert restarts.tally(recs)["best_seed"] == 2
 
 
 @pytest.mark.parametrize("start", [1, 3, 5, 9])

@@ -127,59 +127,59 @@ def result(**changes):
 
 
 def test_one_failed_relaxation_says_no_layout_was_found_and_what_to_run():
-    from fibrilfit.exports import summary
-    text = summary.summary(result(max_bond_stretch=0.3))
+    from fibrilfit.exports import run_text
+    text = run_text.text(result(max_bond_stretch=0.3))
     last = text.splitlines()[-1]
     assert "do not fit" not in text and "fits" not in last.split(";")[0]
     assert last.startswith("answer: no layout found in this run")
     assert "30.0 %" in last and "5.0 %" in last
     assert "--restarts" in last and "inflate" in last and "minimal-linker" in last
-    clashes = summary.summary(result(verdict="intersection", intersecting_faces=9,
+    clashes = run_text.text(result(verdict="intersection", intersecting_faces=9,
                                      clashing_pairs=[[0, 1, 2.5]], max_overlap=2.5,
                                      max_bond_stretch=0.01, linker_intact=True))
     assert "1 globule pairs clash (deepest overlap 2.50 Å)" in clashes.splitlines()[-1]
 
 
 def test_near_the_criterion_the_answer_is_borderline():
-    from fibrilfit.exports import summary
-    assert "answer: borderline" in summary.summary(result())  # 5.8 % against 5 %
-    fits = summary.summary(result(max_bond_stretch=0.045, linker_intact=True, accommodated=True))
+    from fibrilfit.exports import run_text
+    assert "answer: borderline" in run_text.text(result())  # 5.8 % against 5 %
+    fits = run_text.text(result(max_bond_stretch=0.045, linker_intact=True, accommodated=True))
     assert "answer: borderline (fits by the criterion)" in fits
-    graze = summary.summary(result(verdict="intersection", clashing_pairs=[[0, 1, 0.1]],
+    graze = run_text.text(result(verdict="intersection", clashing_pairs=[[0, 1, 0.1]],
                                    grazing_pairs=[[0, 1, 0.1]], max_bond_stretch=0.0,
                                    linker_intact=True, intersecting_faces=3))
     assert "answer: borderline" in graze and "only graze" in graze
-    good = summary.summary(result(max_bond_stretch=0.0, linker_intact=True, accommodated=True))
+    good = run_text.text(result(max_bond_stretch=0.0, linker_intact=True, accommodated=True))
     assert good.splitlines()[-1].startswith("answer: fits.")
 
 
 # ---- 2. the model up front -----------------------------------------------------------------
 
-def test_summary_states_the_model_and_its_sources():
-    from fibrilfit.exports import summary
+def test_printed_result_states_the_model_and_its_sources():
+    from fibrilfit.exports import run_text
     r = result(params=P.DEFAULTS.to_dict() | {"twist": -0.016773, "protocol": "inflate"},
                sources={"linker": "2n0a.pdb.gz: modelled tail 98-140 (the anchor and 43 "
                                   "residues)", "twist": "2n0a.pdb.gz: measured", "seed": "option",
                         "layers": "case", "rise": "default"})
-    model = next(line for line in summary.summary(r).splitlines() if line.startswith("model:"))
+    model = next(line for line in run_text.text(r).splitlines() if line.startswith("model:"))
     for text in ("rise 4.8 Å", "twist -0.961° per layer", "left-handed", "1 protofilament",
                  "anchor 21.75 Å from the axis", "linker 6 residues (from 2n0a.pdb.gz: "
                  "modelled tail 98-140", "globule 30 Å", "protocol inflate"):
         assert text in model, text
-    said = next(line for line in summary.summary(r).splitlines() if line.startswith("sources:"))
+    said = next(line for line in run_text.text(r).splitlines() if line.startswith("sources:"))
     assert said == ("sources: linker, twist from 2n0a.pdb.gz; seed from options; layers from "
                     "the case; the rest defaults")
 
 
-def test_summary_counts_frames_in_the_users_terms():
-    from fibrilfit.exports import summary
+def test_printed_result_counts_frames_in_the_users_terms():
+    from fibrilfit.exports import run_text
     periodic = result(frames_simulated=1250, settled_at=None, periodic={
         "images": {"moving": 1, "static": 1, "cells": [-1, 1]}, "check_cells": 1, "chains": 13,
         "scene_frames_per_frame": 5}, params=P.DEFAULTS.to_dict() | {"periodic": 13})
-    text = summary.summary(periodic)
+    text = run_text.text(periodic)
     assert "baked 250 frames (1250 scene frames" in text and "baked 1250" not in text
     assert "not settled within 250 frames" in text and "at frame 250:" in text
-    inflate = summary.summary(result(
+    inflate = run_text.text(result(
         frames_simulated=318, settled_at=None, max_bond_stretch_bake=0.1,
         max_bond_stretch_bake_frame=101, push_apart_end_frame=2, intact_from_frame=302,
         frames_over_tolerance=95, params=P.DEFAULTS.to_dict() | {"protocol": "inflate"},
@@ -191,11 +191,11 @@ def test_summary_counts_frames_in_the_users_terms():
     assert "not settled" not in inflate  # inflate judges its own layouts
 
 
-def test_summary_lists_every_file_written():
-    from fibrilfit.exports import summary
+def test_printed_result_lists_every_file_written():
+    from fibrilfit.exports import run_text
     files = {"json": "o/r.json", "blend": "o/r.blend", "movie": "o/m.mp4",
              "envelope_plot": "o/e.png", "save_case": "o/c.toml"}
-    text = summary.summary(result(movie={"error": "no ffmpeg"}), files=files)
+    text = run_text.text(result(movie={"error": "no ffmpeg"}), files=files)
     assert "wrote: result o/r.json, blend file o/r.blend, envelope plot o/e.png, case o/c.toml" \
         in text and "m.mp4" not in text  # a failed one is not listed as written
 

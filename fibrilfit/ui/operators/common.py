@@ -16,7 +16,7 @@ from ...exports.pdb import PdbError
 from ...exports.render import RenderError
 from ...files import OutputError
 from ...exports.dressing import show_colours
-from ...exports.summary import percent
+from ...exports.run_text import percent
 from ..view import frame_model
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON

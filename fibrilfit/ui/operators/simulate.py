@@ -8,7 +8,7 @@ import bpy
 from ... import pipeline
 from .. import properties
 from . import common
-from ...exports.summary import percent
+from ...exports.run_text import percent
 from ..view import frame_model
 
 # Events a running bake lets through, so the view can still be turned and zoomed.

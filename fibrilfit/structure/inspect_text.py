@@ -1,4 +1,4 @@
-"""The printed summary of `inspect`: plain lines, units in the text."""
+"""What `inspect` prints: plain lines, units in the text."""
 from __future__ import annotations
 
 import math

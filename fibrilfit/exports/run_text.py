@@ -1,4 +1,5 @@
-"""The short human summary of a result, with the verdict worded as honestly as it is known."""
+"""The printed result: the lines a run prints, with the verdict worded as honestly as it is known
+(docs/reference/glossary.md#printed-result)."""
 from __future__ import annotations
 
 import math
@@ -7,13 +8,14 @@ from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, of_result
 
 
 def percent(fraction: float) -> str:
-    """A fraction as a percentage with one decimal, as every summary, panel and report shows it."""
+    """A fraction as a percentage with one decimal, as the printed result, the panel and the
+    report show it."""
     text = f"{100 * fraction:.1f} %"
     return "0.0 %" if text == "-0.0 %" else text  # a bond compressed by 0.001 % is not "-0.0"
 
 
-def summary(r: dict, quiet: bool = False, files: dict | None = None) -> str:
-    """The summary a run prints: the model and its sources, the bake, the verdict, the answer
+def text(r: dict, quiet: bool = False, files: dict | None = None) -> str:
+    """The lines a run prints: the model and its sources, the bake, the verdict, the answer
     and every file written (`files`: option -> path, as the command line checked them)."""
     head = "\n".join([_head_line(r), *_model_lines(r), *_case_lines(r.get("case"))])
     if "verdict" not in r:
@@ -126,7 +128,7 @@ def _bake_line(r: dict) -> str:
 
 def _inflate_lines(r: dict) -> list[str]:
     """inflate: each grow-and-hold cycle, judged at which frame (counted from frame 1 of the
-    bake, as every frame of the summary)."""
+    bake, as every frame of the printed result)."""
     cycles = (r.get("inflate") or {}).get("cycles") or []
     if not cycles:
         return []

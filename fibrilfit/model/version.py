@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "d2f8a652b11e0910b6a980b70157ab44c60e6237adb4c6b6b4cf920c613a7e03"
+MODEL_SOURCES_SHA256 = "2c51b47f7c92fc4e5dc7d525a698005c3c6bbfa3c513830ef0df628b386e98a6"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

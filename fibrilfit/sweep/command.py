@@ -12,29 +12,21 @@ from .. import exits
 from ..exports import files
 from ..structure import inputs
 from . import gate, grid, runner, summary
-from ..batch import slurm
-from ..batch import outdir
-from ..batch.executors import SweepError, cpu_count, make_executor
+from ..batch import options as batch_options, outdir
+from ..batch.executors import SweepError, make_executor
 
 RESULTS, SUMMARY, PHASE, LOG = outdir.RESULTS, "summary.csv", "phase.png", "workers.log"
 
 
 def _check_options(args) -> None:
-    if args.workers is not None and args.workers < 1:
-        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
+    batch_options.check(args)
     if not 0 < args.target <= 1:
         raise exits.UsageError(f"--target: must be a fraction above 0 and at most 1 "
                              f"(got {args.target:g})")
-    if args.timeout is not None and not args.timeout > 0:
-        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
-                             f"(got {args.timeout:g})")
-    if args.scheduler and args.executor != "dask":
-        raise exits.UsageError("--scheduler: only with --executor dask")
     if args.retry_failed and not args.resume:
         raise exits.UsageError("--retry-failed: only with --resume")
     if args.seed is not None and args.seed_list is not None:
         raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
-    slurm.check(args)
 
 
 def _case(args) -> dict | None:
@@ -49,12 +41,11 @@ def _case(args) -> dict | None:
 def run(args) -> int:
     points, requirements, structure_block, out = _plan(args)
     results = out / RESULTS
-    with slurm.ctrl_c_kept():
-        outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-                    *(["distributed"] if args.executor in ("dask", "slurm") else []),
-                    *(["dask_jobqueue"] if args.executor == "slurm" else []))
-    if args.show_job_script:
-        print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
+    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []))
+    batch_options.need(args)
+    script = batch_options.job_script(args, pathlib.Path(args.out).resolve())
+    if script is not None:
+        print(script)
         return exits.EXIT_OK
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
@@ -119,13 +110,9 @@ def _todo(args, points: list, results: pathlib.Path) -> list:
     done = runner.done_keys(records)
     todo = [p for p in points if p.key not in done]
     if not args.quiet:
-        kind = "Dask LocalCluster" if args.executor == "dask" else "local"
-        where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
-                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
-                 f"{results.parent / slurm.JOB_LOGS})" if args.executor == "slurm" else
-                 f"{args.workers or cpu_count()} {kind} workers")
         print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
-              f"{results}, {len(todo)} to run on {where}")
+              f"{results}, {len(todo)} to run on "
+              f"{batch_options.where(args, len(todo), results.parent)}")
     return todo
 
 

@@ -2,6 +2,8 @@
 files, the explicit options winning, and the `structure` block a result records."""
 from __future__ import annotations
 
+import sys
+
 from .mapping import linker_source, model_values
 
 
@@ -94,3 +96,10 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     if "linker" in explicit or ("linker" in applied and said.startswith("numbering")):
         out["sources"]["linker"] = said
     return applied, out
+
+
+def say_warnings(block: dict | None) -> None:
+    """Every warning of the measurement on stderr (issue #23: they travel with every run and
+    sweep), said once the run's input has passed its checks, so bad input stays one line."""
+    for warning in (block or {}).get("warnings", []):
+        print(f"fibrilfit: warning: {warning}", file=sys.stderr)

@@ -10,7 +10,7 @@ import sys
 
 from .. import exits
 from ..exports import files
-from ..structure import inputs
+from ..structure.from_files import say_warnings
 from . import gate, grid, runner, summary
 from ..batch import options as batch_options, outdir
 from ..batch.executors import SweepError, make_executor
@@ -80,7 +80,8 @@ def _plan(args) -> tuple:
     specs = grid.specs_from(args)
     seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
                              else args.seed)
-    merged, structure_block = inputs.params_and_structure(args, specs)
+    # measured from --fibril/--domain by the command line (cli/structure_files.py) under specs
+    merged, structure_block = args.structure_values
     base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
     points = grid.build(specs, seeds, force=args.force, base=base)
     requirements = [gate.parse(text) for text in args.require]
@@ -90,7 +91,7 @@ def _plan(args) -> tuple:
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
-    inputs.say_warnings(structure_block)
+    say_warnings(structure_block)
     return points, requirements, structure_block, out
 
 

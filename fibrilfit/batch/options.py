@@ -11,6 +11,7 @@ says which command takes what. No bpy, no Dask at import: the parser needs neith
 from __future__ import annotations
 
 import argparse
+import pathlib
 
 from .. import exits
 from . import outdir, slurm
@@ -22,8 +23,9 @@ RESTARTS_OUT = "out/restarts"  # `run --restarts` has no --out: its SLURM job lo
 def add_executor_options(parser: argparse.ArgumentParser) -> None:
     """The executor's options and the SLURM group, as two argument groups of `parser`."""
     g = parser.add_argument_group(
-        "where the runs happen (docs/guide/cluster.md)",
-        "Local worker processes, a Dask cluster, or SLURM jobs (dask-jobqueue).")
+        "where the runs happen (for run: with --restarts)",
+        "Local worker processes, a Dask cluster, or SLURM jobs (dask-jobqueue); the same options "
+        "for every command that runs many models (docs/guide/cluster.md).")
     g.add_argument("--executor", choices=EXECUTORS, default="processes",
                    help="local worker processes, Dask, or SLURM jobs (dask-jobqueue) "
                         "[default processes]")
@@ -121,7 +123,8 @@ def where(args, runs: int, out) -> str:
 
 def job_script(args, out) -> str | None:
     """With --show-job-script, the batch script a job would run (its logs under `out`), else
-    None. Submits nothing."""
+    None. Submits nothing, writes nothing."""
     if not getattr(args, "show_job_script", False):
         return None
-    return slurm.job_script(args, out)
+    need(args)
+    return slurm.job_script(args, pathlib.Path(out).resolve())

@@ -23,7 +23,7 @@ def command_report(args) -> int:
     report.seeds_of(p, args.restarts)
     files.check_writable("--out", pathlib.Path(args.out) / report.HTML, (".html",))
     from ..batch import options as batch_options
-    script = batch_options.job_script(args, pathlib.Path(args.out).resolve())
+    script = batch_options.job_script(args, args.out)
     if script is not None:
         print(script)
         return EXIT_OK

@@ -3,15 +3,14 @@ on the executor), its outputs written and its summary printed."""
 from __future__ import annotations
 
 import json
-import pathlib
 import sys
 
 from ..exits import EXIT_INTERSECTION, EXIT_OK, EXIT_OUTPUT_FAILED, EXIT_USAGE
 from ..exports import files
 from ..exports import options as export_options
 from ..model import cases
-from .parser import option
 from ..structure.from_files import say_warnings
+from .parser import option
 from .structure_files import structure_options
 from .values import checked_params, param_sources, params_from
 
@@ -57,15 +56,14 @@ def command_run(args) -> int:
 def _command_run(args) -> tuple[int, dict | None]:
     p, structure_block, outputs = _checked_run(args)  # everything refused before the bake
     restarts = None
-    if args.restarts is not None:
+    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
+        from .. import pipeline
         from ..batch import options as batch_options
-        script = batch_options.job_script(args, pathlib.Path(batch_options.RESTARTS_OUT).resolve())
+        from ..search import command as search_command
+        script = batch_options.job_script(args, batch_options.RESTARTS_OUT)
         if script is not None:
             print(script)
             return EXIT_OK, None
-    if args.restarts is not None:  # the seeds run on the executor; the best is run again here
-        from .. import pipeline
-        from ..search import command as search_command
         restarts = search_command.run_restarts(args, p, pipeline.version())
         p = p.replace(seed=restarts["best_seed"])
     result = run_here(args, p)

@@ -129,7 +129,7 @@ def run_minimal(args, values: dict) -> int:
     values, seeds, walks = _minimal_plan(args, values)
     _need_packages(args)
     out = outdir.out_dir(args)
-    script = batch_options.job_script(args, out.resolve())
+    script = batch_options.job_script(args, out)
     if script is not None:
         print(script)
         return exits.EXIT_OK

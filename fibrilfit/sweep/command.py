@@ -43,7 +43,7 @@ def run(args) -> int:
     results = out / RESULTS
     outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []))
     batch_options.need(args)
-    script = batch_options.job_script(args, pathlib.Path(args.out).resolve())
+    script = batch_options.job_script(args, args.out)
     if script is not None:
         print(script)
         return exits.EXIT_OK

@@ -23,6 +23,7 @@ class _Parser(argparse.ArgumentParser):
         if wrong:
             message += did_you_mean(wrong.group(1), command_names(self))
         raise UsageError(message)
+
     def parse_args(self, args=None, namespace=None):
         """As argparse's, with "did you mean --linker?" for an unknown option (argparse's own
         suggest_on_error needs Python 3.14)."""
@@ -148,9 +149,7 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
                                                         "standard output, the text then to "
                                                         "standard error)")
     from ..search import command as search_command  # argparse only: nothing runs at import
-    from ..batch import options as batch_options  # argparse only: no Dask, no bpy
     search_command.add_restart_options(run)
-    batch_options.add_executor_options(run)
     sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
                                          "processes or a Dask cluster and summarise it")
     add_param_options(sweep, as_lists=True)
@@ -170,7 +169,6 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
     search_command.add_minimal_arguments(minimal)
-    batch_options.add_executor_options(minimal)
     report = sub.add_parser(
         "report", help="the whole answer in one page: P(fit) at the linker with restarts, the "
                        "minimal linker, the best layout rendered, the envelope "
@@ -181,4 +179,7 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     export_options.add_render_options(report.add_argument_group("the report's picture"))
     from ..search import report as search_report  # argparse only: nothing runs at import
     search_report.add_arguments(report)
+    from ..batch import options as batch_options  # argparse only: no Dask, no bpy
+    for many in (run, sweep, minimal, report):  # every command that runs many models
+        batch_options.add_executor_options(many)
     return parser

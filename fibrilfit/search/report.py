@@ -32,7 +32,8 @@ STAGES = ("restarts", "minimal linker", "best layout", "pictures", "page")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """The report's own options (the model, case and structure options are `run`'s)."""
+    """The report's own options (the model, case and structure options are `run`'s; the
+    executor's are batch/options.py's)."""
     g = parser.add_argument_group("report")
     g.add_argument("--restarts", type=int, default=DEFAULT_RESTARTS, metavar="R",
                    help=f"seeds run at the linker and at every length the minimal-linker walk "
@@ -46,7 +47,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--resume", action="store_true",
                    help=f"reuse the runs already in DIR/{outdir.RESULTS}")
     g.add_argument("--quiet", action="store_true", help="no progress bar")
-    batch_options.add_executor_options(parser)
 
 
 def options(**given) -> argparse.Namespace:

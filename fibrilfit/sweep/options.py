@@ -1,10 +1,9 @@
 """The sweep command's own options (the model parameters come from the command line's
-add_param_options, the executor's from batch/options.py)."""
+add_param_options, the executor's from batch/options.py: both added by the command line)."""
 from __future__ import annotations
 
 import argparse
 
-from ..batch import options as batch_options
 from .gate import FORM, METRICS
 
 
@@ -29,5 +28,3 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--no-plot", action="store_true", help="do not draw phase.png")
     g.add_argument("--quiet", action="store_true",
                    help="no progress bar and no table: the result lines only (for CI logs)")
-
-    batch_options.add_executor_options(parser)

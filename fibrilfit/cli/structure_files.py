@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 from ..exits import UsageError
-from ..model import cases, params as P
+from ..model import cases
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
@@ -104,13 +104,6 @@ def measure_all(args) -> tuple:
     return fib, doms, seg
 
 
-def measure_structures(args):
-    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain: the first domain
-    (the one nearest the core)."""
-    fib, doms, _ = measure_all(args)
-    return fib, (doms[0] if doms else None)
-
-
 def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict | None]:
     """The parameter values of `run`/`sweep`: measured from --fibril/--domain, then the explicit
     options over them. Returns (values, the result's `structure` block or None)."""
@@ -119,26 +112,8 @@ def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict
         return explicit, None
     from ..structure import from_files
     fib, doms, seg = measure_all(args)
-    dom = doms[0] if doms else None
     args.measured = (fib, doms)  # for --pdb-atoms (atom_sources), measured once
-    radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
-    try:
-        radius = float(radius)
-    except (TypeError, ValueError):
-        radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
-    shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
-    applied, block = from_files.split(fib, dom, explicit=set(explicit),
-                                      known={f.name for f in P.fields()}, residue_radius=radius,
-                                      more_domains=doms[1:], shape=shape)
-    if block["not_in_model"]:
-        block["warnings"].append(f"measured but not in this model: "
-                                 f"{', '.join(block['not_in_model'])}")
-    if seg is not None:
-        block["full_length"] = seg.to_dict()
-    if len(doms) > 1:
-        block["domains"] = [{"file": d.file, "sha256": d.sha256, "measured": d.to_dict()}
-                            for d in doms]
-    return {**applied, **explicit}, block
+    return from_files.merged(fib, doms, seg, explicit)
 
 
 def structure_options(args) -> dict:

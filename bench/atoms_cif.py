@@ -15,10 +15,10 @@ import time
 import bpy
 
 from fibrilfit import pipeline
-from fibrilfit.cli.commands import build_parser
+from fibrilfit.cli.parser import build_parser
 from fibrilfit.exports import mmcif, writers
 from fibrilfit.model import params as P
-from fibrilfit.structure.inputs import atom_sources, params_and_structure
+from fibrilfit.cli.structure_files import atom_sources, params_and_structure
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"

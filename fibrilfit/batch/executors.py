@@ -1,4 +1,5 @@
-"""Where the runs happen: local worker processes, or a Dask cluster.
+"""Where the runs happen: local worker processes, a Dask cluster, or SLURM jobs (their options:
+options.py).
 
 Both offer submit(job), pending() and wait() -> (job, reply), where reply is the worker's
 {"ok": True, "result": ...} or {"ok": False, "error": ...}. Retrying is the runner's business.
@@ -219,7 +220,8 @@ class SlurmExecutor(DaskExecutor):
 
     def _connect(self, distributed) -> None:
         import shutil
-        from dask_jobqueue import SLURMCluster
+        with slurm.ctrl_c_kept():  # its import sets SIGINT to sys.exit (slurm.ctrl_c_kept)
+            from dask_jobqueue import SLURMCluster
         if shutil.which("sbatch") is None:
             raise SweepError("--executor slurm: sbatch is not on the PATH (run the sweep on a "
                              "SLURM login node)")
@@ -303,17 +305,32 @@ class SlurmExecutor(DaskExecutor):
         return next(self.done)
 
 
+def executor_spec(args, *, out=None, runs: int = 0) -> dict:
+    """What the executor options ask for, as plain values (make_executor builds it): the kind,
+    the workers (SLURM: jobs sized for `runs`), the timeout, and the Dask scheduler or the
+    SLURMCluster's options (their job logs under `out`). The same options give the same spec
+    whichever command parsed them (batch/options.py declares them once)."""
+    spec = {"executor": args.executor, "timeout": args.timeout}
+    if args.executor == "slurm":
+        import pathlib
+        return {**spec, "workers": slurm.jobs(args, runs),
+                "cluster_options": slurm.cluster_options(args, pathlib.Path(out).resolve())}
+    spec["workers"] = args.workers or cpu_count()
+    if args.executor == "dask":
+        spec["scheduler"] = args.scheduler
+    return spec
+
+
 def make_executor(args, *, out=None, runs: int = 0, log_path=None):
     """The executor a batch command's options ask for: --executor slurm (jobs sized for `runs`,
     their files under `out`), dask (--scheduler, or a local cluster), or worker processes on
     this machine (their stderr in `log_path`)."""
-    if args.executor == "slurm":
-        from . import slurm
-        return SlurmExecutor(slurm.jobs(args, runs), slurm.cluster_options(args, out.resolve()),
-                             timeout=args.timeout)
-    workers = args.workers or cpu_count()
-    if args.executor == "dask":
-        return DaskExecutor(workers, scheduler=args.scheduler, timeout=args.timeout)
+    spec = executor_spec(args, out=out, runs=runs)
+    if spec["executor"] == "slurm":
+        return SlurmExecutor(spec["workers"], spec["cluster_options"], timeout=spec["timeout"])
+    if spec["executor"] == "dask":
+        return DaskExecutor(spec["workers"], scheduler=spec["scheduler"],
+                            timeout=spec["timeout"])
     import bpy  # inside Blender's own executable, workers are that executable in background mode
-    return ProcessExecutor(workers, timeout=args.timeout, log_path=log_path,
+    return ProcessExecutor(spec["workers"], timeout=spec["timeout"], log_path=log_path,
                            blender_binary=bpy.app.binary_path)

@@ -1,8 +1,9 @@
-"""`--executor slurm`: the sweep's Dask workers as SLURM jobs, through dask-jobqueue's SLURMCluster.
+"""`--executor slurm`: a batch command's Dask workers as SLURM jobs, through dask-jobqueue's
+SLURMCluster.
 
 One job per Dask worker, one core and one thread each; the worker hands its runs, one at a time,
 to a bpy process of its own (pool.run_here), exactly as on any Dask cluster. The scheduler runs in
-the sweep's own process; the jobs need the repository, --out and the Python at the same paths
+the command's own process; the jobs need the repository, --out and the Python at the same paths
 (a shared file system). Options left out fall back to dask-jobqueue's configuration
 (~/.config/dask/jobqueue.yaml, section jobqueue.slurm), then to the defaults named in --help.
 """
@@ -44,12 +45,17 @@ def ctrl_c_kept():
             signal.signal(signal.SIGINT, previous)
 
 
+def given(args) -> list[str]:
+    """The SLURM options given (their dests), in OPTIONS order."""
+    return [name for name in OPTIONS if getattr(args, name) not in (None, [], False)]
+
+
 def check(args) -> None:
     """Usage errors in the SLURM options (before anything is written or submitted)."""
     if args.executor != "slurm":
-        given = [name for name in OPTIONS if getattr(args, name) not in (None, [], False)]
-        if given:
-            raise exits.UsageError(f"--{given[0].replace('_', '-')}: only with --executor slurm")
+        named = given(args)
+        if named:
+            raise exits.UsageError(f"--{named[0].replace('_', '-')}: only with --executor slurm")
         return
     if args.walltime is not None and not _WALLTIME.fullmatch(args.walltime):
         raise exits.UsageError(f"--walltime: must be a SLURM time such as 30, 04:00:00 or "
@@ -90,7 +96,8 @@ def cluster_options(args, out) -> dict:
 
 def job_script(args, out) -> str:
     """The batch script each job runs (what --show-job-script prints); submits nothing."""
-    from dask_jobqueue import SLURMCluster
+    with ctrl_c_kept():
+        from dask_jobqueue import SLURMCluster
     logs = out / JOB_LOGS
     made = [d for d in (logs, *logs.parents) if not d.exists()]  # dask-jobqueue makes the log dir
     try:

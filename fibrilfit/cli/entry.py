@@ -1,6 +1,6 @@
 """The command line as Blender's entry points run it: headless.py and `blender -c fibrilfit`.
 
-Both call main(), which runs cli.main (the one parser and dispatcher) and makes sure that no
+Both call main(), which runs cli.main (the dispatcher, commands.py) and makes sure that no
 failure ends in a traceback or, under Blender, in exit code 0: an unexpected exception becomes
 one line on stderr and exits.EXIT_FAILED (set FIBRILFIT_TRACEBACK=1 to see the traceback).
 """

@@ -40,13 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                             "(needs --fibril and/or --domain)")
     group.add_argument("--render", metavar="PATH.png",
                        help="render the final frame to a PNG (clashing globules red)")
-    group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,
-                       help=f"picture size in pixels (default {DEFAULT_SIZE})")
-    group.add_argument("--render-samples", metavar="N", default=str(DEFAULT_SAMPLES),
-                       help=f"Cycles samples per pixel, denoised (default {DEFAULT_SAMPLES})")
-    group.add_argument("--render-engine", choices=ENGINES, default="cycles",
-                       help="cycles (CPU, any machine) or workbench (faster; needs a software "
-                            "or hardware OpenGL context) (default cycles)")
+    add_render_options(group)
     group.add_argument("--movie", metavar="PATH.mp4|PATH.gif",
                        help="render the bake as a movie (Workbench, --render-size; clashing "
                             "globules red on the last frame, held for a second), with a "
@@ -54,6 +48,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--movie-step", metavar="K", default=str(MOVIE_STEP),
                        help=f"put every K-th baked frame in the movie, and the last "
                             f"(default {MOVIE_STEP})")
+
+
+def add_render_options(group) -> None:
+    """--render-size, --render-samples, --render-engine: how a picture is rendered, for every
+    command that renders one (`run`, `report`); render_options reads them back."""
+    group.add_argument("--render-size", metavar="WxH", default=DEFAULT_SIZE,
+                       help=f"picture size in pixels (default {DEFAULT_SIZE})")
+    group.add_argument("--render-samples", metavar="N", default=str(DEFAULT_SAMPLES),
+                       help=f"Cycles samples per pixel, denoised (default {DEFAULT_SAMPLES})")
+    group.add_argument("--render-engine", choices=ENGINES, default="cycles",
+                       help="cycles (CPU, any machine) or workbench (faster; needs a software "
+                            "or hardware OpenGL context) (default cycles)")
 
 
 def render_options(args) -> dict:

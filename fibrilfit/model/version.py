@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "2c51b47f7c92fc4e5dc7d525a698005c3c6bbfa3c513830ef0df628b386e98a6"
+MODEL_SOURCES_SHA256 = "82da4301d7a2ede75af84ab237d1925c5b77f87394de0271491843458ff5c07a"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -16,8 +16,8 @@ from .. import exits, files
 from ..model import params as P
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
-from ..batch import outdir
-from ..batch.executors import SweepError, cpu_count, make_executor
+from ..batch import options as batch_options, outdir, slurm
+from ..batch.executors import SweepError, make_executor
 from . import minimal, restarts
 
 RESULTS, CSV, JSON, PNG, LOG = (outdir.RESULTS, "minimal_linker.csv", "minimal_linker.json",
@@ -26,19 +26,8 @@ COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "
            "p_fit_below", "p_fit_below_high", "restarts", "linker_below", "protocol")
 
 
-def add_executor_options(g) -> None:
-    g.add_argument("--executor", choices=("processes", "dask"), default="processes",
-                   help="local worker processes, or Dask [default processes]")
-    g.add_argument("--workers", type=int, metavar="N",
-                   help="worker processes (local, or a Dask LocalCluster) [default: CPU count]")
-    g.add_argument("--scheduler", metavar="ADDRESS",
-                   help="with --executor dask: an existing scheduler [default: a LocalCluster]")
-    g.add_argument("--timeout", type=float, metavar="SECONDS",
-                   help="stop a run after this long (recorded as failed, retried once)")
-
-
 def add_restart_options(parser: argparse.ArgumentParser) -> None:
-    """`run`'s restart options (they do nothing without --restarts)."""
+    """`run`'s restart options; the executor's (batch/options.py) do nothing without --restarts."""
     g = parser.add_argument_group("restarts (independent seeds of this one model)")
     g.add_argument("--restarts", type=int, metavar="R",
                    help="run seeds SEED..SEED+R-1 in parallel; report how many were accommodated, "
@@ -46,7 +35,6 @@ def add_restart_options(parser: argparse.ArgumentParser) -> None:
                         "--json/--blend/--pdb)")
     g.add_argument("--stop-on-fit", action="store_true",
                    help="with --restarts: start no more seeds once one is accommodated")
-    add_executor_options(g)
 
 
 def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
@@ -67,17 +55,6 @@ def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
                    help="continue the search in --out: runs already in results.jsonl are reused")
     g.add_argument("--no-plot", action="store_true", help=f"do not draw {PNG}")
     g.add_argument("--quiet", action="store_true", help="no progress bar")
-    add_executor_options(g)
-
-
-def _check_executor_options(args) -> None:
-    if args.workers is not None and args.workers < 1:
-        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
-    if args.timeout is not None and not args.timeout > 0:
-        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
-                               f"(got {args.timeout:g})")
-    if args.scheduler and args.executor != "dask":
-        raise exits.UsageError("--scheduler: only with --executor dask")
 
 
 # ---- run --restarts ----------------------------------------------------------------------------
@@ -86,16 +63,20 @@ def check_restart_options(args) -> None:
     if args.restarts is None:
         if args.stop_on_fit:
             raise exits.UsageError("--stop-on-fit: only with --restarts")
+        if args.executor == "slurm" or slurm.given(args):
+            name = "executor" if args.executor == "slurm" else slurm.given(args)[0]
+            raise exits.UsageError(f"--{name.replace('_', '-')}: only with --restarts")
         return
     if args.restarts < 1:
         raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
     if args.stop_after != "check":
         raise exits.UsageError("--restarts: judges every seed, so --stop-after must be check")
-    _check_executor_options(args)
+    batch_options.check(args)
 
 
 def run_restarts(args, p: P.Params, version: str) -> dict:
-    """Run seeds p.seed .. p.seed + R - 1 on the executor; their tally (restarts.tally)."""
+    """Run seeds p.seed .. p.seed + R - 1 on the executor; their tally (restarts.tally). (SLURM job logs
+    under batch/options.RESTARTS_OUT: `run` has no --out.)"""
     seeds = range(p.seed, p.seed + args.restarts)
     if seeds[-1] > P.field_spec("seed")["max"]:
         raise P.ParamError("seed", f"seed + restarts - 1 must be at most "
@@ -103,12 +84,12 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
     with tempfile.TemporaryDirectory(prefix="fibrilfit-restarts-") as tmp:
         results = f"{tmp}/{RESULTS}"
         try:
-            if args.executor == "dask":
-                outdir.need("distributed")
-            with make_executor(args, log_path=f"{tmp}/{LOG}") as executor:
+            batch_options.need(args)
+            with make_executor(args, out=batch_options.RESTARTS_OUT, runs=len(seeds),
+                               log_path=f"{tmp}/{LOG}") as executor:
                 records = restarts.run_restarts(executor, p.to_dict(), seeds, results,
                                                 stop_on_fit=args.stop_on_fit,
-                                                window=args.workers or cpu_count(),
+                                                window=batch_options.width(args, len(seeds)),
                                                 force=args.force, progress=not args.quiet,
                                                 version=version)
         except SweepError as exc:
@@ -148,6 +129,10 @@ def run_minimal(args, values: dict) -> int:
     values, seeds, walks = _minimal_plan(args, values)
     _need_packages(args)
     out = outdir.out_dir(args)
+    script = batch_options.job_script(args, out)
+    if script is not None:
+        print(script)
+        return exits.EXIT_OK
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / RESULTS
@@ -176,7 +161,7 @@ def run_minimal(args, values: dict) -> int:
 def _minimal_plan(args, values: dict) -> tuple:
     """The model options (protocol inflate unless given), the restarts' seeds and one walk per
     diameter, every bad value refused before anything runs."""
-    _check_executor_options(args)
+    batch_options.check(args)
     if "linker" in values:
         raise exits.UsageError("--linker: minimal-linker searches the linker length; leave it out")
     if args.restarts < 1:
@@ -224,8 +209,9 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
             todo = [pt for w, L, some in wanted for pt in restarts.points(base_of(w, L), some)
                     if pt.key not in done]
             if todo:
-                if executor is None:
-                    executor = stack.enter_context(make_executor(args, log_path=out / LOG))
+                if executor is None:  # SLURM: one job per run of this first step, at most 16
+                    executor = stack.enter_context(make_executor(
+                        args, out=out, runs=len(todo), log_path=out / LOG))
                 if not args.quiet:
                     print("minimal-linker: trying " + ", ".join(
                         f"{w.diameter:g} Å at linker {L} ({len(some)} restarts)"
@@ -270,8 +256,8 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
 
 
 def _need_packages(args) -> None:
-    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-                *(["distributed"] if args.executor == "dask" else []))
+    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []))
+    batch_options.need(args)
 
 
 def csv_text(rows: list[dict]) -> str:

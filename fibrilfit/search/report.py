@@ -18,8 +18,8 @@ import sys
 import time
 
 from .. import exits, files
-from ..batch import outdir
-from ..batch.executors import SweepError, cpu_count, make_executor
+from ..batch import options as batch_options, outdir
+from ..batch.executors import SweepError, make_executor
 from ..model import params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
@@ -32,7 +32,8 @@ STAGES = ("restarts", "minimal linker", "best layout", "pictures", "page")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """The report's own options (the model, case and structure options are `run`'s)."""
+    """The report's own options (the model, case and structure options are `run`'s; the
+    executor's are batch/options.py's)."""
     g = parser.add_argument_group("report")
     g.add_argument("--restarts", type=int, default=DEFAULT_RESTARTS, metavar="R",
                    help=f"seeds run at the linker and at every length the minimal-linker walk "
@@ -46,16 +47,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--resume", action="store_true",
                    help=f"reuse the runs already in DIR/{outdir.RESULTS}")
     g.add_argument("--quiet", action="store_true", help="no progress bar")
-    command.add_executor_options(g)
 
 
 def options(**given) -> argparse.Namespace:
     """The report's options with their command-line defaults, for callers without a command
     line (the sidebar's Report… button)."""
     out = {"restarts": DEFAULT_RESTARTS, "max_linker": DEFAULT_MAX_LINKER, "out": "out/report",
-           "resume": False, "quiet": False, "executor": "processes", "workers": None,
-           "scheduler": None, "timeout": None, "force": False, "command_line": [],
-           "command": "report"}
+           "resume": False, "quiet": False, **batch_options.defaults(), "force": False,
+           "command_line": [], "command": "report"}
     unknown = set(given) - set(out)
     if unknown:
         raise TypeError(f"unknown report options: {sorted(unknown)}")
@@ -64,13 +63,13 @@ def options(**given) -> argparse.Namespace:
 
 def check_options(args) -> None:
     """The report's own options, refused in one line before anything runs."""
-    command._check_executor_options(args)
+    batch_options.check(args)
     if args.restarts < 1:
         raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
     lmax = P.field_spec("linker")["max"]
     if not 1 <= args.max_linker <= lmax:
         raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
-    wanted = ("tqdm", "matplotlib", *(["distributed"] if args.executor == "dask" else []))
+    wanted = ("tqdm", "matplotlib", *batch_options.packages(args))
     missing = [name for name in wanted if importlib.util.find_spec(name) is None]
     if missing:
         raise exits.UsageError(f"report: needs the Python package(s) {', '.join(missing)}, "
@@ -158,10 +157,11 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
 
 def _restarts(args, p: P.Params, seeds: range, out) -> list[dict]:
     try:
-        with make_executor(args, log_path=out / command.LOG) as executor:
+        with make_executor(args, out=out, runs=len(seeds),
+                           log_path=out / command.LOG) as executor:
             return restarts.run_restarts(executor, p.to_dict(), seeds, out / outdir.RESULTS,
-                                         window=args.workers or cpu_count(), force=args.force,
-                                         progress=not args.quiet, version=fibrilfit_version())
+                                window=batch_options.width(args, len(seeds)), force=args.force,
+                                progress=not args.quiet, version=fibrilfit_version())
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
 

@@ -2,6 +2,9 @@
 files, the explicit options winning, and the `structure` block a result records."""
 from __future__ import annotations
 
+import sys
+
+from ..model import params as P
 from .mapping import RESIDUE_RADIUS, linker_source, model_values
 
 
@@ -94,3 +97,35 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
     if "linker" in explicit or ("linker" in applied and said.startswith("numbering")):
         out["sources"]["linker"] = said
     return applied, out
+
+
+def merged(fib, doms: list, seg, explicit: dict) -> tuple[dict, dict]:
+    """The model values measured from a fibril (or None), its domains in chain order and a
+    full-length model's segmentation (or None), with the `explicit` values over them; and the
+    result's `structure` block. (cli/structure_files.py reads the files the options name.)"""
+    dom = doms[0] if doms else None
+    radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
+    try:
+        radius = float(radius)
+    except (TypeError, ValueError):
+        radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
+    shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
+    applied, block = split(fib, dom, explicit=set(explicit),
+                           known={f.name for f in P.fields()}, residue_radius=radius,
+                           more_domains=doms[1:], shape=shape)
+    if block["not_in_model"]:
+        block["warnings"].append(f"measured but not in this model: "
+                                 f"{', '.join(block['not_in_model'])}")
+    if seg is not None:
+        block["full_length"] = seg.to_dict()
+    if len(doms) > 1:
+        block["domains"] = [{"file": d.file, "sha256": d.sha256, "measured": d.to_dict()}
+                            for d in doms]
+    return {**applied, **explicit}, block
+
+
+def say_warnings(block: dict | None) -> None:
+    """Every warning of the measurement on stderr (issue #23: they travel with every run and
+    sweep), said once the run's input has passed its checks, so bad input stays one line."""
+    for warning in (block or {}).get("warnings", []):
+        print(f"fibrilfit: warning: {warning}", file=sys.stderr)

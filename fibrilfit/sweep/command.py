@@ -10,31 +10,23 @@ import sys
 
 from .. import exits, files
 from ..model.version import fibrilfit_version
-from ..structure import inputs
+from ..structure.from_files import say_warnings
 from . import gate, grid, runner, summary
-from ..batch import slurm
-from ..batch import outdir
-from ..batch.executors import SweepError, cpu_count, make_executor
+from ..batch import options as batch_options, outdir
+from ..batch.executors import SweepError, make_executor
 
 RESULTS, SUMMARY, PHASE, LOG = outdir.RESULTS, "summary.csv", "phase.png", "workers.log"
 
 
 def _check_options(args) -> None:
-    if args.workers is not None and args.workers < 1:
-        raise exits.UsageError(f"--workers: must be at least 1 (got {args.workers})")
+    batch_options.check(args)
     if not 0 < args.target <= 1:
         raise exits.UsageError(f"--target: must be a fraction above 0 and at most 1 "
                              f"(got {args.target:g})")
-    if args.timeout is not None and not args.timeout > 0:
-        raise exits.UsageError(f"--timeout: must be a positive number of seconds "
-                             f"(got {args.timeout:g})")
-    if args.scheduler and args.executor != "dask":
-        raise exits.UsageError("--scheduler: only with --executor dask")
     if args.retry_failed and not args.resume:
         raise exits.UsageError("--retry-failed: only with --resume")
     if args.seed is not None and args.seed_list is not None:
         raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
-    slurm.check(args)
 
 
 def _case(args) -> dict | None:
@@ -49,12 +41,11 @@ def _case(args) -> dict | None:
 def run_sweep(args) -> int:
     points, requirements, structure_block, out = _plan(args)
     results = out / RESULTS
-    with slurm.ctrl_c_kept():
-        outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []),
-                    *(["distributed"] if args.executor in ("dask", "slurm") else []),
-                    *(["dask_jobqueue"] if args.executor == "slurm" else []))
-    if args.show_job_script:
-        print(slurm.job_script(args, pathlib.Path(args.out).resolve()))
+    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []))
+    batch_options.need(args)
+    script = batch_options.job_script(args, args.out)
+    if script is not None:
+        print(script)
         return exits.EXIT_OK
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
@@ -88,7 +79,8 @@ def _plan(args) -> tuple:
     specs = grid.specs_from(args)
     seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
                              else args.seed)
-    merged, structure_block = inputs.params_and_structure(args, specs)
+    # measured from --fibril/--domain by the command line (cli/structure_files.py) under specs
+    merged, structure_block = args.structure_values
     base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
     points = grid.build(specs, seeds, force=args.force, base=base)
     requirements = [gate.parse(text) for text in args.require]
@@ -98,7 +90,7 @@ def _plan(args) -> tuple:
     for req in requirements:  # a typo in a selector should not cost hours of runs
         if not any(req.matches(params) for params in known):
             raise exits.UsageError(f"--require {req.text!r}: no grid point has {req.where()}")
-    inputs.say_warnings(structure_block)
+    say_warnings(structure_block)
     return points, requirements, structure_block, out
 
 
@@ -118,13 +110,9 @@ def _todo(args, points: list, results: pathlib.Path) -> list:
     done = runner.done_keys(records)
     todo = [p for p in points if p.key not in done]
     if not args.quiet:
-        kind = "Dask LocalCluster" if args.executor == "dask" else "local"
-        where = (f"Dask scheduler {args.scheduler}" if args.scheduler else
-                 f"{slurm.jobs(args, len(todo))} SLURM jobs (one Dask worker each; job logs in "
-                 f"{results.parent / slurm.JOB_LOGS})" if args.executor == "slurm" else
-                 f"{args.workers or cpu_count()} {kind} workers")
         print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
-              f"{results}, {len(todo)} to run on {where}")
+              f"{results}, {len(todo)} to run on "
+              f"{batch_options.where(args, len(todo), results.parent)}")
     return todo
 
 

@@ -262,3 +262,21 @@ def test_the_jobs_run_the_python_they_are_given(tmp_path):
     log = (tmp_path / "s" / "slurm" / f"ff-script-{job}.out").read_text()
     assert f"prologue-ran-in-{job}" in log
     assert os.path.exists(tmp_path / "s" / "summary.csv")
+
+
+def test_minimal_linker_through_slurm_gives_the_local_map(tmp_path):
+    """`minimal-linker --executor slurm` (batch/options.py: the sweep's executor options): a tiny
+    walk (8 Å fits at linker 1: 2 runs) gives the local executor's map, each run in a job."""
+    small = ("--globule-diameter", "8", "--restarts", "2", "--max-linker", "2", "--layers", "4",
+             "--no-plot", "--quiet")
+    cp = run_cli("minimal-linker", *small, "--out", str(tmp_path / "local"))
+    assert cp.returncode == 0, cp.stderr
+    cp = run_cli("minimal-linker", *small, "--executor", "slurm", "--workers", "2",
+                 "--job-name", "ff-minimal", "--out", str(tmp_path / "slurm"), timeout=SLOW)
+    assert cp.returncode == 0, cp.stderr
+    ours = json.loads((tmp_path / "local" / "minimal_linker.json").read_text())["rows"]
+    theirs = json.loads((tmp_path / "slurm" / "minimal_linker.json").read_text())["rows"]
+    assert theirs == ours and theirs[0]["minimal_linker"] == 1
+    records = lines(tmp_path / "slurm" / "results.jsonl")
+    assert len(records) == 2 and all(r["worker"].get("slurm_job") for r in records)
+    wait_for(lambda: not jobs("ff-minimal", "PD,R"), 30, "the walk's jobs to end")

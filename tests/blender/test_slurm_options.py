@@ -1,5 +1,8 @@
-"""`sweep --executor slurm` without a SLURM: its options and the job script it would submit.
-(Sweeps through a real SLURM: test_cluster.py, `make test-cluster`.)"""
+"""The executor options without a SLURM: the job script `--executor slurm` would submit, the same
+for every command that runs many models, and `run --restarts`, `minimal-linker` and `report`
+running through the executor their options name (a stand-in that records how it was made and
+runs the jobs on local workers). (Through a real SLURM: test_cluster.py, `make test-cluster`.)"""
+import json
 import sys
 
 import pytest
@@ -61,3 +64,110 @@ def test_bad_slurm_options_exit_2_with_one_line_and_write_nothing(ff, capsys, tm
     assert len(stderr.strip().splitlines()) == 1 and not (tmp_path / "s").exists()
 
 
+
+
+# ---- run --restarts, minimal-linker and report go through the executor their options name ------
+
+TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow-cycles", "0",
+        "--globule-diameter", "12", "--restarts", "2", "--quiet"]
+
+
+@pytest.fixture
+def recorded(monkeypatch):
+    """executors.DaskExecutor and SlurmExecutor replaced by stand-ins that record how they were
+    made and run the jobs on 2 local worker processes: [(kind, workers, options)]."""
+    import bpy
+    from fibrilfit.batch import executors
+    made = []
+
+    def stand_in(kind):
+        class Recorder:
+            def __init__(self, workers, *positional, **keywords):
+                made.append((kind, workers, {**keywords, **(
+                    {"cluster_options": positional[0]} if positional else {})}))
+                self.inner = executors.ProcessExecutor(
+                    2, blender_binary=bpy.app.binary_path)
+
+            def __enter__(self):
+                self.inner.__enter__()
+                return self
+
+            def __exit__(self, *exc):
+                return self.inner.__exit__(*exc)
+
+            def submit(self, job):
+                self.inner.submit(job)
+
+            def pending(self):
+                return self.inner.pending()
+
+            def wait(self):
+                return self.inner.wait()
+        return Recorder
+    monkeypatch.setattr(executors, "DaskExecutor", stand_in("dask"))
+    monkeypatch.setattr(executors, "SlurmExecutor", stand_in("slurm"))
+    return made
+
+
+def test_run_restarts_goes_through_the_dask_scheduler_it_names(ff, capsys, tmp_path, recorded):
+    pytest.importorskip("distributed")
+    out = tmp_path / "best.json"
+    code = ff.cli.main(["run", *TINY, "--protocol", "inflate", "--linker", "3", "--executor",
+                        "dask", "--scheduler", "tcp://nowhere:8786", "--workers", "2",
+                        "--timeout", "600", "--json", str(out)])
+    assert code == 0, capsys.readouterr().err
+    assert recorded == [("dask", 2, {"scheduler": "tcp://nowhere:8786", "timeout": 600.0})]
+    assert json.loads(out.read_text())["restarts"]["restarts"] == 2
+
+
+def test_minimal_linker_goes_through_the_slurm_jobs_it_names(ff, capsys, tmp_path, recorded):
+    pytest.importorskip("dask_jobqueue")
+    out = tmp_path / "map"
+    code = ff.cli.main(["minimal-linker", *TINY, "--max-linker", "2", "--no-plot", "--executor",
+                        "slurm", "--partition", "short", "--walltime", "10", "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    ((kind, jobs, made),) = recorded  # one executor for the whole walk
+    assert (kind, made["timeout"]) == ("slurm", None)
+    assert 1 <= jobs <= 2  # one job per run of the first step (2 restarts), none given
+    cluster = made["cluster_options"]
+    assert (cluster["queue"], cluster["walltime"]) == ("short", "10")
+    assert cluster["log_directory"] == str(out.resolve() / "slurm")
+    assert json.loads((out / "minimal_linker.json").read_text())["rows"][0]["restarts"] == 2
+
+
+def test_report_goes_through_the_executor_it_names(ff, capsys, tmp_path, recorded):
+    pytest.importorskip("dask_jobqueue")
+    out = tmp_path / "rep"
+    code = ff.cli.main(["report", *TINY, "--linker", "3", "--max-linker", "4", "--executor",
+                        "slurm", "--workers", "2", "--account", "lab42", "--render-engine",
+                        "workbench", "--render-size", "64x36", "--out", str(out)])
+    assert code == 0, capsys.readouterr().err
+    assert recorded and all(kind == "slurm" and jobs == 2 for kind, jobs, _ in recorded)
+    assert {made["cluster_options"]["account"] for _, _, made in recorded} == {"lab42"}
+    assert json.loads((out / "report.json").read_text())["p_fit"]["runs"] == 2
+
+
+@pytest.mark.parametrize("command, argv", [
+    ("run", ["--restarts", "2"]), ("minimal-linker", []), ("report", []), ("sweep", ["--linker", "2"])])
+def test_every_batch_command_shows_the_same_job_script(ff, capsys, tmp_path, command, argv):
+    pytest.importorskip("dask_jobqueue")
+    out = tmp_path / "o"
+    extra = [] if command == "run" else ["--out", str(out)]
+    code = ff.cli.main([command, *argv, "--executor", "slurm", "--partition", "short",
+                        "--job-name", "ff", "--memory", "3GB", *extra, "--show-job-script"])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    directives = [line for line in captured.out.splitlines() if line.startswith("#SBATCH")]
+    logs = (out if command != "run" else restarts_out()).resolve() / "slurm"
+    assert directives == [
+        "#SBATCH -J ff", f"#SBATCH -e {logs}/ff-%J.err", f"#SBATCH -o {logs}/ff-%J.out",
+        "#SBATCH -p short", "#SBATCH -n 1", "#SBATCH --cpus-per-task=1", "#SBATCH --mem=3G",
+        "#SBATCH -t 00:30:00"]
+    assert not out.exists()  # it submits nothing and writes nothing
+
+
+def restarts_out():
+    """Where `run --restarts` puts its SLURM job logs: it has no --out."""
+    import pathlib
+    from fibrilfit.batch.options import RESTARTS_OUT
+    return pathlib.Path(RESTARTS_OUT)

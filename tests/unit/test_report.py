@@ -62,15 +62,15 @@ def test_page_is_self_contained_and_says_no_layout_found_never_does_not_fit(tmp_
 
 
 def test_sources_name_option_file_and_defaults():
-    from fibrilfit.cli import commands
+    from fibrilfit.cli import build_parser, values
     from fibrilfit.model import params as P
     argv = ["report", "--linker=4"]
-    args = commands.build_parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
     args.loaded_case, args.command_line = None, ["headless.py", *argv]
     p = P.make_params(linker=4, rise=4.8, protocol="inflate")
     block = {"fibril": {"file": "6cu7.pdb.gz"}, "applied": {"rise": 4.8},
              "sources": {"rise": "6cu7.pdb.gz: measured over 4 layer pairs"}}
-    s = commands.sources_of(args, p, block, {"protocol": "inflate"})
+    s = values.sources_of(args, p, block, {"protocol": "inflate"})
     assert s["linker"] == "option"
     assert s["rise"] == "6cu7.pdb.gz: measured over 4 layer pairs"
     assert s["protocol"] == "report default" and s["twist"] == "default"

@@ -88,8 +88,8 @@ def test_sweep_ranges_of_angles_take_units():
 
 
 def test_help_texts_say_one_unit_and_mean_it():
-    from fibrilfit.cli import commands
-    parser = commands.build_parser()
+    from fibrilfit.cli import build_parser
+    parser = build_parser()
     run = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices["run"]
     helps = {a.dest: a.help for a in run._actions}
     for name in ("twist", "pf_rotation"):
@@ -256,7 +256,7 @@ def test_sweep_minimal_linker_says_what_two_seeds_show():
 
 
 def test_the_restarts_check_compares_verdicts():
-    from fibrilfit.cli import commands
+    from fibrilfit.cli import run_command
     args = argparse.Namespace(loaded_case=None, restarts=2, fibril=None, domain=None)
     p = P.make_params(seed=1)
     best = {"seed": 1, "accommodated": True, "verdict": "successful", "max_bond_stretch": 0.0101}
@@ -265,20 +265,20 @@ def test_the_restarts_check_compares_verdicts():
         restarts = {"runs": [best]}
         r = {"max_bond_stretch": stretch, "verdict": verdict, "accommodated": accommodated,
              "warnings": []}
-        commands._annotate(args, p, r, None, restarts)
+        run_command._annotate(args, p, r, None, restarts)
         assert restarts["reproduced"] is same
         assert any("did not reproduce" in w for w in r["warnings"]) is not same
         assert r["sources"]["seed"].startswith("the best of --restarts 2")
 
 
 def test_sources_name_every_parameter(tmp_path):
-    from fibrilfit.cli import commands
+    from fibrilfit.cli import build_parser, values
     case_file = tmp_path / "c.toml"
     case_file.write_text("[params]\nlinker = 9\nlayers = 8\n", encoding="utf-8")
     argv = ["run", "--case", str(case_file), "--layers", "6", "--twist=-0.9deg"]
-    args = commands.build_parser().parse_args(argv)
-    args.loaded_case = commands.apply_case(args, argv)
-    src = commands.param_sources(args, P.make_params(**commands.params_from(args)))
+    args = build_parser().parse_args(argv)
+    args.loaded_case = values.apply_case(args, argv)
+    src = values.param_sources(args, P.make_params(**values.params_from(args)))
     assert set(src) == {f.name for f in P.fields()}
     assert (src["linker"], src["layers"], src["twist"], src["rise"]) == (
         "case", "option", "option", "default")
@@ -307,9 +307,9 @@ def test_a_saved_case_keeps_no_stale_description():
     (["rn"], "did you mean run?"),
 ])
 def test_a_typo_gets_a_suggestion(argv, hint):
-    from fibrilfit.cli import commands
+    from fibrilfit.cli import build_parser
     with pytest.raises(UsageError) as err:
-        commands.build_parser().parse_args(argv)
+        build_parser().parse_args(argv)
     assert hint in str(err.value) and "\n" not in str(err.value)
 
 

@@ -1,12 +1,12 @@
-"""`--fibril FILE` / `--domain FILE` and their options, shared by `inspect`, `run` and `sweep`:
-measure the files, and merge the measured values under the explicit options."""
+"""`--fibril FILE` / `--domain FILE` / `--full-length FILE` and their options, shared by
+`inspect`, `run`, `report`, `minimal-linker` and `sweep`: declare them, measure the files (the
+structure room does the measuring), and merge the measured values under the explicit options."""
 from __future__ import annotations
 
 import argparse
-import sys
 
-from ..model import params as P
 from ..exits import UsageError
+from ..model import cases
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
@@ -68,7 +68,7 @@ def domain_specs(args, fib=None) -> tuple[list, object]:
             raise UsageError("--full-length: gives the domains itself; leave out --domain")
         if chains or ranges:
             raise UsageError("--domain-chain/--domain-residues: not with --full-length")
-        from .full_length import segment
+        from ..structure.full_length import segment
         seg = segment(full, fib.core_residues if fib is not None else None)
         side = "N" if fib is not None and fib.terminus == "N" else "C"
         return [(full, seg.chain, f"{d['first']}-{d['last']}")
@@ -104,48 +104,29 @@ def measure_all(args) -> tuple:
     return fib, doms, seg
 
 
-def measure_structures(args):
-    """(FibrilGeometry or None, DomainSize or None) from --fibril / --domain: the first domain
-    (the one nearest the core)."""
-    fib, doms, _ = measure_all(args)
-    return fib, (doms[0] if doms else None)
-
-
 def params_and_structure(args, explicit: dict | None = None) -> tuple[dict, dict | None]:
     """The parameter values of `run`/`sweep`: measured from --fibril/--domain, then the explicit
     options over them. Returns (values, the result's `structure` block or None)."""
     explicit = explicit if explicit is not None else {}
     if not has_structure(args):
         return explicit, None
-    from . import from_files
+    from ..structure import from_files
     fib, doms, seg = measure_all(args)
-    dom = doms[0] if doms else None
     args.measured = (fib, doms)  # for --pdb-atoms (atom_sources), measured once
-    radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
-    try:
-        radius = float(radius)
-    except (TypeError, ValueError):
-        radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
-    shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
-    applied, block = from_files.split(fib, dom, explicit=set(explicit),
-                                      known={f.name for f in P.fields()}, residue_radius=radius,
-                                      more_domains=doms[1:], shape=shape)
-    if block["not_in_model"]:
-        block["warnings"].append(f"measured but not in this model: "
-                                 f"{', '.join(block['not_in_model'])}")
-    if seg is not None:
-        block["full_length"] = seg.to_dict()
-    if len(doms) > 1:
-        block["domains"] = [{"file": d.file, "sha256": d.sha256, "measured": d.to_dict()}
-                            for d in doms]
-    return {**applied, **explicit}, block
+    return from_files.merged(fib, doms, seg, explicit)
 
 
-def say_warnings(block: dict | None) -> None:
-    """Every warning of the measurement on stderr (issue #23: they travel with every run and
-    sweep), said once the run's input has passed its checks, so bad input stays one line."""
-    for warning in (block or {}).get("warnings", []):
-        print(f"fibrilfit: warning: {warning}", file=sys.stderr)
+def structure_options(args) -> dict:
+    """The --fibril/--domain options as they will run (for a case's [structure])."""
+    if not has_structure(args):
+        return {}
+    out = {k: getattr(args, k) for k in cases.STRUCTURE_KEYS if getattr(args, k, None) is not None}
+    for k, v in list(out.items()):  # an option given once (argparse appends) is one value
+        if isinstance(v, list):
+            out[k] = v[0] if len(v) == 1 else v
+    if not args.fibril:
+        out.pop("terminus", None)
+    return out
 
 
 def atom_sources(args):
@@ -154,7 +135,7 @@ def atom_sources(args):
     if not has_structure(args):
         raise UsageError("--pdb-atoms: needs a structure to place: give --fibril FILE and/or "
                          "--domain FILE")
-    from . import atoms
+    from ..structure import atoms
     fib = (getattr(args, "measured", None) or measure_all(args))[0]
     specs, seg = domain_specs(args, fib)
     option = "--full-length" if seg is not None else "--domain"

@@ -163,7 +163,7 @@ def _write_outputs(args, p, result: dict, outputs: dict) -> list[str]:
 
 
 def _print_result(args, result: dict, restarts, paths: dict) -> None:
-    X
+    """The printed result (exports/run_text.py), after the restarts' line."""
     from ..exports import run_text
     if restarts is not None:
         from ..search import command as search_command

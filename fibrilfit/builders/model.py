@@ -9,7 +9,7 @@ import numpy as np
 
 from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, params as P
-from ..structure import shape
+from ..geom import shape
 from . import meshes
 from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
                            spread_chains, spread_layout, walk_directions)
@@ -195,7 +195,7 @@ def check_real_start(p: P.Params) -> None:
     if gap <= 0:
         raise P.ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
                                             f"between the domains cannot start the chain clear "
-                                            f"of itself with {p.domain_shape} ({-gap:.1f} Å "
+                                            f"of itself with {p.shape.name} ({-gap:.1f} Å "
                                             f"into each other at the best of its turns): give "
                                             f"more residues, or --protocol inflate (the "
                                             f"domains start small)")
@@ -286,14 +286,14 @@ class _LayerBuilder:
         self.pfs = p.protofilaments
         self.turns = None  # several real shapes: each domain's turn (chains, D, 3, 3)
         if p.several_shapes:  # bent at every domain (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-            if p.protocol == "tutorial" and p.domain_shape == "spheres":  # full size: spread
+            if p.protocol == "tutorial" and p.shape.spread:  # full size: spread
                 self.pos, self.pivots, self.turns = spread_chains(p, self.pos)
             else:
                 wanted = walk_directions(p, self.pos, p.seed) if p.protocol == "inflate" else None
                 self.pos, self.pivots, self.turns = real_chain_layout(p, self.pos, wanted)
         elif p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
             self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
-        elif p.domain_shape == "spheres":  # full size from the start: spread, or they can lock
+        elif p.shape.spread:  # full size from the start: spread, or they can lock
             # (docs/model/domain-shapes.md#spheres-start)
             self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
         self.globule_members = p.globule_members()
@@ -367,15 +367,15 @@ class _LayerBuilder:
         c = k * self.pfs + j
         role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
         # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
-        domain = (self.globule_members.index(i) if role == "globule" and p.several_shapes
+        domain = (self.globule_members.index(i) if role == "globule" and p.shape.real
                   else 0)
         mesh = self._shared_mesh(("globule" if not domain else f"globule {domain}")
                                  if role == "globule" else "residue")
-        shape = GLOBULE_SHAPES[p.domain_shape] if role == "globule" else "SPHERE"
+        shape = p.shape.collision if role == "globule" else "SPHERE"
         ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
                    "PASSIVE" if i == 0 else "ACTIVE", shape)
         ob[INDEX], ob[PROTOFILAMENT] = i, j
-        if role == "globule" and p.domain_shape != "sphere":
+        if role == "globule" and p.shape.real:
             self._real_globule(ob, k, domain)
         self.placed[role].append((ob, c, i))
         chain = self.model.chain
@@ -387,12 +387,14 @@ class _LayerBuilder:
             self._bond(k, j, i - 1)
 
     def _real_globule(self, ob, k, domain=0):
-        """A hull keeps Bullet's surface HULL_MARGIN outside its mesh (the mesh is what the
-        check tests); spheres become a compound of child spheres, like the concave cores.
-        `domain`: which domain of the chain (several real shapes: each its own spheres)."""
-        if self.p.domain_shape == "hull":
+        """A hull keeps Bullet's surface its margin (domains.HULL_MARGIN) outside its mesh (the
+        mesh is what the check tests); spheres become a compound of child spheres, like the
+        concave cores. `domain`: which domain of the chain (several real shapes: each its own
+        spheres)."""
+        if self.p.shape.margin is not None:
             ob.rigid_body.use_margin = True
-            ob.rigid_body.collision_margin = HULL_MARGIN
+            ob.rigid_body.collision_margin = self.p.shape.margin
+        if not self.p.shape.compound:
             return
         key = "sphere_meshes" if not domain else f"sphere_meshes {domain}"
         spheres = [tuple(row) for row in self.p.domain_rows(domain)]
@@ -456,7 +458,7 @@ class _LayerBuilder:
         """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
         sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
         one domain (no scale set: the build as before)."""
-        if len(self.globule_members) == 1 or self.p.several_shapes:  # each its own mesh
+        if len(self.globule_members) == 1 or self.p.shape.real:  # each its own mesh
             return None
         radius = dict(zip(self.globule_members, self.p.domain_radii))
         return np.array([radius[int(i)] / self.p.globule_radius for i in members])
@@ -492,7 +494,7 @@ class _LayerBuilder:
             if role == "globule" and self.turns is not None:  # several real shapes
                 dom = np.array([self.globule_members.index(int(m)) for m in i])
                 self._turn_globules(objects, k, loc, self.turns[k, dom])
-            elif role == "globule" and self.p.domain_shape != "sphere":  # one domain a chain
+            elif role == "globule" and self.p.shape.real:  # one domain a chain
                 self._turn_globules(objects, k, loc)
             if role == "bond":
                 objects.foreach_set("empty_display_size",
@@ -531,11 +533,14 @@ class _LayerBuilder:
                              child_world.transpose(0, 2, 1).astype(np.float32).ravel())
 
 
-GLOBULE_SHAPES = {"sphere": "SPHERE", "hull": "CONVEX_HULL", "spheres": "COMPOUND"}
-# Bullet's surface around a hull globule's mesh: resting contacts interpenetrate by ~0.05 Å
-# (docs/model/domain-shapes.md#margin), so a margin of 0.1 Å keeps two resting meshes, and
-# so the atoms, apart, and the BVH test on the mesh counts only a real overlap.
-HULL_MARGIN = 0.1
+# How each shape of model.domains.SHAPES is drawn: its mesh from its name and rows.
+GLOBULE_MESHES = {
+    "sphere": lambda p, name, rows: meshes.uv_sphere("FibrilFit globule", p.globule_radius,
+                                                      P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS),
+    "hull": lambda p, name, rows: meshes.convex_hull(name, shape.hull_points(rows)),
+    "spheres": lambda p, name, rows: meshes.sphere_union(name, [tuple(r) for r in rows],
+                                                         P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS),
+}
 
 
 def globule_mesh(p: P.Params, domain: int = 0):
@@ -543,13 +548,7 @@ def globule_mesh(p: P.Params, domain: int = 0):
     spheres joined, in the domain's body frame (structure.domain.body_frame). `domain`: which
     domain of the chain, 0 nearest the core (several real shapes: each its own mesh)."""
     name = f"FibrilFit globule {domain}" if domain else "FibrilFit globule"
-    if p.domain_shape == "hull":
-        return meshes.convex_hull(name, shape.hull_points(p.domain_rows(domain)))
-    if p.domain_shape == "spheres":
-        return meshes.sphere_union(name, [tuple(r) for r in p.domain_rows(domain)],
-                                   P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
-    return meshes.uv_sphere("FibrilFit globule", p.globule_radius, P.GLOBULE_SEGMENTS,
-                            P.GLOBULE_RINGS)
+    return GLOBULE_MESHES[p.shape.name](p, name, p.domains[domain].rows)
 
 
 def spheres_body(p: P.Params):

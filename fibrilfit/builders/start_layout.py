@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..geom.rigid import joint_rotations, turn_about
-from ..structure import shape
-from ..structure.shape import directions
+from ..geom import shape
+from ..geom.shape import directions
 
 FAN_AXIAL = 0.9       # tan of the largest tilt along the fibril axis (chains at the ends): ~42°
 FAN_SIDE = 0.6        # tan of the sideways tilt, alternating layer by layer: ~31°
@@ -221,18 +221,18 @@ def domain_terminals(p) -> list[dict]:
     """Per domain of a real-shaped chain (0 nearest the core): its shape rows [x, y, z, r]
     in its body frame, each row's reach beyond its centre (hull: the grown points'; spheres:
     the radius), the incoming joint and the outward normal of the surface nearest it, and
-    (all but the last) the exit and its normal (structure.shape.outward; union_exit for the
+    (all but the last) the exit and its normal (geom.shape.outward; union_exit for the
     non-convex union of spheres)."""
     out = []
     joints, exits = p.domain_joints(), list(p.domain_exits or ())
     for k, joint in enumerate(joints):
         rows = p.domain_rows(k)
-        if p.domain_shape == "hull":
-            normal = lambda q: shape.outward(rows, q)  # noqa: E731
-            reach = rows[:, 3] + shape.grow(rows[:, 3])
-        else:
+        if p.shape.compound:  # a union of spheres: not convex
             normal = lambda q: shape.union_exit(rows, q)[0]  # noqa: E731
             reach = rows[:, 3]
+        else:
+            normal = lambda q: shape.outward(rows, q)  # noqa: E731
+            reach = rows[:, 3] + shape.grow(rows[:, 3])
         entry = {"rows": rows[:, :3], "reach": reach, "joint": joint, "joint_out": normal(joint)}
         if k < len(exits):
             e = np.asarray(exits[k], float)
@@ -329,7 +329,7 @@ def chain_clearance(p, pos: np.ndarray, rot: np.ndarray, frames: list[dict]) -> 
     n, m, _ = pos.shape
     beads = [i for i in range(m) if i not in dom_of]
     gaps = np.full(n, np.inf)
-    balls = p.domain_shape == "spheres"  # a union of spheres: exact, ball by ball
+    balls = p.shape.compound  # a union of spheres: exact, ball by ball
     for c in range(n):
         world = []
         for k, i in enumerate(members):

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..geom import polygons
-from . import helix
+from . import domains as chain_domains, helix
 
 # Above this many objects a build is refused unless forced: past it a bake takes hours and
 # the scene needs gigabytes.
@@ -241,12 +241,12 @@ class Params:
                               kind=str, choices=DOMAIN_SHAPES, section="Globule")
     domain_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                        "hull: the domain's outermost heavy atoms [x, y, z, r] in "
-                                       "its body frame (structure.shape.hull_atoms)",
+                                       "its body frame (geom.shape.hull_atoms)",
                                        kind="rows", size=4, ui=False, cli=False, section="Globule",
                                        derived="none: the sphere")
     domain_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
                                          "spheres: the covering spheres [x, y, z, r] in the "
-                                         "domain's body frame (structure.shape.covering_spheres)",
+                                         "domain's body frame (geom.shape.covering_spheres)",
                                          kind="rows", size=4, ui=False, cli=False,
                                          section="Globule", derived="none: the sphere")
     domain_joint: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
@@ -291,7 +291,7 @@ class Params:
     def globule_offset(self) -> float:
         """From the last bond's pivot to the globule's centre: the sphere's radius, or with a real
         shape the joint's distance from the domain's centroid."""
-        if self.domain_shape == "sphere" or self.domain_joint is None:
+        if self.domains[0].joint is None:
             return self.globule_radius
         return math.sqrt(sum(x * x for x in self.domain_joint[0]))
 
@@ -300,7 +300,7 @@ class Params:
         """From the last linker bead's centre to the globule's joint: its radius (the sphere's
         surface), or with a real shape one residue spacing (the joint is the domain's terminal
         CA, the next residue along the chain)."""
-        return self.residue_radius if self.domain_shape == "sphere" else self.residue_spacing
+        return self.residue_spacing if self.shape.real else self.residue_radius
 
     @property
     def anchor_x(self) -> float:
@@ -341,19 +341,23 @@ class Params:
         return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
 
     @property
+    def shape(self) -> chain_domains.Shape:
+        """The domains' shape (domain_shape's record in domains.SHAPES)."""
+        return chain_domains.shape_of(self)
+
+    @functools.cached_property
+    def domains(self) -> list[chain_domains.Domain]:
+        """The chain's domains, from the core outward (domains.domains; one: a list of one)."""
+        return chain_domains.domains(self)
+
+    @property
     def several_shapes(self) -> bool:
         """Several domains per chain, each with its real shape (hull, spheres)."""
-        return self.domain_shape != "sphere" and bool(self.domain_diameters)
+        return chain_domains.several_shapes(self)
 
     def domain_rows(self, k: int) -> np.ndarray:
-        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame: its hull
-        atoms (hull) or covering spheres (spheres)."""
-        first, more = ((self.domain_atoms, self.further_atoms) if self.domain_shape == "hull"
-                       else (self.domain_spheres, self.further_spheres))
-        if k == 0:
-            return np.asarray(first, dtype=float).reshape(-1, 4)
-        rows = np.asarray(more, dtype=float).reshape(-1, 5)
-        return rows[np.round(rows[:, 0]).astype(int) == k, 1:]
+        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame."""
+        return chain_domains.domain_rows(self, k)
 
     def domain_joints(self) -> list:
         """Each domain's incoming joint (terminal CA) in its body frame, (3,) each."""
@@ -800,9 +804,9 @@ def _check_domains(p: Params) -> None:
 
 
 def _check_shape(p: Params) -> None:
-    need = {"hull": "domain_atoms", "spheres": "domain_spheres"}.get(p.domain_shape)
+    need = p.shape.rows
     if need and (getattr(p, need) is None or p.domain_joint is None):
-        raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
+        raise ParamError("domain_shape", f"{p.shape.name} needs a domain structure (--domain "
                                          f"FILE) to take its shape and joint from")
     if p.several_shapes:
         _check_several_shapes(p)
@@ -816,18 +820,18 @@ def _check_several_shapes(p: Params) -> None:
     """hull, spheres with several domains: every domain's own shape and joint, and an exit on
     every domain but the last (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
     more = len(p.domain_diameters)
-    rows = p.further_atoms if p.domain_shape == "hull" else p.further_spheres
+    rows = getattr(p, p.shape.further)
     have = set() if rows is None else {int(round(r[0])) for r in rows}
     if (have != set(range(1, more + 1)) or len(p.further_joints or ()) != more
             or len(p.domain_exits or ()) != more):
-        raise ParamError("domain_shape", f"{p.domain_shape} with {more + 1} domains per chain "
+        raise ParamError("domain_shape", f"{p.shape.name} with {more + 1} domains per chain "
                                          f"needs every domain's structure (--domain FILE once "
                                          f"per domain) to take its shape, joint and exit from")
     if min(p.domain_linker) < 1:
         # the exit CA and the next domain's joint CA would be one bond apart, with both a few
         # Å inside their hulls: the two shapes start inside each other
         raise ParamError("domain_linker", f"must be at least 1 residue between real-shaped "
-                                          f"domains ({p.domain_shape}): the outgoing linker "
+                                          f"domains ({p.shape.name}): the outgoing linker "
                                           f"leaves one domain's terminal CA and enters the "
                                           f"next one's through at least one bead "
                                           f"(got {', '.join(map(str, p.domain_linker))})")

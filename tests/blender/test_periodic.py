@@ -55,7 +55,8 @@ def test_a_cell_feels_only_the_gravity_its_images_share(ff):
             assert not np.allclose(turn @ g, g)  # the sideways part would turn with the image
         searching = cell.replace(protocol="inflate")
         assert np.array_equal(ff.builders.draw_gravity(searching), g)
-        assert S.axial_gravity(cell) and not S.axial_gravity(searching) and not S.axial_gravity(flat)
+        G = importlib.import_module(ff.__name__ + ".model.gravity")
+        assert G.axial_gravity(cell) and not G.axial_gravity(searching) and not G.axial_gravity(flat)
 
 
 def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
@@ -110,9 +111,10 @@ def test_sweep_refuses_layers_beside_periodic(ff):
 
 def test_images_come_from_the_reach_not_a_fixed_cell(ff):
     S, PB = _screw(ff), _periodic(ff)
+    D = importlib.import_module(ff.__name__ + ".model.domains")
     P = ff.model.params
     short, long_ = P.make_params(periodic=13, linker=6), P.make_params(periodic=13, linker=16)
-    cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * S.body_reach(p))})  # noqa: E731
+    cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * D.body_reach(p))})  # noqa: E731
     assert cells(short) == [-2, -1, 1, 2]
     assert max(cells(long_)) >= 3  # a longer linker reaches past the second cell
     todo = PB.plan(short, list(range(13)), list(range(13)))

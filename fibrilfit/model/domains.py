@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .param_spec import ParamError
+
 # A hull's points lie r/0.934 + 0.01 Å from their atom's centre (geom/shape.py, grow) and
 # Bullet's surface 0.1 Å beyond them (HULL_MARGIN): 1/0.93 and 0.11 Å bound both
 # (docs/model/domain-shapes.md#periodic).
@@ -142,6 +144,43 @@ def domains(p) -> list[Domain]:
             exit=np.asarray(exits[k], dtype=float) if k < len(exits) else None,
             linker=gaps[k] if k < len(gaps) else None))
     return out
+
+
+# ---- the shapes' checks (make_params: param_checks.check_combination) ------------------------
+def check_shapes(p) -> None:
+    """A real shape needs its rows and joint; several real shapes every domain's, and an exit
+    on each but the last; covering spheres positive radii."""
+    need = p.shape.rows
+    if need and (getattr(p, need) is None or p.domain_joint is None):
+        raise ParamError("domain_shape", f"{p.shape.name} needs a domain structure (--domain "
+                                         f"FILE) to take its shape and joint from")
+    if p.several_shapes:
+        _check_several_shapes(p)
+    for name in ("domain_spheres", "further_spheres"):
+        rows = getattr(p, name)
+        if rows is not None and min(row[-1] for row in rows) <= 0:
+            raise ParamError(name, "every sphere's radius must be positive")
+
+
+def _check_several_shapes(p) -> None:
+    """hull, spheres with several domains: every domain's own shape and joint, and an exit on
+    every domain but the last (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
+    more = len(p.domain_diameters)
+    rows = getattr(p, p.shape.further)
+    have = set() if rows is None else {int(round(r[0])) for r in rows}
+    if (have != set(range(1, more + 1)) or len(p.further_joints or ()) != more
+            or len(p.domain_exits or ()) != more):
+        raise ParamError("domain_shape", f"{p.shape.name} with {more + 1} domains per chain "
+                                         f"needs every domain's structure (--domain FILE once "
+                                         f"per domain) to take its shape, joint and exit from")
+    if min(p.domain_linker) < 1:
+        # the exit CA and the next domain's joint CA would be one bond apart, with both a few
+        # Å inside their hulls: the two shapes start inside each other
+        raise ParamError("domain_linker", f"must be at least 1 residue between real-shaped "
+                                          f"domains ({p.shape.name}): the outgoing linker "
+                                          f"leaves one domain's terminal CA and enters the "
+                                          f"next one's through at least one bead "
+                                          f"(got {', '.join(map(str, p.domain_linker))})")
 
 
 def domain_reaches(p) -> list[float]:

@@ -11,8 +11,9 @@ from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, params as P
 from ..geom import shape
 from . import meshes
-from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
-                           spread_chains, spread_layout, walk_directions)
+from ..model.bent_layout import domain_terminals, real_chain_layout, spread_chains
+from ..model.start_layout import (bond_pivots, inflate_layout, rest_positions, spread_layout,
+                                  walk_directions)
 from .physics import check_world_free, ensure_world, keep_bake
 from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
                     tag)
@@ -67,32 +68,6 @@ class Model:
     @property
     def active(self) -> list:
         return [ob for c in self.chain for ob in c[1:]]
-
-
-def chain_positions(p: P.Params) -> np.ndarray:
-    """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
-
-    Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
-    (helix.chain_transforms); for the tutorial's model the same floats as one chain per layer.
-    """
-    angle, height = helix.chain_transforms(p)
-    layout = p.chain_layout
-    turn = angle[:, None] + layout.angle[None]
-    pos = np.empty((p.chains, layout.radius.size, 3))
-    pos[..., 0] = np.cos(turn) * layout.radius[None]
-    pos[..., 1] = np.sin(turn) * layout.radius[None]
-    pos[..., 2] = height[:, None]
-    return pos
-
-
-def bond_pivots(p: P.Params) -> np.ndarray:
-    """POINT-constraint pivots: where consecutive members touch, shape (chains, linker, 3)."""
-    pos = chain_positions(p)
-    a, b = pos[:, :-1], pos[:, 1:]
-    ra = np.asarray(p.chain_radii()[:-1])
-    ra[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
-    frac = ra / np.asarray(p.rest_lengths())
-    return a + (b - a) * np.minimum(frac, 1.0)[None, :, None]
 
 
 def find_model(scene: bpy.types.Scene) -> Model | None:
@@ -169,7 +144,6 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
 def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> Model:
     """Validate `p`, remove any previous model, and make the model's empty collections and world."""
     p = P.validate(p, force=force)
-    check_real_start(p)
     check_world_free(scene)
     clear_model(scene)
     rbw = ensure_world(scene)
@@ -180,25 +154,6 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
     rbw.constraints = tag(bpy.data.collections.new("FibrilFit constraints"), "rigid_constraints")
     return Model(root, p, [], [], [])
-
-
-def check_real_start(p: P.Params) -> None:
-    """Several real-shaped domains at full size from frame 1 (the tutorial protocol): refuse,
-    before anything is built, a chain that no turn of its domains lays out clear of itself
-    (start_layout.real_chain_layout): the covering spheres bulge past the atoms by up to 6.4 Å
-    (docs/model/domain-shapes.md#spheres), and one residue between two domains cannot hold
-    them apart. Under inflate the domains start small (growth.start_scale)."""
-    if not p.several_shapes or p.protocol != "tutorial":
-        return
-    pos, _, rot = real_chain_layout(p, chain_positions(p)[:1])
-    gap = float(chain_clearance(p, pos, rot, domain_terminals(p))[0])
-    if gap <= 0:
-        raise P.ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
-                                            f"between the domains cannot start the chain clear "
-                                            f"of itself with {p.shape.name} ({-gap:.1f} Å "
-                                            f"into each other at the best of its turns): give "
-                                            f"more residues, or --protocol inflate (the "
-                                            f"domains start small)")
 
 
 def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:
@@ -282,7 +237,7 @@ class _LayerBuilder:
         self.parts = {role: tags[role + "s"] for role in PART_COLLECTIONS}
         self.angle, self.height = helix.layer_transforms(p)  # per layer: the cores
         self.chain_angle = helix.chain_transforms(p)[0]     # per chain: its members
-        self.pos, self.pivots = chain_positions(p), bond_pivots(p)
+        self.pos, self.pivots = rest_positions(p), bond_pivots(p)
         self.pfs = p.protofilaments
         self.turns = None  # several real shapes: each domain's turn (chains, D, 3, 3)
         if p.several_shapes:  # bent at every domain (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
@@ -509,7 +464,7 @@ class _LayerBuilder:
         surface nearest the joint facing back along the bond: the body then reaches past the
         pivot towards the linker by only the joint's depth. Children (spheres) follow.
         `rot`: the turns of several real-shaped domains, laid out with their places `loc`
-        (start_layout.real_chain_layout)."""
+        (bent_layout.real_chain_layout)."""
         p = self.p
         if rot is None:
             (terminal,) = domain_terminals(p)  # the joint and the surface's normal there
@@ -552,7 +507,7 @@ def globule_mesh(p: P.Params, domain: int = 0):
 
 
 def spheres_body(p: P.Params):
-    """body(pivots, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
+    """body(pivots, d) for model.start_layout.spread_layout: the `spheres` globule's spheres in the
     world, turned as _turn_globules turns it when its last bond's pivot is at `pivots` and the
     bond points along `d` (k of each)."""
     (terminal,) = domain_terminals(p)  # the joint and the spheres' nearest way out there

@@ -10,8 +10,10 @@ from typing import Any
 import numpy as np
 
 from . import domains, helix
+from .bent_layout import chain_clearance, domain_terminals, real_chain_layout
 from .param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST, MEMORY_PER_OBJECT_KIB, ParamError
 from .param_values import split_unit
+from .start_layout import rest_positions
 
 
 def check_twist(raw: Any, twist: float, force: bool) -> None:
@@ -53,6 +55,28 @@ def check_combination(p, force: bool) -> None:
                                    f"{'up to ' if p.core_outline is not None else ''}{n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
+    check_real_start(p)
+
+
+def check_real_start(p) -> None:
+    """Several real-shaped domains at full size from frame 1 (the tutorial protocol): refuse,
+    before anything is built, a chain that no turn of its domains lays out clear of itself
+    (bent_layout.real_chain_layout): the covering spheres bulge past the atoms by up to 6.4 Å
+    (docs/model/domain-shapes.md#spheres), and one residue between two domains cannot hold
+    them apart. Under inflate the domains start small (growth.start_scale). Decided from the
+    parameters alone, with the other checks, so a refused model is refused before any build."""
+    if not p.several_shapes or p.protocol != "tutorial":
+        return
+    pos, _, rot = real_chain_layout(p, rest_positions(p)[:1])
+    gap = float(chain_clearance(p, pos, rot, domain_terminals(p))[0])
+    if gap <= 0:
+        raise ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
+                                            f"between the domains cannot start the chain clear "
+                                            f"of itself with {p.shape.name} ({-gap:.1f} Å "
+                                            f"into each other at the best of its turns): give "
+                                            f"more residues, or --protocol inflate (the "
+                                            f"domains start small)")
+
 
 def _check_domains(p) -> None:
     """Several domains per chain: one linker per gap. They run under every protocol and in a

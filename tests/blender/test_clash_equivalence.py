@@ -12,7 +12,7 @@ from fibrilfit.model import params as P
 from fibrilfit.analysis import bvh_clashes
 from fibrilfit.analysis.clashes import candidate_pairs, facing_faces, mesh_arrays
 from fibrilfit.builders import meshes
-from fibrilfit.builders.model import chain_positions
+from fibrilfit.model.start_layout import rest_positions as chain_positions
 from fibrilfit.model.helix import layer_transforms
 
 

@@ -77,7 +77,7 @@ def test_gjk_distance_of_two_boxes(ff):
 def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
     """The closest heavy atoms of two domains are at least two radii apart, less the resting
     overlap (0.05 Å): the shape holds the atoms (a hull's mesh with HULL_MARGIN around it for
-    Bullet; spheres each holding their atoms). Spheres start spread (start_layout.spread_layout):
+    Bullet; spheres each holding their atoms). Spheres start spread (model.start_layout.spread_layout):
     from the tutorial's layout, deeply interpenetrated compounds locked
     (docs/model/domain-shapes.md#spheres-start)."""
     p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, frames=120)

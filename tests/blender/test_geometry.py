@@ -11,7 +11,8 @@ from fibrilfit.geom import polygons
 from fibrilfit.model import helix, params as P
 from fibrilfit import pipeline
 from fibrilfit.builders import build_model, find_model
-from fibrilfit.builders.model import chain_positions, stored_params
+from fibrilfit.builders.model import stored_params
+from fibrilfit.model.start_layout import rest_positions as chain_positions
 
 # The tutorial's parameters as they were before this issue: the default must keep every one.
 OLD_DEFAULTS = {

@@ -85,7 +85,7 @@ def globule_radii(p, n: int) -> np.ndarray:
 
 def globule_scales(p, objects) -> np.ndarray | None:
     """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
-    which they share (builders.model); None for one domain (every full size is 1)."""
+    which they share (builders.layers); None for one domain (every full size is 1)."""
     members = p.globule_members()
     if len(members) == 1 or p.shape.real:  # real shapes: each its own mesh at full size
         return None

@@ -112,7 +112,7 @@ def _copy(source, role, m, chain, index, coll, bodies):
 
 def _copy_pieces(source, image, coll, bodies, role: str = "core_piece", children=None) -> None:
     """The children of a COMPOUND body for its image: an outline core's solid convex pieces
-    (children of its slab, builders.model), or a `spheres` globule's spheres (`role`
+    (children of its slab, builders.layers), or a `spheres` globule's spheres (`role`
     "globule_sphere", each at its place in the globule's frame). A COMPOUND shape without them
     would collide with nothing. `children`: the source's, when known (else source.children,
     which scans every object of the file)."""
@@ -168,7 +168,7 @@ class ImageFollower:
         # each image's original: an image carries its scale (inflate grows and shrinks globules)
         self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
         # several domains per chain: the further globules share domain 1's mesh at their own
-        # scale (builders.model), and their images must carry it under every protocol
+        # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
         radii = domains.body_radii(self.p)  # a real shape's globule: its reach
         self.radius = radii[self.member] if len(obs) else np.zeros(0)

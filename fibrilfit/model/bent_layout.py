@@ -12,7 +12,7 @@ from ..geom import shape
 from ..geom.rigid import joint_rotations, turn_about
 from ..geom.shape import directions
 from .start_layout import (SPREAD_DIRECTIONS, SPREAD_OUTWARD, SPREAD_ROUNDS, _choose,
-                           _keep_outward, _pivots, _unit, fan_frames, walk_directions)
+                           _keep_outward, _unit, fan_frames)
 
 
 # ---- several real-shaped domains per chain: a bent start layout --------------------------------
@@ -109,7 +109,7 @@ def bent_layout(p, rest: np.ndarray, wanted: np.ndarray, frames: list[dict], rol
 
     - a domain's incoming bond ends at its joint (its terminal CA, one residue spacing from the
       bead before it, the bond's pivot), and the domain is turned so that the surface nearest
-      the joint faces back along the bond (as one domain: builders.model), then about that
+      the joint faces back along the bond (as one domain: builders.layers), then about that
       bond so that its exit's normal leans towards the chain's heading, plus `roll` (rad);
     - the outgoing linker leaves from the exit (the pivot), one residue spacing to its first
       bead, along the exit's outward normal for EXIT_STRAIGHT bonds, then turns towards the

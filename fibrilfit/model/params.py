@@ -29,8 +29,8 @@ from .param_spec import (ANGLE_UNITS, DERIVED_WORDS, DOMAIN_SHAPES, GLOBULE_RING
                          GLOBULE_SEGMENTS, MAX_OBJECTS_UNFORCED, MAX_OUTLINE_POINTS,
                          MAX_SHAPE_ROWS, MAX_TWIST, MEMORY_PER_OBJECT_KIB, PROTOCOLS,
                          RESIDUE_RINGS, RESIDUE_SEGMENTS, SHAPE_ROWS, SHOWN_IN, ParamError, spec)
-from .param_values import (angle_value, coerce, describe_range, list_value, rows_value,  # noqa: F401
-                           split_unit, vector_value)
+from .param_values import (angle_value, coerce, list_value, rows_value, split_unit,  # noqa: F401
+                           vector_value)
 
 @dataclass(frozen=True)
 class Params:

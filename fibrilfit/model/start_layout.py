@@ -138,7 +138,7 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
 
     `body(pivots, d)` gives the globule's covering spheres [x, y, z, r] in the world, (k, s, 4),
     when its last bond's pivot is at pivots (k, 3) and the bond points along d (k, 3)
-    (builders.model turns it so).
+    (builders.layers turns it so).
     Deterministic: no seed (docs/model/domain-shapes.md#spheres-start)."""
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape

@@ -12,7 +12,7 @@ import bpy
 from ..model import helix, params as P
 from . import properties
 from ..builders import model_stage, structure_trace
-from ..builders.model import params_of
+from ..builders.stored import params_of
 from ..builders.scene import find_root
 from ..exports.summary import percent
 from .operators.common import reached

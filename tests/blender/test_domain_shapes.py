@@ -23,7 +23,7 @@ def _atoms(name):
 @pytest.mark.parametrize("name", ["1gfl", "1ubq"])
 def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
     from fibrilfit.analysis.clashes import mesh_arrays
-    from fibrilfit.builders.model import globule_mesh
+    from fibrilfit.builders.layers import globule_mesh
     mesh = globule_mesh(_hull_params(ff, name))
     verts, starts, loops = mesh_arrays(mesh)
     normals = np.empty(len(mesh.polygons) * 3, np.float32)
@@ -41,7 +41,7 @@ def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
 def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape):
     from fibrilfit.analysis.clashes import bvh_clashes, float_tolerance, sphere_band
     from fibrilfit.analysis.exact import hull_clashes, spheres_clashes
-    from fibrilfit.builders.model import globule_mesh
+    from fibrilfit.builders.layers import globule_mesh
     p = _hull_params(ff, "1ubq", shape)
     mesh = globule_mesh(p)
     turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])  # the second one turned 90° about Z

@@ -107,7 +107,7 @@ def _overlaps_at_frame_1(model, p, shape, chains):
 def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shape):
     """Each globule carries its own domain's mesh (ubiquitin's, then GFP's), the run is judged
     by both checks on those meshes, and the JSON names domains as for spheres."""
-    from fibrilfit.builders.model import globule_mesh
+    from fibrilfit.builders.layers import globule_mesh
     from fibrilfit.geom.shape import hull_points
     p = _params(ff, shape)
     r = ff.pipeline.run(p, scene)

@@ -20,7 +20,7 @@ from fibrilfit.ui import properties, registration
 from fibrilfit.analysis import bvh_clashes, clash_kinds
 from fibrilfit.analysis.verdict import world_matrices
 from fibrilfit.builders import find_model, model_stage
-from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR
+from fibrilfit.builders.colours import CLASH_COLOR, COLORS, GRAZE_COLOR
 from fibrilfit.ui.operators import common, simulate
 from fibrilfit.ui import panels
 

@@ -340,13 +340,11 @@ class Params:
         first = min(globules)
         # several real shapes: into domain k at its joint, out of it at its exit, each one
         # residue spacing from the bead beside it (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-        into, out = {}, {}
-        if self.several_shapes:
-            members = self.globule_members()
-            into = {i: self.residue_spacing + float(np.linalg.norm(j))
-                    for i, j in zip(members, self.domain_joints())}
-            out = {i: float(np.linalg.norm(e)) + self.residue_spacing
-                   for i, e in zip(members, self.domain_exits)}
+        # (the first domain's joint is globule_offset's, below)
+        into = {d.member: self.residue_spacing + float(np.linalg.norm(d.joint))
+                for d in self.domains if d.joint is not None}
+        out = {d.member: float(np.linalg.norm(d.exit)) + self.residue_spacing
+               for d in self.domains if d.exit is not None}
         xs = [self.anchor_x]
         for i in range(len(radii) - 1):
             if i not in globules and i + 1 not in globules:

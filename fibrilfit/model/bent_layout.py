@@ -73,19 +73,18 @@ def domain_terminals(p) -> list[dict]:
     (all but the last) the exit and its normal (geom.shape.outward; union_exit for the
     non-convex union of spheres)."""
     out = []
-    joints, exits = p.domain_joints(), list(p.domain_exits or ())
-    for k, joint in enumerate(joints):
-        rows = p.domain_rows(k)
-        if p.shape.compound:  # a union of spheres: not convex
+    for d in p.domains:
+        rows = d.rows
+        if d.shape.compound:  # a union of spheres: not convex
             normal = lambda q: shape.union_exit(rows, q)[0]  # noqa: E731
             reach = rows[:, 3]
         else:
             normal = lambda q: shape.outward(rows, q)  # noqa: E731
             reach = rows[:, 3] + shape.grow(rows[:, 3])
-        entry = {"rows": rows[:, :3], "reach": reach, "joint": joint, "joint_out": normal(joint)}
-        if k < len(exits):
-            e = np.asarray(exits[k], float)
-            entry.update(exit=e, exit_out=normal(e))
+        entry = {"rows": rows[:, :3], "reach": reach, "joint": d.joint,
+                 "joint_out": normal(d.joint)}
+        if d.exit is not None:
+            entry.update(exit=d.exit, exit_out=normal(d.exit))
         out.append(entry)
     return out
 

@@ -124,7 +124,7 @@ def split_unit(text: str) -> tuple[str, float | None]:
 
 def angle_value(name: str, value: Any, meta: dict):
     """An angle as typed: a number (rad), or text with a unit ('1.95deg', '1.95°', '0.034rad')
-    -> radians; anything else is returned as it is, for _coerce to refuse."""
+    -> radians; anything else is returned as it is, for coerce to refuse."""
     if not isinstance(value, str):
         return value
     number, factor = split_unit(value)

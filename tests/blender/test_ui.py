@@ -385,7 +385,7 @@ def test_join_globules_adds_a_mesh_and_leaves_the_simulation_intact(ui, scene):
     result = stored_result(scene)
     assert len({f for pair in between for f in pair}) == result["intersecting_faces"] > 0
     pairs = {tuple(sorted((int(layer[a]), int(layer[b])))) for a, b in between}
-    assert pairs == bvh_clashes(model.globules[0].data, world_matrices(model.globules))[1]
+    assert pairs == bvh_clashes([model.globules[0].data], world_matrices(model.globules))[1]
     assert pairs <= {tuple(p[:2]) for p in result["clashing_pairs"]}
     run("replicate_layers")  # a rebuild removes the joined copy with the model
     assert not [ob for ob in scene.objects if ob.get("fibrilfit") == "joined"]

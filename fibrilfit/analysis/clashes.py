@@ -1,4 +1,5 @@
-"""Which globules intersect: the tutorial's BVH self-overlap, and an analytic sphere test."""
+"""Which globules intersect, by the tutorial's BVH self-overlap of their meshes; the exact checks
+each shape is also judged by are in exact.py."""
 from __future__ import annotations
 
 import contextlib
@@ -33,11 +34,16 @@ def joined_globules(mesh, matrices: np.ndarray) -> tuple[np.ndarray, list]:
     return world, polys
 
 
-def bounding_radius(mesh, matrices: np.ndarray) -> float:
-    """A radius about each object's origin that holds every globule's vertices, in world units."""
+def bounding_radius(meshes, matrices: np.ndarray) -> float:
+    """A radius about each object's origin that holds every globule's vertices, in world units:
+    the largest over `meshes` (a list; one mesh is a list of one)."""
+    scale = _largest_scale(matrices)
+    return max(_local_radius(mesh) * scale for mesh in meshes)
+
+
+def _local_radius(mesh) -> float:
     verts = mesh_arrays(mesh)[0]
-    local = float(np.linalg.norm(verts, axis=1).max()) if len(verts) else 0.0
-    return local * _largest_scale(matrices)
+    return float(np.linalg.norm(verts, axis=1).max()) if len(verts) else 0.0
 
 
 def _largest_scale(matrices: np.ndarray) -> float:
@@ -49,9 +55,9 @@ def _margin(centres: np.ndarray) -> float:
     return 1e-3 + 1e-6 * float(np.abs(centres).max(initial=0.0)) + BVH_EPSILON
 
 
-def candidate_pairs(mesh, matrices: np.ndarray, radius: float | None = None) -> np.ndarray:
+def candidate_pairs(meshes, matrices: np.ndarray, radius: float | None = None) -> np.ndarray:
     """Globule pairs (i < j) whose bounding spheres meet: the only ones whose faces can overlap.
-    `radius`: the bounding radius, if not the mesh's (several meshes: the largest).
+    `radius`: the bounding radius, if not the largest of `meshes` (bounding_radius).
 
     A margin covers float32 rounding of world coordinates, so no overlapping pair is missed.
     """
@@ -59,7 +65,7 @@ def candidate_pairs(mesh, matrices: np.ndarray, radius: float | None = None) -> 
     if len(centres) < 2:
         return np.empty((0, 2), dtype=np.intp)
     if radius is None:
-        radius = bounding_radius(mesh, matrices)
+        radius = bounding_radius(meshes, matrices)
     reach = 2.0 * radius + _margin(centres)
     a, b, _ = close_pairs(centres, reach)
     return np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
@@ -101,7 +107,7 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
     singular = stretch[:, -1] < 1e-9  # flat globules: keep all their faces
     smallest = np.where(singular, 1.0, stretch[:, -1])
     inverse = np.linalg.inv(np.where(singular[:, None, None], np.eye(3), linear))
-    partner = bounding_radius(mesh, matrices) if partner_radius is None else partner_radius
+    partner = bounding_radius([mesh], matrices) if partner_radius is None else partner_radius
     reach = partner + stretch[:, 0].max() * face_radius + _margin(centres)
     keep = np.zeros((len(matrices), len(starts)), dtype=bool)
     keep[singular] = True
@@ -119,40 +125,50 @@ def facing_faces(mesh, matrices: np.ndarray, pairs: np.ndarray, chunk: int = 409
     return keep
 
 
-def bvh_clashes(mesh, matrices: np.ndarray, keep: np.ndarray | None = None, kinds=None
+def bvh_clashes(meshes, matrices: np.ndarray, keep: np.ndarray | None = None, kinds=None
                 ) -> tuple[int, set[tuple[int, int]]]:
     """BVH overlap of the globules in world space (epsilon 1e-5), as in the tutorial's step 8.
 
-    Returns the number of faces in any overlapping pair and the set of globule pairs (i < j)
-    whose faces overlap. Faces of one globule never count against each other. With `keep`
-    (a boolean per globule), only pairs with at least one kept globule count.
+    `meshes`: a list of meshes (one mesh is a list of one), globule g having meshes[kinds[g]]
+    at matrices[g] (`kinds` None: every globule the first mesh; several real-shaped domains per
+    chain have each its own mesh). Returns the number of faces in any overlapping pair and the
+    set of globule pairs (i < j) whose faces overlap. Faces of one globule never count against
+    each other. With `keep` (a boolean per globule), only pairs with at least one kept globule
+    count.
 
     The tutorial joins every globule into one tree and overlaps it with itself. Here only
     pairs whose bounding spheres meet are overlapped, each globule in its own tree holding the
     faces that can reach one of its partners (same world coordinates, same polygons, same
     epsilon): the same faces and pairs, without testing each globule against itself, against
-    far-away globules, or with its far side.
-
-    `kinds`: several meshes (`mesh` a list of them), globule g having mesh[kinds[g]] (several
-    real-shaped domains per chain, each its own mesh: bvh_clashes_kinds).
+    far-away globules, or with its far side. Faces are numbered globule after globule.
     """
-    if kinds is not None:
-        return bvh_clashes_kinds(mesh, kinds, matrices, keep)
     matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
-    involved, local = involved_pairs(candidate_pairs(mesh, matrices), keep)
+    kinds = (np.zeros(len(matrices), dtype=np.intp) if kinds is None
+             else np.asarray(kinds, dtype=np.intp))
+    if len(matrices) < 2:
+        return 0, set()
+    involved, local = involved_pairs(candidate_pairs(meshes, matrices), keep)
     if not len(local):
         return 0, set()
-    sub = matrices[involved]
-    keep = facing_faces(mesh, sub, local)
-    world, polys = joined_globules(mesh, sub)
-    per = len(polys)
+    sub, sub_kind = matrices[involved], kinds[involved]
+    partner = bounding_radius(meshes, sub)
+    count = np.array([len(meshes[k].polygons) for k in kinds.tolist()], dtype=np.int64)
+    offset = np.concatenate([[0], np.cumsum(count)[:-1]])  # globule g's faces start here
     trees, kept = {}, {}
-    with _gc_paused():  # thousands of small lists: the cyclic GC would rescan them again and again
-        for g in np.flatnonzero(keep.any(axis=1)).tolist():
-            kept[g] = np.flatnonzero(keep[g])
-            trees[g] = BVHTree.FromPolygons(world[g].tolist(), [polys[f] for f in kept[g]],
-                                            epsilon=BVH_EPSILON)
-    return tree_overlaps(trees, kept, local, involved, lambda g: g * per)
+    for k in np.unique(sub_kind).tolist():
+        rows = np.flatnonzero(sub_kind == k)
+        facing = facing_faces(meshes[k], sub, local, partner_radius=partner)
+        world, polys = joined_globules(meshes[k], sub[rows])
+        # thousands of small lists: the cyclic GC would rescan them again and again
+        with _gc_paused():
+            for r, g in enumerate(rows.tolist()):
+                chosen = np.flatnonzero(facing[g])
+                if not len(chosen):
+                    continue
+                kept[g] = chosen
+                trees[g] = BVHTree.FromPolygons(world[r].tolist(), [polys[f] for f in chosen],
+                                                epsilon=BVH_EPSILON)
+    return tree_overlaps(trees, kept, local, involved, lambda g: offset[g])
 
 
 def tree_overlaps(trees: dict, kept: dict, local, involved, first_face
@@ -173,47 +189,6 @@ def tree_overlaps(trees: dict, kept: dict, local, involved, first_face
                 faces += [first_face(gi) + kept[i][hits[:, 0]],
                           first_face(gj) + kept[j][hits[:, 1]]]
     return (int(np.unique(np.concatenate(faces)).size) if faces else 0), pairs
-
-
-def bounding_radius_kinds(meshes, matrices: np.ndarray) -> float:
-    """bounding_radius over several meshes: the largest."""
-    return max(bounding_radius(m, matrices) for m in meshes)
-
-
-def bvh_clashes_kinds(meshes, kinds, matrices: np.ndarray, keep: np.ndarray | None = None
-                      ) -> tuple[int, set[tuple[int, int]]]:
-    """bvh_clashes of globules with their own meshes: globule g is meshes[kinds[g]] at
-    matrices[g]. The same test (each globule's facing faces in its own tree, the same epsilon)
-    over each pair of globules whose bounding spheres meet; faces are counted per globule."""
-    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
-    kinds = np.asarray(kinds, dtype=np.intp)
-    if len(matrices) < 2:
-        return 0, set()
-    radius = bounding_radius_kinds(meshes, matrices)
-    involved, local = involved_pairs(candidate_pairs(None, matrices, radius), keep)
-    if not len(local):
-        return 0, set()
-    sub, sub_kind = matrices[involved], kinds[involved]
-    arrays = [mesh_arrays(m) for m in meshes]
-    polys = [[q.tolist() for q in np.split(loops, starts[1:])] if len(starts) else []
-             for _, starts, loops in arrays]
-    facing = {k: facing_faces(meshes[k], sub, local, partner_radius=radius)
-              for k in np.unique(sub_kind).tolist()}
-    count = np.array([len(polys[k]) for k in kinds.tolist()], dtype=np.int64)
-    offset = np.concatenate([[0], np.cumsum(count)[:-1]])  # globule g's faces start here
-    trees, kept = {}, {}
-    with _gc_paused():
-        for g in range(len(sub)):
-            k = int(sub_kind[g])
-            chosen = np.flatnonzero(facing[k][g])
-            if not len(chosen):
-                continue
-            verts = arrays[k][0]
-            world = verts @ sub[g, :3, :3].T + sub[g, :3, 3]
-            kept[g] = chosen
-            trees[g] = BVHTree.FromPolygons(world.tolist(), [polys[k][f] for f in chosen],
-                                            epsilon=BVH_EPSILON)
-    return tree_overlaps(trees, kept, local, involved, lambda g: offset[g])
 
 
 def reach_from_axis(meshes, kinds, matrices: np.ndarray) -> np.ndarray:
@@ -308,167 +283,6 @@ def close_pairs(centres: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarr
     dist = np.linalg.norm(centres[a] - centres[b], axis=1)
     hit = dist < reach
     return a[hit], b[hit], dist[hit]
-
-
-def sphere_clashes(centres: np.ndarray, radius, tolerance: float = 1e-3
-                   ) -> list[tuple[int, int, float]]:
-    """Pairs of spheres closer than the sum of their radii − tolerance, with their overlap
-    depth (Å). `radius`: one for all, or one per sphere (several domain sizes).
-
-    Found through the grid of close_pairs, not all pairs.
-    """
-    radii = np.asarray(radius, dtype=float)
-    reach = 2.0 * float(radii.max()) - tolerance
-    a, b, dist = close_pairs(centres, reach)
-    if radii.ndim:
-        depth = radii[a] + radii[b] - dist
-        keep = depth > tolerance
-        a, b, depth = a[keep], b[keep], depth[keep]
-    else:
-        depth = 2.0 * radius - dist
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    by = np.lexsort((hi, lo))
-    return list(zip(lo[by].tolist(), hi[by].tolist(), depth[by].tolist()))
-
-
-# ---- real domain shapes (docs/model/domain-shapes.md#two-checks) ------------------------------
-GJK_TOLERANCE = 1e-5  # Å: GJK stops once the distance is known to within this
-
-
-def _closest_on_simplex(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The point of the simplex (1-4 points) nearest the origin, and the smallest sub-simplex
-    holding it (by trying every face: at most 15, each a small least-squares solve)."""
-    best, best_set, n = None, None, len(pts)
-    for mask in range(1, 1 << n):
-        idx = [i for i in range(n) if mask >> i & 1]
-        p = pts[idx]
-        if len(idx) == 1:
-            x, lam = p[0], np.ones(1)
-        else:
-            e = p[1:] - p[0]
-            g = e @ e.T
-            if abs(np.linalg.det(g)) < 1e-18:
-                continue
-            t = np.linalg.solve(g, -e @ p[0])
-            lam = np.concatenate([[1 - t.sum()], t])
-            if (lam < -1e-12).any():
-                continue
-            x = p[0] + t @ e
-        if best is None or x @ x < best @ best - 1e-15:
-            best, best_set = x, np.array(idx)
-    return best, best_set
-
-
-def hull_distance(a: np.ndarray, b: np.ndarray, iterations: int = 100) -> float:
-    """Distance (Å) between the convex hulls of point sets a and b (GJK); 0.0 if they meet."""
-    x = a.mean(axis=0) - b.mean(axis=0)
-    simplex = np.empty((0, 3))
-    for _ in range(iterations):
-        if x @ x < 1e-24:
-            return 0.0
-        s = a[np.argmax(a @ -x)] - b[np.argmax(b @ x)]  # support of a - b towards -x
-        gap = x @ x - x @ s  # |x|·(|x| - lower bound)
-        if gap <= GJK_TOLERANCE * np.sqrt(x @ x):
-            return float(np.sqrt(x @ x))
-        simplex = np.vstack([simplex, s])
-        x, keep = _closest_on_simplex(simplex)
-        simplex = simplex[keep]
-        if len(simplex) == 4:  # the origin inside the tetrahedron
-            return 0.0
-    return float(np.sqrt(x @ x))
-
-
-def face_overlap(a: np.ndarray, b: np.ndarray, normals: np.ndarray) -> float:
-    """The smallest overlap (Å) of two convex point sets along `normals` (unit, (n, 3)): an
-    upper bound of their penetration depth when they meet (negative: a normal separates)."""
-    pa, pb = a @ normals.T, b @ normals.T
-    return float(np.minimum(pa.max(0) - pb.min(0), pb.max(0) - pa.min(0)).min())
-
-
-def face_normals(mesh) -> np.ndarray:
-    """Unit normals of a mesh's polygons, (n, 3), duplicates (coplanar triangles) merged."""
-    normals = np.empty(len(mesh.polygons) * 3, dtype=np.float32)
-    mesh.polygons.foreach_get("normal", normals)
-    return np.unique(np.round(normals.reshape(-1, 3).astype(float), 6), axis=0)
-
-
-def hull_clashes(mesh, matrices: np.ndarray, tolerance: float, kinds=None
-                 ) -> tuple[list[tuple[int, int, float]], callable]:
-    """The analytic check of convex hull globules: pairs whose hulls (the mesh's vertices, in
-    world space) are closer than -tolerance, i.e. overlap by more than it, with a depth (the
-    smallest overlap along the two hulls' face normals), and the signed depth function of any
-    pair (-distance when apart). Only pairs whose bounding spheres meet are looked at.
-    `kinds`: several meshes (`mesh` a list), globule g's hull is mesh[kinds[g]]'s."""
-    single = kinds is None
-    meshes = [mesh] if single else list(mesh)
-    kinds = np.zeros(len(matrices), dtype=np.intp) if single else np.asarray(kinds)
-    verts = [mesh_arrays(m)[0] for m in meshes]
-    normals = [face_normals(m) for m in meshes]
-    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
-    cache = {}
-
-    def depth(i, j):
-        if (i, j) not in cache:
-            ki, kj = int(kinds[i]), int(kinds[j])
-            wa = verts[ki] @ matrices[i, :3, :3].T + matrices[i, :3, 3]
-            wb = verts[kj] @ matrices[j, :3, :3].T + matrices[j, :3, 3]
-            gap = hull_distance(wa, wb)
-            if gap > 0.0:
-                cache[i, j] = -gap
-            else:
-                n = np.vstack([normals[ki] @ _rotation(matrices[i]).T,
-                               normals[kj] @ _rotation(matrices[j]).T])
-                cache[i, j] = max(face_overlap(wa, wb, n), 0.0)
-        return cache[i, j]
-
-    if single:
-        pairs = candidate_pairs(mesh, matrices)
-    else:
-        centres = matrices[:, :3, 3]
-        a, b, _ = close_pairs(centres, 2.0 * bounding_radius_kinds(meshes, matrices)
-                              + _margin(centres))
-        pairs = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
-    out = [(int(i), int(j), depth(int(i), int(j))) for i, j in pairs.tolist()]
-    return [(i, j, d) for i, j, d in sorted(out) if d > tolerance], depth
-
-
-def _rotation(matrix: np.ndarray) -> np.ndarray:
-    """The rotation of a (uniformly scaled) world matrix."""
-    m = matrix[:3, :3]
-    return m / np.cbrt(np.linalg.det(m))
-
-
-def spheres_clashes(spheres, matrices: np.ndarray, tolerance: float, kinds=None
-                    ) -> tuple[list[tuple[int, int, float]], callable]:
-    """The analytic check of globules made of spheres [x, y, z, r] (their body frame): pairs
-    of globules with two spheres overlapping by more than `tolerance`, with the deepest overlap,
-    and the depth function of any pair (the deepest sphere overlap; negative when apart).
-    `kinds`: several sets of spheres (`spheres` a list of them), globule g's being
-    spheres[kinds[g]]."""
-    sets = [np.asarray(spheres, dtype=float).reshape(-1, 4)] if kinds is None else \
-        [np.asarray(x, dtype=float).reshape(-1, 4) for x in spheres]
-    matrices = np.asarray(matrices, dtype=float).reshape(-1, 4, 4)
-    kinds = np.zeros(len(matrices), dtype=np.intp) if kinds is None else np.asarray(kinds)
-    scale = np.cbrt(np.abs(np.linalg.det(matrices[:, :3, :3])))
-    if len(sets) == 1:
-        s = sets[0]
-        centres = (np.einsum("nij,kj->nki", matrices[:, :3, :3], s[:, :3])
-                   + matrices[:, None, :3, 3])
-        radii = scale[:, None] * s[None, :, 3]
-    else:
-        centres = [sets[k][:, :3] @ m[:3, :3].T + m[:3, 3] for k, m in zip(kinds.tolist(), matrices)]
-        radii = [sc * sets[k][:, 3] for k, sc in zip(kinds.tolist(), scale)]
-
-    def depth(i, j):
-        d = np.linalg.norm(centres[i][:, None] - centres[j][None], axis=-1)
-        return float((radii[i][:, None] + radii[j][None] - d).max())
-
-    far = max(float(np.max(np.linalg.norm(s[:, :3], axis=1) + s[:, 3])) for s in sets)
-    reach = 2.0 * far * (float(scale.max()) if len(scale) else 1.0) + _margin(matrices[:, :3, 3])
-    a, b, _ = close_pairs(matrices[:, :3, 3], reach)
-    out = sorted((int(min(i, j)), int(max(i, j))) for i, j in zip(a.tolist(), b.tolist()))
-    hits = [(i, j, depth(i, j)) for i, j in out]
-    return [(i, j, d) for i, j, d in hits if d > tolerance], depth
 
 
 def float_tolerance(centres: np.ndarray) -> float:

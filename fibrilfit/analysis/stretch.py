@@ -30,15 +30,14 @@ def bond_ends(p, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarr
     positions = matrices[..., :3, 3]
     starts, ends = positions[:, :-1].copy(), positions[:, 1:].copy()
     rest = np.asarray(p.rest_lengths(), dtype=float).copy()
-    if p.domain_shape == "sphere" or p.domain_joint is None:
-        return starts, ends, rest
-    exits = list(p.domain_exits or ())
-    for k, (g, joint) in enumerate(zip(p.globule_members(), p.domain_joints())):
-        m = matrices[:, g]
-        ends[:, g - 1] = m[:, :3, :3] @ joint + m[:, :3, 3]
+    for d in p.domains:  # a sphere has no joint: its bonds end at its centre, as a bead's
+        if d.joint is None:
+            continue
+        g, m = d.member, matrices[:, d.member]
+        ends[:, g - 1] = m[:, :3, :3] @ d.joint + m[:, :3, 3]
         rest[g - 1] = p.joint_lever
-        if k < len(exits) and g < positions.shape[1] - 1:
-            starts[:, g] = m[:, :3, :3] @ np.asarray(exits[k], dtype=float) + m[:, :3, 3]
+        if d.exit is not None and g < positions.shape[1] - 1:
+            starts[:, g] = m[:, :3, :3] @ d.exit + m[:, :3, 3]
             rest[g] = p.residue_spacing
     return starts, ends, rest
 

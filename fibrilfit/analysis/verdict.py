@@ -10,12 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import helix
+from ..model import gravity, helix
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
-from .clashes import (bounding_radius, bounding_radius_kinds, bvh_clashes, float_tolerance,
-                      grazing_depth, hull_clashes, joined_globules, reach_from_axis, sphere_band,
-                      sphere_clashes, spheres_clashes)
+from .clashes import bounding_radius, bvh_clashes, reach_from_axis
+from .exact import EXACT_CHECKS
 from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_ends, ends_stretch
@@ -121,7 +120,7 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     centres = clashes["centres"]
-    reach = None if p.domain_shape == "sphere" else clashes["reach"][scored[:n]]
+    reach = None if clashes["reach"] is None else clashes["reach"][scored[:n]]
     overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius,
                                                        reach)
     return {
@@ -134,7 +133,7 @@ def check_model(model) -> dict:
             "verdict": "intersection" if clashes["spheres"] else "successful",
             "clashing_pairs": [[i, j, round(d, 4)] for i, j, d in clashes["spheres"]],
             "tolerance": round(clashes["band"], 4),
-            **({} if p.domain_shape == "sphere" else {"shape": p.domain_shape}),
+            **({"shape": p.shape.name} if p.shape.real else {}),
         },
         "checks_agree": not clashes["disagree"],
         "warnings": warnings,
@@ -155,25 +154,22 @@ def check_model(model) -> dict:
 
 def _clash_checks(model) -> dict:
     """Both clash checks over the scored globules (and, in a periodic cell, their images): the
-    BVH's intersecting faces and pairs, the spheres' pairs, the pairs that only graze, and any
-    disagreement beyond the mesh's resolution (warned)."""
+    BVH's intersecting faces and pairs, the shape's exact check's pairs (EXACT_CHECKS), the
+    pairs that only graze, and any disagreement beyond the mesh's resolution (warned)."""
     p = model.params
     c_lo, c_hi = scored_chains(p)
     globules = model.globules
-    mesh = globules[0].data
     domains = len(p.globule_members())  # globule g: domain g % D of chain g // D
-    band = (grazing_depth(mesh) * max(p.domain_radii) / p.globule_radius
-            if p.domain_shape == "sphere" else 0.0)
+    exact = EXACT_CHECKS[p.shape.name]
+    # a real shape: each domain its own mesh (docs/guide/atoms-and-domains.md#shapes-of-several-domains),
+    # globule g (and its images, blocks of n) domain g % D; spheres share domain 1's, scaled
+    meshes = [globules[d].data for d in range(domains if p.shape.real else 1)]
+    band = exact.band(p, meshes)
     matrices = world_matrices(globules, model.root.children)
     n = len(matrices)
     cells = 0
-    # several real shapes: each domain its own mesh (docs/guide/atoms-and-domains.md#shapes-of-several-domains);
-    # globule g (and its images, blocks of n) is domain g % D
-    meshes = [globules[d].data for d in range(domains)] if p.several_shapes else None
     if p.periodic:
-        reach = (bounding_radius(mesh, matrices) if meshes is None
-                 else bounding_radius_kinds(meshes, matrices))
-        matrices, cells = with_images(p, matrices, reach + band)
+        matrices, cells = with_images(p, matrices, bounding_radius(meshes, matrices) + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
     # further domains share the mesh, scaled: its facets' sag scales with them; an image's
     # radius is its original's (blocks of n: globule g is domain g % D)
@@ -182,42 +178,25 @@ def _clash_checks(model) -> dict:
     scored = np.zeros(len(everything), dtype=bool)
     scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
 
-    def depth(i, j):
+    def centre_depth(i, j):
         touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
         return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
-    kinds = None if meshes is None else np.arange(len(everything)) % domains
-    faces, bvh_pairs = bvh_clashes(mesh if meshes is None else meshes, matrices, keep=scored,
-                                   kinds=kinds)
-    slack = TOUCH_SLACK
-    if p.domain_shape == "sphere":
-        found = sphere_clashes(everything, radius, band)
-    elif p.domain_shape == "hull":  # the same faces, exactly: only rounding between the checks
-        band = slack = float_tolerance(everything)
-        found, depth = hull_clashes(mesh if meshes is None else meshes, matrices, band,
-                                    kinds=kinds)
-    elif meshes is None:  # the covering spheres, each drawn as a 32 × 16 mesh as the sphere's
-        band = sphere_band(max(r for *_, r in p.domain_spheres))
-        found, depth = spheres_clashes(p.domain_spheres, matrices, band)
-    else:  # each domain's own covering spheres
-        sets = [p.domain_rows(d) for d in range(domains)]
-        band = sphere_band(max(float(s[:, 3].max()) for s in sets))
-        found, depth = spheres_clashes(sets, matrices, band, kinds=kinds)
+    kinds = np.arange(len(everything)) % len(meshes)
+    faces, bvh_pairs = bvh_clashes(meshes, matrices, keep=scored, kinds=kinds)
+    found, band, slack, depth = exact.clashes(p, meshes, matrices, kinds, everything, radius, band)
+    depth = depth or centre_depth
     spheres = [(i, j, d) for i, j, d in found if scored[i] or scored[j]]
     sphere_pairs = {(i, j) for i, j, _ in spheres}
-    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band, slack)
+    grazing, disagree = compare_checks(bvh_pairs, sphere_pairs, depth, band, slack or TOUCH_SLACK)
     warnings = []
     if disagree:
         warnings.append(
             "checks disagree beyond the mesh's resolution: "
             + ", ".join(f"({i}, {j}) {'BVH' if (i, j) in bvh_pairs else 'spheres'} only, "
                         f"overlap {d:.3f} Å" for i, j, d in disagree[:10]))
-    reach = None
-    if meshes is not None:  # each domain's farthest point from the axis, for the envelope
-        reach = reach_from_axis(meshes, kinds[:n], matrices[:n])
-    elif p.domain_shape != "sphere":
-        world, _ = joined_globules(mesh, matrices[:n])
-        reach = np.hypot(world[..., 0], world[..., 1]).max(axis=1)
+    # a real shape: each domain's farthest point from the axis, for the envelope
+    reach = reach_from_axis(meshes, kinds[:n], matrices[:n]) if p.shape.real else None
     return {"n": n, "cells": cells, "band": band, "scored": scored, "faces": faces, "reach": reach,
             "centres": everything[:n], "spheres": spheres, "grazing": grazing,
             "disagree": disagree, "warnings": warnings,
@@ -270,7 +249,7 @@ def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
                 "protofilament": int(pf_of[c]), "domain": int(g % domains)}
 
     which = np.arange(len(centres)) % domains
-    if reach is not None and p.several_shapes:  # real shapes: each body's farthest point
+    if reach is not None:  # real shapes: each body's farthest point
         return {
             "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
             "domain_envelopes": [envelope(centres[scored & (which == d)], r,
@@ -305,7 +284,7 @@ def periodic_block(model, cells: int) -> dict:
                        "cells": [int(m) for m in images.get("cells", [])]},
             "check_cells": cells,
             "scene_frames_per_frame": model.params.image_updates,
-            "gravity": "axial" if helix.axial_gravity(model.params) else "whole"}
+            "gravity": "axial" if gravity.axial_gravity(model.params) else "whole"}
 
 
 def clash_kinds(result: dict) -> tuple[list[int], list[int]]:

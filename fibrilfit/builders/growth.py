@@ -21,7 +21,7 @@ from typing import Callable
 import numpy as np
 
 from ..geom.rigid import euler_xyz
-from ..model import helix
+from ..model import domains, helix
 from .readback import collection_matrices
 from .scene import INDEX, TAG
 
@@ -59,10 +59,9 @@ def start_scale(p, centres: np.ndarray) -> float:
 def _start_scale_domains(p, centres: np.ndarray) -> float:
     """start_scale for several domains per chain: the smallest d / (r_i + r_j) over pairs."""
     points, _ = with_images(p, centres)
-    radii = globule_radii(p, len(points))
-    if p.several_shapes:  # each body's reach, not its Rg sphere's (helix.domain_reaches)
-        reach = helix.domain_reaches(p)
-        radii = np.tile(reach, -(-len(points) // len(reach)))[:len(points)]
+    # each body's reach, not its Rg sphere's (a sphere's reach is its radius: Domain.reach)
+    reach = domains.domain_reaches(p)
+    radii = np.tile(reach, -(-len(points) // len(reach)))[:len(points)]
     order = np.argsort(points[:, 2])
     c, r = points[order], radii[order]
     best, widest = np.inf, 2.0 * float(radii.max(initial=0.0))
@@ -86,9 +85,9 @@ def globule_radii(p, n: int) -> np.ndarray:
 
 def globule_scales(p, objects) -> np.ndarray | None:
     """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
-    which they share (builders.model); None for one domain (every full size is 1)."""
+    which they share (builders.layers); None for one domain (every full size is 1)."""
     members = p.globule_members()
-    if len(members) == 1 or p.several_shapes:  # real shapes: each its own mesh at full size
+    if len(members) == 1 or p.shape.real:  # real shapes: each its own mesh at full size
         return None
     size = dict(zip(members, np.asarray(p.domain_radii) / p.globule_radius))
     return np.array([size[int(ob[INDEX])] for ob in objects], dtype=float)
@@ -101,7 +100,8 @@ def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
     centres = np.asarray(centres, dtype=float)
     if not p.periodic or not len(centres):
         return centres, len(centres)
-    reach = max(helix.domain_reaches(p)) if p.several_shapes else p.widest_diameter / 2.0
+    # (one real-shaped domain: its Rg sphere's radius, as before the domains had a reach)
+    reach = max(domains.domain_reaches(p)) if p.several_shapes else p.widest_diameter / 2.0
     cells = helix.check_cells(p, centres[:, 2], reach)
     m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
     images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
@@ -226,8 +226,7 @@ class Inflate:
         self.model, self.p, self.judge, self.scene = model, model.params, judge, scene
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
         self.full = globule_scales(self.p, self.globules.objects)  # None: one domain
-        self.compounds = compound_children(self.globules) if self.p.domain_shape == "spheres" \
-            else None
+        self.compounds = compound_children(self.globules) if self.p.shape.compound else None
         n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
         self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
         self.cycle, self.grow_from, self.grow_start = 0, None, 1

@@ -1,47 +1,21 @@
 """The fibril: `layers` copies of a core (slab or outline) with `protofilaments` chains (anchor +
-linker + globule) each, every layer raised and twisted, every protofilament turned and raised."""
+linker + globule) each, every layer raised and twisted, every protofilament turned and raised.
+
+This module: the built model's handles (Model, find_model), the build's steps and stages. The
+bodies of each layer: layers.py; the parameters a model root stores: stored.py; colours:
+colours.py."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import bpy
-import numpy as np
 
-from ..geom.rigid import euler_xyz, joint_rotations
-from ..model import helix, params as P
-from ..structure import shape
-from . import meshes
-from .start_layout import (chain_clearance, domain_terminals, inflate_layout, real_chain_layout,
-                           spread_chains, spread_layout, walk_directions)
-from .physics import check_world_free, ensure_world, keep_bake
-from .scene import (INDEX, LAYER, PROTOFILAMENT, ROOT, TAG, clear_model, find_root, new_collection,
-                    tag)
-
-COLORS = {  # viewport/object colours; analysis recolours clashing globules
-    "slab": (0.55, 0.62, 0.75, 1.0),
-    "anchor": (0.25, 0.25, 0.3, 1.0),
-    "residue": (0.95, 0.75, 0.2, 1.0),
-    "globule": (0.7, 0.72, 0.7, 1.0),
-}
-CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
-# A grazing pair (only the BVH names it, within the mesh's resolution:
-# docs/model/verdict.md#two-checks) is not a deep clash: orange, so the picture does not overstate
-# it and the two read apart.
-GRAZE_COLOR = (1.0, 0.5, 0.0, 1.0)
-# Protofilaments apart: globules and linker beads of protofilament j take tint j (0: COLORS).
-PF_COLORS = {
-    "globule": ((0.7, 0.72, 0.7, 1.0), (0.45, 0.62, 0.85, 1.0), (0.5, 0.78, 0.5, 1.0),
-                (0.8, 0.6, 0.85, 1.0), (0.85, 0.75, 0.5, 1.0), (0.5, 0.8, 0.8, 1.0)),
-    "residue": ((0.95, 0.75, 0.2, 1.0), (0.95, 0.5, 0.15, 1.0), (0.75, 0.9, 0.2, 1.0),
-                (0.95, 0.6, 0.6, 1.0), (0.8, 0.8, 0.5, 1.0), (0.3, 0.85, 0.7, 1.0)),
-}
-
-
-def part_colour(role: str, pf: int = 0) -> tuple:
-    """The colour of a part of protofilament `pf` (the same for every pf but globules, beads)."""
-    tints = PF_COLORS.get(role)
-    return COLORS[role] if tints is None else tints[pf % len(tints)]
-
+from ..model import params as P
+from .layers import LayerBuilder
+from .physics import check_world_free, ensure_world
+from .scene import (INDEX, LAYER, PART_COLLECTIONS, PROTOFILAMENT, ROOT, TAG, clear_model,
+                    find_root, new_collection, tag)
+from .stored import params_of, store_params
 
 @dataclass
 class Model:
@@ -67,32 +41,6 @@ class Model:
     @property
     def active(self) -> list:
         return [ob for c in self.chain for ob in c[1:]]
-
-
-def chain_positions(p: P.Params) -> np.ndarray:
-    """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
-
-    Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
-    (helix.chain_transforms); for the tutorial's model the same floats as one chain per layer.
-    """
-    angle, height = helix.chain_transforms(p)
-    layout = p.chain_layout
-    turn = angle[:, None] + layout.angle[None]
-    pos = np.empty((p.chains, layout.radius.size, 3))
-    pos[..., 0] = np.cos(turn) * layout.radius[None]
-    pos[..., 1] = np.sin(turn) * layout.radius[None]
-    pos[..., 2] = height[:, None]
-    return pos
-
-
-def bond_pivots(p: P.Params) -> np.ndarray:
-    """POINT-constraint pivots: where consecutive members touch, shape (chains, linker, 3)."""
-    pos = chain_positions(p)
-    a, b = pos[:, :-1], pos[:, 1:]
-    ra = np.asarray(p.chain_radii()[:-1])
-    ra[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
-    frac = ra / np.asarray(p.rest_lengths())
-    return a + (b - a) * np.minimum(frac, 1.0)[None, :, None]
 
 
 def find_model(scene: bpy.types.Scene) -> Model | None:
@@ -124,10 +72,6 @@ STAGE = "fibrilfit_stage"   # on the root collection: the last step done, then "
 LAST_FRAME = "fibrilfit_last_frame"  # on the root collection: the last frame the bake reached
 STAGES = (*STEPS, "baked", "checked")
 IMAGES = "fibrilfit_images"  # on the root collection of a periodic cell: its images, by kind
-PART_COLLECTIONS = {"slab": "slabs", "anchor": "anchors", "residue": "linkers",
-                    "globule": "globules", "bond": "bonds"}  # role: title; tagged role + "s"
-
-
 def build_model(p: P.Params, scene: bpy.types.Scene | None = None, *, force: bool = False) -> Model:
     """Build the model in `scene` (default: the context's), replacing any previous one.
 
@@ -148,7 +92,7 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
     scene = scene or bpy.context.scene
     model = start_model(p, scene, force=force)
     steps = STEPS[:STEPS.index(upto) + 1]
-    builder = _LayerBuilder(model, scene)
+    builder = LayerBuilder(model, scene)
     for part in steps:
         if part in PARTS:
             builder.add(part, 0)
@@ -169,7 +113,6 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
 def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> Model:
     """Validate `p`, remove any previous model, and make the model's empty collections and world."""
     p = P.validate(p, force=force)
-    check_real_start(p)
     check_world_free(scene)
     clear_model(scene)
     rbw = ensure_world(scene)
@@ -180,25 +123,6 @@ def start_model(p: P.Params, scene: bpy.types.Scene, *, force: bool = False) -> 
     rbw.collection = tag(bpy.data.collections.new("FibrilFit bodies"), "rigid_bodies")
     rbw.constraints = tag(bpy.data.collections.new("FibrilFit constraints"), "rigid_constraints")
     return Model(root, p, [], [], [])
-
-
-def check_real_start(p: P.Params) -> None:
-    """Several real-shaped domains at full size from frame 1 (the tutorial protocol): refuse,
-    before anything is built, a chain that no turn of its domains lays out clear of itself
-    (start_layout.real_chain_layout): the covering spheres bulge past the atoms by up to 6.4 Å
-    (docs/model/domain-shapes.md#spheres), and one residue between two domains cannot hold
-    them apart. Under inflate the domains start small (growth.start_scale)."""
-    if not p.several_shapes or p.protocol != "tutorial":
-        return
-    pos, _, rot = real_chain_layout(p, chain_positions(p)[:1])
-    gap = float(chain_clearance(p, pos, rot, domain_terminals(p))[0])
-    if gap <= 0:
-        raise P.ParamError("domain_linker", f"{', '.join(map(str, p.domain_linker))} residue(s) "
-                                            f"between the domains cannot start the chain clear "
-                                            f"of itself with {p.domain_shape} ({-gap:.1f} Å "
-                                            f"into each other at the best of its turns): give "
-                                            f"more residues, or --protocol inflate (the "
-                                            f"domains start small)")
 
 
 def set_stage(model: Model, stage: str, *, last_frame: int | None = None) -> None:
@@ -221,38 +145,6 @@ def update_params(model: Model, p: P.Params) -> None:
     store_params(model.root, p)
 
 
-def stored_params(p: P.Params) -> dict:
-    """p.to_dict() as an ID property: derived parameters (None) are left out, and
-    make_params gives them back as their defaults."""
-    return {k: v for k, v in p.to_dict().items() if v is not None}
-
-
-# The validated Params each model root was given, by the root's session_uid, with what was
-# stored: find_model trusts it while the root still holds those values, so a Params is not
-# validated again each time a step looks the model up (5 ms for 6CU7's outline). Anything
-# else (a file opened again, values changed by hand or by undo) is validated from the store.
-_GIVEN: dict[int, tuple[dict, P.Params]] = {}
-
-
-def store_params(root: bpy.types.Collection, p: P.Params) -> None:
-    """Store p on the model's root (as stored_params) and remember it as given."""
-    stored = stored_params(p)
-    root["params"] = stored
-    _GIVEN[root.session_uid] = (root["params"].to_dict(), p)
-    while len(_GIVEN) > 16:  # a sweep worker builds thousands of models: keep the latest few
-        del _GIVEN[next(iter(_GIVEN))]
-
-
-def params_of(root: bpy.types.Collection) -> P.Params:
-    """The Params a model root holds: the one it was given if its stored values are unchanged,
-    else validated from the stored values."""
-    stored = root["params"].to_dict()
-    given = _GIVEN.get(root.session_uid)
-    if given is not None and given[0] == stored:
-        return given[1]
-    return P.make_params(force=True, **stored)
-
-
 def model_stage(scene: bpy.types.Scene) -> str:
     """How far the scene's model got: "" (none), a step of STEPS, "baked" or "checked".
 
@@ -270,370 +162,3 @@ def model_stage(scene: bpy.types.Scene) -> str:
     return stage
 
 
-class _LayerBuilder:
-    """Adds one part of one layer at a time; shares meshes and the precomputed layer geometry."""
-
-    def __init__(self, model: Model, scene: bpy.types.Scene):
-        self.model = model
-        p = self.p = model.params
-        rbw = scene.rigidbody_world
-        self.bodies, self.bonds = rbw.collection, rbw.constraints
-        tags = {c.get(TAG): c for c in model.root.children}
-        self.parts = {role: tags[role + "s"] for role in PART_COLLECTIONS}
-        self.angle, self.height = helix.layer_transforms(p)  # per layer: the cores
-        self.chain_angle = helix.chain_transforms(p)[0]     # per chain: its members
-        self.pos, self.pivots = chain_positions(p), bond_pivots(p)
-        self.pfs = p.protofilaments
-        self.turns = None  # several real shapes: each domain's turn (chains, D, 3, 3)
-        if p.several_shapes:  # bent at every domain (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-            if p.protocol == "tutorial" and p.domain_shape == "spheres":  # full size: spread
-                self.pos, self.pivots, self.turns = spread_chains(p, self.pos)
-            else:
-                wanted = walk_directions(p, self.pos, p.seed) if p.protocol == "inflate" else None
-                self.pos, self.pivots, self.turns = real_chain_layout(p, self.pos, wanted)
-        elif p.protocol == "inflate":  # fanned random walks: positions and pivots of that layout
-            self.pos, self.pivots = inflate_layout(p, self.pos, p.seed)
-        elif p.domain_shape == "spheres":  # full size from the start: spread, or they can lock
-            # (docs/model/domain-shapes.md#spheres-start)
-            self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
-        self.globule_members = p.globule_members()
-        self.mesh = {}
-        # Each object with its (layer, index), per part, in the order they were linked: place()
-        # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
-        self.placed = {role: [] for role in PART_COLLECTIONS}
-
-    def add(self, part: str, k: int) -> None:
-        getattr(self, "_" + part)(k)
-
-    def _shared_mesh(self, role):
-        if role not in self.mesh:
-            p = self.p
-            if role == "slab" and p.core_outline is not None:
-                self.mesh[role] = meshes.prism("FibrilFit core", p.outline(), p.rise)
-            elif role == "slab":
-                self.mesh[role] = meshes.box("FibrilFit slab", p.slab)
-            elif role == "globule":
-                self.mesh[role] = globule_mesh(p)
-            elif role.startswith("globule "):  # several real shapes: domain k's own
-                self.mesh[role] = globule_mesh(p, int(role.split()[1]))
-            else:  # the anchor and the linker's residues are the same bead
-                self.mesh[role] = meshes.uv_sphere("FibrilFit residue", p.residue_radius,
-                                                   P.RESIDUE_SEGMENTS, P.RESIDUE_RINGS)
-        return self.mesh[role]
-
-    def _slab(self, k):
-        # A concave outline: a convex hull would fill its notches (docs/model/protofilaments.md#concave-cores), and
-        # Bullet's triangle-mesh shape is a hollow surface that traps a bead once it is pushed
-        # through (docs/model/protofilaments.md#stretched-linkers). So the core is a
-        # compound of solid convex prisms, children of the slab, which keeps the drawn prism.
-        shape = "BOX" if self.p.core_outline is None else "COMPOUND"
-        slab = _body(f"FF{k:04d} slab", self._shared_mesh("slab"), "slab", k, self.parts,
-                     self.bodies, "PASSIVE", shape)
-        self.placed["slab"].append((slab, k, 0))
-        self.model.slabs.append(slab)
-        if shape == "COMPOUND":
-            self._core_pieces(slab, k)
-
-    def _core_pieces(self, slab, k):
-        """The convex prisms of layer k's core outline, parented to its slab (same frame)."""
-        if "pieces" not in self.mesh:
-            self.mesh["pieces"] = [meshes.prism(f"FibrilFit core piece {i}", piece, self.p.rise)
-                                   for i, piece in enumerate(meshes.convex_pieces(
-                                       self.p.outline()))]
-            self.pieces_coll = new_collection("FibrilFit core pieces", "core_pieces",
-                                              self.parts["slab"])
-        for i, mesh in enumerate(self.mesh["pieces"]):
-            ob = tag(bpy.data.objects.new(f"FF{k:04d} core piece {i}", mesh), "core_piece")
-            ob[LAYER], ob[INDEX] = k, i
-            ob.parent = slab
-            ob.hide_render = True
-            ob.display_type = "WIRE"
-            self.pieces_coll.objects.link(ob)
-            self.bodies.objects.link(ob)
-            ob.rigid_body.type = "PASSIVE"
-            ob.rigid_body.collision_shape = "CONVEX_HULL"
-            self.placed.setdefault("core_piece", []).append((ob, k, 0))
-
-    def _name(self, k, j):
-        return f"FF{k:04d}" if self.pfs == 1 else f"FF{k:04d}.{j}"
-
-    def _member(self, k, i):
-        """Member i of every protofilament's chain in layer k, protofilament 0 first."""
-        for j in range(self.pfs):
-            self._chain_member(k, j, i)
-
-    def _chain_member(self, k, j, i):
-        p = self.p
-        c = k * self.pfs + j
-        role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
-        # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
-        domain = (self.globule_members.index(i) if role == "globule" and p.several_shapes
-                  else 0)
-        mesh = self._shared_mesh(("globule" if not domain else f"globule {domain}")
-                                 if role == "globule" else "residue")
-        shape = GLOBULE_SHAPES[p.domain_shape] if role == "globule" else "SPHERE"
-        ob = _body(f"{self._name(k, j)} {role} {i}", mesh, role, k, self.parts, self.bodies,
-                   "PASSIVE" if i == 0 else "ACTIVE", shape)
-        ob[INDEX], ob[PROTOFILAMENT] = i, j
-        if role == "globule" and p.domain_shape != "sphere":
-            self._real_globule(ob, k, domain)
-        self.placed[role].append((ob, c, i))
-        chain = self.model.chain
-        if i == 0:
-            chain.append([])
-            self.model.constraints.append([])
-        chain[c].append(ob)
-        if i > 0:
-            self._bond(k, j, i - 1)
-
-    def _real_globule(self, ob, k, domain=0):
-        """A hull keeps Bullet's surface HULL_MARGIN outside its mesh (the mesh is what the
-        check tests); spheres become a compound of child spheres, like the concave cores.
-        `domain`: which domain of the chain (several real shapes: each its own spheres)."""
-        if self.p.domain_shape == "hull":
-            ob.rigid_body.use_margin = True
-            ob.rigid_body.collision_margin = HULL_MARGIN
-            return
-        key = "sphere_meshes" if not domain else f"sphere_meshes {domain}"
-        spheres = [tuple(row) for row in self.p.domain_rows(domain)]
-        if key not in self.mesh:
-            name = "FibrilFit globule sphere" if not domain else f"FibrilFit domain {domain} sphere"
-            self.mesh[key] = [
-                meshes.uv_sphere(f"{name} {n}", r, P.GLOBULE_SEGMENTS,
-                                 P.GLOBULE_RINGS) for n, (*_, r) in enumerate(spheres)]
-        if not hasattr(self, "spheres_coll"):
-            self.spheres_coll = new_collection("FibrilFit globule spheres", "globule_spheres",
-                                               self.parts["globule"])
-        for n, ((x, y, z, _), mesh) in enumerate(zip(spheres, self.mesh[key])):
-            child = tag(bpy.data.objects.new(f"{ob.name} sphere {n}", mesh), "globule_sphere")
-            child[LAYER], child[INDEX] = k, n
-            child.parent = ob
-            child.location = (x, y, z)
-            child.hide_render = True
-            child.display_type = "WIRE"
-            self.spheres_coll.objects.link(child)
-            self.bodies.objects.link(child)
-            child.rigid_body.type = "ACTIVE"
-            child.rigid_body.collision_shape = "SPHERE"
-            self.placed.setdefault("globule_sphere", []).append((child, ob))
-
-    def _bond(self, k, j, i):
-        """The POINT constraint between members i and i + 1 of protofilament j's chain in layer k."""
-        c = k * self.pfs + j
-        members = self.model.chain[c]
-        empty = tag(bpy.data.objects.new(f"{self._name(k, j)} bond {i}", None), "bond")
-        empty[LAYER], empty[INDEX], empty[PROTOFILAMENT] = k, i, j
-        self.placed["bond"].append((empty, c, i))
-        self.parts["bond"].objects.link(empty)
-        self.bonds.objects.link(empty)
-        rbc = empty.rigid_body_constraint
-        rbc.type = "POINT"
-        rbc.object1, rbc.object2 = members[i], members[i + 1]
-        rbc.disable_collisions = True
-        self.model.constraints[c].append(empty)
-
-    def _anchor(self, k):
-        self._member(k, 0)
-
-    def _linker(self, k):
-        for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
-            for i in range(1, self.p.linker):
-                self._chain_member(k, j, i)
-
-    def _globule(self, k):
-        self._member(k, self.p.linker)
-        self._further_domains(k)
-
-    def _further_domains(self, k):
-        """Several domains per chain: each protofilament's chain on from its first globule
-        (beads, globule, beads, globule ...), bonds in chain order."""
-        last = self.globule_members[-1]
-        for j in range(self.pfs):
-            for i in range(self.p.linker + 1, last + 1):
-                self._chain_member(k, j, i)
-
-    def _domain_scale(self, members: np.ndarray):
-        """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
-        sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
-        one domain (no scale set: the build as before)."""
-        if len(self.globule_members) == 1 or self.p.several_shapes:  # each its own mesh
-            return None
-        radius = dict(zip(self.globule_members, self.p.domain_radii))
-        return np.array([radius[int(i)] / self.p.globule_radius for i in members])
-
-    def place(self) -> None:
-        """Location, rotation, world matrix and colour of every object, one foreach_set each.
-
-        The objects were linked in the order Bullet sees them (that order fixes the result for
-        a seed); only their transforms come later, with the same float32 values as one by one.
-        """
-        for role, placed in self.placed.items():
-            if role == "globule_sphere":  # children of their globule: placed with it, below
-                continue
-            if role == "core_piece":  # children of their slab: the slab's frame
-                objects = _in_order(self.pieces_coll, [ob for ob, _, _ in placed])
-                k = np.array([ki for _, ki, _ in placed], dtype=np.intp)
-                loc = np.zeros((len(k), 3))
-                loc[:, 2] = self.height[k]
-                _place(objects, np.zeros((len(k), 3)), np.zeros(len(k)), loc, self.angle[k])
-                continue
-            objects = _in_order(self.parts[role], [ob for ob, _, _ in placed])
-            # (layer, 0) for slabs; (chain, member) for the rest
-            k, i = np.array([ki for _, *ki in placed], dtype=np.intp).reshape(-1, 2).T
-            if role == "slab":
-                loc = np.zeros((len(k), 3))
-                loc[:, 2] = self.height[k]
-            else:
-                loc = (self.pivots if role == "bond" else self.pos)[k, i]
-            rot_z = (np.zeros(len(k)) if role == "bond" else
-                     self.angle[k] if role == "slab" else self.chain_angle[k])
-            scale = self._domain_scale(i) if role == "globule" else None
-            _place(objects, loc, rot_z, scale=scale)
-            if role == "globule" and self.turns is not None:  # several real shapes
-                dom = np.array([self.globule_members.index(int(m)) for m in i])
-                self._turn_globules(objects, k, loc, self.turns[k, dom])
-            elif role == "globule" and self.p.domain_shape != "sphere":  # one domain a chain
-                self._turn_globules(objects, k, loc)
-            if role == "bond":
-                objects.foreach_set("empty_display_size",
-                                    np.full(len(k), self.p.residue_radius, np.float32))
-            else:
-                pf = k % self.pfs if role != "slab" else np.zeros(len(k), dtype=np.intp)
-                tints = np.array([part_colour(role, j) for j in range(self.pfs)], np.float32)
-                objects.foreach_set("color", tints[pf].ravel())
-
-    def _turn_globules(self, objects, c, loc, rot=None) -> None:
-        """Put each real-shaped globule's joint (its terminal CA) on its last bond's pivot, the
-        surface nearest the joint facing back along the bond: the body then reaches past the
-        pivot towards the linker by only the joint's depth. Children (spheres) follow.
-        `rot`: the turns of several real-shaped domains, laid out with their places `loc`
-        (start_layout.real_chain_layout)."""
-        p = self.p
-        if rot is None:
-            (terminal,) = domain_terminals(p)  # the joint and the surface's normal there
-            joint, out = terminal["joint"], terminal["joint_out"]
-            pivot = self.pivots[c, -1]
-            rot = joint_rotations(out, loc - pivot)
-            loc = pivot - rot @ joint
-        objects.foreach_set("location", loc.astype(np.float32).ravel())
-        objects.foreach_set("rotation_euler", euler_xyz(rot).astype(np.float32).ravel())
-        mat = np.zeros((len(c), 4, 4))
-        mat[:, :3, :3], mat[:, :3, 3], mat[:, 3, 3] = rot, loc, 1.0
-        objects.foreach_set("matrix_world", mat.transpose(0, 2, 1).astype(np.float32).ravel())
-        children = self.placed.get("globule_sphere", [])
-        if children:  # their location is their place in the globule's frame, set when made
-            world = {ob.session_uid: m for ob, m in zip(objects, mat)}
-            local = np.tile(np.eye(4), (len(children), 1, 1))
-            local[:, :3, 3] = [tuple(child.location) for child, _ in children]
-            child_world = np.array([world[parent.session_uid] for _, parent in children]) @ local
-            coll = _in_order(self.spheres_coll, [child for child, _ in children])
-            coll.foreach_set("matrix_world",
-                             child_world.transpose(0, 2, 1).astype(np.float32).ravel())
-
-
-GLOBULE_SHAPES = {"sphere": "SPHERE", "hull": "CONVEX_HULL", "spheres": "COMPOUND"}
-# Bullet's surface around a hull globule's mesh: resting contacts interpenetrate by ~0.05 Å
-# (docs/model/domain-shapes.md#margin), so a margin of 0.1 Å keeps two resting meshes, and
-# so the atoms, apart, and the BVH test on the mesh counts only a real overlap.
-HULL_MARGIN = 0.1
-
-
-def globule_mesh(p: P.Params, domain: int = 0):
-    """The globule's mesh: the sphere (32 × 16), the domain's grown hull, or its covering
-    spheres joined, in the domain's body frame (structure.domain.body_frame). `domain`: which
-    domain of the chain, 0 nearest the core (several real shapes: each its own mesh)."""
-    name = f"FibrilFit globule {domain}" if domain else "FibrilFit globule"
-    if p.domain_shape == "hull":
-        return meshes.convex_hull(name, shape.hull_points(p.domain_rows(domain)))
-    if p.domain_shape == "spheres":
-        return meshes.sphere_union(name, [tuple(r) for r in p.domain_rows(domain)],
-                                   P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
-    return meshes.uv_sphere("FibrilFit globule", p.globule_radius, P.GLOBULE_SEGMENTS,
-                            P.GLOBULE_RINGS)
-
-
-def spheres_body(p: P.Params):
-    """body(pivots, d) for start_layout.spread_layout: the `spheres` globule's spheres in the
-    world, turned as _turn_globules turns it when its last bond's pivot is at `pivots` and the
-    bond points along `d` (k of each)."""
-    (terminal,) = domain_terminals(p)  # the joint and the spheres' nearest way out there
-    joint, out = terminal["joint"], terminal["joint_out"]
-    spheres = p.domain_rows(0)
-
-    def body(pivots, d):  # (k, 3) each -> (k, spheres, 4)
-        rot = joint_rotations(out, np.asarray(d, float).reshape(-1, 3))
-        centre = np.asarray(pivots, float).reshape(-1, 3) - rot @ joint
-        world = np.einsum("kij,sj->ksi", rot, spheres[:, :3]) + centre[:, None]
-        return np.concatenate([world, np.broadcast_to(spheres[None, :, 3:], world[..., :1].shape)],
-                              axis=-1)
-    return body
-
-
-def colour_globules(model: Model, clashing_layers, scene=None, grazing=()) -> list[int]:
-    """Globules of the chains `clashing_layers` red (chain = layer with one protofilament), those
-    of `grazing` (chains whose every clash only grazes: analysis.clash_kinds) orange, the
-    others their protofilament's colour, through ob.color. Returns the red.
-
-    ob.color is what the viewport shows with Color: Object, and what materials read through
-    an Object Info node, so one call recolours both after each check. Colouring edits simulated
-    objects, so the bake is kept first (physics.keep_bake).
-    """
-    keep_bake(scene or bpy.context.scene)
-    red = {int(k) for k in clashing_layers}
-    pale = {int(k) for k in grazing} - red
-    places = model.params.globule_members()
-    for k, members in enumerate(model.chain):
-        for ob in (members[i] for i in places if i < len(members)):
-            if ob.get(TAG) != "globule":
-                continue
-            colour = (CLASH_COLOR if k in red else GRAZE_COLOR if k in pale else
-                      part_colour("globule", ob.get(PROTOFILAMENT, 0)))
-            if not np.allclose(ob.color, colour, atol=1e-6):  # no needless update
-                ob.color = colour
-    return sorted(red)
-
-
-def _in_order(coll, objects):
-    """`coll.objects`, checked (one foreach_get) to hold exactly `objects`, in that order."""
-    uids = np.empty(len(coll.objects), dtype=np.int64)
-    coll.objects.foreach_get("session_uid", uids)
-    if not np.array_equal(uids, [ob.session_uid for ob in objects]):
-        raise RuntimeError(f"collection '{coll.name}' changed while the model was being built")
-    return coll.objects
-
-
-def _place(objects, loc: np.ndarray, rot_z: np.ndarray, world_loc=None,
-           world_rot_z=None, scale=None) -> None:
-    """Set location and Z rotation of a collection's objects, and a world matrix to match
-    (`world_loc`, `world_rot_z` for children: their parent's).
-
-    The world matrix makes the objects' matrix_world right before any depsgraph evaluation.
-    foreach_set writes Blender's float[4][4] as stored: column-major, translation in row 3.
-    """
-    n = len(loc)
-    rot = np.zeros((n, 3))
-    rot[:, 2] = rot_z
-    objects.foreach_set("location", loc.astype(np.float32).ravel())
-    objects.foreach_set("rotation_euler", rot.astype(np.float32).ravel())
-    loc = loc if world_loc is None else world_loc
-    rot_z = rot_z if world_rot_z is None else world_rot_z
-    mat = np.zeros((n, 4, 4))
-    c, s = np.cos(rot_z), np.sin(rot_z)
-    mat[:, 0, 0], mat[:, 0, 1], mat[:, 1, 0], mat[:, 1, 1] = c, s, -s, c
-    mat[:, 2, 2] = mat[:, 3, 3] = 1.0
-    if scale is not None:  # uniform scales (several domain sizes on one mesh)
-        objects.foreach_set("scale", np.repeat(scale, 3).astype(np.float32))
-        mat[:, :3, :3] *= np.asarray(scale, float)[:, None, None]
-    mat[:, 3, :3] = loc
-    objects.foreach_set("matrix_world", mat.astype(np.float32).ravel())
-
-
-def _body(name, mesh, role, k, parts, bodies, rb_type, shape):
-    ob = tag(bpy.data.objects.new(name, mesh), role)
-    ob[LAYER] = k
-    parts[role].objects.link(ob)
-    bodies.objects.link(ob)
-    rb = ob.rigid_body
-    rb.type = rb_type
-    rb.collision_shape = shape
-    return ob

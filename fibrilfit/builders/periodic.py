@@ -12,7 +12,7 @@ import numpy as np
 from mathutils import Matrix
 
 from ..geom.rigid import euler_xyz
-from ..model import helix
+from ..model import domains, helix
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
@@ -29,12 +29,12 @@ def plan(p, chain_layers, core_layers) -> dict:
     """Which images to build: {"moving": [(m, chain, member)], "static": [(m, kind, index)]}.
 
     A body of an image layer a height gap g beyond the cell is built when its own reach
-    (helix.chain_reach, or half the core's height) plus the farthest reach of any cell body
+    (domains.chain_reach, or half the core's height) plus the farthest reach of any cell body
     covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
     """
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = helix.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
-    member_reach = helix.chain_reach(p)
+    reach_cell = domains.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
+    member_reach = domains.chain_reach(p)
     moving, static = [], []
     for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
         g = helix.image_gap(p, m, k)
@@ -112,7 +112,7 @@ def _copy(source, role, m, chain, index, coll, bodies):
 
 def _copy_pieces(source, image, coll, bodies, role: str = "core_piece", children=None) -> None:
     """The children of a COMPOUND body for its image: an outline core's solid convex pieces
-    (children of its slab, builders.model), or a `spheres` globule's spheres (`role`
+    (children of its slab, builders.layers), or a `spheres` globule's spheres (`role`
     "globule_sphere", each at its place in the globule's frame). A COMPOUND shape without them
     would collide with nothing. `children`: the source's, when known (else source.children,
     which scans every object of the file)."""
@@ -168,9 +168,9 @@ class ImageFollower:
         # each image's original: an image carries its scale (inflate grows and shrinks globules)
         self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
         # several domains per chain: the further globules share domain 1's mesh at their own
-        # scale (builders.model), and their images must carry it under every protocol
+        # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
-        radii = helix.body_radii(self.p)  # a real shape's globule: its reach
+        radii = domains.body_radii(self.p)  # a real shape's globule: its reach
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
@@ -181,7 +181,7 @@ class ImageFollower:
         self.prev = None
         self.lag: list[float] = []  # per frame: the farthest an image lagged behind (Å)
         self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
-        self.turned = TurnedImages(model, self) if self.p.domain_shape != "sphere" else None
+        self.turned = TurnedImages(model, self) if self.p.shape.real else None
 
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
@@ -190,7 +190,7 @@ class ImageFollower:
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
         z = positions[..., 2]
-        radii = helix.body_radii(self.p)
+        radii = domains.body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
         out = np.zeros(self.count, dtype=bool)

@@ -7,7 +7,8 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..model import params as P, helix
+from ..model import params as P
+from ..model.gravity import cell_gravity
 from .hooks import frame_hooks, run_after, run_before
 from .readback import MatrixReader
 from .scene import WORLD_OWNED, is_ours
@@ -40,9 +41,9 @@ def ensure_world(scene: bpy.types.Scene) -> bpy.types.RigidBodyWorld:
 
 def draw_gravity(p: P.Params) -> tuple[float, float, float]:
     """Gravity for this seed: each axis uniform in [-g, g], drawn x, y, z; in a periodic cell
-    under the tutorial protocol only the Z of that draw (helix.cell_gravity)."""
+    under the tutorial protocol only the Z of that draw (model.gravity.cell_gravity)."""
     rng = random.Random(p.seed)
-    return helix.cell_gravity(p, [rng.uniform(-p.gravity, p.gravity) for _ in range(3)])
+    return cell_gravity(p, [rng.uniform(-p.gravity, p.gravity) for _ in range(3)])
 
 
 def frame_split(p: P.Params) -> int:

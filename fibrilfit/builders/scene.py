@@ -12,6 +12,8 @@ LAYER = "fibrilfit_layer"  # on objects: layer index, 0 = lowest
 INDEX = "fibrilfit_index"  # on chain objects: 0 = anchor ... linker = globule
 PROTOFILAMENT = "fibrilfit_protofilament"  # on chain objects and bonds: 0 .. K - 1
 ROOT = "model"
+PART_COLLECTIONS = {"slab": "slabs", "anchor": "anchors", "residue": "linkers",
+                    "globule": "globules", "bond": "bonds"}  # role: title; tagged role + "s"
 WORLD_OWNED = "fibrilfit_owns_rigidbody_world"
 
 

@@ -1,6 +1,6 @@
 """Materials, camera and light, so the model reads in a render or an opened .blend.
 
-Colour lives on the objects (`ob.color`, set per role by builders/model.py): each material reads
+Colour lives on the objects (`ob.color`, set per role by builders/layers.py): each material reads
 it through an Object Info node, so recolouring one clashing globule red touches nothing else.
 Everything made here is tagged like the builders' datablocks, so clear_model removes it.
 """
@@ -13,7 +13,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
-from ..builders.model import COLORS, colour_globules
+from ..builders.colours import COLORS, colour_globules
 from ..builders.periodic import MOVING, STATIC, image_collection
 from ..builders.physics import keep_bake
 from ..builders.scene import TAG, is_ours, new_collection, tag

@@ -21,7 +21,7 @@ import numpy as np
 from .. import files
 from ..analysis import clash_kinds
 from ..builders import find_model
-from ..builders.model import colour_globules
+from ..builders.colours import colour_globules
 from . import dressing, legend, render
 from .options import MOVIE_FORMATS, OptionError
 

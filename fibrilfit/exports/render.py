@@ -19,7 +19,7 @@ import numpy as np
 from .. import files
 from . import legend
 from ..builders import find_model
-from ..builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR, part_colour
+from ..builders.colours import CLASH_COLOR, COLORS, GRAZE_COLOR, part_colour
 from ..builders.periodic import FADE, FADE_TO
 from .dressing import SENSOR_MM, dress, model_points
 

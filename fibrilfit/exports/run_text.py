@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from ..model.helix import handedness
 from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, of_result
 
 
@@ -49,11 +50,6 @@ def _head_line(r: dict) -> str:
             f"seed {r['seed']}")
 
 
-def hand(twist: float) -> str:
-    """The fibril's hand from its twist per layer (positive: right-handed)."""
-    return "no twist" if twist == 0 else ("right-handed" if twist > 0 else "left-handed")
-
-
 def anchor_radius(p: dict) -> float:
     """Protofilament 0's anchor's distance from the axis (params.Params.anchor_x), Å."""
     if p.get("anchor") is not None:
@@ -75,7 +71,7 @@ def _model_lines(r: dict) -> list[str]:
     core = ("the slab's box" if p.get("core_outline") is None
             else f"a {len(p['core_outline'])}-point outline")
     lines = [f"model: rise {p['rise']:g} Å, twist {math.degrees(p['twist']):+.3f}° per layer "
-             f"({p['twist']:+.5g} rad, {hand(p['twist'])}), {k} protofilament"
+             f"({p['twist']:+.5g} rad, {handedness(p['twist'])}), {k} protofilament"
              f"{'s' if k > 1 else ''}{pf}, core {core}, anchor {anchor_radius(p):.2f} Å from "
              f"the axis, linker {p['linker']} residues{detail('linker')}, globule "
              f"{p['globule_diameter']:g} Å{detail('globule_diameter')}, protocol "

@@ -6,7 +6,10 @@ layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
 (`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
 any turn and rise). `layer_frame_xy` is the inverse: a point's layer and its position in that
-layer's own frame.
+layer's own frame. `handedness` names a twist's hand.
+
+How far a body reaches is the domains' (model/domains.py); which part of gravity a cell feels,
+model/gravity.py.
 """
 from __future__ import annotations
 
@@ -18,6 +21,14 @@ import numpy as np
 def layer_turn(p, k):
     """Turn (rad) and height (Å) of layer k (an int or a float array): k·twist, k·rise."""
     return k * p.twist, k * p.rise
+
+
+def handedness(twist: float) -> str:
+    """The hand of a helix turning `twist` (rad) per layer, raised along +Z: "right-handed"
+    for a positive twist (counter-clockwise seen from above, as layer_turn turns), "left-handed"
+    for a negative one, and "no twist" at exactly zero, which has no hand (a flat twist is
+    neither, and calling it either would be a guess)."""
+    return "no twist" if twist == 0 else ("right-handed" if twist > 0 else "left-handed")
 
 
 def layer_transforms(p, count: int | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -85,87 +96,6 @@ def apply_points(p, m, points: np.ndarray) -> np.ndarray:
 def apply_matrices(p, m: int, matrices: np.ndarray) -> np.ndarray:
     """S^m · matrices (n, 4, 4): world matrices of the images of objects."""
     return np.einsum("ij,njk->nik", screw_matrix(p, m), np.asarray(matrices, dtype=float))
-
-
-def cell_gravity(p, gravity):
-    """The part of a uniform gravity a periodic cell can feel while it is judged: its axial (Z)
-    component.
-
-    The screw turns an image's surroundings by m·M·twist, so a sideways gravity would act on
-    the cell as on a fibril whose every M-th stretch of layers feels it turned: not a uniform
-    field, and not an infinite fibril. Only the axial part is the same in every image. This
-    matters where gravity is still on when the layout is judged (the tutorial protocol). Inflate
-    anneals its gravity to zero before it judges: there gravity is only a way to search, any
-    layout it reaches is judged as it is, so it keeps the whole vector
-    (docs/model/periodic-cell.md#gravity-in-a-cell). Outside a cell `gravity` is returned
-    unchanged.
-    """
-    if not axial_gravity(p):
-        return tuple(float(g) for g in gravity)
-    return (0.0, 0.0, float(gravity[2]))
-
-
-def axial_gravity(p) -> bool:
-    """Whether cell_gravity keeps only the axial part: a periodic cell judged with gravity on."""
-    return bool(p.periodic) and p.protocol != "inflate"
-
-
-def chain_reach(p) -> np.ndarray:
-    """How far along Z each chain member's surface can get from its anchor's height (Å).
-
-    Member i's centre lies within the linker's length up to it (every bond at rest plus the
-    stretch tolerance) of the anchor; its surface one radius further.
-    """
-    x = np.asarray(p.chain_x(), dtype=float)
-    return (x - x[0]) * (1.0 + p.stretch_tolerance) + body_radii(p)
-
-
-# A hull's points lie r/0.934 + 0.01 Å from their atom's centre (structure/shape.py, grow) and
-# Bullet's surface 0.1 Å beyond them (builders/model.py, HULL_MARGIN): 1/0.93 and 0.11 Å bound
-# both (docs/model/domain-shapes.md#periodic).
-HULL_REACH_FACTOR, HULL_REACH_SLACK = 1.0 / 0.93, 0.11
-
-
-def globule_reach(p) -> float:
-    """How far the globule's body reaches from its centre (Å): the sphere's radius, or a bound
-    of a real shape's (hull: its atoms grown as its points are; spheres: the farthest sphere)."""
-    rows = {"hull": p.domain_atoms, "spheres": p.domain_spheres}.get(p.domain_shape)
-    if rows is None:
-        return p.globule_radius
-    return shape_reach(np.asarray(rows, dtype=float).reshape(-1, 4), p.domain_shape == "hull")
-
-
-def shape_reach(rows: np.ndarray, hull: bool) -> float:
-    """The farthest a real shape reaches from its centre, from its rows [x, y, z, r]: hull
-    atoms grown as its points are (plus Bullet's margin), or covering spheres."""
-    grow, slack = (HULL_REACH_FACTOR, HULL_REACH_SLACK) if hull else (1.0, 0.0)
-    return float((np.linalg.norm(rows[:, :3], axis=1) + rows[:, 3] * grow).max() + slack)
-
-
-def domain_reaches(p) -> list[float]:
-    """globule_reach of each domain of a chain (0 nearest the core): the same bound of each
-    real shape (several real shapes), or each domain's radius."""
-    if not p.several_shapes:
-        return [globule_reach(p)] + [d / 2.0 for d in p.domain_diameters or ()]
-    return [shape_reach(p.domain_rows(k), p.domain_shape == "hull")
-            for k in range(len(p.globule_members()))]
-
-
-def body_radii(p) -> np.ndarray:
-    """How far each chain member's body reaches from its centre (Å): chain_radii, with a real
-    shape's globule reaching globule_reach (several real shapes: each domain its own)."""
-    radii = np.asarray(p.chain_radii(), dtype=float)
-    if p.several_shapes:
-        for i, reach in zip(p.globule_members(), domain_reaches(p)):
-            radii[i] = max(radii[i], reach)
-    elif p.domain_shape != "sphere":
-        radii[p.linker] = max(radii[p.linker], globule_reach(p))
-    return radii
-
-
-def body_reach(p) -> float:
-    """The farthest any body of a layer reaches along Z from its own layer's height (Å)."""
-    return float(max(chain_reach(p).max(), p.slab[2] / 2.0))
 
 
 def min_cell_layers(p) -> int:

@@ -2,6 +2,12 @@
 
 Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this module.
 1 Blender unit = 1 Å. Plain Python: importable without bpy.
+
+Over 400 lines because the Params class is the one definition of every parameter: its field
+list alone is some 200 lines, and the geometry every room derives from it (the chain's
+members, radii, rest lengths and layout) sits beside the fields it reads. Around it, in their
+own modules: the field specs and constants (param_spec.py), reading a typed value
+(param_values.py), the refused combinations (param_checks.py), the domains (domains.py).
 """
 from __future__ import annotations
 
@@ -10,159 +16,104 @@ import functools
 import json
 import math
 import pathlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..geom import polygons
-from . import helix
-
-# Above this many objects a build is refused unless forced: past it a bake takes hours and
-# the scene needs gigabytes.
-MAX_OBJECTS_UNFORCED = 60_000
-# Resident memory per object once built, evaluated and simulated for a frame: measured 31.6 KiB
-# (bpy 5.0.1, 200 -> 2000 layers; only 3.8 KiB right after the build, before the depsgraph
-# copies every object). `make bench`;
-# docs/benchmarks.md#peak-memory-2000-layers-1139-mib-317-kib-per-object
-MEMORY_PER_OBJECT_KIB = 32
-GLOBULE_SEGMENTS, GLOBULE_RINGS = 32, 16
-RESIDUE_SEGMENTS, RESIDUE_RINGS = 8, 4
-
-
-class ParamError(ValueError):
-    """A parameter value outside what the model accepts. `param` names the parameter."""
-
-    def __init__(self, param: str, message: str):
-        super().__init__(f"{param}: {message}")
-        self.param = param
-
-
-def _spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
-          derived=None, size=None, choices=None, item=None, label=None, shown_in=None,
-          question=False):
-    """`derived`: for a parameter whose default (None) is worked out from others, how (text).
-    `size`: a fixed number of values (a vector); kind "points" is a list of [x, y].
-    `choices`: kind str, one of these (CLI choices, the panel's enum).
-    The sidebar: `label` its name where the field's name reads badly; `shown_in` a unit it is
-    shown in instead of `unit` (a key of SHOWN_IN: "%" for a fraction the summary prints in per
-    cent); `question` marks what the user asks about, shown at the top of the panel; `section`
-    is also the build step that reads it (docs/guide/sidebar.md#the-panel)."""
-    meta = {"min": lo, "max": hi, "unit": unit, "doc": doc, "kind": kind, "ui": ui, "cli": cli,
-            "section": section, "derived": derived, "size": size, "label": label,
-            "shown_in": shown_in, "question": question}
-    if choices is not None:
-        meta["choices"] = tuple(choices)
-    if item is not None:  # kind "list": any number of values of this type, comma-separated
-        meta["item"] = item
-    return field(default=default, metadata=meta)
-
-
-# A unit a parameter is shown in on the panel: (from `unit`, factor). The stretch tolerance is a
-# fraction in the definition and the CLI, a percentage in the summary and the verdict's line.
-SHOWN_IN = {"%": ("fraction", 100.0)}
-
-# Words that ask for a derived parameter's default (None), from the CLI, sweeps or JSON.
-DERIVED_WORDS = ("auto", "default", "none", "box", "")
-# Integer parameters that also take one word (the CLI, sweeps, JSON and case files): every
-# layer scored (0), and a periodic cell as long as the geometry needs (helix.auto_cell_layers).
-NUMBER_WORDS = {"score_layers": "all", "periodic": "auto"}
-MAX_OUTLINE_POINTS = 10_000
-PROTOCOLS = ("tutorial", "inflate")
-# Angles (docs/guide/headless.md#angles): a bare number is radians; a value may name its unit.
-ANGLE_UNITS = {"degrees": math.pi / 180, "degree": math.pi / 180, "deg": math.pi / 180,
-               "°": math.pi / 180, "rad": 1.0}
-# A twist beyond this per layer is refused without force: measured amyloid fibrils twist 0-8°
-# per layer (the six fibrils of tests/data: 0.5-1.8°), so -0.961 is degrees typed as radians.
-MAX_TWIST = 0.2
-DOMAIN_SHAPES = ("sphere", "hull", "spheres")  # docs/model/domain-shapes.md#domain-shapes
-MAX_SHAPE_ROWS = 5_000
-# The parameters that carry the domains' real shapes, as rows of numbers
-SHAPE_ROWS = ("domain_atoms", "domain_spheres", "domain_joint", "further_atoms",
-              "further_spheres", "further_joints", "domain_exits")
-
+from . import domains as chain_domains, helix
+# The field specs' constants and the checks are read as P.<name> by the rest of the package
+from .param_checks import NOT_WITH_PERIODIC, check_combination, check_twist, refuse_beside_periodic  # noqa: F401
+from .param_spec import (ANGLE_UNITS, DERIVED_WORDS, DOMAIN_SHAPES, GLOBULE_RINGS,  # noqa: F401
+                         GLOBULE_SEGMENTS, MAX_OBJECTS_UNFORCED, MAX_OUTLINE_POINTS,
+                         MAX_SHAPE_ROWS, MAX_TWIST, MEMORY_PER_OBJECT_KIB, NUMBER_WORDS,
+                         PROTOCOLS,
+                         RESIDUE_RINGS, RESIDUE_SEGMENTS, SHAPE_ROWS, SHOWN_IN, ParamError, spec)
+from .param_values import (angle_value, coerce, list_value, rows_value, split_unit,  # noqa: F401
+                           vector_value)
 
 @dataclass(frozen=True)
 class Params:
     """One run of the model. Lengths in Å, angles in rad, time in Blender frames."""
 
-    slab: tuple = _spec((40.0, 22.0, 4.8), 0.1, 1000.0, "Å",
+    slab: tuple = spec((40.0, 22.0, 4.8), 0.1, 1000.0, "Å",
                         "Size of the cross-β core slab of one layer: width × depth × height",
                         section="Slab")
-    residue_radius: float = _spec(1.75, 0.1, 20.0, "Å",
+    residue_radius: float = spec(1.75, 0.1, 20.0, "Å",
                                   "Radius of one linker residue (and of the anchor residue)",
                                   section="Anchor")
-    residue_spacing: float = _spec(3.5, 0.1, 50.0, "Å",
+    residue_spacing: float = spec(3.5, 0.1, 50.0, "Å",
                                    "Distance between consecutive linker residues at rest, "
                                    "3.5 Å for a stretched-out chain of 1.75 Å beads",
                                    section="Linker")
-    linker: int = _spec(6, 1, 200, "residues",
+    linker: int = spec(6, 1, 200, "residues",
                         "Linker length in residues, counting the passive anchor",
                         kind=int, section="Linker", question=True)
-    globule_diameter: float = _spec(30.0, 0.5, 500.0, "Å",
+    globule_diameter: float = spec(30.0, 0.5, 500.0, "Å",
                                     "Diameter of the tethered globular domain", section="Globule",
                                     question=True)
-    layers: int = _spec(20, 1, 100_000, "layers",
+    layers: int = spec(20, 1, 100_000, "layers",
                         "Number of stacked β-strand layers in the fibril", kind=int,
                         section="Layers", question=True)
-    rise: float = _spec(4.8, 0.1, 100.0, "Å",
+    rise: float = spec(4.8, 0.1, 100.0, "Å",
                         "Distance between β-strands along the fibril axis, 4.8 Å in cross-β amyloid",
                         section="Layers")
-    twist: float = _spec(0.034, -math.pi, math.pi, "rad",
+    twist: float = spec(0.034, -math.pi, math.pi, "rad",
                          "Helical twist between consecutive layers about the fibril axis "
                          "(positive: right-handed)",
                          section="Layers")
-    gravity: float = _spec(0.5, 0.0, 100.0, "Å/s²",
+    gravity: float = spec(0.5, 0.0, 100.0, "Å/s²",
                            "Bound of the random gravity: each axis is drawn uniform in [-g, g]")
-    seed: int = _spec(0, 0, 2**31 - 1, "", "Random seed fixing the gravity", kind=int)
-    time_scale: float = _spec(2.0, 0.01, 100.0, "×", "Rigid-body world speed (tutorial: 2)")
-    frames: int = _spec(250, 1, 100_000, "frames",
+    seed: int = spec(0, 0, 2**31 - 1, "", "Random seed fixing the gravity", kind=int)
+    time_scale: float = spec(2.0, 0.01, 100.0, "×", "Rigid-body world speed (tutorial: 2)")
+    frames: int = spec(250, 1, 100_000, "frames",
                         "Frames to bake from frame 1 (the cap when settling is on)", kind=int)
     # Substeps and iterations: measured (docs/model/linker-integrity.md#linker-integrity), 10 × 10 is the cheapest
     # setting at which every linker that fits (6-32 residues) ends within 0.2 % of its length and
     # the push-apart is over by frame ~50; 20 × 20 doubles the cost and changes no verdict.
-    substeps: int = _spec(10, 1, 1000, "per frame",
+    substeps: int = spec(10, 1, 1000, "per frame",
                           "Physics substeps per frame: more keeps stiff chains from stretching",
                           kind=int)
-    solver_iterations: int = _spec(10, 1, 1000, "",
+    solver_iterations: int = spec(10, 1, 1000, "",
                                    "Constraint solver iterations per substep", kind=int)
-    stretch_tolerance: float = _spec(0.05, 0.0, 10.0, "fraction",
+    stretch_tolerance: float = spec(0.05, 0.0, 10.0, "fraction",
                                      "Largest bond stretch for which the linker counts as intact",
                                      section="Check", shown_in="%")
     # Settling: measured on 147 bakes (docs/model/settling.md#settling), stopping once every body moves less
     # than 0.3 Å/frame for 20 frames gave the 250-frame verdict every time and saved 21 % of the
     # bake time (40 % on the default model). Under the weak random gravity nothing reaches true
     # rest (< 0.01 Å/frame) within 250 frames.
-    settle: bool = _spec(True, None, None, "",
+    settle: bool = spec(True, None, None, "",
                          "Stop the bake once every body has settled (--frames is then the cap)",
                          kind=bool)
-    settle_speed: float = _spec(0.3, 0.0, 100.0, "Å/frame",
+    settle_speed: float = spec(0.3, 0.0, 100.0, "Å/frame",
                                 "A body has settled when it moves less than this per frame")
-    settle_frames: int = _spec(20, 1, 100_000, "frames",
+    settle_frames: int = spec(20, 1, 100_000, "frames",
                                "Frames every body must stay settled to stop the bake", kind=int)
-    score_layers: int = _spec(0, 0, 50_000, "layers",
+    score_layers: int = spec(0, 0, 50_000, "layers",
                               "Score interior layers only: leave out this many layers at each end "
                               "of the fibril ('all' or 0 scores every layer)",
                               kind=int, section="Check")
     # ---- real fibril geometry (issue #14): protofilaments, core outline, anchor --------------
-    protofilaments: int = _spec(1, 1, 6, "chains per layer",
+    protofilaments: int = spec(1, 1, 6, "chains per layer",
                                 "Protofilaments: chains (anchor, linker, globule) per layer, "
                                 "sharing the layer's core", kind=int, section="Layers")
-    pf_rotation: float | None = _spec(None, -2 * math.pi, 2 * math.pi, "rad",
+    pf_rotation: float | None = spec(None, -2 * math.pi, 2 * math.pi, "rad",
                                       "Turn about the fibril axis from one protofilament to the "
                                       "next (a pseudo-2₁ fibril: about 3.13 rad, i.e. 179.3deg)",
                                       section="Layers", derived="2π/K", label="Protofilament turn")
-    pf_rise: float = _spec(0.0, -50.0, 50.0, "Å",
+    pf_rise: float = spec(0.0, -50.0, 50.0, "Å",
                            "Rise along the fibril axis from one protofilament to the next "
                            "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers",
                            label="Protofilament rise")
-    core_outline: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    core_outline: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                        "The core's cross-section: a closed polygon of [x, y] "
                                        "points in the layer's frame (axis at the origin), "
                                        "extruded by the rise; replaces the slab's box",
                                        kind="points", section="Slab",
                                        derived="the slab's X × Y box")
-    anchor: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    anchor: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                  "Where protofilament 0's anchor sits in the layer's frame: X Y",
                                  section="Anchor", size=2,
                                  derived="(slab X / 2 + residue radius, 0)")
@@ -171,37 +122,37 @@ class Params:
     # starts every globule at full size on a straight chain and lets Bullet push them apart;
     # `inflate` starts the chains fanned out with small globules and grows them. It changes the
     # start layout, so it sits with the build's parameters.
-    protocol: str = _spec("tutorial", None, None, "",
+    protocol: str = spec("tutorial", None, None, "",
                           "How the search starts: tutorial (straight chains, full-size globules "
                           "pushed apart) or inflate (fanned chains, globules grown from small)",
                           kind=str, choices=PROTOCOLS, section="Linker", question=True)
     # The inflate schedule, measured (docs/model/search.md#inflate-schedule): grow, hold at full size
     # with the gravity off, judge; a jammed layout is shrunk and grown again under a new gravity.
-    grow_start: float = _spec(0.3, 0.01, 1.0, "fraction",
+    grow_start: float = spec(0.3, 0.01, 1.0, "fraction",
                               "inflate: globule scale at the start (smaller if the fanned start "
                               "layout would overlap)", section="Search", label="Start scale")
-    grow_frames: int = _spec(100, 1, 100_000, "frames",
+    grow_frames: int = spec(100, 1, 100_000, "frames",
                              "inflate: frames over which the globules grow to full size",
                              kind=int, section="Search")
-    hold_frames: int = _spec(60, 1, 100_000, "frames",
+    hold_frames: int = spec(60, 1, 100_000, "frames",
                              "inflate: most frames at full size (gravity off) before a layout "
                              "is judged; it is judged earlier once every body has settled",
                              kind=int, section="Search")
-    regrow_cycles: int = _spec(4, 0, 1000, "cycles",
+    regrow_cycles: int = spec(4, 0, 1000, "cycles",
                                "inflate: times a jammed layout (clash or stretched linker) is "
                                "shrunk and grown again under a new random gravity",
                                kind=int, section="Search")
-    regrow_scale: float = _spec(0.6, 0.01, 1.0, "fraction",
+    regrow_scale: float = spec(0.6, 0.01, 1.0, "fraction",
                                 "inflate: globule scale a jammed layout is shrunk to",
                                 section="Search", label="Regrow scale")
-    near_cycles: int = _spec(5, 0, 1000, "cycles",
+    near_cycles: int = spec(5, 0, 1000, "cycles",
                              "inflate: more regrow cycles for a layout still nearly accommodated "
                              "after regrow_cycles (deepest overlap at most 1 Å, stretch at most 3 "
                              "times the tolerance); a clear miss gets none",
                              kind=int, section="Search")
     # Off by default: measured in a cell it rescued 1 of 3 near misses it was tried on and made
     # most polishes worse (docs/model/search.md#polish)
-    polish_factor: int = _spec(1, 1, 100, "times",
+    polish_factor: int = spec(1, 1, 100, "times",
                                "inflate: a jammed layout that is nearly accommodated (deepest "
                                "overlap at most 1 Å, stretch at most 3 times the tolerance) is "
                                "held once more, gravity off, with this many times the substeps "
@@ -209,7 +160,7 @@ class Params:
                                "tried)",
                                kind=int, section="Search")
 
-    periodic: int = _spec(0, 0, 10_000, "layers",
+    periodic: int = spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
                           "('auto' picks it from the globule and the rise; 0 = off: a fibril of "
                           "--layers layers with two ends)",
@@ -217,7 +168,7 @@ class Params:
 
     # Measured (docs/model/periodic-cell.md#periodic-cell): images one frame behind their originals make every
     # contact across the cell's ends bounce; refreshing them 5 times a frame removes that.
-    image_updates: int = _spec(5, 1, 1000, "per frame",
+    image_updates: int = spec(5, 1, 1000, "per frame",
                                "With periodic: move the images to their originals this many times "
                                "per frame (each frame is baked as this many shorter frames, with "
                                "the same substep length; must divide substeps)", kind=int)
@@ -225,34 +176,34 @@ class Params:
     # ---- several domains per chain (issue #24): anchor, linker, domain 1, its linker, domain 2 ...
     # Domain 1 is globule_diameter's; these give the domains after it, from the core outward
     # (docs/guide/atoms-and-domains.md#several-domains).
-    domain_diameters: tuple | None = _spec(None, 0.5, 500.0, "Å",
+    domain_diameters: tuple | None = spec(None, 0.5, 500.0, "Å",
                                            "Diameters of the domains after the first on each "
                                            "chain (the first is globule_diameter), in chain "
                                            "order from the core outward, comma-separated",
                                            kind="list", item=float, section="Globule")
-    domain_linker: tuple | None = _spec(None, 0, 500, "residues",
+    domain_linker: tuple | None = spec(None, 0, 500, "residues",
                                         "Residues between consecutive domains of a chain, one "
                                         "per gap, comma-separated", kind="list", item=int,
                                         section="Globule")
     # ---- the domain's real shape (issue #24): docs/model/domain-shapes.md#domain-shapes ----
-    domain_shape: str = _spec("sphere", None, None, "",
+    domain_shape: str = spec("sphere", None, None, "",
                               "The globule's body: sphere (of globule_diameter, anywhere on its "
                               "surface joined), hull (the convex hull of the domain's atoms grown "
                               "by their van der Waals radius) or spheres (a few overlapping "
                               "spheres covering them); hull and spheres need --domain and join the "
                               "linker at the domain's terminal CA",
                               kind=str, choices=DOMAIN_SHAPES, section="Globule")
-    domain_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    domain_atoms: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                        "hull: the domain's outermost heavy atoms [x, y, z, r] in "
-                                       "its body frame (structure.shape.hull_atoms)",
+                                       "its body frame (geom.shape.hull_atoms)",
                                        kind="rows", size=4, ui=False, cli=False, section="Globule",
                                        derived="none: the sphere")
-    domain_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    domain_spheres: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                          "spheres: the covering spheres [x, y, z, r] in the "
-                                         "domain's body frame (structure.shape.covering_spheres)",
+                                         "domain's body frame (geom.shape.covering_spheres)",
                                          kind="rows", size=4, ui=False, cli=False,
                                          section="Globule", derived="none: the sphere")
-    domain_joint: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    domain_joint: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                        "hull, spheres: the linker's joint in the domain's body "
                                        "frame, its terminal residue's CA: one row [x, y, z]",
                                        kind="rows", size=3, ui=False, cli=False,
@@ -260,25 +211,25 @@ class Params:
     # Several real-shaped domains per chain (docs/guide/atoms-and-domains.md#shapes-of-several-domains):
     # the domains after the first, each in its own body frame, and where each domain but the
     # last lets its outgoing linker go (its other terminal CA).
-    further_atoms: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    further_atoms: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                         "hull, several domains: the outermost heavy atoms of the "
                                         "domains after the first, rows [domain, x, y, z, r] "
                                         "(domain 1 is the second on the chain), each in its own "
                                         "body frame", kind="rows", size=5, ui=False, cli=False,
                                         section="Globule", derived="none: one domain")
-    further_spheres: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    further_spheres: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                           "spheres, several domains: the covering spheres of the "
                                           "domains after the first, rows [domain, x, y, z, r], "
                                           "each in its own body frame", kind="rows", size=5,
                                           ui=False, cli=False, section="Globule",
                                           derived="none: one domain")
-    further_joints: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    further_joints: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                          "hull, spheres, several domains: the incoming linker's "
                                          "joint (terminal CA) of each domain after the first, "
                                          "one row [x, y, z] each, in its own body frame",
                                          kind="rows", size=3, ui=False, cli=False,
                                          section="Globule", derived="none: one domain")
-    domain_exits: tuple | None = _spec(None, -1000.0, 1000.0, "Å",
+    domain_exits: tuple | None = spec(None, -1000.0, 1000.0, "Å",
                                        "hull, spheres, several domains: the outgoing linker's "
                                        "joint (the other terminal CA) of each domain but the "
                                        "last, one row [x, y, z] each, in its own body frame",
@@ -294,7 +245,7 @@ class Params:
     def globule_offset(self) -> float:
         """From the last bond's pivot to the globule's centre: the sphere's radius, or with a real
         shape the joint's distance from the domain's centroid."""
-        if self.domain_shape == "sphere" or self.domain_joint is None:
+        if self.domains[0].joint is None:
             return self.globule_radius
         return math.sqrt(sum(x * x for x in self.domain_joint[0]))
 
@@ -303,7 +254,7 @@ class Params:
         """From the last linker bead's centre to the globule's joint: its radius (the sphere's
         surface), or with a real shape one residue spacing (the joint is the domain's terminal
         CA, the next residue along the chain)."""
-        return self.residue_radius if self.domain_shape == "sphere" else self.residue_spacing
+        return self.residue_spacing if self.shape.real else self.residue_radius
 
     @property
     def anchor_x(self) -> float:
@@ -344,19 +295,23 @@ class Params:
         return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
 
     @property
+    def shape(self) -> chain_domains.Shape:
+        """The domains' shape (domain_shape's record in domains.SHAPES)."""
+        return chain_domains.shape_of(self)
+
+    @functools.cached_property
+    def domains(self) -> list[chain_domains.Domain]:
+        """The chain's domains, from the core outward (domains.domains; one: a list of one)."""
+        return chain_domains.domains(self)
+
+    @property
     def several_shapes(self) -> bool:
         """Several domains per chain, each with its real shape (hull, spheres)."""
-        return self.domain_shape != "sphere" and bool(self.domain_diameters)
+        return chain_domains.several_shapes(self)
 
     def domain_rows(self, k: int) -> np.ndarray:
-        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame: its hull
-        atoms (hull) or covering spheres (spheres)."""
-        first, more = ((self.domain_atoms, self.further_atoms) if self.domain_shape == "hull"
-                       else (self.domain_spheres, self.further_spheres))
-        if k == 0:
-            return np.asarray(first, dtype=float).reshape(-1, 4)
-        rows = np.asarray(more, dtype=float).reshape(-1, 5)
-        return rows[np.round(rows[:, 0]).astype(int) == k, 1:]
+        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame."""
+        return chain_domains.domain_rows(self, k)
 
     def domain_joints(self) -> list:
         """Each domain's incoming joint (terminal CA) in its body frame, (3,) each."""
@@ -386,13 +341,11 @@ class Params:
         first = min(globules)
         # several real shapes: into domain k at its joint, out of it at its exit, each one
         # residue spacing from the bead beside it (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-        into, out = {}, {}
-        if self.several_shapes:
-            members = self.globule_members()
-            into = {i: self.residue_spacing + float(np.linalg.norm(j))
-                    for i, j in zip(members, self.domain_joints())}
-            out = {i: float(np.linalg.norm(e)) + self.residue_spacing
-                   for i, e in zip(members, self.domain_exits)}
+        # (the first domain's joint is globule_offset's, below)
+        into = {d.member: self.residue_spacing + float(np.linalg.norm(d.joint))
+                for d in self.domains if d.joint is not None}
+        out = {d.member: float(np.linalg.norm(d.exit)) + self.residue_spacing
+               for d in self.domains if d.exit is not None}
         xs = [self.anchor_x]
         for i in range(len(radii) - 1):
             if i not in globules and i + 1 not in globules:
@@ -505,29 +458,6 @@ def _chain_layout(p: "Params") -> ChainLayout:
     return ChainLayout(xy, radius, angle, direction, rule)
 
 
-def _check_anchors_apart(p: "Params") -> None:
-    """Anchors of different protofilaments must not start on top of each other (in 3-D,
-    over the first few layers: the model repeats layer by layer)."""
-    if p.protofilaments < 2:
-        return
-    k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * abs(p.pf_rise)
-                                             + 2 * p.residue_radius) / p.rise)) + 1)
-    q = dataclasses.replace(p, layers=k_max + 1)
-    angle, height = helix.chain_transforms(q)
-    lay = q.chain_layout
-    xy = np.stack([np.cos(angle + lay.angle[0]), np.sin(angle + lay.angle[0])], 1) * lay.radius[0]
-    pts = np.column_stack([xy, height])
-    _, pf = helix.chain_layers(q)
-    d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
-    clash = (d < 2 * p.residue_radius - 1e-9) & (pf[:, None] != pf[None, :])
-    if clash.any():
-        a, b = np.argwhere(clash)[0]
-        raise ParamError("pf_rotation", f"protofilaments {pf[a]} and {pf[b]} would start with "
-                                        f"their anchors {d[a, b]:.2f} Å apart, less than two "
-                                        f"residue radii ({2 * p.residue_radius:g} Å): change "
-                                        f"--pf-rotation, --pf-rise or --anchor")
-
-
 def read_outline(path) -> tuple:
     """A core outline from a JSON file: a list of [x, y] in Å. Raises ParamError."""
     try:
@@ -564,102 +494,10 @@ def field_spec(name: str) -> dict:
     return Params.__dataclass_fields__[name].metadata
 
 
-def _describe_range(meta: dict) -> str:
-    if "choices" in meta:
-        return f"must be one of {', '.join(meta['choices'])}"
-    kind, lo, hi, unit = meta["kind"], meta["min"], meta["max"], meta["unit"]
-    what = "an integer" if kind is int else "a number"
-    suffix = f" {unit}" if unit and unit not in ("×", "fraction") else ""
-    if unit == "rad":  # the range in both units, and how to write degrees
-        return (f"must be an angle from {lo:.5g} to {hi:.5g} rad ({math.degrees(lo):g}° to "
-                f"{math.degrees(hi):g}°): a number in rad, or with a unit: 1.95deg, 1.95°, "
-                f"0.034rad")
-    return f"must be {what} from {lo:g} to {hi:g}{suffix}"
-
-
 def is_angle(name: str) -> bool:
     """Whether parameter `name` is an angle (in rad, also accepted with a unit: angle_value)."""
     f = Params.__dataclass_fields__.get(name)
     return f is not None and f.metadata["unit"] == "rad"
-
-
-def split_unit(text: str) -> tuple[str, float | None]:
-    """'-0.961deg' -> ('-0.961', π/180); '-0.01678rad' -> ('-0.01678', 1.0); '0.5' -> ('0.5',
-    None): the number's text and the factor to radians its unit names (None: no unit)."""
-    text = text.strip()
-    low = text.lower()
-    for unit, factor in ANGLE_UNITS.items():
-        if low.endswith(unit):
-            return text[:len(text) - len(unit)].strip(), factor
-    return text, None
-
-
-def angle_value(name: str, value: Any, meta: dict):
-    """An angle as typed: a number (rad), or text with a unit ('1.95deg', '1.95°', '0.034rad')
-    -> radians; anything else is returned as it is, for _coerce to refuse."""
-    if not isinstance(value, str):
-        return value
-    number, factor = split_unit(value)
-    if factor is None:
-        return value
-    try:
-        return float(number) * factor
-    except ValueError:
-        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})") from None
-
-
-def _check_twist(raw: Any, twist: float, force: bool) -> None:
-    """Refuse a twist beyond ±MAX_TWIST rad per layer unless forced, with its degree reading:
-    the commonest slip is a twist in degrees typed as radians (issue #23)."""
-    if force or abs(twist) <= MAX_TWIST:
-        return
-    typed = str(raw).strip() if isinstance(raw, str) else f"{twist:g}"
-    if isinstance(raw, str) and split_unit(raw)[1] is not None:
-        reading = f"{typed} is {twist:.4g} rad ({math.degrees(twist):.1f}°) per layer"
-        hint = "check the value"
-    else:
-        reading = f"{typed} rad is {math.degrees(twist):.1f}° per layer"
-        hint = f"write {typed}deg if you meant degrees"
-    raise ParamError("twist", f"{reading}, beyond ±{MAX_TWIST:g} rad (±"
-                              f"{math.degrees(MAX_TWIST):.1f}°; measured amyloid fibrils twist "
-                              f"0-8° per layer): {hint}, or add --force to build it anyway")
-
-
-def _coerce(name: str, value: Any, meta: dict):
-    kind = meta["kind"]
-    if meta["unit"] == "rad":
-        value = angle_value(name, value, meta)
-    if kind is bool:
-        if isinstance(value, bool):
-            return value
-        if isinstance(value, str) and value.lower() in ("1", "true", "yes", "on", "0", "false", "no", "off"):
-            return value.lower() in ("1", "true", "yes", "on")
-        if isinstance(value, (int, float)) and value in (0, 1):
-            return bool(value)
-        raise ParamError(name, f"must be true or false (got {value!r})")
-    if "choices" in meta:
-        text = value.strip().lower() if isinstance(value, str) else value
-        if text not in meta["choices"]:
-            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
-        return text
-    try:
-        if isinstance(value, bool):
-            raise TypeError
-        if isinstance(value, str):
-            number = float(value.strip())
-        else:
-            number = float(value)
-    except (TypeError, ValueError, OverflowError):
-        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})") from None
-    if not math.isfinite(number):
-        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
-    if kind is int:
-        if number != int(number):
-            raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
-        number = int(number)
-    if not meta["min"] <= number <= meta["max"]:
-        raise ParamError(name, f"{_describe_range(meta)} (got {value!r})")
-    return number
 
 
 def make_params(*, force: bool = False, **values) -> Params:
@@ -687,7 +525,7 @@ def make_params(*, force: bool = False, **values) -> Params:
                                                   and value.strip().lower() in DERIVED_WORDS)):
             clean[f.name] = None
         elif meta["kind"] == "rows":
-            clean[f.name] = None if value is None else _rows(f.name, value, meta)
+            clean[f.name] = None if value is None else rows_value(f.name, value, meta)
         elif meta["kind"] == "points":
             if isinstance(value, str) and value.strip().startswith("["):
                 try:
@@ -698,181 +536,21 @@ def make_params(*, force: bool = False, **values) -> Params:
             clean[f.name] = (read_outline(value) if isinstance(value, (str, pathlib.Path))
                              else _outline_value(value))
         elif meta["kind"] == "list":
-            clean[f.name] = _list(f.name, value, meta)
+            clean[f.name] = list_value(f.name, value, meta)
         elif f.name == "slab" or meta["size"]:
-            clean[f.name] = _vector(f.name, value, meta, meta["size"] or 3)
+            clean[f.name] = vector_value(f.name, value, meta, meta["size"] or 3)
         else:
-            clean[f.name] = _coerce(f.name, value, meta)
+            clean[f.name] = coerce(f.name, value, meta)
     if isinstance(values.get("periodic"), str) \
             and values["periodic"].strip().lower() == NUMBER_WORDS["periodic"]:
         clean["periodic"] = helix.auto_cell_layers(Params(**{**clean, "periodic": 1}))
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)
-    _check_twist(values.get("twist", p.twist), p.twist, force)
-    _check_combination(p, force)
+    check_twist(values.get("twist", p.twist), p.twist, force)
+    check_combination(p, force)
     object.__setattr__(p, VALIDATED, force)  # trusted from here on: see validate()
     return p
-
-
-def _list(name: str, value, meta: dict) -> tuple | None:
-    """A kind "list" parameter: numbers, comma-separated in text; none (None) when empty."""
-    if value is None or (isinstance(value, str) and value.strip().lower() in DERIVED_WORDS):
-        return None
-    items = value.replace(",", " ").split() if isinstance(value, str) else value
-    try:
-        items = list(items)
-    except TypeError:
-        items = [items]
-    item_meta = {**meta, "kind": meta["item"]}
-    out = tuple(meta["item"](_coerce(name, v, item_meta)) for v in items)
-    return out or None
-
-def _rows(name: str, value, meta: dict) -> tuple:
-    """A list of rows of meta["size"] numbers each (kind "rows"), as a tuple of tuples; one
-    row may be given flat."""
-    size = meta["size"]
-    if isinstance(value, str):
-        try:
-            value = json.loads(value)
-        except ValueError:
-            raise ParamError(name, f"is not a JSON list of rows of {size} numbers "
-                                   f"(got {value[:40]!r})") from None
-    try:
-        rows = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParamError(name, f"must be a list of rows of {size} numbers") from None
-    if rows.ndim == 1 and rows.size == size:
-        rows = rows[None]
-    if rows.ndim != 2 or rows.shape[1] != size or not 1 <= len(rows) <= MAX_SHAPE_ROWS:
-        raise ParamError(name, f"must be a list of 1 to {MAX_SHAPE_ROWS} rows of {size} numbers "
-                               f"(got shape {rows.shape})")
-    if not np.isfinite(rows).all() or np.abs(rows).max() > meta["max"]:
-        raise ParamError(name, f"every number must be finite, from {meta['min']:g} to "
-                               f"{meta['max']:g} {meta['unit']}")
-    return tuple(tuple(float(x) for x in row) for row in rows)
-
-
-def _vector(name: str, value, meta: dict, size: int) -> tuple:
-    what = {3: "three sizes X Y Z", 2: "two coordinates X Y"}.get(size, f"{size} numbers")
-    message = (f"must be {what}, each from {meta['min']:g} to {meta['max']:g} {meta['unit']} "
-               f"(got {value!r})")
-    if isinstance(value, str):
-        value = value.replace(",", " ").split()
-    try:
-        items = list(value)
-    except TypeError:
-        raise ParamError(name, message) from None
-    if len(items) != size:
-        raise ParamError(name, message)
-    return tuple(float(_coerce(name, v, meta)) for v in items)
-
-
-def _check_combination(p: Params, force: bool) -> None:
-    if p.residue_spacing < p.residue_radius:
-        raise ParamError("residue_spacing", f"must be at least the residue radius "
-                                            f"({p.residue_radius:g} Å) so that beads cannot pass "
-                                            f"through each other (got {p.residue_spacing:g})")
-    if p.periodic:
-        _check_periodic(p)
-    _check_shape(p)
-    if 2 * p.score_layers >= p.layers:
-        raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
-                                         f"{(p.layers - 1) // 2} for {p.layers} layers "
-                                         f"(got {p.score_layers})")
-    _check_domains(p)
-    p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
-    _check_anchors_apart(p)
-    n = p.estimated_objects()
-    if n > MAX_OBJECTS_UNFORCED and not force:
-        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.globule_members()[-1] + 1))
-        chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
-        raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make "
-                                   f"{'up to ' if p.core_outline is not None else ''}{n} objects "
-                                   f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
-                                   f"--force")
-
-
-def _check_domains(p: Params) -> None:
-    """Several domains per chain: one linker per gap. They run under every protocol and in a
-    periodic cell: inflate grows each globule to its own size, a cell images every member
-    (docs/guide/atoms-and-domains.md#several-domains)."""
-    more, gaps = len(p.domain_diameters or ()), len(p.domain_linker or ())
-    if gaps != more:
-        raise ParamError("domain_linker", f"needs one value per gap between consecutive "
-                                          f"domains: {more + 1} domain(s) per chain have {more} "
-                                          f"gap(s), got {gaps} value(s)")
-
-
-def _check_shape(p: Params) -> None:
-    need = {"hull": "domain_atoms", "spheres": "domain_spheres"}.get(p.domain_shape)
-    if need and (getattr(p, need) is None or p.domain_joint is None):
-        raise ParamError("domain_shape", f"{p.domain_shape} needs a domain structure (--domain "
-                                         f"FILE) to take its shape and joint from")
-    if p.several_shapes:
-        _check_several_shapes(p)
-    for name in ("domain_spheres", "further_spheres"):
-        rows = getattr(p, name)
-        if rows is not None and min(row[-1] for row in rows) <= 0:
-            raise ParamError(name, "every sphere's radius must be positive")
-
-
-def _check_several_shapes(p: Params) -> None:
-    """hull, spheres with several domains: every domain's own shape and joint, and an exit on
-    every domain but the last (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
-    more = len(p.domain_diameters)
-    rows = p.further_atoms if p.domain_shape == "hull" else p.further_spheres
-    have = set() if rows is None else {int(round(r[0])) for r in rows}
-    if (have != set(range(1, more + 1)) or len(p.further_joints or ()) != more
-            or len(p.domain_exits or ()) != more):
-        raise ParamError("domain_shape", f"{p.domain_shape} with {more + 1} domains per chain "
-                                         f"needs every domain's structure (--domain FILE once "
-                                         f"per domain) to take its shape, joint and exit from")
-    if min(p.domain_linker) < 1:
-        # the exit CA and the next domain's joint CA would be one bond apart, with both a few
-        # Å inside their hulls: the two shapes start inside each other
-        raise ParamError("domain_linker", f"must be at least 1 residue between real-shaped "
-                                          f"domains ({p.domain_shape}): the outgoing linker "
-                                          f"leaves one domain's terminal CA and enters the "
-                                          f"next one's through at least one bead "
-                                          f"(got {', '.join(map(str, p.domain_linker))})")
-
-
-def _check_periodic(p: Params) -> None:
-    if p.score_layers:
-        raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
-                                         "ends, every layer is interior")
-    if p.substeps % p.image_updates:
-        raise ParamError("image_updates", f"must divide substeps ({p.substeps}), so that a "
-                                          f"frame's substeps split evenly between image updates "
-                                          f"(got {p.image_updates})")
-    least = helix.min_cell_layers(p)
-    if p.periodic < least:
-        raise ParamError("periodic", f"a cell of {p.periodic} layers is too short for "
-                                     f"{p.widest_diameter:g} Å globules at a rise of {p.rise:g} Å: "
-                                     f"at least {least} layers (cell × rise must exceed the "
-                                     f"widest globule's diameter), or 'auto'")
-
-
-# Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).
-NOT_WITH_PERIODIC = {
-    "layers": "cannot be given with periodic: the model is then a cell of M = periodic layers of "
-              "an infinite fibril, which has no length to set",
-    "score_layers": "cannot be given with periodic: a periodic cell has no ends, so every layer "
-                    "is interior and scored",
-}
-
-
-def refuse_beside_periodic(given: dict) -> None:
-    """Raise ParamError when `given` (the options a user set: name -> value or list of values)
-    turns periodic on and also sets an option that a periodic cell replaces."""
-    values = given.get("periodic")
-    values = values if isinstance(values, (list, tuple)) else [values]
-    if not any(v is not None and str(v).strip() not in ("0", "0.0", "") for v in values):
-        return
-    for name, why in NOT_WITH_PERIODIC.items():
-        if given.get(name) is not None:
-            raise ParamError(name, why)
 
 
 # make_params marks what it made with the `force` it checked under. A Params is validated once

@@ -7,7 +7,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from . import fibril, reading, shape as shapes
+from ..geom import shape as shapes
+from . import fibril, reading
 from .errors import StructureError
 
 RG_TO_DIAMETER = 2.0 * math.sqrt(5.0 / 3.0)  # the uniform sphere with the same Rg

@@ -3,13 +3,15 @@ from __future__ import annotations
 
 import math
 
+from ..model.helix import handedness
+
 
 def _deg(rad: float) -> str:
     return f"{math.degrees(rad):+.3f}°"
 
 
 def fibril_lines(g) -> list:
-    hand = "right-handed" if g.twist > 0 else "left-handed"
+    hand = handedness(g.twist)
     lines = [f"fibril {g.file} (sha256 {g.sha256[:12]}…)"]
     lines += [f"  note: {n}" for n in g.notes]
     ax = g.axis

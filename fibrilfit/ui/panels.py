@@ -9,10 +9,10 @@ import math
 
 import bpy
 
-from ..model import params as P
+from ..model import helix, params as P
 from . import properties, structure_trace
 from ..builders import model_stage
-from ..builders.model import params_of
+from ..builders.stored import params_of
 from ..builders.scene import find_root
 from ..exports.run_text import percent
 from .operators.common import reached
@@ -95,10 +95,9 @@ def structure_lines(measured: dict) -> list:
     lines = []
     f = measured.get("fibril")
     if f:
-        hand = "right" if f["twist"] > 0 else "left"
         lines.append(f"Fibril {f['file']}")
         lines.append(f"rise {f['rise']:.3f} Å, twist {math.degrees(f['twist']):+.3f}°")
-        lines.append(f"{hand}-handed, {f['protofilaments']} protofilament(s)")
+        lines.append(f"{helix.handedness(f['twist'])}, {f['protofilaments']} protofilament(s)")
         lines.append(f"core {f['core_residues'][0]}-{f['core_residues'][1]}, "
                      f"{f['layers']} layers in the file")
         for a in f["anchors"]:

@@ -20,28 +20,28 @@ def at(*xs, y=0.0):
 
 
 def test_one_globule_never_intersects_itself(globule_mesh):
-    assert bvh_clashes(globule_mesh, at(0.0)) == (0, set())
+    assert bvh_clashes([globule_mesh], at(0.0)) == (0, set())
 
 
 def test_overlapping_globules_intersect(globule_mesh):
-    faces, pairs = bvh_clashes(globule_mesh, at(0.0, 20.0))
+    faces, pairs = bvh_clashes([globule_mesh], at(0.0, 20.0))
     assert faces > 0 and pairs == {(0, 1)}
     assert sphere_clashes(at(0.0, 20.0)[:, :3, 3], 15.0) == [(0, 1, pytest.approx(10.0))]
 
 
 def test_globules_apart_are_successful(globule_mesh):
-    assert bvh_clashes(globule_mesh, at(0.0, 31.0)) == (0, set())
+    assert bvh_clashes([globule_mesh], at(0.0, 31.0)) == (0, set())
     assert sphere_clashes(at(0.0, 31.0)[:, :3, 3], 15.0) == []
 
 
 def test_touching_globules_are_not_a_clash(globule_mesh):
     assert sphere_clashes(np.array([[0, 0, 0], [30.0, 0, 0]]), 15.0) == []
-    assert bvh_clashes(globule_mesh, at(0.0, 30.0))[1] == set()
+    assert bvh_clashes([globule_mesh], at(0.0, 30.0))[1] == set()
 
 
 def test_chain_of_three_names_only_neighbours(globule_mesh):
     centres = at(0.0, 25.0, 50.0)
-    assert bvh_clashes(globule_mesh, centres)[1] == {(0, 1), (1, 2)}
+    assert bvh_clashes([globule_mesh], centres)[1] == {(0, 1), (1, 2)}
     got = sphere_clashes(centres[:, :3, 3], 15.0)
     assert [(i, j) for i, j, _ in got] == [(0, 1), (1, 2)]
     assert [d for *_, d in got] == pytest.approx([5.0, 5.0])
@@ -103,7 +103,7 @@ def test_grazing_band_bounds_what_the_mesh_can_miss(globule_mesh):
     tolerance is the band and why pairs the BVH alone names inside it count as grazing."""
     band = grazing_depth(globule_mesh)
     rng = np.random.default_rng(11)
-    hits = {depth: [bool(bvh_clashes(globule_mesh, _turned_pair(rng, 30.0 - depth))[1])
+    hits = {depth: [bool(bvh_clashes([globule_mesh], _turned_pair(rng, 30.0 - depth))[1])
                     for _ in range(25)] for depth in (band + 0.01, -0.01, band / 2)}
     assert all(hits[band + 0.01]) and not any(hits[-0.01])
     assert 0 < sum(hits[band / 2]) < 25  # turned one way they cross, another way they do not
@@ -124,8 +124,8 @@ def test_compare_checks_tells_grazing_from_disagreement():
 
 def test_bvh_keep_counts_only_pairs_with_a_kept_globule(globule_mesh):
     mats = at(0.0, 25.0, 50.0, 75.0)
-    faces_all, pairs_all = bvh_clashes(globule_mesh, mats)
-    faces, pairs = bvh_clashes(globule_mesh, mats, keep=np.array([False, False, True, False]))
+    faces_all, pairs_all = bvh_clashes([globule_mesh], mats)
+    faces, pairs = bvh_clashes([globule_mesh], mats, keep=np.array([False, False, True, False]))
     assert pairs_all == {(0, 1), (1, 2), (2, 3)} and pairs == {(1, 2), (2, 3)}
     assert 0 < faces < faces_all
 

@@ -101,7 +101,7 @@ def test_bad_params_leave_the_scene_untouched(scene):
 def test_find_model_trusts_the_params_it_was_built_with_while_they_are_unchanged(scene):
     """A Params is validated once: looking the model up again does not validate it anew,
     unless the stored values changed (then they are validated from the store)."""
-    from fibrilfit.builders.model import params_of
+    from fibrilfit.builders.stored import params_of
     from fibrilfit.model import params as P
     p = P.make_params(layers=3, linker=2)
     model = build_model(p, scene)

@@ -23,7 +23,7 @@ def _atoms(name):
 @pytest.mark.parametrize("name", ["1gfl", "1ubq"])
 def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
     from fibrilfit.analysis.clashes import mesh_arrays
-    from fibrilfit.builders.model import globule_mesh
+    from fibrilfit.builders.layers import globule_mesh
     mesh = globule_mesh(_hull_params(ff, name))
     verts, starts, loops = mesh_arrays(mesh)
     normals = np.empty(len(mesh.polygons) * 3, np.float32)
@@ -39,9 +39,9 @@ def test_the_hull_mesh_holds_every_heavy_atom_with_its_radius(scene, ff, name):
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])
 def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape):
-    from fibrilfit.analysis.clashes import (bvh_clashes, float_tolerance, hull_clashes,
-                                            sphere_band, spheres_clashes)
-    from fibrilfit.builders.model import globule_mesh
+    from fibrilfit.analysis.clashes import bvh_clashes, float_tolerance, sphere_band
+    from fibrilfit.analysis.exact import hull_clashes, spheres_clashes
+    from fibrilfit.builders.layers import globule_mesh
     p = _hull_params(ff, "1ubq", shape)
     mesh = globule_mesh(p)
     turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])  # the second one turned 90° about Z
@@ -51,11 +51,11 @@ def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape
         m[1, :3, :3], m[1, 0, 3] = turn, x
         if shape == "hull":  # the same faces: only rounding between the checks
             band = slack = float_tolerance(m[:, :3, 3])
-            analytic, depth = hull_clashes(mesh, m, band)
+            analytic, depth = hull_clashes([mesh], m, band)
         else:  # the spheres' meshes are faceted: grazing contacts up to the band
             band, slack = sphere_band(max(r for *_, r in p.domain_spheres)), 1e-4
-            analytic, depth = spheres_clashes(p.domain_spheres, m, band)
-        faces, pairs = bvh_clashes(mesh, m)
+            analytic, depth = spheres_clashes([p.domain_spheres], m, band)
+        faces, pairs = bvh_clashes([mesh], m)
         d = depth(0, 1)
         if d > band:  # overlapping beyond the mesh's resolution: both find it
             assert analytic and pairs, (x, d)
@@ -66,7 +66,7 @@ def test_shapes_pushed_into_each_other_are_found_by_both_checks(scene, ff, shape
 
 
 def test_gjk_distance_of_two_boxes(ff):
-    from fibrilfit.analysis.clashes import hull_distance
+    from fibrilfit.analysis.exact import hull_distance
     cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
     assert hull_distance(cube, cube + [3.0, 0, 0]) == pytest.approx(2.0, abs=1e-5)
     assert hull_distance(cube, cube + [2.0, 2.0, 0]) == pytest.approx(np.sqrt(2.0), abs=1e-5)
@@ -77,7 +77,7 @@ def test_gjk_distance_of_two_boxes(ff):
 def test_an_accommodated_model_keeps_the_domains_atoms_apart(scene, ff, shape):
     """The closest heavy atoms of two domains are at least two radii apart, less the resting
     overlap (0.05 Å): the shape holds the atoms (a hull's mesh with HULL_MARGIN around it for
-    Bullet; spheres each holding their atoms). Spheres start spread (start_layout.spread_layout):
+    Bullet; spheres each holding their atoms). Spheres start spread (model.start_layout.spread_layout):
     from the tutorial's layout, deeply interpenetrated compounds locked
     (docs/model/domain-shapes.md#spheres-start)."""
     p = _hull_params(ff, "1ubq", shape, layers=4, linker=10, frames=120)
@@ -159,7 +159,7 @@ def test_spheres_grow_under_inflate_to_their_covering_geometry(scene, ff):
     at the globule's scale, where the globule is: a probe swept onto it stops where the
     spheres say (docs/model/domain-shapes.md#compound-growth)."""
     import bpy
-    from fibrilfit.structure.shape import directions
+    from fibrilfit.geom.shape import directions
     p = _hull_params(ff, "1ubq", "spheres", layers=1, linker=6, protocol="inflate",
                      grow_frames=20, grow_start=0.3, regrow_cycles=0, hold_frames=5,
                      gravity=100.0)  # strong: the globule swings far from where it started
@@ -194,7 +194,8 @@ def test_spheres_grow_under_inflate_to_their_covering_geometry(scene, ff):
 def _overlap(p, mesh, a, b) -> float:
     """How deep two globules with world matrices a, b overlap (Å; negative: apart): the hulls'
     distance, or the deepest overlap of two covering spheres."""
-    from fibrilfit.analysis.clashes import hull_distance, mesh_arrays
+    from fibrilfit.analysis.clashes import mesh_arrays
+    from fibrilfit.analysis.exact import hull_distance
     if p.domain_shape == "hull":
         v = mesh_arrays(mesh)[0]
         gap = hull_distance(v @ a[:3, :3].T + a[:3, 3], v @ b[:3, :3].T + b[:3, 3])
@@ -217,12 +218,13 @@ def test_a_cells_images_carry_the_whole_turn(scene, ff, shape):
     the image's body (the hull plus HULL_MARGIN, or the spheres), or from a body in its way
     (docs/model/domain-shapes.md#periodic)."""
     import bpy
-    from fibrilfit.analysis.clashes import hull_distance, mesh_arrays
+    from fibrilfit.analysis.clashes import mesh_arrays
+    from fibrilfit.analysis.exact import hull_distance
     from fibrilfit.analysis.verdict import chain_positions
-    from fibrilfit.builders.model import HULL_MARGIN
+    from fibrilfit.model.domains import HULL_MARGIN
     from fibrilfit.builders.periodic import CELL, ImageFollower, image_collection
     from fibrilfit.model import helix
-    from fibrilfit.structure.shape import directions
+    from fibrilfit.geom.shape import directions
     p = _cell(ff, shape)
     model = ff.pipeline.build(p, scene)
     images = [ob for ob in image_collection(model).objects
@@ -322,11 +324,11 @@ def test_spheres_from_the_tutorial_start_do_not_start_overlapping(scene, ff):
     """The 4-layer ubiquitin model at the tutorial's 4.8 Å rise: its rest layout put the
     compounds 13.8 Å into each other; spread, none overlaps, every bond at rest and every bead
     clear of the core (docs/model/domain-shapes.md#spheres-start)."""
-    from fibrilfit.analysis.clashes import spheres_clashes
+    from fibrilfit.analysis.exact import spheres_clashes
     p = _hull_params(ff, "1ubq", "spheres", layers=4, linker=10)
     model = ff.pipeline.build(p, scene)
     mats = np.array([np.array(g.matrix_world) for g in model.globules])
-    assert spheres_clashes(p.domain_spheres, mats, 0.0)[0] == []
+    assert spheres_clashes([p.domain_spheres], mats, 0.0)[0] == []
     rest = np.asarray(p.rest_lengths())
     for members in model.chain:
         pos = np.array([np.array(ob.matrix_world)[:3, 3] for ob in members])
@@ -343,7 +345,7 @@ def test_spheres_from_the_tutorial_start_do_not_start_overlapping(scene, ff):
 def _probe(scene):
     """A 0.5 Å ball, a kinematic rigid body parked far away, for convex_sweep_test probes."""
     import bpy
-    from fibrilfit.structure.shape import directions
+    from fibrilfit.geom.shape import directions
     mesh = bpy.data.meshes.new("probe")
     mesh.from_pydata([(0.5 * x, 0.5 * y, 0.5 * z) for x, y, z in directions(200)], [], [])
     probe = bpy.data.objects.new("probe", mesh)

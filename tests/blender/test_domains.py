@@ -214,8 +214,8 @@ def test_a_tdp43_like_chain_grows_each_domain_to_its_own_size_under_inflate(ff, 
     assert 0.01 <= r["inflate"]["start_scale"] <= p.grow_start
     assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8] and r["checks_agree"]
     # at the start scale no two globules (each its own size) overlapped in the start layout
-    start = ff.builders.model.chain_positions(p)
-    start = ff.builders.start_layout.inflate_layout(p, start, p.seed)[0]
+    start = ff.model.start_layout.rest_positions(p)
+    start = ff.model.start_layout.inflate_layout(p, start, p.seed)[0]
     centres = start[:, p.globule_members()].reshape(-1, 3)
     s = r["inflate"]["start_scale"]
     radii = np.tile(p.domain_radii, len(centres) // 3)
@@ -234,7 +234,7 @@ def test_the_fallback_judge_counts_each_domain_with_its_own_radius(ff):
     growth = importlib.import_module("fibrilfit.builders.growth")
     p = ff.model.params.make_params(layers=3, linker=2, globule_diameter=20,
                                     domain_diameters="10", domain_linker="1")
-    pos = ff.builders.model.chain_positions(p)  # 3 chains x [anchor, bead, g0, bead, g1]
+    pos = ff.model.start_layout.rest_positions(p)  # 3 chains x [anchor, bead, g0, bead, g1]
     pos[:, 2] = [[0, 0, 0], [0, 0, 50], [0, 0, 200]]  # the big domains apart (z 0, 50, 200)
     pos[:, 4] = [[0, 0, 400], [0, 0, 500], [14, 0, 50]]  # small ones apart, but one 14 Å from
     # a big one: radii 10 + 5 = 15

@@ -11,7 +11,8 @@ from fibrilfit.geom import polygons
 from fibrilfit.model import helix, params as P
 from fibrilfit import pipeline
 from fibrilfit.builders import build_model, find_model
-from fibrilfit.builders.model import chain_positions, stored_params
+from fibrilfit.builders.stored import stored_params
+from fibrilfit.model.start_layout import rest_positions as chain_positions
 
 # The tutorial's parameters as they were before this issue: the default must keep every one.
 OLD_DEFAULTS = {
@@ -188,7 +189,7 @@ def test_a_convex_hull_would_fill_the_notch(scene):
 
 
 def test_protofilaments_have_their_own_colours_and_clashes_turn_red(scene):
-    from fibrilfit.builders.model import CLASH_COLOR, colour_globules, part_colour
+    from fibrilfit.builders.colours import CLASH_COLOR, colour_globules, part_colour
     model = build_model(P.make_params(layers=2, linker=2, **TWO_ONE), scene)
     globules = [tuple(round(v, 4) for v in ob.color) for ob in model.globules]
     beads = [tuple(round(v, 4) for v in c[1].color) for c in model.chain]

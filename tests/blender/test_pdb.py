@@ -6,7 +6,7 @@ import pytest
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
 from fibrilfit.analysis.verdict import chain_positions as current_positions
-from fibrilfit.builders.model import chain_positions as rest_positions
+from fibrilfit.model.start_layout import rest_positions
 from fibrilfit.exports import pdb
 
 

@@ -35,7 +35,7 @@ def test_screw_matrix_and_points_agree_and_compose(ff):
                             math.remainder(m * 9 * 0.05, 2 * math.pi))
     assert np.allclose(S.screw_matrix(p, 1) @ S.screw_matrix(p, 2), S.screw_matrix(p, 3))
     # S^1 maps layer k onto layer k + M of the fibril the builder would make
-    pos = ff.builders.model.chain_positions(p.replace(periodic=0, layers=2 * 9))
+    pos = ff.model.start_layout.rest_positions(p.replace(periodic=0, layers=2 * 9))
     assert np.allclose(S.apply_points(p, 1, pos[:9]), pos[9:], atol=1e-9)
 
 
@@ -55,7 +55,8 @@ def test_a_cell_feels_only_the_gravity_its_images_share(ff):
             assert not np.allclose(turn @ g, g)  # the sideways part would turn with the image
         searching = cell.replace(protocol="inflate")
         assert np.array_equal(ff.builders.draw_gravity(searching), g)
-        assert S.axial_gravity(cell) and not S.axial_gravity(searching) and not S.axial_gravity(flat)
+        G = importlib.import_module(ff.__name__ + ".model.gravity")
+        assert G.axial_gravity(cell) and not G.axial_gravity(searching) and not G.axial_gravity(flat)
 
 
 def test_periodic_parameter_resolves_auto_and_sets_the_cell(ff):
@@ -110,9 +111,10 @@ def test_sweep_refuses_layers_beside_periodic(ff):
 
 def test_images_come_from_the_reach_not_a_fixed_cell(ff):
     S, PB = _screw(ff), _periodic(ff)
+    D = importlib.import_module(ff.__name__ + ".model.domains")
     P = ff.model.params
     short, long_ = P.make_params(periodic=13, linker=6), P.make_params(periodic=13, linker=16)
-    cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * S.body_reach(p))})  # noqa: E731
+    cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * D.body_reach(p))})  # noqa: E731
     assert cells(short) == [-2, -1, 1, 2]
     assert max(cells(long_)) >= 3  # a longer linker reaches past the second cell
     todo = PB.plan(short, list(range(13)), list(range(13)))
@@ -363,9 +365,9 @@ def test_periodic_inflate_start_layout_is_no_more_tangled_than_twenty_layers(ff)
     model uses would, in a cell, start the top chain across the bottom chain's image: median
     about 1.6 Å against 0.3 Å), and no two globules overlap at the start scale, images included."""
     from importlib import import_module
-    layout = import_module(ff.__name__ + ".builders.start_layout")
+    layout = import_module(ff.__name__ + ".model.start_layout")
     growth = import_module(ff.__name__ + ".builders.growth")
-    rest_of = import_module(ff.__name__ + ".builders.model").chain_positions
+    rest_of = import_module(ff.__name__ + ".model.start_layout").rest_positions
     S, P = _screw(ff), ff.model.params
     for linker in (5, 7):
         flat = P.make_params(linker=linker, protocol="inflate")
@@ -402,7 +404,7 @@ def test_periodic_inflate_images_start_at_the_screw_and_carry_the_scale(scene, f
     c = np.array([ob[PB.CHAIN] for ob in moving])
     i = np.array([ob[PB.INDEX] for ob in moving])
     start = np.array([[ob.matrix_world.translation[:] for ob in members] for members in model.chain])
-    rest = import_module(ff.__name__ + ".builders.model").chain_positions(p)
+    rest = import_module(ff.__name__ + ".model.start_layout").rest_positions(p)
     assert not np.allclose(start, rest)  # the inflate layout, not the rest one
     have = np.array([ob.matrix_world.translation[:] for ob in moving])
     assert np.allclose(have, S.apply_points(p, m, start[c, i]), atol=1e-3)

@@ -14,7 +14,7 @@ from fibrilfit.model import params as P
 from fibrilfit.analysis import clash_kinds, clashing_layers
 from fibrilfit.analysis.verdict import chain_positions
 from fibrilfit.builders import clear_model
-from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR, colour_globules
+from fibrilfit.builders.colours import CLASH_COLOR, COLORS, GRAZE_COLOR, colour_globules
 from fibrilfit.exports import dressing, render
 
 

@@ -10,7 +10,7 @@ from helpers import ROOT, run_cli
 
 from fibrilfit import pipeline, structure
 from fibrilfit.analysis import clash_kinds, clashing_layers
-from fibrilfit.builders.model import CLASH_COLOR, GRAZE_COLOR, colour_globules, part_colour
+from fibrilfit.builders.colours import CLASH_COLOR, GRAZE_COLOR, colour_globules, part_colour
 from fibrilfit.exports import envelope_plot, legend, render
 from fibrilfit.model import params as P
 from fibrilfit.sweep.stats import wilson

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from fibrilfit.model import params as P
-from fibrilfit.builders.model import bond_pivots, chain_positions
-from fibrilfit.builders.start_layout import fan_frames, inflate_layout
+from fibrilfit.model.start_layout import bond_pivots, fan_frames, inflate_layout
+from fibrilfit.model.start_layout import rest_positions as chain_positions
 from fibrilfit.search import restarts
 from helpers import ROOT
 

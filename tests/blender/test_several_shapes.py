@@ -43,7 +43,7 @@ def _world(m, local):
 def _body(ob, p, shape):
     """A globule's body in the world from its domain's own rows (not from the scene's mesh):
     ("points", its hull points) or ("spheres", [x, y, z, r])."""
-    from fibrilfit.structure.shape import hull_points
+    from fibrilfit.geom.shape import hull_points
     m = np.array(ob.matrix_world)
     rows = p.domain_rows(p.globule_members().index(ob["fibrilfit_index"]))
     if shape == "hull":
@@ -54,7 +54,7 @@ def _body(ob, p, shape):
 def _gap(a, b) -> float:
     """Distance (Å) between two bodies, ("points", convex hull points) or ("spheres", rows):
     GJK between hulls; zero or less: they meet."""
-    from fibrilfit.analysis.clashes import hull_distance
+    from fibrilfit.analysis.exact import hull_distance
     (ka, a), (kb, b) = sorted([a, b], key=lambda x: x[0])
     if ka == kb == "points":
         return hull_distance(a, b)
@@ -107,8 +107,8 @@ def _overlaps_at_frame_1(model, p, shape, chains):
 def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shape):
     """Each globule carries its own domain's mesh (ubiquitin's, then GFP's), the run is judged
     by both checks on those meshes, and the JSON names domains as for spheres."""
-    from fibrilfit.builders.model import globule_mesh
-    from fibrilfit.structure.shape import hull_points
+    from fibrilfit.builders.layers import globule_mesh
+    from fibrilfit.geom.shape import hull_points
     p = _params(ff, shape)
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
@@ -216,9 +216,9 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
     import bpy
     from mathutils import Matrix
     from mathutils.bvhtree import BVHTree
-    from fibrilfit.analysis.clashes import hull_distance
+    from fibrilfit.analysis.exact import hull_distance
     from fibrilfit.analysis.verdict import check_model
-    from fibrilfit.structure.shape import hull_points
+    from fibrilfit.geom.shape import hull_points
     p = _params(ff, "hull", layers=3)
     model = ff.pipeline.build(p, scene)
     g = model.globules  # chain-major: globule 2c + k is domain k of chain c

@@ -20,7 +20,7 @@ from fibrilfit.ui import properties, registration
 from fibrilfit.analysis import bvh_clashes, clash_kinds
 from fibrilfit.analysis.verdict import world_matrices
 from fibrilfit.builders import find_model, model_stage
-from fibrilfit.builders.model import CLASH_COLOR, COLORS, GRAZE_COLOR
+from fibrilfit.builders.colours import CLASH_COLOR, COLORS, GRAZE_COLOR
 from fibrilfit.ui.operators import common, simulate
 from fibrilfit.ui import panels
 
@@ -386,7 +386,7 @@ def test_join_globules_adds_a_mesh_and_leaves_the_simulation_intact(ui, scene):
     result = stored_result(scene)
     assert len({f for pair in between for f in pair}) == result["intersecting_faces"] > 0
     pairs = {tuple(sorted((int(layer[a]), int(layer[b])))) for a, b in between}
-    assert pairs == bvh_clashes(model.globules[0].data, world_matrices(model.globules))[1]
+    assert pairs == bvh_clashes([model.globules[0].data], world_matrices(model.globules))[1]
     assert pairs <= {tuple(p[:2]) for p in result["clashing_pairs"]}
     run("replicate_layers")  # a rebuild removes the joined copy with the model
     assert not [ob for ob in scene.objects if ob.get("fibrilfit") == "joined"]

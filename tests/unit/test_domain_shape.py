@@ -1,10 +1,11 @@
-"""The domain's real shape (structure/shape.py, issue #24): hull atoms, covering spheres, joint,
+"""The domain's real shape (geom/shape.py, issue #24): hull atoms, covering spheres, joint,
 and the parameters that carry them. No bpy: the built meshes are tested in
 tests/blender/test_domain_shapes.py."""
 import numpy as np
 import pytest
 from fibrilfit.model import params as P
-from fibrilfit.structure import body_frame, measure_domain, model_values, reading, shape
+from fibrilfit.geom import shape
+from fibrilfit.structure import body_frame, measure_domain, model_values, reading
 from helpers import ROOT
 
 DATA = ROOT / "tests" / "data"
@@ -74,14 +75,14 @@ def test_params_take_a_shape_only_with_its_geometry():
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])
 def test_a_real_shapes_reach_holds_its_body(shape):
-    """A cell's images are built and moved by the shape's reach (helix.globule_reach): it holds
+    """A cell's images are built and moved by the shape's reach (domains.globule_reach): it holds
     the hull's points plus Bullet's margin (the spheres), and exceeds GFP's Rg sphere
     (docs/model/domain-shapes.md#periodic)."""
-    from fibrilfit.model import helix
-    from fibrilfit.structure import shape as sh
+    from fibrilfit.model import domains
+    from fibrilfit.geom import shape as sh
     dom = measure_domain(DATA / "1gfl.pdb.gz")
     p = P.make_params(domain_shape=shape, **model_values(None, dom, shape=shape))
-    reach = helix.globule_reach(p)
+    reach = domains.globule_reach(p)
     if shape == "hull":
         far = np.linalg.norm(sh.hull_points(p.domain_atoms), axis=1).max() + 0.1  # HULL_MARGIN
         assert far <= reach < far + 0.2
@@ -89,8 +90,8 @@ def test_a_real_shapes_reach_holds_its_body(shape):
         s = np.asarray(p.domain_spheres)
         assert reach == pytest.approx((np.linalg.norm(s[:, :3], axis=1) + s[:, 3]).max())
     assert reach > p.globule_radius + 5.0
-    assert helix.body_radii(p)[p.linker] == reach
-    assert list(helix.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()  # the sphere's: as before
+    assert domains.body_radii(p)[p.linker] == reach
+    assert list(domains.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()  # the sphere's: as before
 
 
 def test_several_real_domains_carry_each_domains_shape_joint_and_exit():

@@ -9,8 +9,8 @@ from ...model import params as P
 from ... import pipeline
 from .. import properties
 from ...analysis import clash_kinds
-from ...builders.model import (STAGES, colour_globules, find_model, model_stage, set_stage,
-                               update_params)
+from ...builders.colours import colour_globules
+from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
 from ...builders.physics import SceneConflict
 from ...exports.pdb import PdbError
 from ...exports.render import RenderError

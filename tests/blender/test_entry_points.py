@@ -12,8 +12,11 @@ import bpy
 import pytest
 from helpers import ROOT, run_cli
 
+import fibrilfit.cli.entry  # noqa: F401  (ff.cli.entry: a submodule is an attribute once imported)
+
 SMALL = ["--layers", "4", "--linker", "3", "--frames", "40", "--seed", "2"]
 SCENARIO = pathlib.Path(__file__).with_name("entry_scenario.py")
+PACKAGE = ROOT / "fibrilfit"  # what an old Blender enables as the add-on (not the repository root)
 ONE_LINE = re.compile(r"fibrilfit: error: [^\n]+\n?")
 
 
@@ -171,7 +174,7 @@ def test_a_real_old_blender_is_refused_in_one_line(how, tmp_path):
         args = ["-P", str(ROOT / "headless.py"), "--", "run", "--json", str(tmp_path / "r.json")]
     else:  # enabling the add-on (Blender < 4.2 knows it by its bl_info)
         (tmp_path / "addons").mkdir()
-        (tmp_path / "addons" / "fibrilfit").symlink_to(ROOT, target_is_directory=True)
+        (tmp_path / "addons" / "fibrilfit").symlink_to(PACKAGE, target_is_directory=True)
         env = {"BLENDER_USER_SCRIPTS": str(tmp_path), "PATH": "/usr/bin:/bin",
                "HOME": str(tmp_path)}
         args = ["--addons", "fibrilfit"]
@@ -200,7 +203,7 @@ def test_a_real_old_blender_with_a_window_keeps_running_with_the_addon_inert(tmp
     """With a window, the refusal must not quit Blender: one line, a popup, nothing registered."""
     path, version = OLD
     (tmp_path / "addons").mkdir()
-    (tmp_path / "addons" / "fibrilfit").symlink_to(ROOT, target_is_directory=True)
+    (tmp_path / "addons" / "fibrilfit").symlink_to(PACKAGE, target_is_directory=True)
     (tmp_path / "probe.py").write_text(UI_PROBE)
     env = {"BLENDER_USER_SCRIPTS": str(tmp_path), "PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
     out = subprocess.run(["xvfb-run", "-a", path, "--factory-startup", "--addons", "fibrilfit",

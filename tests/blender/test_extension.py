@@ -101,7 +101,9 @@ def test_the_installed_steps_give_a_verdict(installed):
     assert [stage for _, _, stage in steps.values()] == [
         "slab", "anchor", "linker", "globule", "layers", "baked", "checked"]
     props = installed["props"]
-    assert props["verdict"] in ("successful", "intersection")
+    # VALUES are test_ui.SMALL, which clashes (test_ui asserts it; measured: 30 faces, 3 pairs
+    # on bpy 4.2, 5.0 and 5.2)
+    assert props["verdict"] == "intersection" and props["clash_count"] > 0
     assert props["verdict"] == installed["steps_result"]["verdict"]
     assert props["clash_count"] == len(installed["steps_result"]["clashing_pairs"])
 

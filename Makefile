@@ -91,8 +91,9 @@ test-alone: $(VENV)/.installed
 
 # Only the slow tests, on every bpy (pytest's exit 5, "none selected", counts as a pass).
 test-slow: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
-	for py in $(VENV)/bin/python $(VENV_LTS)/bin/python $(VENV_52)/bin/python; do \
-	  $$py $(PYTEST) $(BLENDER_TESTS) -m slow $(PYTEST_ARGS); rc=$$?; \
+	for venv in $(VENV) $(VENV_LTS) $(VENV_52); do \
+	  $$venv/bin/python $(PYTEST) --junitxml=out/junit/$@-$$(basename $$venv).xml \
+	    $(BLENDER_TESTS) -m slow $(PYTEST_ARGS); rc=$$?; \
 	  [ $$rc -eq 0 ] || [ $$rc -eq 5 ] || exit $$rc; \
 	done
 

@@ -109,8 +109,7 @@ def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scen
     assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8]
     assert r["envelope"]["n"] == 24
     assert len(r["globule_centres"]) == 24 and r["checks_agree"]
-    # every bond of the whole chain is judged (the worst is past the first domain: measured
-    # 0.068846 on the whole chain, the same on all three bpy)
+    # the worst of the whole chain's bonds (100 a chain): measured 0.068846 on all three bpy
     assert r["max_bond_stretch"] == pytest.approx(0.0688, abs=0.002)
     # no two domains overlap deeper than the sphere check's tolerance unless it says so
     centres = np.array(r["globule_centres"])

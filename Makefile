@@ -21,7 +21,7 @@ VALIDATE_ARGS ?=
 UNIT_TESTS ?= tests/unit
 BLENDER_TESTS ?= tests/blender
 # Every run prints its 25 slowest tests and keeps every test's duration in out/junit/<target>.xml;
-# pyproject sets the per-test timeout (pytest-timeout: 300 s, a slow test 3600 s, tests/conftest.py).
+# pyproject sets the per-test timeout (pytest-timeout: 300 s, a slow test 7200 s, tests/conftest.py).
 PYTEST = -m pytest --durations=25 --junitxml=out/junit/$@.xml
 
 # `make test` leaves out @pytest.mark.slow (long physics runs); `make test-slow` runs only those.

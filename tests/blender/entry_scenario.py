@@ -20,7 +20,8 @@ if mode == "old":
     spec.loader.exec_module(blender_check)
     blender_check.found = lambda: (3, 4, 1)
 elif mode == "crash":
-    import fibrilfit  # the installed checkout: headless.py finds it in sys.modules
+    sys.path.insert(0, str(ROOT))  # this checkout, as pyproject's pythonpath gives the tests
+    import fibrilfit  # headless.py finds it in sys.modules
 
     def broken(*_args, **_kwargs):
         raise ZeroDivisionError("float division by zero")

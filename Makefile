@@ -122,7 +122,7 @@ test-cluster: $(VENV)/.installed
 # cached outside the clone and keyed on its package list), the zip installed with Blender's own
 # extension command, then tests/realblender/: the command line and headless.py against the bpy
 # module's verdicts, and the sidebar under Xvfb (real clicks). A screen that differs from its
-# docs/images/*.png fails, its shot and difference in out/realblender/screens/, unless accepted:
+# docs/images/*.png fails, its shot and difference in out/realblender/gui/screens/, unless accepted:
 # `make test-blender ACCEPT_SCREENS=1` rewrites docs/images/ with the new shots.
 # A chroot that cannot be built fails here with one line, never a silent pass.
 ACCEPT_SCREENS ?=

@@ -25,8 +25,13 @@ def _fits(scene, ff, linker, cell):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("cell", ["auto", 26])
-def test_the_cell_fits_linker_7_in_four_of_five_seeds(scene, ff, cell):
-    assert _fits(scene, ff, 7, cell) >= 4
+def test_the_cell_fits_linker_7_in_most_seeds(scene, ff, cell):
+    """Measured 4 of 5 on both cells (seed 2 misses). The bound leaves one seed of room: a seed's
+    fit turns on its last regrows (4 regrows gave 2 of 5, the near cycles' 5 more gave 4: the
+    module's docstring), so a change to the schedule or the physics that keeps the claim may
+    move one seed; a majority still says the search reaches the threshold from most starts.
+    Linker 5 (below) has no such room: one fit there would move the threshold itself."""
+    assert _fits(scene, ff, 7, cell) >= 3
 
 
 @pytest.mark.slow

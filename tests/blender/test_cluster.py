@@ -1,6 +1,7 @@
 """Sweeps through a real SLURM (`--executor slurm`): `make test-cluster` sets up a single-node SLURM
-(.ci/slurm/setup.sh) and runs this file with `-m cluster`. Skipped otherwise, so `make test`
-never submits a job, even where a SLURM answers."""
+(.ci/slurm/setup.sh) and runs this file with `-m cluster` and FIBRILFIT_REQUIRE_SLURM=1, under
+which a SLURM with no node up fails every test. Skipped otherwise, so `make test` never submits a
+job, even where a SLURM answers."""
 import json
 import os
 import shutil
@@ -43,6 +44,8 @@ def slurm_up(request, node_state):
     if "cluster" not in (request.config.getoption("markexpr") or ""):
         pytest.skip("submits SLURM jobs: run with -m cluster (make test-cluster)")
     if not any(s in node_state for s in ("idle", "mixed", "allocated", "completing")):
+        if os.environ.get("FIBRILFIT_REQUIRE_SLURM") == "1":  # make test-cluster: a dead SLURM
+            pytest.fail(f"no SLURM node is up ({node_state})")  # fails, never a green skip
         pytest.skip(f"no SLURM node is up ({node_state}): run make test-cluster")
 
 

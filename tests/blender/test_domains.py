@@ -102,12 +102,15 @@ def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scen
     assert len(model.globules) == 24
     scales = [round(ob.scale[0], 4) for ob in model.globules[:3]]
     assert scales == [1.0, 1.0, round(30 / 31, 4)]
-    assert r["verdict"] in ("successful", "intersection") and "accommodated" in r
+    # measured on bpy 4.2, 5.0 and 5.2: no clash, but a bond stretched 6.88 %, past the 5 %
+    # tolerance (40 frames of the tutorial protocol: not a fit)
+    assert r["verdict"] == "successful" and r["clashing_pairs"] == []
+    assert r["linker_intact"] is False and r["accommodated"] is False
     assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8]
     assert r["envelope"]["n"] == 24
     assert len(r["globule_centres"]) == 24 and r["checks_agree"]
-    # every bond of the whole chain is judged: the stretch is over 100 bonds, within reason
-    assert -1.0 < r["max_bond_stretch"] < 10.0
+    # the worst of the whole chain's bonds (100 a chain): measured 0.068846 on all three bpy
+    assert r["max_bond_stretch"] == pytest.approx(0.0688, abs=0.002)
     # no two domains overlap deeper than the sphere check's tolerance unless it says so
     centres = np.array(r["globule_centres"])
     radii = np.tile(p.domain_radii, p.chains)
@@ -210,7 +213,8 @@ def test_a_tdp43_like_chain_grows_each_domain_to_its_own_size_under_inflate(ff, 
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert [round(ob.scale[0], 4) for ob in model.globules[:3]] == [1.0, 1.0, round(30 / 31, 4)]
-    assert r["inflate"]["cycles"] and r["verdict"] in ("successful", "intersection")
+    # measured on bpy 4.2, 5.0 and 5.2: inflate fits it (no clash, worst stretch 0.0008 %)
+    assert r["inflate"]["cycles"] and r["verdict"] == "successful" and r["accommodated"]
     assert 0.01 <= r["inflate"]["start_scale"] <= p.grow_start
     assert [e["n"] for e in r["domain_envelopes"]] == [8, 8, 8] and r["checks_agree"]
     # at the start scale no two globules (each its own size) overlapped in the start layout
@@ -275,8 +279,10 @@ def test_a_tdp43_like_chain_in_a_periodic_cell_images_every_member(ff, scene):
     # images of every member kind: beads, each domain, each at its original's scale
     seen = _images_follow_with_their_scale(ff, model)
     assert {8, 13, 18} <= seen and set(range(1, 19)) - {8, 13, 18} <= seen
-    assert r["periodic"]["images"]["moving"] > 0 and r["verdict"] in ("successful",
-                                                                      "intersection")
+    # linker 8 and 4, 4 on a 13-layer cell jam (measured on bpy 4.2, 5.0 and 5.2: 487 faces,
+    # 41 pairs, 16 by the spheres; worst stretch 297 %)
+    assert r["periodic"]["images"]["moving"] > 0 and r["verdict"] == "intersection"
+    assert r["sphere_check"]["clashing_pairs"] and r["accommodated"] is False
     assert [e["n"] for e in r["domain_envelopes"]] == [26, 26, 26] and r["checks_agree"]
     mine = {k for k, d in _spheres_of_the_cell(p, np.array(r["globule_centres"]),
                                                r["periodic"]["check_cells"]).items()

@@ -101,7 +101,9 @@ def test_the_installed_steps_give_a_verdict(installed):
     assert [stage for _, _, stage in steps.values()] == [
         "slab", "anchor", "linker", "globule", "layers", "baked", "checked"]
     props = installed["props"]
-    assert props["verdict"] in ("successful", "intersection")
+    # VALUES are test_ui.SMALL, which clashes (test_ui asserts it; measured: 30 faces, 3 pairs
+    # on bpy 4.2, 5.0 and 5.2)
+    assert props["verdict"] == "intersection" and props["clash_count"] > 0
     assert props["verdict"] == installed["steps_result"]["verdict"]
     assert props["clash_count"] == len(installed["steps_result"]["clashing_pairs"])
 
@@ -178,4 +180,5 @@ def test_the_installed_copy_reads_structures_with_its_own_gemmi_wheel(installed)
     assert pathlib.Path(local).is_relative_to(installed["home"])
     assert pathlib.Path(installed["gemmi_file"]).is_relative_to(local)
     rise, twist, k = installed["fibril"]
-    assert abs(rise - 4.825) < 0.1 and twist < 0 and k == 2
+    # tests/data/README.md's 6CU7: 4.825 Å per layer (the 4.8 default fails), left-handed, 2
+    assert abs(rise - 4.825) < 0.002 and twist < 0 and k == 2

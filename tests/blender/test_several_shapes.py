@@ -112,7 +112,10 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
     p = _params(ff, shape)
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
-    assert r["verdict"] in ("successful", "intersection") and r["checks_agree"], r["warnings"]
+    # measured on bpy 4.2, 5.0 and 5.2: both shapes fit at linkers 6, 6 on 3 layers (no clash;
+    # worst stretch 4.8 % for the hulls, 0.003 % for the spheres)
+    assert r["verdict"] == "successful" and r["accommodated"], r["clashing_pairs"]
+    assert r["checks_agree"], r["warnings"]
     assert r["sphere_check"]["shape"] == shape and "clashing_domains" in r
     assert [e["n"] for e in r["domain_envelopes"]] == [3, 3]
     want = {"hull": "CONVEX_HULL", "spheres": "COMPOUND"}[shape]

@@ -44,7 +44,7 @@ def test_an_explicit_option_wins_and_no_file_means_no_block(ff, scene, tmp_path)
                         *FAST, "--stop-after", "build", "--json", str(out)]) == 0
     r = json.loads(out.read_text())
     assert r["params"]["twist"] == 0.02 and "twist" in r["structure"]["overridden"]
-    assert r["params"]["rise"] == pytest.approx(4.825, abs=0.1)
+    assert r["params"]["rise"] == pytest.approx(4.825, abs=0.002)  # tests/data/README.md; 4.8 fails
     # the protofilament model (issue "Real fibril geometry") takes the rest
     assert r["structure"]["not_in_model"] == []
     assert r["params"]["protofilaments"] == 2

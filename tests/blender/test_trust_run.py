@@ -26,7 +26,8 @@ def test_degrees_with_a_unit_and_json_to_stdout():
     assert r["params"]["twist"] == pytest.approx(-0.016773, abs=1e-6)
     assert "twist -0.961° per layer" in cp.stderr and "answer:" in cp.stderr
     assert r["sources"]["twist"] == "option" and r["sources"]["rise"] == "default"
-    assert r["answer"] in ("fits", "borderline", "no layout found")
+    # measured on bpy 4.2, 5.0 and 5.2: no clash, nothing grazing, worst stretch -0.7 %
+    assert r["answer"] == "fits" and r["accommodated"]
     assert isinstance(r["warnings"], list)
 
 

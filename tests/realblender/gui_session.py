@@ -8,6 +8,10 @@ screenshots are the X root (`import -window root`), cropped to the sidebar and t
 
 Writes OUT_DIR/session.json (what the test asserts on) and the PNGs; exits non-zero with one
 line on stderr when a step cannot be done (no display, Blender never drew, no button found).
+The kept screenshots go to OUT_DIR/screens/, each compared with its copy in SHOTS_DIR (the docs'
+images, never written here): one that differs is listed in session.json's "changed" with, where
+the sizes agree, its difference OUT_DIR/screens/diff-<name> (test_gui.py fails on it unless the
+change is accepted).
 """
 import json
 import os
@@ -55,6 +59,8 @@ def runs(indices):
 class Session:
     def __init__(self, out: pathlib.Path, shots: pathlib.Path):
         self.out, self.shots = out, shots
+        self.screens = out / "screens"
+        self.screens.mkdir(parents=True, exist_ok=True)
         self.probe = out / "probe"
         shutil.rmtree(self.probe, ignore_errors=True)
         self.probe.mkdir(parents=True)
@@ -143,28 +149,36 @@ class Session:
                        stderr=subprocess.DEVNULL)
         return path
 
-    def crop(self, src, rect, dst):
+    def crop(self, src, rect, name):
+        """The screenshot `name` cropped to rect into OUT_DIR/screens/, and compared with the
+        docs' copy SHOTS_DIR/name."""
         x0, y0, x1, y1 = rect
-        new = dst.with_name(f".new-{dst.name}")
+        new = self.screens / name
         subprocess.run(["convert", str(src), "-crop", f"{x1 - x0}x{y1 - y0}+{x0}+{y0}", "+repage",
                         "-strip", "-colors", "256", str(new)], check=True)  # small for git
-        if self.same_picture(dst, new):  # the docs' copy stays: no change for git to show
-            new.unlink()
-        else:
-            new.replace(dst)
-        self.log.setdefault("screenshots", []).append(str(dst.name))
+        change = self.difference(self.shots / name, new, self.screens / f"diff-{name}")
+        if change:
+            self.log.setdefault("changed", {})[name] = change
+        self.log.setdefault("screenshots", []).append(name)
 
     @staticmethod
-    def same_picture(old, new) -> bool:
-        """Same size and no pixel apart by more than 20 % of the range. Two runs' crops of the
-        same screen differ in a few hundred dithered pixels of the 256-colour palette (measured
-        2026-11-25 on result.png, 1322 × 876: 1325 pixels differ at all, 251 by over 2 %, 5 by
-        over 10 %, none by 15 %); a changed word or colour differs by far more."""
+    def difference(old, new, diff) -> str:
+        """"" when old and new are the same picture: same size and no pixel apart by more than
+        20 % of the range. Two runs' crops of the same screen differ in a few hundred dithered
+        pixels of the 256-colour palette (measured 2026-11-25 on result.png, 1322 × 876: 1325
+        pixels differ at all, 251 by over 2 %, 5 by over 10 %, none by 15 %); a changed word or
+        colour differs by far more. Otherwise what differs, the differing pixels marked in diff."""
         if not old.exists():
-            return False
+            return f"no {old.name} in the docs yet"
         cp = subprocess.run(["compare", "-metric", "AE", "-fuzz", "20%", str(old), str(new),
-                             "null:"], capture_output=True, text=True)
-        return cp.returncode == 0 and cp.stderr.strip().split()[:1] == ["0"]
+                             str(diff)], capture_output=True, text=True)
+        count = cp.stderr.strip().split()[:1]
+        if cp.returncode == 0 and count == ["0"]:
+            diff.unlink(missing_ok=True)
+            return ""
+        if cp.returncode == 1:
+            return f"{count[0]} pixels differ by over 20 % (marked in {diff.name})"
+        return f"not comparable ({cp.stderr.strip()[:200]})"  # e.g. another size
 
     def pixels(self, path):
         raw = subprocess.run(["convert", str(path), "-depth", "8", "rgb:-"], check=True,
@@ -196,7 +210,7 @@ class Session:
         self.command("unmark", "normal")
         run_all = self.find_run_all(marked, ui)
         before = self.screenshot(self.out / "before.png")
-        self.crop(before, self.panel_rect(marked, ui), self.shots / "panel-before.png")
+        self.crop(before, self.panel_rect(marked, ui), "panel-before.png")
         self.log["state_before"] = self.state()
         # Press Run all: a real click.
         t0 = time.monotonic()
@@ -212,9 +226,8 @@ class Session:
         marked = self.pixels(self.screenshot(self.out / "marked-after.png"))
         self.command("unmark", "normal")
         after = self.screenshot(self.out / "after.png")
-        self.crop(after, self.panel_rect(marked, ui), self.shots / "panel-after.png")
-        self.crop(after, self.screen_rect(after_state["views"][0]["area"]),
-                  self.shots / "result.png")
+        self.crop(after, self.panel_rect(marked, ui), "panel-after.png")
+        self.crop(after, self.screen_rect(after_state["views"][0]["area"]), "result.png")
         self.log["state_after"] = after_state
         self.log["after_pixels"] = self.colour_counts(self.pixels(after),
                                                       self.screen_rect(after_state["views"][0]
@@ -315,7 +328,6 @@ class Session:
 def main():
     out, shots = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
     out.mkdir(parents=True, exist_ok=True)
-    shots.mkdir(parents=True, exist_ok=True)
     session = Session(out, shots)
     try:
         session.run()

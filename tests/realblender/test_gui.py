@@ -2,15 +2,21 @@
 click opens the FibrilFit tab, a click presses Run all (real X input through xdotool, found on
 screen; gui_session.py). The verdict the panel shows must be the headless one for the same
 values, the model must be framed in the 3D View and coloured in Solid mode, and the user's
-objects and shading left alone. The screenshots go to docs/images/ for the README and docs."""
+objects and shading left alone. The screenshots are those of docs/images/ (the README and docs
+show them): a screen that changed fails, its new shot and the difference in
+out/realblender/gui/screens/, unless FIBRILFIT_ACCEPT_SCREENS=1 (`make test-blender
+ACCEPT_SCREENS=1`) accepts the change, which copies the new shots into docs/images/."""
 import json
+import os
+import shutil
 import struct
 
 import pytest
 
 from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
 
-SHOTS = ROOT / "docs" / "images"
+SHOTS = ROOT / "docs" / "images"  # the accepted screens
+SCREENS = OUT / "gui" / "screens"  # this run's
 FACTORY_OBJECTS = {"Cube": [0.0, 0.0, 0.0]}
 
 
@@ -66,9 +72,20 @@ def test_screenshots_for_the_docs(session):
     view = session["state_after"]["views"][0]
     ui, area = view["regions"]["UI"], view["area"]
     for name in ("panel-before.png", "panel-after.png"):
-        width, height = png_size(SHOTS / name)
+        width, height = png_size(SCREENS / name)
         assert width == ui["width"] and 300 < height <= ui["height"], (name, width, height)
         assert name in session["screenshots"]
     # after the run the verdict's box makes the panel taller
-    assert png_size(SHOTS / "panel-after.png")[1] > png_size(SHOTS / "panel-before.png")[1]
-    assert png_size(SHOTS / "result.png") == (area["width"], area["height"])
+    assert png_size(SCREENS / "panel-after.png")[1] > png_size(SCREENS / "panel-before.png")[1]
+    assert png_size(SCREENS / "result.png") == (area["width"], area["height"])
+
+
+def test_the_screens_are_the_docs_unless_a_change_is_accepted(session):
+    changed = session.get("changed", {})
+    if os.environ.get("FIBRILFIT_ACCEPT_SCREENS") == "1":
+        for name in changed:
+            shutil.copyfile(SCREENS / name, SHOTS / name)
+        return
+    assert not changed, (f"screens differ from docs/images/ (new shots and diff-*.png in "
+                         f"{SCREENS}): {changed}; if the change is meant, accept it with "
+                         "`make test-blender ACCEPT_SCREENS=1` and commit docs/images/")

@@ -31,6 +31,11 @@ FIBRILS = {
     "8a9l": dict(rise=4.769, twist=0.867, K=1, pf=None, core=[31, 100], chains=None,
                  C=(100, 25.2, 25.2), N=(31, 33.9, 33.9), buried=set()),
 }
+# How close a measured rise must be to tests/data/README.md's: within its rounding (3 decimals)
+# and a little, so that the 4.8 Å default fails where the structure differs (7YMN's 4.796 by
+# 0.004). 2BEG's axis is approximate (README): its 4.61 ± 0.06 is measured as 4.627 here.
+RISE_ABS = {"2beg_model1": 0.03}
+RISE_ABS_DEFAULT = 0.002
 # 2BEG's L17 is not core: its CA is 3.56 Å from L17 of the next layer (C -> B), outside 4.2-5.6 Å.
 DOMAINS = {"1ubq": (None, None, 11.73, 30.3), "1ubq_no_tail": (None, "1-72", 11.12, 28.7),
            "1gfl": ("A", None, 17.02, 43.9)}
@@ -71,7 +76,7 @@ def test_importing_structure_needs_no_gemmi_and_no_bpy():
 @pytest.mark.parametrize("name", FIBRILS)
 def test_helical_geometry(measured, name):
     ref, g = FIBRILS[name], measured[(name, "C")]
-    assert g.rise == pytest.approx(ref["rise"], abs=0.1)
+    assert g.rise == pytest.approx(ref["rise"], abs=RISE_ABS.get(name, RISE_ABS_DEFAULT))
     assert g.twist == pytest.approx(math.radians(ref["twist"]), abs=0.1 * DEG)
     assert math.copysign(1, g.twist) == math.copysign(1, ref["twist"])
     assert g.protofilaments == ref["K"]

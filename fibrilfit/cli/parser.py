@@ -103,6 +103,15 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
                              "beside it win")
 
 
+def add_model_command(sub, name: str, help_: str, *, as_lists: bool = False):
+    """A subcommand that builds models: every parameter, --case and the structure files."""
+    command = sub.add_parser(name, help=help_)
+    add_param_options(command, as_lists=as_lists)
+    add_case_option(command)
+    add_structure_options(command)
+    return command
+
+
 def _default_text(f) -> str:
     """'default 0.034 (1.95°)': the default, in degrees too for an angle; how a derived one
     is worked out."""
@@ -150,32 +159,23 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
                                                         "standard error)")
     from ..search import command as search_command  # argparse only: nothing runs at import
     search_command.add_restart_options(run)
-    sweep = sub.add_parser("sweep", help="run a grid of models (lists, ranges, seeds) on local "
-                                         "processes or a Dask cluster and summarise it")
-    add_param_options(sweep, as_lists=True)
-    add_case_option(sweep)
-    add_structure_options(sweep)
+    sweep = add_model_command(sub, "sweep", "run a grid of models (lists, ranges, seeds) on "
+                              "local processes or a Dask cluster and summarise it", as_lists=True)
     from ..sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
     sweep_options.add_arguments(sweep)
-    minimal = sub.add_parser(
-        "minimal-linker", help="for each globule diameter, the shortest linker with an "
+    minimal = add_model_command(
+        sub, "minimal-linker", "for each globule diameter, the shortest linker with an "
                                "accommodated layout, searched with restarts (protocol inflate "
                                "unless --protocol says otherwise)")
-    add_param_options(minimal)
-    add_case_option(minimal)
-    add_structure_options(minimal)
     for action in minimal._actions:
         if action.dest == "globule_diameter":
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
     search_command.add_minimal_arguments(minimal)
-    report = sub.add_parser(
-        "report", help="the whole answer in one page: P(fit) at the linker with restarts, the "
+    report = add_model_command(
+        sub, "report", "the whole answer in one page: P(fit) at the linker with restarts, the "
                        "minimal linker, the best layout rendered, the envelope "
                        "(DIR/report.html, DIR/report.json)")
-    add_param_options(report)
-    add_case_option(report)
-    add_structure_options(report)
     export_options.add_render_options(report.add_argument_group("the report's picture"))
     from ..search import report as search_report  # argparse only: nothing runs at import
     search_report.add_arguments(report)

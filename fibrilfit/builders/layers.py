@@ -92,14 +92,19 @@ class LayerBuilder:
         for i, mesh in enumerate(self.mesh["pieces"]):
             ob = tag(bpy.data.objects.new(f"FF{k:04d} core piece {i}", mesh), "core_piece")
             ob[LAYER], ob[INDEX] = k, i
-            ob.parent = slab
-            ob.hide_render = True
-            ob.display_type = "WIRE"
-            self.pieces_coll.objects.link(ob)
-            self.bodies.objects.link(ob)
-            ob.rigid_body.type = "PASSIVE"
-            ob.rigid_body.collision_shape = "CONVEX_HULL"
+            self._compound_part(ob, slab, self.pieces_coll, "PASSIVE", "CONVEX_HULL")
             self.placed.setdefault("core_piece", []).append((ob, k, 0))
+
+    def _compound_part(self, ob, parent, coll, kind: str, shape: str) -> None:
+        """A hidden wire child body of `parent` (a core piece of its slab, a covering sphere of
+        its globule): in `coll` and the rigid-body world, with its kind and collision shape."""
+        ob.parent = parent
+        ob.hide_render = True
+        ob.display_type = "WIRE"
+        coll.objects.link(ob)
+        self.bodies.objects.link(ob)
+        ob.rigid_body.type = kind
+        ob.rigid_body.collision_shape = shape
 
     def _name(self, k, j):
         return f"FF{k:04d}" if self.pfs == 1 else f"FF{k:04d}.{j}"
@@ -156,14 +161,8 @@ class LayerBuilder:
         for n, ((x, y, z, _), mesh) in enumerate(zip(spheres, self.mesh[key])):
             child = tag(bpy.data.objects.new(f"{ob.name} sphere {n}", mesh), "globule_sphere")
             child[LAYER], child[INDEX] = k, n
-            child.parent = ob
             child.location = (x, y, z)
-            child.hide_render = True
-            child.display_type = "WIRE"
-            self.spheres_coll.objects.link(child)
-            self.bodies.objects.link(child)
-            child.rigid_body.type = "ACTIVE"
-            child.rigid_body.collision_shape = "SPHERE"
+            self._compound_part(child, ob, self.spheres_coll, "ACTIVE", "SPHERE")
             self.placed.setdefault("globule_sphere", []).append((child, ob))
 
     def _bond(self, k, j, i):

@@ -152,7 +152,7 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt
 	touch $@
 
-# Speed and memory side by side with ../shared/bench's baselines; see docs/benchmarks.md.
+# Speed and memory side by side with bench/baselines/ (the seed tutorial's port, pybullet); see docs/benchmarks.md.
 bench: $(VENV)/.bench-installed
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
 

@@ -14,7 +14,7 @@ trust, not absolute seconds):
     analysis at 2000 layers       < 1 s (BVH + analytic check)
 
 Every measurement is a fresh subprocess of this interpreter (`run.py --worker NAME ...`); the
-baselines (seed_port.py, bullet_peer.py) are looked for in ../shared/bench beside the clone, or
+baselines (seed_port.py, bullet_peer.py) are in bench/baselines/ (copied, with provenance), or
 in $FIBRILFIT_BASELINES.
 """
 from __future__ import annotations
@@ -32,7 +32,7 @@ import tempfile
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-BASELINES = pathlib.Path(os.environ.get("FIBRILFIT_BASELINES", ROOT.parent / "shared" / "bench"))
+BASELINES = pathlib.Path(os.environ.get("FIBRILFIT_BASELINES", ROOT / "bench" / "baselines"))
 BULLET_STEPS = 250 * 10  # bullet_peer.py steps 250 frames x 10 substeps, whatever the layers
 MEASUREMENTS = ("build100", "scaling", "job20", "bake", "analysis")
 

@@ -374,7 +374,7 @@ def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
         if anchor.buried:
             warnings.append(f"anchor {c.name} {anchor.residue_name}{res} (protofilament {k}) is "
                             f"buried: core atoms reach {depth:.1f} Å farther out in its sector; "
-                            "not a free exit for a linker")
+                            "the linker's way out is measured (the result's `exit`)")
         anchors.append(anchor)
     return anchors
 

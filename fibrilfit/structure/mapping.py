@@ -55,7 +55,25 @@ def exit_values(fibril: FibrilGeometry, residue_radius: float = RESIDUE_RADIUS,
         return {}
     end = way["path"][-1]
     return {"exit_residues": spent, "exit_path": [list(p) for p in way["path"]],
-            "anchor": anchor_outside(fibril.core_outline, end[:2], residue_radius)}
+            "anchor": clear_of(fibril.core_outline,
+                               anchor_outside(fibril.core_outline, end[:2], residue_radius),
+                               residue_radius)}
+
+
+def clear_of(outline, xy, radius: float) -> list:
+    """`xy` moved straight away from the outline's nearest point until a bead of `radius` there
+    touches no edge: an exit's end lies in a groove (5OQV's), where the bead anchor_outside puts
+    one radius off the nearest edge can overlap the next one (by 0.33 Å there)."""
+    poly = np.asarray(outline, float)
+    xy = np.asarray(xy, float)
+    for _ in range(100):
+        dist, _ = polygons.edge_distance(poly, xy[None])
+        if dist[0] >= radius - 1e-3 and not polygons.even_odd(poly, xy)[0]:
+            break
+        point, _ = polygons.nearest_on_boundary(poly, xy)
+        away = xy - point
+        xy = xy + 0.05 * away / np.linalg.norm(away)
+    return [round(float(xy[0]), 3), round(float(xy[1]), 3)]
 
 
 def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None = None, *,

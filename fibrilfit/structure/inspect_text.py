@@ -32,6 +32,13 @@ def fibril_lines(g) -> list:
         lines.append(f"  anchor pf {a['protofilament']}: {a['chain']} {a['residue_name']}"
                      f"{a['residue']} at r {a['radius']:.2f} Å, depth {a['depth']:.1f} Å"
                      f"{' BURIED' if a['buried'] else ''}{tail}")
+    way = g.exit or {}
+    if way:  # protofilament 0's anchor to the surface (docs/model/buried-terminus.md#method)
+        lines.append(f"  exit pf 0: {way['length']:.2f} Å path to the surface (CA "
+                     f"{way['depth']:.2f} Å inside the outline), clear by the {way['clearance']}"
+                     if way["found"] else
+                     f"  exit pf 0: no path to the surface clear by the {way['clearance']} "
+                     f"({way['searched']}): sealed")
     lines += [f"  warning: {w}" for w in g.warnings]
     return lines
 

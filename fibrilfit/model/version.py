@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "0c201aca977f327497934b8a26f84683f235607128fa78d185e74dba1e74720b"
+MODEL_SOURCES_SHA256 = "f00a4a0a0293d51175676fda91cec0c415778899cca41c36ac69bfb3922795f8"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -159,3 +159,13 @@ def test_a_surface_anchor_has_no_exit_values():
     assert mapping.exit_values(fib) == {}
     p = P.make_params(**{k: v for k, v in mapping.model_values(fib).items()})
     assert terminus.chain_exit(p) == terminus.ChainExit(0, tuple(p.anchor), p.linker, None)
+
+
+def test_a_sweeps_summary_counts_no_exit_points_as_runs_without_a_stretch():
+    """'no exit' records (model.terminus.no_exit_result) have no stretch: nothing was simulated."""
+    from fibrilfit.sweep import summary
+    p = P.make_params(linker=3, exit_residues=4, exit_path=[[0.0, 0.0, 0.0], [20.0, 0.0, 0.0]])
+    records = [{"params": {**p.to_dict(), "seed": s}, **terminus.no_exit_result(p)}
+               for s in (0, 1)]
+    (row,) = summary.rows(records)
+    assert (row.n, row.accommodated, row.failed, row.median_stretch) == (2, 0, 0, None)

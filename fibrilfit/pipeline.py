@@ -11,7 +11,7 @@ from typing import Callable
 import bpy
 
 from .model import bound, params as P
-from .model import version as model_version
+from .model import terminus, version as model_version
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -132,6 +132,9 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
         result["timings_s"][stage] = round(time.perf_counter() - t, 4)
         return out
 
+    if p.free_linker < 1:  # no exit: the linker cannot reach the surface; nothing to build
+        return {**result, **terminus.no_exit_result(p),
+                "bound": timed("bound", lambda: bound.bound_block(p))}
     model = timed("build", lambda: build(p, scene, force=force))
     if stop_after == "build":
         return result

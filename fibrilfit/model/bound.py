@@ -28,6 +28,7 @@ inequality holds is the bound, and every shorter one is settled without a run.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -255,7 +256,8 @@ def _settings_key(p) -> str:
             "twist", "stretch_tolerance", "score_layers", "protofilaments", "pf_rotation",
             "pf_rise", "core_outline", "anchor", "periodic", "domain_diameters",
             "domain_linker", "domain_shape", "domain_atoms", "domain_spheres", "domain_joint",
-            "further_atoms", "further_spheres", "further_joints", "domain_exits")
+            "further_atoms", "further_spheres", "further_joints", "domain_exits",
+            "exit_residues")
     d = p.to_dict()
     return json.dumps({k: d.get(k) for k in keep}, sort_keys=True, default=str)
 
@@ -274,7 +276,6 @@ _CACHE: dict = {}  # geometry -> bound: a sweep's runs differ by seed, not by ge
 def _linker_bound(key: str, p, budget: float) -> dict:
     if key in _CACHE:
         return _CACHE[key]
-    terms = reach_terms(p)
     volumes = [ball_union_volume(inner_balls(p, d)) for d in p.domains]
     periodic = bool(p.periodic)
     if periodic:
@@ -282,12 +283,24 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     else:
         lo, hi = p.score_layers, p.layers - p.score_layers  # analysis/verdict.scored_range
         chains_per_pf = hi - lo
-    top = max(8, p.linker)
+    # a buried anchor's exit spends its residues first: no linker up to them leaves the core
+    # (docs/model/buried-terminus.md#model); the model's anchor is where the free linker starts
+    first = int(p.exit_residues) + 1
+    if first > LONGEST:  # sealed: no path leaves the anchor
+        result = {"impossible_below": LONGEST + 1, "method": "no exit: no path clear of the "
+                  "core's atoms leaves the anchor (docs/model/buried-terminus.md#model)",
+                  "over": "every chain", "fails_below": None, "exit_residues": p.exit_residues}
+        _CACHE[key] = result
+        return result
+    if p.free_linker < 1:  # a linker that leaves the core, for the chain's lengths (its
+        p = dataclasses.replace(p, linker=first)  # checks aside: only chain_x is read)
+    terms = reach_terms(p)
+    top = max(8, p.linker, first)
     while True:
         rho_top = reach(p, terms, top)
         room = Room(p, max(rho_top), periodic, lo, hi, budget)
         found = None
-        for L in range(1, top + 1):  # monotone: the first length where all hold
+        for L in range(first, top + 1):  # monotone: the first length where all hold
             if all(c["need"] <= c["have"] for c in constraints(
                     p, room, terms, volumes, L, chains_per_pf)):
                 found = L
@@ -296,7 +309,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
             break
         top = min(LONGEST, top * 2)
     failing = None
-    if found is not None and found > 1:
+    if found is not None and found > first:
         cs = constraints(p, room, terms, volumes, found - 1, chains_per_pf)
         worst = max(cs, key=lambda c: c["need"] / max(c["have"], 1e-9))
         failing = {"linker": found - 1, "protofilaments": worst["protofilaments"], "domains": worst["domains"],
@@ -310,6 +323,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
         "inner_volume_A3": [round(v, 1) for v in volumes],
         "core_entry": CORE_ENTRY,
         "voxel": round(room.h, 4),
+        "exit_residues": int(p.exit_residues),
     }
     _CACHE[key] = result
     return result

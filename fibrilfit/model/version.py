@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "85c5f3183932b1267ee7ceea6e619838eff62d96154f5106c91f7c8ce147dda7"
+MODEL_SOURCES_SHA256 = "58f371a2454c4d52be249e192da10d2840cdbd6c8973d8ce2a4c7b5fa1420d3a"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -1,5 +1,5 @@
 """The JSON Schemas of a run's result and of report.json (docs/reference/schemas.md): valid
-schemas, the published examples (real outputs, docs/reference/examples/) valid against them, and
+schemas, the published examples (real outputs, docs/reference/samples/) valid against them, and
 strict enough that a result missing a required key, or with a word outside its set, fails.
 tests/blender/test_result_schema.py validates fresh outputs of this code against the same files."""
 import copy
@@ -20,7 +20,7 @@ def schema(name):
 
 
 def example(name):
-    return json.loads((REFERENCE / "examples" / name).read_text(encoding="utf-8"))
+    return json.loads((REFERENCE / "samples" / name).read_text(encoding="utf-8"))
 
 
 def errors(instance, name):

@@ -161,7 +161,8 @@ def exit_block(p, block: dict | None) -> dict | None:
         return None
     sealed = p.exit_residues >= P.SEALED
     source = (block.get("sources") or {}).get("exit_residues") or (
-        "measured; not applied: --anchor was given" if "exit_residues" in block["overridden"]
+        "measured; the run's anchor and exit are its explicit values (--anchor, a case's "
+        "params)" if "exit_residues" in block["overridden"]
         else "measured: the anchor is on the surface, its path costs no residue")
     return {"residues": None if sealed else int(p.exit_residues), "found": way["found"],
             "depth": way["depth"], "length": way["length"],

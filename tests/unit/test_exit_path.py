@@ -169,3 +169,13 @@ def test_a_sweeps_summary_counts_no_exit_points_as_runs_without_a_stretch():
                for s in (0, 1)]
     (row,) = summary.rows(records)
     assert (row.n, row.accommodated, row.failed, row.median_stretch) == (2, 0, 0, None)
+
+
+def test_the_free_linkers_beads_are_numbered_after_the_exit():
+    """--pdb-atoms: 5OQV's exit spends residues 43-47 (47 is the bead at the exit, the model's
+    anchor), so the free linker's beads are 48 on (before it: 43 on)."""
+    from fibrilfit.structure.atoms import Sources
+    c_side = Sources(None, [], anchor_residue=42, side="C")
+    assert c_side.linker_numbers(3, 5).tolist() == [48, 49, 50]
+    assert c_side.linker_numbers(3).tolist() == [43, 44, 45]
+    assert Sources(None, [], anchor_residue=1, side="N").linker_numbers(2, 1).tolist() == [-1, -2]

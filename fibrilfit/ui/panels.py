@@ -10,7 +10,7 @@ import math
 import bpy
 
 from ..model import helix, params as P
-from . import properties, structure_trace
+from . import properties, report_summary, structure_trace
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -139,6 +139,8 @@ def draw_run(col, context):
         _draw_changes(col, s, find_root(scene), stage)
     if stage == "checked" and s.verdict:
         draw_result(col.box(), s)
+    if s.report_summary:
+        draw_report(col.box(), s)
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
@@ -180,6 +182,17 @@ def draw_result(box, s):
         box.label(text=f"Answer: {s.answer}")
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")
+
+
+def draw_report(box, s):
+    """The last report's answer, P(fit), minimal linker and bound, and Open report."""
+    try:
+        summary = json.loads(s.report_summary)
+    except ValueError:
+        return
+    for text, icon in report_summary.summary_lines(summary):
+        box.label(text=text, icon=icon)
+    box.operator("fibrilfit.open_report", icon="URL")
 
 
 # ---- the collapsed sub-panels ----------------------------------------------------------------

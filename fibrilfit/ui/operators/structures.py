@@ -5,7 +5,7 @@ import numpy as np
 
 from ...model import params as P
 from .. import properties, structure_trace
-from ...structure import StructureError, from_files, measure_domain, measure_fibril, trace
+from ...structure import from_files, measure_domain, measure_fibril, trace
 from . import common
 
 GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
@@ -40,11 +40,7 @@ class _ImportBase:
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        try:
-            return common.guarded(self, self._import, context)
-        except StructureError as exc:  # not in common's list: report it the same way
-            self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
+        return common.guarded(self, self._import, context)
 
 
 class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):

@@ -33,7 +33,7 @@ def summary_lines(summary: dict) -> list[tuple[str, str]]:
              (f"95 %: {pf['low']:.2f}–{pf['high']:.2f}", "BLANK1")]
     m = summary["minimal_linker"]
     if m:
-        lines.append((f"Minimal linker: {m} residues", "BLANK1"))
+        lines.append((f"Minimal linker: {m} residue{'' if m == 1 else 's'}", "BLANK1"))
         if summary.get("p_fit_below") is not None:
             lines.append((f"at {summary['linker_below']}: P(fit) "
                           f"{summary['p_fit_below']:.2f}", "BLANK1"))

@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7d92fc10440d9289dbadd9721d101d7a00e64bf65acdce216a4ac6a799c298cc"
+MODEL_SOURCES_SHA256 = "780d99734d9655f17b975c8279f57c9d6b1cad1159e0c554f3e05fc2014ba8b0"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

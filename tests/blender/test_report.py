@@ -193,6 +193,10 @@ def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path, monkeyp
         assert bpy.ops.fibrilfit.open_report() == {"FINISHED"}
         assert opened == [out / "report.html"]
         assert (s.report_dir, s.report_restarts, s.report_max_linker) == (str(out), 2, 4)
+        # the scene holds the best layout, checked: the panel's verdict box is its verdict
+        best = json.loads((out / "best_layout.json").read_text())
+        assert (s.verdict, s.accommodated) == (best["verdict"], best["accommodated"])
+        assert best["seed"] == json.loads((out / "report.json").read_text())["p_fit"]["best_seed"]
     finally:
         ff.unregister()
     doc = json.loads((out / "report.json").read_text())

@@ -239,6 +239,7 @@ class Session:
         click on Report… (the button row below Run all's), Return in the folder chooser (it
         offers the folder and settings the probe set), and the panel's report box."""
         folder = self.out / "report"
+        folder.mkdir(parents=True, exist_ok=True)  # as a user picks an existing folder
         self.command(f"small {folder}", "small")
         self.step("the probe typed a small model's values and the report's folder")
         ui = self.screen_rect(self.fresh_state()["views"][0]["regions"]["UI"])

@@ -15,6 +15,10 @@ import pytest
 
 from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
 
+# the session (or the two reports) runs in the first test's set-up: minutes under a loaded
+# machine, beyond the suite's 300 s per test (pyproject's timeout)
+pytestmark = pytest.mark.timeout(1500)
+
 SHOTS = ROOT / "docs" / "images"  # the accepted screens
 SCREENS = OUT / "gui" / "screens"  # this run's
 FACTORY_OBJECTS = {"Cube": [0.0, 0.0, 0.0]}

@@ -12,6 +12,10 @@ import pytest
 
 from realblender.helpers import OUT, ROOT, chroot, inside, module, quote, read_json
 
+# the session (or the two reports) runs in the first test's set-up: minutes under a loaded
+# machine, beyond the suite's 300 s per test (pyproject's timeout)
+pytestmark = pytest.mark.timeout(1200)
+
 # Small and fast (as tests/blender/test_report.py's FAST, but Cycles: no OpenGL in the chroot):
 # 12 Å domains on 3 layers, 2 restarts, the walk up to 4 residues.
 ARGS = ["report", "--layers", "3", "--grow-frames", "20", "--hold-frames", "20",

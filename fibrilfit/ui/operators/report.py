@@ -10,6 +10,7 @@ import webbrowser
 import bpy
 
 from ... import files, pipeline
+from ...builders.model import find_model
 from ...exports import options
 from ...model import cases
 from ...model import params as P
@@ -69,10 +70,18 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
         look = {"size": size, "aspect": size[0] / size[1], "samples": options.DEFAULT_SAMPLES,
                 "engine": "cycles"}
         sources = {name: "sidebar" for name in p.to_dict()}
+        best = {}
+
+        def run_best(q):  # the best layout, built, baked and checked in the scene
+            best.update(pipeline.run_model(q, context.scene))
+            return best
         doc = report.make_report(args, p, p.to_dict(), structure_block=None, case=case,
-                                 look=look, sources=sources,
-                                 run_here=lambda q: pipeline.run_model(q, context.scene))
+                                 look=look, sources=sources, run_here=run_best)
         cases.write(case_path, case)  # what the page's command reproduces
+        model = find_model(context.scene)
+        if model is not None and best:  # the scene holds the best layout: its verdict, framed
+            common.record_check(context, model, best)
+            common.show_model(context, model)
         s.report_dir = str(out)
         s.report_restarts, s.report_max_linker = self.restarts, self.max_linker
         s.report_summary = json.dumps(report_summary.summary_of(doc, str(out)))

@@ -41,6 +41,9 @@ STEPS = (
                         ("fibrilfit.join_globules", None), ("fibrilfit.render", None),
                         ("fibrilfit.export_pdb", None))),
 )
+# Settings of the question's domain drawn beside it (after the globule's diameter) rather than in
+# the Globule step: the domain's shape is chosen next to the domain (issue #33).
+BESIDE_DOMAIN = ("domain_shape",)
 WRAP = 36  # characters per line of a long message (about 230 px of Blender's 11 pt UI font)
 
 
@@ -118,6 +121,9 @@ def draw_question(col, s):
         if field.name in ("layers", "periodic"):
             continue
         col.prop(s, field.name)
+        if field.name == "globule_diameter":
+            for name in BESIDE_DOMAIN:  # "Domain shape" would be cut beside its drop-down
+                col.prop(s, name, text="Shape")
     col.prop(s, "use_periodic")
     col.prop(s, "periodic" if s.use_periodic else "layers")
 
@@ -200,7 +206,7 @@ def draw_report(box, s):
 def shown(field, s) -> bool:
     """Whether a setting applies to the panel's model (docs/guide/sidebar.md#the-panel)."""
     name = field.name
-    if field.metadata.get("question"):
+    if field.metadata.get("question") or name in BESIDE_DOMAIN:
         return False  # at the top of the panel
     if _search(field):
         return s.protocol == "inflate"

@@ -539,7 +539,8 @@ def test_panels_are_in_the_order_of_the_question(ui):
     main = [x for x in draw_all(bpy.context)["FIBRILFIT_PT_main"] if x[0] != "label"]
     order = [name for _, name in main]
     assert order.index("fibrilfit.import_fibril") < order.index("fibrilfit.load_case") \
-        < order.index("linker") < order.index("globule_diameter") < order.index("protocol") \
+        < order.index("linker") < order.index("globule_diameter") \
+        < order.index("domain_shape") < order.index("protocol") \
         < order.index("use_periodic") < order.index("layers") < order.index("fibrilfit.run_all")
 
 

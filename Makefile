@@ -154,14 +154,22 @@ test-blender: extension
 # Blender's own extension CLI ships inside the bpy wheel: no Blender binary needed.
 BLENDER_EXT = $(VENV)/lib/python*/site-packages/bpy/*/scripts/addons_core/bl_pkg/cli/blender_ext.py
 
-# The zip is built from the package folder fibrilfit/, whose blender_manifest.toml lists the
-# gemmi wheels (every platform, Python 3.11 and 3.13); they come from PyPI with pip download
-# (tools/fetch_wheels.py) into fibrilfit/wheels/, which is not in git.
+# One zip per platform (dist/fibrilfit-<version>-<platform>.zip, Blender's own
+# `build --split-platforms`), each with only its own platform's wheels, from the package folder
+# fibrilfit/, whose blender_manifest.toml lists the wheels (gemmi, matplotlib and its
+# dependencies; every platform, Python 3.11 and 3.13); they come from PyPI with pip download
+# (tools/fetch_wheels.py) into fibrilfit/wheels/, which is not in git. The folder and every zip
+# are validated by Blender's extension CLI; docs/guide/install.md#which-zip gives their sizes.
 extension: $(VENV)/.installed
 	$(VENV)/bin/python tools/fetch_wheels.py
 	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate fibrilfit
 	mkdir -p dist
-	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir fibrilfit --output-dir $(CURDIR)/dist
+	rm -f dist/fibrilfit-*.zip
+	$(VENV)/bin/python $$(ls $(BLENDER_EXT)) build --source-dir fibrilfit \
+	  --output-dir $(CURDIR)/dist --split-platforms
+	for zip in dist/fibrilfit-*.zip; do \
+	  $(VENV)/bin/python $$(ls $(BLENDER_EXT)) validate $$zip || exit 1; done
+	ls -l dist/fibrilfit-*.zip
 
 $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt

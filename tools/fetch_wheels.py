@@ -1,5 +1,7 @@
-"""Fetch the wheels that blender_manifest.toml lists (gemmi, for every platform and Python of the
-supported Blenders; tqdm, pure Python) into fibrilfit/wheels/, with pip download from PyPI. `make extension` runs it.
+"""Fetch the wheels that blender_manifest.toml lists (gemmi, matplotlib and its compiled
+dependencies for every platform and Python of the supported Blenders; tqdm and matplotlib's
+pure-Python dependencies) into fibrilfit/wheels/, with pip download from PyPI. `make extension`
+runs it.
 
     python tools/fetch_wheels.py          # missing ones only; other .whl files in wheels/ removed
 
@@ -24,8 +26,10 @@ def pip_args(wheel: pathlib.Path) -> list:
     A build tag (gemmi-0.7.5-0-cp313-...) is ours: PyPI's file has none (see the manifest)."""
     parts = wheel.name[:-4].split("-")
     name, version, python, _abi, platforms = parts[:2] + parts[-3:]
-    if platforms == "any":  # a pure-Python wheel (tqdm-4.70.1-py3-none-any.whl): one for all
-        return ["--only-binary=:all:", "--no-deps", f"{name}=={version}"]
+    if platforms == "any":  # a pure-Python wheel (tqdm-4.70.1-py3-none-any.whl): one for all.
+        # Asked for as such: of fonttools pip would otherwise take this machine's compiled wheel
+        return ["--only-binary=:all:", "--no-deps", "--platform", "any", "--implementation", "py",
+                "--abi", "none", "--python-version", "3.11", f"{name}=={version}"]
     args = ["--only-binary=:all:", "--no-deps", "--python-version", f"{python[2]}.{python[3:]}"]
     for platform in platforms.split("."):
         args += ["--platform", platform]

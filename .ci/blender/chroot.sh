@@ -12,7 +12,7 @@
 set -eu
 
 SUITE=trixie
-PACKAGES="blender python3-numpy xvfb xauth xdotool imagemagick libgl1-mesa-dri libglx-mesa0"
+PACKAGES="blender python3-numpy xvfb xauth xdotool imagemagick libgl1-mesa-dri libglx-mesa0 chromium fonts-dejavu-core"
 # The Debian mirror: DEBIAN_MIRROR, else the first .../debian archive the host's apt sources name
 # (deb822 .sources or a one-line sources.list)
 host_mirror() {

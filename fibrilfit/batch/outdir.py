@@ -16,8 +16,7 @@ def need(*modules: str) -> None:
         try:
             importlib.import_module(name)
         except ImportError:
-            raise exits.UsageError(f"the sweep needs the Python package {name!r}: "
-                                   f"pip install -r requirements-dev.txt") from None
+            raise exits.UsageError(exits.missing_packages([name], "the sweep")) from None
 
 
 def out_dir(args) -> pathlib.Path:

@@ -7,14 +7,17 @@ carries on, and bpy's global state never meets a thread pool.
 """
 from __future__ import annotations
 
+import atexit
 import collections
 import json
 import os
 import queue
 import re
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 
@@ -28,6 +31,22 @@ def worker_command(blender_binary: str = "") -> list[str]:
     if blender_binary:
         return [blender_binary, "-b", "--factory-startup", "--python-exit-code", "1", "-P", script]
     return [sys.executable, script]
+
+
+_EXTENSIONS = {"dir": None}
+
+
+def worker_env() -> dict:
+    """The environment of a worker: this one, with Blender's user extensions in a folder of the
+    workers' own (BLENDER_USER_EXTENSIONS, empty, removed at exit). A worker resets to factory
+    settings before each run (worker.py), and Blender then uninstalls the wheels of every
+    extension not enabled from the shared extensions/.local site-packages: the installed
+    FibrilFit's own matplotlib and gemmi, under the Blender that started the workers (measured on
+    Blender 4.3.2: the report lost its legend and envelope plot, issue #33)."""
+    if _EXTENSIONS["dir"] is None:
+        _EXTENSIONS["dir"] = tempfile.mkdtemp(prefix="fibrilfit-worker-extensions-")
+        atexit.register(shutil.rmtree, _EXTENSIONS["dir"], True)
+    return {**os.environ, "BLENDER_USER_EXTENSIONS": _EXTENSIONS["dir"]}
 
 
 # Blender 5.2 logs informational lines on stderr as it starts, e.g.
@@ -62,7 +81,7 @@ class WorkerProcess:
         self.started = 0.0
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, text=True, encoding="utf-8",
-                                     errors="replace", bufsize=1)
+                                     errors="replace", bufsize=1, env=worker_env())
         self.pid = self.proc.pid
         self._stderr = threading.Thread(target=self._read_stderr, daemon=True)
         self._stderr.start()

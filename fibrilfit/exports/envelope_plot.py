@@ -12,7 +12,7 @@ import numpy as np
 
 from .. import files
 from ..analysis.envelope import radii
-from ..exits import UsageError
+from ..exits import UsageError, missing_packages
 
 
 def available(stop_after: str = "check") -> None:
@@ -20,8 +20,7 @@ def available(stop_after: str = "check") -> None:
     if stop_after != "check":
         raise UsageError("--envelope-plot: needs the check (leave out --stop-after)")
     if importlib.util.find_spec("matplotlib") is None:
-        raise UsageError("--envelope-plot: needs the Python package 'matplotlib', which this "
-                         "Python (e.g. Blender's) does not have: pip install matplotlib")
+        raise UsageError(missing_packages(["matplotlib"], "--envelope-plot"))
 
 
 def _scored_centres(result: dict) -> np.ndarray:

@@ -19,6 +19,7 @@ import bpy
 import numpy as np
 
 from .. import files
+from ..exits import missing_packages
 from ..analysis import clash_kinds
 from ..builders import find_model
 from ..builders.colours import colour_globules
@@ -54,8 +55,7 @@ def missing_support(suffix: str) -> str | None:
         try:
             import PIL  # noqa: F401
         except ImportError:
-            return ".gif needs Pillow (pip install pillow into Blender's Python); " \
-                   "write an .mp4 instead"
+            return missing_packages(["PIL"], "a .gif") + "; or write an .mp4 instead"
     return None
 
 

@@ -319,6 +319,8 @@ def _file_lines(r: dict, files: dict | None) -> list[str]:
 
 def bound_phrase(b: dict) -> str:
     """The bracket's proven side in words (docs/model/bound.md#derivation)."""
+    if b["impossible_below"] <= 1:
+        return f"the geometry alone rules out no linker (excluded volume over {b['over']})"
     return (f"no layout can exist below {b['impossible_below']} residues (proof: excluded "
             f"volume over {b['over']})")
 
@@ -327,6 +329,8 @@ def _bound_lines(r: dict) -> list[str]:
     b = r.get("bound")
     if not b:
         return []
+    if b["impossible_below"] <= 1:
+        return [f"bound: {bound_phrase(b)}"]
     where = ("this linker is below it: settled, impossible" if b.get("below")
              else "this linker is at or above it")
     return [f"bound: {bound_phrase(b)}; {where}"]

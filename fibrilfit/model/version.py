@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "4d701598476d19a1126034bf523057e37c71bc94e88b89540cdfeac09fc6999e"
+MODEL_SOURCES_SHA256 = "854c982ce2ab1121192cdb10b5e93aed2b5c997dea3d7e5fed55cbf8cae1ed52"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -72,9 +72,7 @@ def check_options(args) -> None:
     wanted = ("tqdm", "matplotlib", *batch_options.packages(args))
     missing = [name for name in wanted if importlib.util.find_spec(name) is None]
     if missing:
-        raise exits.UsageError(f"report: needs the Python package(s) {', '.join(missing)}, "
-                               f"which this Python (e.g. Blender's own) does not have: "
-                               f"pip install {' '.join(missing)}")
+        raise exits.UsageError(exits.missing_packages(missing, "the report"))
 
 
 def seeds_of(p: P.Params, r: int) -> range:

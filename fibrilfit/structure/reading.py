@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..exits import missing_packages
 from .errors import StructureError
 
 SUFFIXES = (".pdb", ".ent", ".cif", ".mmcif", ".mcif")
@@ -63,8 +64,7 @@ def _gemmi(option):
     try:
         import gemmi
     except ImportError:
-        raise StructureError(option, "reading structures needs the gemmi package "
-                                     "(pip install gemmi)") from None
+        raise StructureError(option, missing_packages(["gemmi"], "reading structures")) from None
     return gemmi
 
 

@@ -10,7 +10,7 @@ import math
 import bpy
 
 from ..model import helix, params as P
-from . import properties, structure_trace
+from . import properties, report_summary, structure_trace
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -41,6 +41,9 @@ STEPS = (
                         ("fibrilfit.join_globules", None), ("fibrilfit.render", None),
                         ("fibrilfit.export_pdb", None))),
 )
+# Settings of the question's domain drawn beside it (after the globule's diameter) rather than in
+# the Globule step: the domain's shape is chosen next to the domain (issue #33).
+BESIDE_DOMAIN = ("domain_shape",)
 WRAP = 36  # characters per line of a long message (about 230 px of Blender's 11 pt UI font)
 
 
@@ -118,6 +121,9 @@ def draw_question(col, s):
         if field.name in ("layers", "periodic"):
             continue
         col.prop(s, field.name)
+        if field.name == "globule_diameter":
+            for name in BESIDE_DOMAIN:  # "Domain shape" would be cut beside its drop-down
+                col.prop(s, name, text="Shape")
     col.prop(s, "use_periodic")
     col.prop(s, "periodic" if s.use_periodic else "layers")
 
@@ -139,6 +145,8 @@ def draw_run(col, context):
         _draw_changes(col, s, find_root(scene), stage)
     if stage == "checked" and s.verdict:
         draw_result(col.box(), s)
+    if s.report_summary:
+        draw_report(col.box(), s)
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
@@ -182,12 +190,23 @@ def draw_result(box, s):
         box.label(text="Red: clash; orange: graze", icon="INFO")
 
 
+def draw_report(box, s):
+    """The last report's answer, P(fit), minimal linker and bound, and Open report."""
+    try:
+        summary = json.loads(s.report_summary)
+    except ValueError:
+        return
+    for text, icon in report_summary.summary_lines(summary):
+        box.label(text=text, icon=icon)
+    box.operator("fibrilfit.open_report", icon="URL")
+
+
 # ---- the collapsed sub-panels ----------------------------------------------------------------
 
 def shown(field, s) -> bool:
     """Whether a setting applies to the panel's model (docs/guide/sidebar.md#the-panel)."""
     name = field.name
-    if field.metadata.get("question"):
+    if field.metadata.get("question") or name in BESIDE_DOMAIN:
         return False  # at the top of the panel
     if _search(field):
         return s.protocol == "inflate"

@@ -14,6 +14,7 @@ from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorPro
                        IntProperty, PointerProperty, StringProperty)
 
 from ..model import params as P
+from ..search import report
 
 # The sidebar's sections, in the tutorial's order. A field goes where its metadata says;
 # a section this list does not know goes to "Simulation", so a new field is never hidden.
@@ -165,6 +166,22 @@ FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
     name="Periodic cell",
     description="Simulate the interior of an infinite fibril: a screw-periodic cell of M layers "
                 "whose images stand in for the rest (Layers and Score layers are then unused)")
+
+# The last report (Report…): its folder and the numbers the panel shows (report_summary), kept
+# across checks; the restarts and longest linker the next Report… offers.
+FIBRILFIT_PG_settings.__annotations__["report_dir"] = StringProperty(
+    name="Report folder", subtype="DIR_PATH",
+    description="Where Report… wrote report.html last; the next Report… offers it")
+FIBRILFIT_PG_settings.__annotations__["report_summary"] = StringProperty(
+    name="Report", description="The last report's answer, P(fit), minimal linker and bound "
+                               "(JSON)", options={"HIDDEN"})
+FIBRILFIT_PG_settings.__annotations__["report_restarts"] = IntProperty(
+    name="Restarts", default=report.DEFAULT_RESTARTS, min=1, max=1000,
+    description="Seeds run at the linker and at each length the minimal-linker walk tries")
+FIBRILFIT_PG_settings.__annotations__["report_max_linker"] = IntProperty(
+    name="Longest linker", default=report.DEFAULT_MAX_LINKER, min=1,
+    max=P.field_spec("linker")["max"],
+    description="The minimal-linker walk gives up beyond this length (residues)")
 
 CLASSES = (FIBRILFIT_PG_settings,)
 

@@ -1,5 +1,6 @@
-"""The imported structure in the scene: its CA trace as one tagged mesh object (no rigid body)
-in a collection FibrilFit owns, beside the coarse model; the measurements kept on it."""
+"""The imported structures in the scene: the fibril's CA trace on the model's core and the
+domain's beside the layer-0 globule, each one tagged mesh object (no rigid body) in a collection
+FibrilFit owns; the measurements kept on it."""
 from __future__ import annotations
 
 import json
@@ -12,6 +13,7 @@ from ..builders.scene import TAG, is_ours, tag
 COLLECTION = "structures"  # role of the collection holding imported structures
 TRACE = "structure_trace"  # role of a CA trace object
 MEASURED = "fibrilfit_measured"  # JSON of the measurements, on the collection: {fibril, domain}
+KIND = "fibrilfit_trace_of"  # on a trace object: "fibril" or "domain"
 
 
 def find_collection(scene) -> bpy.types.Collection | None:
@@ -41,11 +43,13 @@ def store(scene, key: str, values: dict) -> None:
     coll[MEASURED] = json.dumps(data)
 
 
-def add_trace(scene, chains, name: str, offset=(0.0, 0.0, 0.0)) -> bpy.types.Object:
-    """Replace the CA trace: one vertex per CA, an edge between consecutive residues of a chain
-    (no edge across a gap in the numbering). `chains`: [(chain, residues, xyz)]."""
+def add_trace(scene, chains, name: str, offset=(0.0, 0.0, 0.0),
+              kind: str = "fibril") -> bpy.types.Object:
+    """Replace the `kind` CA trace: one vertex per CA, an edge between consecutive residues of a
+    chain (no edge across a gap in the numbering). `chains`: [(chain, residues, xyz)]."""
     coll = collection(scene)
-    old = [ob for ob in coll.objects if is_ours(ob) and ob.get(TAG) == TRACE]
+    old = [ob for ob in coll.objects if is_ours(ob) and ob.get(TAG) == TRACE
+           and ob.get(KIND, "fibril") == kind]
     old_meshes = [ob.data for ob in old]
     bpy.data.batch_remove(old)
     bpy.data.batch_remove([m for m in old_meshes if m.users == 0])
@@ -59,6 +63,7 @@ def add_trace(scene, chains, name: str, offset=(0.0, 0.0, 0.0)) -> bpy.types.Obj
     mesh.from_pydata(verts, edges, [])
     ob = tag(bpy.data.objects.new(f"{name} CA trace", mesh), TRACE)
     ob.location = offset
+    ob[KIND] = kind
     coll.objects.link(ob)
     return ob
 

@@ -136,6 +136,11 @@ def main(zip_path: str, values: dict, fibril: str | None = None) -> dict:
             "--no-plot", "--quiet", "--out", tmp])
         lines = pathlib.Path(tmp, "results.jsonl").read_text().splitlines()
         out["cli_sweep_results"] = [json.loads(line) for line in lines]
+    # the workers reset to factory settings: the installed wheels must survive it (issue #33)
+    home = os.environ["BLENDER_USER_RESOURCES"]
+    out["wheels_after_sweep"] = sorted(
+        name for p in sys.path if p.startswith(home) and "site-packages" in p
+        for name in os.listdir(p) if not name.endswith(("-info", ".data", ".libs")))
     out["cli_enabled_after"] = [m for m in bpy.context.preferences.addons.keys() if m == name]
     return out
 

@@ -73,8 +73,9 @@ def test_envelope_plot_refused_without_matplotlib_or_a_check(monkeypatch, tmp_pa
     cp = run_cli("run", "--stop-after", "build", "--envelope-plot", str(tmp_path / "e.png"))
     assert cp.returncode == 2 and "--envelope-plot: needs the check" in cp.stderr
     monkeypatch.setattr(envelope_plot.importlib.util, "find_spec", lambda name: None)
-    with pytest.raises(UsageError, match="--envelope-plot: needs the Python package "
-                                         "'matplotlib'"):
+    with pytest.raises(UsageError, match="^--envelope-plot needs the Python package "
+                                         "matplotlib, which this Python .* pip install "
+                                         "matplotlib$"):
         envelope_plot.available()
 
 

@@ -5,6 +5,7 @@ import json
 import pathlib
 import subprocess
 import sys
+import tomllib
 import zipfile
 
 import bpy
@@ -29,19 +30,33 @@ def cli(*args) -> subprocess.CompletedProcess:
                           text=True, timeout=300, cwd=ROOT)
 
 
+PLATFORMS = {  # Blender's platform: what its wheels' platform tags hold
+    "linux_x64": ("manylinux", "x86_64"), "windows_x64": ("win", "amd64"),
+    "macos_arm64": ("macosx", "arm64"), "macos_x64": ("macosx", "x86_64")}
+
+
 @pytest.fixture(scope="module")
-def built_zip(tmp_path_factory):
+def built_zips(tmp_path_factory) -> dict:
+    """As `make extension`: the manifest's wheels from PyPI (cached in fibrilfit/wheels/), one
+    zip per platform. {platform: zip}."""
     out = tmp_path_factory.mktemp("dist")
-    # as `make extension`: the manifest's gemmi wheels from PyPI (cached in fibrilfit/wheels/)
     fetched = subprocess.run([sys.executable, str(ROOT / "tools" / "fetch_wheels.py")],
                              capture_output=True, text=True, timeout=600, cwd=ROOT)
     assert fetched.returncode == 0, fetched.stdout + fetched.stderr
     checked = cli("validate", str(PACKAGE))
     assert checked.returncode == 0, checked.stdout + checked.stderr
-    built = cli("build", "--source-dir", str(PACKAGE), "--output-dir", str(out))
+    built = cli("build", "--source-dir", str(PACKAGE), "--output-dir", str(out),
+                "--split-platforms")
     assert built.returncode == 0, built.stdout + built.stderr
-    (path,) = out.glob("fibrilfit-*.zip")
-    return path
+    zips = {z.stem.split("-")[-1]: z for z in out.glob("fibrilfit-*.zip")}
+    assert set(zips) == set(PLATFORMS), zips
+    return zips
+
+
+@pytest.fixture(scope="module")
+def built_zip(built_zips):
+    """The one this machine installs (the tests run on Linux x86-64)."""
+    return built_zips["linux_x64"]
 
 
 @pytest.fixture(scope="module")
@@ -76,11 +91,13 @@ def test_the_zip_holds_only_the_extension(built_zip):
         names = set(zf.namelist())
         manifest = zf.read("blender_manifest.toml").decode()
     assert {"blender_manifest.toml", "__init__.py", "ui/registration.py", "ui/panels.py"} <= names
-    assert names == extension_files()
+    others = {w for w in manifest_wheels() if "manylinux" not in w and "-none-any" not in w}
+    assert names == extension_files() - others  # the linux zip: no other platform's wheel
     for name in names:
         assert name.endswith(".py") or name in ("blender_manifest.toml", "README.md", "LICENSE") \
             or name.startswith("wheels/") and name.endswith(".whl")
-    assert manifest == (PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8")
+    # the source manifest, and Blender's generated block naming this platform's wheels
+    assert manifest.startswith((PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8"))
 
 
 def test_installed_and_enabled_it_shows_the_panel_in_the_fibrilfit_tab(installed):
@@ -158,17 +175,49 @@ def test_the_installed_command_line_sweeps_with_the_installed_files(installed):
         assert line[key] == installed["api_result"][key], key
 
 
-def test_the_zip_carries_gemmi_wheels_for_every_platform_and_python(built_zip):
-    import tomllib
+def test_the_installed_wheels_outlive_the_sweeps_workers(installed):
+    """A worker resets to factory settings before each run, which makes Blender uninstall the
+    wheels of extensions it does not see enabled; the workers keep their own extensions folder
+    (batch/pool.py's worker_env), so the installed copy keeps its matplotlib and gemmi."""
+    assert installed["cli_sweep"]["code"] == 0
+    assert {"matplotlib", "PIL", "gemmi", "contourpy", "kiwisolver", "fontTools", "tqdm",
+            "dateutil"} <= set(installed["wheels_after_sweep"]), installed["wheels_after_sweep"]
+
+
+def manifest_wheels() -> list:
     manifest = tomllib.loads((PACKAGE / "blender_manifest.toml").read_text(encoding="utf-8"))
     assert manifest["platforms"] == ["linux-x64", "windows-x64", "macos-arm64", "macos-x64"]
-    wheels = [w.removeprefix("./") for w in manifest["wheels"]]
-    with zipfile.ZipFile(built_zip) as zf:
-        assert sorted(n for n in zf.namelist() if n.endswith(".whl")) == sorted(wheels)
-    for plat, machine in (("win", "amd64"), ("macosx", "arm64"), ("macosx", "x86_64"),
-                          ("manylinux", "x86_64")):
+    return [w.removeprefix("./") for w in manifest["wheels"]]
+
+
+def test_the_manifest_lists_every_wheel_for_every_platform_and_python():
+    wheels = manifest_wheels()
+    for plat, machine in PLATFORMS.values():
         for py in ("cp311", "cp313"):
-            assert any(f"-{py}-" in w and plat in w and machine in w for w in wheels), (py, plat)
+            for name in ("gemmi", "matplotlib", "contourpy", "kiwisolver", "pillow"):
+                (one,) = [w for w in wheels if w.startswith(f"wheels/{name}-") and
+                          f"-{py}-" in w and plat in w and machine in w]
+    # numpy is Blender's own: a second numpy would shadow it
+    assert not any(w.startswith("wheels/numpy-") for w in wheels)
+
+
+def test_each_zip_validates_and_carries_only_its_own_platforms_wheels(built_zips):
+    wheels = manifest_wheels()
+    pure = {w for w in wheels if w.endswith("-none-any.whl")}
+    assert {w.split("/")[1].split("-")[0] for w in pure} >= {
+        "tqdm", "cycler", "fonttools", "packaging", "pyparsing", "python_dateutil", "tzdata"}
+    for platform, (plat, machine) in PLATFORMS.items():
+        checked = cli("validate", str(built_zips[platform]))
+        assert checked.returncode == 0, checked.stdout + checked.stderr
+        with zipfile.ZipFile(built_zips[platform]) as zf:
+            carried = {n for n in zf.namelist() if n.endswith(".whl")}
+            manifest = zf.read("blender_manifest.toml").decode()
+        own = {w for w in wheels if plat in w and machine in w}
+        assert carried == own | pure, (platform, sorted(carried ^ (own | pure)))
+        assert len(own) == 10  # gemmi, matplotlib, contourpy, kiwisolver, pillow x 2 Pythons
+        generated = tomllib.loads(manifest)["build"]["generated"]  # what Blender installs by
+        assert generated["platforms"] == [platform.replace("_", "-")]
+        assert {w.removeprefix("./") for w in generated["wheels"]} == own | pure
 
 
 def test_the_installed_copy_reads_structures_with_its_own_gemmi_wheel(installed):

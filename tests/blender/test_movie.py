@@ -91,8 +91,9 @@ def test_a_gif_without_pillow_is_refused_before_the_bake(tmp_path, capsys, monke
     monkeypatch.setattr(run_command, "fresh_scene", lambda: baked.append(True))
     assert cli.main(["run", "--movie", str(tmp_path / "m.gif")]) == 2
     err = capsys.readouterr().err
-    assert err == ("fibrilfit: error: --movie: .gif needs Pillow (pip install pillow into "
-                   "Blender's Python); write an .mp4 instead\n")
+    assert err == (f"fibrilfit: error: --movie: a .gif needs the Python package Pillow, which "
+                   f"this Python ({sys.executable}) does not have: pip install pillow; or write "
+                   f"an .mp4 instead\n")
     assert not baked
 
 

@@ -32,10 +32,14 @@ def test_import_fibril_fills_parameters_and_adds_the_trace(ui, scene):
     # aligned with the model: the axis is Z, the layers step by the rise along it
     z = np.array([v.co.z for v in ob.data.vertices]).reshape(10, 60).mean(axis=1)
     assert np.diff(z[:5]) == pytest.approx([4.825] * 4, abs=0.2)  # protofilament 0, bottom-up
-    # beside it: every CA farther out than any globule can reach
-    reach = max(p.chain_x()) + p.globule_radius
-    xy = np.array([(v.co.x, v.co.y) for v in ob.data.vertices]) + np.array(ob.location[:2])
-    assert (xy[:, 0] > reach).all()
+    # on the model's core (issue #33): no offset, every CA within the core outline's reach of
+    # the axis, and the file's 5 layers per protofilament on the model's layers, centred in its
+    # 20: layers 7 to 11, each at its layer's height (the model's rise, the measured one)
+    assert tuple(ob.location) == (0.0, 0.0, 0.0)
+    co = np.array([v.co for v in ob.data.vertices])
+    outline_reach = np.hypot(*np.asarray(p.core_outline, float).T).max()
+    assert np.hypot(co[:, 0], co[:, 1]).max() <= outline_reach + 4.0  # a CA, not the hull
+    assert z[:5] / p.rise == pytest.approx([7, 8, 9, 10, 11], abs=0.1)
     lines = panels.structure_lines(structure_trace.measured(scene))
     assert any("left-handed" in ln for ln in lines) and any("K97" in ln or "LYS97" in ln
                                                               for ln in lines)
@@ -47,7 +51,17 @@ def test_import_fibril_fills_parameters_and_adds_the_trace(ui, scene):
 def test_import_domain_sets_the_globule(ui, scene):
     assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1gfl.pdb.gz"), chain="A") == \
         {"FINISHED"}
-    assert properties.read_params(ui).globule_diameter == pytest.approx(43.94, abs=0.01)
+    p = properties.read_params(ui)
+    assert p.globule_diameter == pytest.approx(43.94, abs=0.01)
+    # its CA trace beside layer 0's globule, at the model's scale (Å), clear of the globule
+    (coll,) = [c for c in bpy.data.collections if c.get(TAG) == structure_trace.COLLECTION]
+    (ob,) = [o for o in coll.objects if o.get(structure_trace.KIND) == "domain"]
+    co = np.array([v.co for v in ob.data.vertices])
+    assert len(co) == 230  # GFP chain A's CA, residues 2-231
+    assert np.linalg.norm(co.mean(axis=0)) < 3.0  # about the heavy atoms' centroid
+    globule = np.array([max(p.chain_x()) + p.globule_radius, 0.0, 0.0])
+    assert (np.linalg.norm(co + np.array(ob.location) - globule, axis=1) > p.globule_radius).all()
+    assert ob.location.x == pytest.approx(globule[0])
     assert any("Rg 17.02" in ln for ln in panels.structure_lines(
         structure_trace.measured(scene)))
 

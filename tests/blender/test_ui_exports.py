@@ -51,3 +51,22 @@ def test_a_bad_path_is_reported_and_cancels(checked, tmp_path):
     with pytest.raises(RuntimeError, match="filepath"):
         bpy.ops.fibrilfit.export_pdb(filepath=str(blocker / "m.pdb"))
     assert not (blocker.parent / "m.pdb").exists()
+
+
+def test_report_refused_in_one_sentence_without_matplotlib(scene, ff, tmp_path, monkeypatch):
+    """Issue #33: the refusal was `FibrilFit failed: UsageError("...")`; now the sentence alone,
+    and nothing written."""
+    from fibrilfit import exits
+    from fibrilfit.search import report
+    real = report.importlib.util.find_spec
+    monkeypatch.setattr(report.importlib.util, "find_spec",
+                        lambda name: None if name == "matplotlib" else real(name))
+    ff.register()
+    try:
+        with pytest.raises(RuntimeError) as err:
+            bpy.ops.fibrilfit.report(directory=str(tmp_path / "r"), restarts=1, max_linker=2)
+    finally:
+        ff.unregister()
+    message = str(err.value).strip()
+    assert message == "Error: " + exits.missing_packages(["matplotlib"], "the report")
+    assert not (tmp_path / "r").exists()

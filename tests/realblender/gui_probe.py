@@ -1,10 +1,12 @@
 """Runs inside the GUI Blender of the GUI test (`blender --python gui_probe.py`): it presses
 nothing. Every 0.2 s it writes what Blender knows and a screenshot cannot say (window and region
 rectangles, the sidebar's tab, the panel's verdict, the model and the 3D Views) to
-$FIBRILFIT_PROBE/state.json, and it obeys two commands from $FIBRILFIT_PROBE/command:
+$FIBRILFIT_PROBE/state.json, and it obeys commands from $FIBRILFIT_PROBE/command:
 "mark" paints operator buttons and inactive tabs one flat colour and the panels another (theme
 colours), so the test can find the buttons and the panels' extent in a screenshot; "unmark"
-restores the theme. The clicks and keys come from xdotool.
+restores the theme; "small DIR" types a small model's values into the panel and sets the
+report's folder and settings (what Report…'s chooser then offers), standing in for typing them.
+The clicks and keys come from xdotool.
 """
 import json
 import os
@@ -111,6 +113,29 @@ def _colours():
     return out
 
 
+# tests/realblender/test_report.py's small model: 12 Å domains on 3 layers, inflate, short
+SMALL = {"layers": 3, "globule_diameter": 12.0, "linker": 3, "protocol": "inflate",
+         "grow_frames": 20, "hold_frames": 20, "regrow_cycles": 0}
+
+
+def _small(folder):
+    s = bpy.context.scene.fibrilfit
+    for name, value in SMALL.items():
+        setattr(s, name, value)
+    s.report_dir, s.report_restarts, s.report_max_linker = folder, 2, 4
+    # the file browser in the main window (Preferences > Interface > Temporary Editors), under
+    # the pointer, so that Return reaches it without a window manager to focus a new window
+    bpy.context.preferences.view.filebrowser_display_type = "SCREEN"
+
+
+def _windows(wm):
+    out = []
+    for w in wm.windows:
+        out.append({"x": w.x, "y": w.y, "width": w.width, "height": w.height,
+                    "areas": sorted(a.type for a in w.screen.areas)})
+    return out
+
+
 def _tick():
     try:
         cmd_file = PROBE / "command"
@@ -121,7 +146,10 @@ def _tick():
                 _mark()
             elif cmd == "unmark":
                 _unmark()
-            _state["theme"] = {"mark": "marked", "unmark": "normal"}.get(cmd, _state["theme"])
+            elif cmd.startswith("small "):
+                _small(cmd.split(" ", 1)[1])
+            _state["theme"] = {"mark": "marked", "unmark": "normal"}.get(
+                cmd, "small" if cmd.startswith("small ") else _state["theme"])
             for window in bpy.context.window_manager.windows:
                 for area in window.screen.areas:
                     area.tag_redraw()
@@ -141,6 +169,9 @@ def _tick():
             "colours": _colours(),
             "user_objects": user,
             "frame": s.frame_current,
+            "windows": _windows(wm),
+            "report_summary": json.loads(ff.report_summary) if ff and ff.report_summary
+            else None,
         })
         tmp = PROBE / "state.json.tmp"
         tmp.write_text(json.dumps(_state))

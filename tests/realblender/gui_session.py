@@ -232,6 +232,52 @@ class Session:
         self.log["after_pixels"] = self.colour_counts(self.pixels(after),
                                                       self.screen_rect(after_state["views"][0]
                                                                        ["regions"]["WINDOW"]))
+        self.report(window_region)
+
+    def report(self, away):
+        """Report… on a small model (test_report.py's): the values typed by the probe, then a
+        click on Report… (the button row below Run all's), Return in the folder chooser (it
+        offers the folder and settings the probe set), and the panel's report box."""
+        folder = self.out / "report"
+        folder.mkdir(parents=True, exist_ok=True)  # as a user picks an existing folder
+        self.command(f"small {folder}", "small")
+        self.step("the probe typed a small model's values and the report's folder")
+        ui = self.screen_rect(self.fresh_state()["views"][0]["regions"]["UI"])
+        self.hover(away)
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-report.png"))
+        self.command("unmark", "normal")
+        x, y = self.find_button_below_run_all(marked, ui)
+        t0 = time.monotonic()
+        self.xdo("mousemove", x, y, "click", "1")
+        self.step(f"clicked Report… at {(x, y)}")
+        wait_for("the folder chooser", lambda: any(
+            "FILE_BROWSER" in w["areas"] for w in self.state()["windows"]), 60)
+        time.sleep(1.0)
+        self.hover(away)
+        self.xdo("key", "Return")
+        self.step("Return in the folder chooser")
+        state = wait_for("the panel's report", lambda: (s := self.state())["report_summary"]
+                         and s, RUN_TIMEOUT, every=1.0)
+        self.log["report_seconds"] = round(time.monotonic() - t0, 1)
+        state = self.fresh_state(5)
+        self.log["state_report"] = state
+        ui = self.screen_rect(state["views"][0]["regions"]["UI"])
+        self.hover(away)
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-reported.png"))
+        self.command("unmark", "normal")
+        shot = self.screenshot(self.out / "reported.png")
+        self.crop(shot, self.panel_rect(marked, ui), "panel-report.png")
+
+    def find_button_below_run_all(self, img, ui):
+        """The centre of the button row right below Run all's (Report…)."""
+        self.find_run_all(img, ui)
+        rows = self.log["button_rows"]
+        heights = [b - a for a, b in rows]
+        below = rows[heights.index(max(heights)) + 1]
+        x0, _, x1, _ = ui
+        return (x0 + x1 - 40) // 2, (below[0] + below[1]) // 2
 
     def open_tab(self, ui, away):
         """Click the sidebar's tabs (the marked ones, in a strip at its right edge) from the

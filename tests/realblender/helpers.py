@@ -13,7 +13,8 @@ CHROOT_SH = ROOT / ".ci" / "blender" / "chroot.sh"
 OUT = ROOT / "out" / "realblender"        # under the checkout: /fibrilfit/out/... in the chroot
 USER = "/fibrilfit/out/realblender/user"  # BLENDER_USER_RESOURCES: the cached chroot stays clean
 VERSION = tomllib.loads((ROOT / "fibrilfit" / "blender_manifest.toml").read_text())["version"]
-ZIP = ROOT / "dist" / f"fibrilfit-{VERSION}.zip"
+# `make extension` builds one zip per platform; the chroot is linux-x64
+ZIP = ROOT / "dist" / f"fibrilfit-{VERSION}-linux_x64.zip"
 BLENDER_VERSION = "4.3.2"
 
 

@@ -52,9 +52,9 @@ def test_inspect_reads_structures_with_the_bundled_gemmi(installed):
 
 
 def test_sweep_runs_workers_on_the_real_blender(installed):
-    # --no-plot: the zip bundles tqdm but not matplotlib (docs/guide/install.md#extension)
+    # with its plot: the zip bundles tqdm and matplotlib (docs/guide/install.md#which-zip)
     args = ["sweep", "--linker", "2,6", "--layers", "8", "--seeds", "2", "--workers", "2",
-            "--quiet", "--no-plot"]
+            "--quiet"]
     real, ref = OUT / "sweep-blender", OUT / "sweep-module"
     cp = chroot(f"rm -rf {inside(real)} && blender -b -c fibrilfit {quote(args)} "
                 f"--out {inside(real)}")
@@ -67,6 +67,7 @@ def test_sweep_runs_workers_on_the_real_blender(installed):
                        r["verdict"], r["accommodated"]) for r in rows)
 
     got, want = verdicts(real), verdicts(ref)
+    assert (real / "phase.png").is_file()  # drawn by the zip's matplotlib
     assert len(got) == 4 and all(r[2] for r in got) and not any(r[2] for r in want)
     assert [r[:2] + r[3:] for r in got] == [r[:2] + r[3:] for r in want]
 

@@ -15,6 +15,10 @@ import pytest
 
 from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
 
+# the session (or the two reports) runs in the first test's set-up: minutes under a loaded
+# machine, beyond the suite's 300 s per test (pyproject's timeout)
+pytestmark = pytest.mark.timeout(1500)
+
 SHOTS = ROOT / "docs" / "images"  # the accepted screens
 SCREENS = OUT / "gui" / "screens"  # this run's
 FACTORY_OBJECTS = {"Cube": [0.0, 0.0, 0.0]}
@@ -89,3 +93,24 @@ def test_the_screens_are_the_docs_unless_a_change_is_accepted(session):
     assert not changed, (f"screens differ from docs/images/ (new shots and diff-*.png in "
                          f"{SCREENS}): {changed}; if the change is meant, accept it with "
                          "`make test-blender ACCEPT_SCREENS=1` and commit docs/images/")
+
+
+def test_report_button_writes_the_page_and_the_panel_shows_its_numbers(session):
+    """A click on Report… and Return in its folder chooser (test_report.py's small model, typed
+    by the probe): report.html and report.json with their pictures, and the panel's box with
+    the answer, P(fit) and the minimal linker of that report.json."""
+    from fibrilfit.ui.report_summary import summary_lines, summary_of
+    folder = OUT / "gui" / "report"
+    doc = read_json(folder / "report.json")
+    assert (folder / "report.html").is_file()
+    assert {"render", "envelope_plot"} <= set(doc["files"])
+    for name in doc["files"].values():
+        assert (folder / name).is_file(), name
+    assert doc["versions"]["blender"] == "4.3.2" and doc["sources"]["linker"] == "sidebar"
+    shown = session["state_report"]["report_summary"]
+    assert shown == summary_of(doc, inside(folder))
+    # as test_report.py measured for this model: 2 of 2 at linker 3, the minimum 1
+    lines = [text for text, _ in summary_lines(shown)]
+    assert lines[:2] == ["Report: fits", "P(fit) 2/2 at linker 3"]
+    assert "Minimal linker: 1 residue" in lines
+    assert "panel-report.png" in session["screenshots"]

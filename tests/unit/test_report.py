@@ -81,5 +81,5 @@ def test_report_refuses_in_one_line_without_matplotlib(monkeypatch):
     real = report.importlib.util.find_spec
     monkeypatch.setattr(report.importlib.util, "find_spec",
                         lambda name: None if name == "matplotlib" else real(name))
-    with pytest.raises(UsageError, match="report: needs the Python package.*matplotlib"):
+    with pytest.raises(UsageError, match="^the report needs the Python package matplotlib, which "):
         report.check_options(report.options())

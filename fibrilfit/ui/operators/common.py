@@ -12,7 +12,9 @@ from ...analysis import clash_kinds
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
 from ...builders.physics import SceneConflict
+from ...exits import UsageError
 from ...exports.pdb import PdbError
+from ...structure.errors import StructureError
 from ...exports.render import RenderError
 from ...files import OutputError
 from ...exports.dressing import show_colours
@@ -26,7 +28,9 @@ class StaleModel(ValueError):
     """The panel's values differ from those the model was built or baked with."""
 
 
-EXPECTED_ERRORS = (P.ParamError, SceneConflict, StaleModel, OutputError, PdbError, RenderError)
+# Refusals: their message is already one sentence in the user's terms, reported as it is.
+EXPECTED_ERRORS = (P.ParamError, SceneConflict, StaleModel, OutputError, PdbError, RenderError,
+                   UsageError, StructureError)
 
 
 def settings(context):
@@ -57,8 +61,15 @@ def guarded(op, fn, *args) -> set:
         op.report({"ERROR"}, str(exc))
     except Exception as exc:  # a bug: one line for the user, the details for a bug report
         traceback.print_exc()
-        op.report({"ERROR"}, f"FibrilFit failed: {exc!r} (details in the system console)")
+        op.report({"ERROR"}, unexpected(exc))
     return {"CANCELLED"}
+
+
+def unexpected(exc: BaseException) -> str:
+    """A bug, in one sentence: what failed, and where the details for a report are."""
+    what = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+    return (f"FibrilFit failed unexpectedly ({type(exc).__name__}{': ' + what if what else ''}); "
+            f"please report it with the traceback from the system console")
 
 
 def panel_params(context) -> P.Params:

@@ -1,11 +1,12 @@
 """Import fibril… / Import domain…: file browsers over structure.measure_* that fill the panel's
-parameters, keep the measurements and put the fibril's CA trace beside the model."""
+parameters, keep the measurements and put the fibril's CA trace on the model's core (same
+axis, same layer phase: structure/trace.py's on_model)."""
 import bpy
 import numpy as np
 
 from ...model import params as P
 from .. import properties, structure_trace
-from ...structure import StructureError, from_files, measure_domain, measure_fibril, trace
+from ...structure import from_files, measure_domain, measure_fibril, trace
 from . import common
 
 GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
@@ -23,11 +24,20 @@ def _fill(context, fib, dom) -> list:
     return sorted(applied), block["not_in_model"]
 
 
-def _beside(p: P.Params, outline) -> tuple:
-    """Where the trace goes: along +X, clear of the model's chains and globules."""
-    reach = max(p.chain_x()) + p.globule_radius
-    width = float(np.hypot(*np.asarray(outline, float).T).max()) if outline else reach
-    return (reach + width + 20.0, 0.0, 0.0)
+def _beside_globule(p: P.Params, chains) -> tuple:
+    """Where the domain's CA trace goes: beside layer 0's globule (at its rest place, the
+    chain's end, -Y of it), clear of it, at the same scale (1 unit = 1 Å)."""
+    reach = max(float(np.linalg.norm(xyz, axis=1).max()) for _, _, xyz in chains)
+    return (max(p.chain_x()) + p.globule_radius, -(p.globule_radius + reach + 5.0), 0.0)
+
+
+def _on_model(p: P.Params, path, fib) -> list:
+    """The file's CA trace on the panel's model: its layers on the model's layers, centred in
+    its stack (or its periodic cell)."""
+    chains = trace.ca_trace(path, fib)
+    moved, _ = trace.on_model(chains, trace.relative_layers(fib), p.periodic or p.layers,
+                              p.rise, p.twist)
+    return moved
 
 
 class _ImportBase:
@@ -40,18 +50,15 @@ class _ImportBase:
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        try:
-            return common.guarded(self, self._import, context)
-        except StructureError as exc:  # not in common's list: report it the same way
-            self.report({"ERROR"}, str(exc))
-            return {"CANCELLED"}
+        return common.guarded(self, self._import, context)
 
 
 class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
     bl_idname = "fibrilfit.import_fibril"
     bl_label = "Import fibril…"
     bl_description = ("Measure a fibril structure (PDB/mmCIF): rise, twist, protofilaments, core "
-                      "outline and anchor fill the parameters; its CA trace goes beside the model")
+                      "outline and anchor fill the parameters; its CA trace goes on the model's "
+                      "core")
     terminus: bpy.props.EnumProperty(name="Terminus", items=(
         ("C", "C-terminus", "The linker leaves the core's last residue"),
         ("N", "N-terminus", "The linker leaves the core's first residue")), default="C")
@@ -64,8 +71,7 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
                              anchor_residue=self.anchor_residue or None)
         names, missing = _fill(context, fib, None)
         p = common.panel_params(context)
-        structure_trace.add_trace(context.scene, trace.ca_trace(path, fib), fib.file,
-                                  _beside(p, fib.core_outline))
+        structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
         summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
         summary["outline_points"] = len(fib.core_outline)
         structure_trace.store(context.scene, "fibril", summary)
@@ -90,6 +96,10 @@ class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
         dom = measure_domain(bpy.path.abspath(self.filepath), chain=self.chain or None,
                              residues=self.residues or None)
         names, _ = _fill(context, None, dom)
+        chains = trace.domain_ca(bpy.path.abspath(self.filepath), chain=self.chain or None,
+                                 residues=self.residues or None)
+        structure_trace.add_trace(context.scene, chains, dom.file,
+                                  _beside_globule(common.panel_params(context), chains), "domain")
         structure_trace.store(context.scene, "domain", dom.to_dict())
         self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}")
         return {"FINISHED"}

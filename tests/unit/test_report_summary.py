@@ -1,0 +1,35 @@
+"""The panel's lines for the last report (fibrilfit/ui/report_summary.py), from report.json."""
+from fibrilfit.ui.report_summary import summary_lines, summary_of
+
+DOC = {"answer": "fits",
+       "p_fit": {"fits": 7, "runs": 8, "low": 0.5291, "high": 0.9776, "p": 0.875, "linker": 6,
+                 "protocol": "inflate", "seeds": [0, 7]},
+       "minimal_linker": {"linker": 4, "p_fit": 0.25, "linker_below": 3, "p_fit_below": 0.0,
+                          "max_linker": 30, "restarts": 8}}
+
+
+def test_the_panel_shows_p_fit_and_the_minimal_linker():
+    lines = [text for text, _ in summary_lines(summary_of(DOC, "/tmp/r"))]
+    assert lines == ["Report: fits", "P(fit) 7/8 at linker 6", "95 %: 0.53–0.98",
+                     "Minimal linker: 4 residues", "at 3: P(fit) 0.00"]
+
+
+def test_the_bound_shows_when_the_report_has_one():
+    doc = {**DOC, "bound": {"impossible_below": 3, "method": "..."}}
+    summary = summary_of(doc, "/tmp/r")
+    assert summary["impossible_below"] == 3
+    assert summary_lines(summary)[-1] == ("Impossible below 3 residues", "BLANK1")
+
+
+def test_no_minimal_linker_found_says_up_to_where():
+    doc = {**DOC, "answer": "no layout found",
+           "minimal_linker": {"linker": None, "max_linker": 12, "restarts": 8}}
+    lines = summary_lines(summary_of(doc, "/tmp/r"))
+    assert lines[0] == ("Report: no layout found", "INFO")
+    assert ("Minimal linker: none up to 12", "BLANK1") in lines
+
+
+def test_every_line_fits_the_sidebar():
+    doc = {**DOC, "bound": {"impossible_below": 123}}
+    assert all(len(text) <= 36 for text, _ in summary_lines(summary_of(doc, "/tmp/r")))
+    assert summary_lines({}) == []

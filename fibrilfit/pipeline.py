@@ -102,8 +102,9 @@ def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
 
 
 def check(model, scene=None) -> dict:
-    """Judge the model at the scene's current frame (the bake leaves it on its last frame)."""
-    return check_model(model)
+    """Judge the model at the scene's current frame (the bake leaves it on its last frame), with
+    the bracket's proven side: impossible below the bound (docs/model/bound.md#derivation)."""
+    return {**check_model(model), "bound": bound.bound_block(model.params)}
 
 
 def describe(p: P.Params) -> dict:
@@ -142,8 +143,6 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
     if stop_after == "bake" or result["cancelled"]:
         return result
     result.update(timed("check", lambda: check(model, scene)))
-    # impossible below B: the bracket's proven side (docs/model/bound.md#derivation)
-    result["bound"] = timed("bound", lambda: bound.bound_block(p))
     return result
 
 

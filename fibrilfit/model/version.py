@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "854c982ce2ab1121192cdb10b5e93aed2b5c997dea3d7e5fed55cbf8cae1ed52"
+MODEL_SOURCES_SHA256 = "7aa696eca89eec69ecee4b448baf0aea6103e470463818e8b287feba74f5e1a7"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

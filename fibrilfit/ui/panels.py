@@ -186,6 +186,10 @@ def draw_result(box, s):
               icon="CHECKMARK" if s.accommodated else "CANCEL")
     if s.answer:  # the honest word: one failed run is "no layout found", not "does not fit"
         box.label(text=f"Answer: {s.answer}")
+    if s.bound > 1:  # the bracket's proven side (docs/model/bound.md#derivation)
+        box.label(text=f"Impossible below {s.bound} residues (the bound)")
+    elif s.bound == 1:
+        box.label(text="The geometry alone rules out no linker")
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")
 

@@ -145,6 +145,10 @@ class FIBRILFIT_PG_settings(bpy.types.PropertyGroup):
         name="Answer",
         description="What this one relaxation shows: fits, borderline (at the criterion) or no "
                     "layout found (in this run; restarts or minimal-linker say more)")
+    bound: IntProperty(
+        name="Impossible below", min=0,
+        description="The proven lower bound: no clash-free layout with intact linkers exists "
+                    "with fewer linker residues (geometry alone; 0 = not computed)")
 
 
 RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
@@ -317,6 +321,7 @@ def store_result(settings, result: dict) -> None:
     settings.linker_intact = result["linker_intact"]
     settings.accommodated = result["accommodated"]
     settings.answer = result.get("answer") or ""  # docs/model/verdict.md#answer
+    settings.bound = (result.get("bound") or {}).get("impossible_below", 0)  # docs/model/bound.md#derivation
 
 
 def clear_result(settings) -> None:

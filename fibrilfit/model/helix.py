@@ -5,8 +5,9 @@ protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A period
 layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
 (`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
-any turn and rise). `layer_frame_xy` is the inverse: a point's layer and its position in that
-layer's own frame. `handedness` names a twist's hand.
+any turn and rise); the cells `auto` picks, one per seed (`cell_ladder`, `auto_cell_layers`).
+`layer_frame_xy` is the inverse: a point's layer and its position in that layer's own frame.
+`handedness` names a twist's hand.
 
 How far a body reaches is the domains' (model/domains.py); which part of gravity a cell feels,
 model/gravity.py.
@@ -104,18 +105,39 @@ def min_cell_layers(p) -> int:
     return int(math.floor(p.widest_diameter / p.rise)) + 1
 
 
-# `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured
-# (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only gravity's axial
-# part, cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100
-# seeds, the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82 of 100 (p =
-# 0.10; why longer cells may fit less is not known); linkers 6, 8 and 12 give the same verdict at
-# 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 % and `auto` was
-# 8·D/rise = 50.)
+# The shortest cell `auto` takes: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum.
+# Measured (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only
+# gravity's axial part, cell_gravity): at linker 7, where the answer is a probability, 13 layers
+# fit 91 of 100 seeds, the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82
+# of 100 (p = 0.10; why longer cells may fit less is not known); linkers 6, 8 and 12 give the
+# same verdict at 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 %
+# and `auto` was 8·D/rise = 50.)
 AUTO_FACTOR = 2.0
+# `auto` is a ladder of cells, one rung per seed: seed s takes rung s mod CELL_LADDER, from the
+# shortest cell (rung 0, seed 0: what `auto` was) up to twice it. Every M-layer screw-periodic
+# layout is a layout of the infinite fibril, so a fit in any rung proves the infinite fibril
+# fits, and restarts over seeds search the cell too. Why: one cell length decided the answer
+# (20 Å globules at linker 4, inflate, seeds 0-4: 0 of 5 in the 9-layer cell, 2 of 5 in a
+# 12-layer one; docs/model/periodic-cell.md#cell-ladder).
+CELL_LADDER = 5
+
+
+def base_cell_layers(p) -> int:
+    """The shortest cell `auto` takes (rung 0 of the ladder): ceil(AUTO_FACTOR · D / rise), and
+    never below the minimum."""
+    return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.widest_diameter / p.rise - 1e-9)))
+
+
+def cell_ladder(p) -> list[int]:
+    """The cells `auto` takes, rung k = ceil(base · (1 + k / (CELL_LADDER - 1))): base ... 2·base."""
+    base = base_cell_layers(p)
+    steps = CELL_LADDER - 1
+    return [int(math.ceil(base * (steps + k) / steps - 1e-9)) for k in range(CELL_LADDER)]
 
 
 def auto_cell_layers(p) -> int:
-    return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.widest_diameter / p.rise - 1e-9)))
+    """The cell `auto` picks for this model's seed: rung seed mod CELL_LADDER of cell_ladder."""
+    return cell_ladder(p)[int(p.seed) % CELL_LADDER]
 
 
 def image_gap(p, m: int, k: int) -> float:

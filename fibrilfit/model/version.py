@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "1aa4755bdfcf86b83febc5729f2e6def7131dcca9568a4bd79b19baf3f368c61"
+MODEL_SOURCES_SHA256 = "7333d3c072a9d1dded53f3aeb824978cbf6c7653d65d166fd7718bb622adb176"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -45,7 +45,8 @@ def walk(out: pathlib.Path, diameter: float, restarts: int, workers: int) -> int
 
 def show(path: pathlib.Path) -> None:
     """One line per run of results.jsonl, and the walk's rows if it finished."""
-    for line in (path / "results.jsonl").read_text().splitlines():
+    results = path / "results.jsonl"
+    for line in results.read_text().splitlines() if results.exists() else []:
         r = json.loads(line)
         if r.get("status") != "ok":
             print(f"  {r.get('status')}: {r.get('error')}")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import gravity, helix
+from ..model import gravity, helix, start_layout
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, reach_from_axis
@@ -269,7 +269,7 @@ def _cell_warnings(p) -> list[str]:
     margin = helix.base_cell_layers(p)
     if p.periodic and p.periodic < margin:
         return [f"a cell of {p.periodic} layers is shorter than the measured margin "
-                f"({margin}, the shortest cell of 'auto'): cells this short were not measured against long "
+                f"({margin}): cells this short were not measured against long "
                 f"fibrils (docs/notebook/periodic-cell.md#agreement)"]
     return []
 
@@ -280,7 +280,7 @@ def periodic_block(model, cells: int) -> dict:
     images = images.to_dict() if hasattr(images, "to_dict") else dict(images or {})
     return {"cell_layers": model.params.periodic,
             "auto_cell_layers": helix.auto_cell_layers(model.params),
-            "cell_ladder": helix.cell_ladder(model.params), "chains": len(model.chain),
+            "lattice_rows": start_layout.lattice_columns(model.params), "chains": len(model.chain),
             "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
                        "cells": [int(m) for m in images.get("cells", [])]},
             "check_cells": cells,

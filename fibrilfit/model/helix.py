@@ -5,7 +5,8 @@ protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A period
 layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
 (`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
-any turn and rise); the cells `auto` picks, one per seed (`cell_ladder`, `auto_cell_layers`).
+any turn and rise); the cell `auto` picks (`auto_cell_layers`) and the period of the inflate
+start's lattice it holds (`lattice_rows`).
 `layer_frame_xy` is the inverse: a point's layer and its position in that layer's own frame.
 `handedness` names a twist's hand.
 
@@ -113,31 +114,32 @@ def min_cell_layers(p) -> int:
 # same verdict at 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 %
 # and `auto` was 8·D/rise = 50.)
 AUTO_FACTOR = 2.0
-# `auto` is a ladder of cells, one rung per seed: seed s takes rung s mod CELL_LADDER, from the
-# shortest cell (rung 0, seed 0: what `auto` was) up to twice it. Every M-layer screw-periodic
-# layout is a layout of the infinite fibril, so a fit in any rung proves the infinite fibril
-# fits, and restarts over seeds search the cell too. Why: one cell length decided the answer
-# (20 Å globules at linker 4, inflate, seeds 0-4: 0 of 5 in the 9-layer cell, 2 of 5 in a
-# 12-layer one; docs/model/periodic-cell.md#cell-ladder).
-CELL_LADDER = 5
+
+
+def lattice_rows(p) -> int:
+    """Rows of chains on each side of the inflate start's lattice in a cell: round(D / (2·rise)),
+    at least 1, so that a row's chains (2 rows' worth of layers apart) stand about a diameter
+    apart along the axis. Its period, 2 rows' worth of layers, is what a cell must hold whole
+    for the lattice start (model/start_layout.py, lattice_columns)."""
+    return max(1, int(round(p.widest_diameter / (2.0 * p.rise))))
 
 
 def base_cell_layers(p) -> int:
-    """The shortest cell `auto` takes (rung 0 of the ladder): ceil(AUTO_FACTOR · D / rise), and
-    never below the minimum."""
+    """The measured margin: ceil(AUTO_FACTOR · D / rise), and never below the minimum."""
     return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.widest_diameter / p.rise - 1e-9)))
 
 
-def cell_ladder(p) -> list[int]:
-    """The cells `auto` takes, rung k = ceil(base · (1 + k / (CELL_LADDER - 1))): base ... 2·base."""
-    base = base_cell_layers(p)
-    steps = CELL_LADDER - 1
-    return [int(math.ceil(base * (steps + k) / steps - 1e-9)) for k in range(CELL_LADDER)]
-
-
 def auto_cell_layers(p) -> int:
-    """The cell `auto` picks for this model's seed: rung seed mod CELL_LADDER of cell_ladder."""
-    return cell_ladder(p)[int(p.seed) % CELL_LADDER]
+    """The cell `auto` picks: the measured margin (base_cell_layers), and under the inflate
+    protocol the shortest cell at or above it that holds whole periods of the inflate start's
+    lattice (2 · lattice_rows layers). Why: one cell length decided the answer (20 Å globules
+    at linker 4, inflate, seeds 0-4: 0 of 5 in the 9-layer cell, 2 of 5 in a 12-layer one), and
+    the layout found repeats every 4 layers, which a cell of 9 cannot hold
+    (docs/model/periodic-cell.md#cell-ladder)."""
+    if getattr(p, "protocol", "tutorial") != "inflate":
+        return base_cell_layers(p)
+    period = 2 * lattice_rows(p)
+    return -(-base_cell_layers(p) // period) * period
 
 
 def image_gap(p, m: int, k: int) -> float:

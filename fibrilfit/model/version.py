@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7333d3c072a9d1dded53f3aeb824978cbf6c7653d65d166fd7718bb622adb176"
+MODEL_SOURCES_SHA256 = "959e0ebb1f2855eb2e11c11ca8c9a19145205b68a286d43ba621990b38f2e67b"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

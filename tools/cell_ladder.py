@@ -1,4 +1,5 @@
-"""Issue #36 §4: the measurements behind the cell ladder (docs/notebook/search.md#cell-ladder).
+"""Issue #36 §4: the measurements behind the auto cell and the lattice start
+(docs/notebook/search.md#auto-cell).
 
 Runs, resumably under --out (default out/cell_ladder), with `nice` left to the caller:
   fixed cells   `headless.py sweep` at one diameter and linker in explicit cells, seeds 0-4

@@ -120,7 +120,10 @@ def lattice_rows(p) -> int:
     """Rows of chains on each side of the inflate start's lattice in a cell: round(D / (2·rise)),
     at least 1, so that a row's chains (2 rows' worth of layers apart) stand about a diameter
     apart along the axis. Its period, 2 rows' worth of layers, is what a cell must hold whole
-    for the lattice start (model/start_layout.py, lattice_columns)."""
+    for the lattice start (model/start_layout.py, lattice_columns). 0 (no lattice) for several
+    domains per chain or a real domain shape: measured on one sphere per chain only."""
+    if len(p.globule_members()) > 1 or p.shape.real:
+        return 0
     return max(1, int(round(p.widest_diameter / (2.0 * p.rise))))
 
 
@@ -135,8 +138,8 @@ def auto_cell_layers(p) -> int:
     lattice (2 · lattice_rows layers). Why: one cell length decided the answer (20 Å globules
     at linker 4, inflate, seeds 0-4: 0 of 5 in the 9-layer cell, 2 of 5 in a 12-layer one), and
     the layout found repeats every 4 layers, which a cell of 9 cannot hold
-    (docs/model/periodic-cell.md#cell-ladder)."""
-    if getattr(p, "protocol", "tutorial") != "inflate":
+    (docs/model/periodic-cell.md#auto-cell)."""
+    if getattr(p, "protocol", "tutorial") != "inflate" or not lattice_rows(p):
         return base_cell_layers(p)
     period = 2 * lattice_rows(p)
     return -(-base_cell_layers(p) // period) * period

@@ -93,10 +93,8 @@ def lattice_columns(p) -> int:
     the cell's M layers hold a whole number of periods. Measured: the one layout found for 20 Å
     globules at linker 4 (a 12-layer cell, seed 2) repeats every 4 layers, its chains in 2 rows
     a side; started so, seeds 0-4 fit (docs/model/search.md#lattice-start)."""
-    if not getattr(p, "periodic", 0):
-        return 0
-    rows = helix.lattice_rows(p)
-    return rows if p.periodic % (2 * rows) == 0 else 0
+    rows = helix.lattice_rows(p) if getattr(p, "periodic", 0) else 0
+    return rows if rows and p.periodic % (2 * rows) == 0 else 0
 
 
 def lattice_amplitudes(levels: np.ndarray, columns: int) -> np.ndarray:

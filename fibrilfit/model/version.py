@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "959e0ebb1f2855eb2e11c11ca8c9a19145205b68a286d43ba621990b38f2e67b"
+MODEL_SOURCES_SHA256 = "acc6dec51e4d7f6d7e20779e7a9b754c7235751c2d7b8647a0cc3c89e46949df"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -5,8 +5,8 @@ seeds 0-4 and linker 5 in none, on the auto cell and on one twice as long.
 Measured 2026-11-25 on the auto cell: 2 of 5 at linker 7 with 4 regrows; with near_cycles (5
 more regrows for a near miss) 4 of 5 (seed 2 does not fit; seeds 5-9: 5 of 5), and 4 of 5 on the
 26-layer cell (seed 2 does not fit). Measured on the 13-layer cell that `auto` then was for every
-seed; `auto` is now a ladder of cells, one per seed (docs/model/periodic-cell.md#cell-ladder), so
-the claim names the cell it was measured on.
+seed; under inflate `auto` is now a cell holding whole periods of the lattice start (18 layers
+at 30 Å: docs/model/periodic-cell.md#auto-cell), so the claim names the cell it was measured on.
 """
 import pytest
 

@@ -28,7 +28,7 @@ PYTEST = -m pytest --durations=25 --junitxml=out/junit/$@.xml
 TEST_MARK ?= not slow
 
 .PHONY: run test test-unit test-latest test-lts test-52 test-alone test-slow test-cluster \
-	test-blender old-blender extension bench validate validate-shapes docs clean
+	test-blender test-pip old-blender extension bench validate validate-shapes docs clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -104,6 +104,21 @@ test-slow: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
 	    $(BLENDER_TESTS) -m slow $(PYTEST_ARGS); rc=$$?; \
 	  [ $$rc -eq 0 ] || [ $$rc -eq 5 ] || exit $$rc; \
 	done
+
+# The pip route (docs/guide/install.md#pip) in a fresh venv out/pip/venv: the wheel and sdist
+# built from this checkout (python -m build), the wheel installed with the dependencies it
+# declares (bpy, numpy, gemmi, tqdm, matplotlib: from pip's cache, else PyPI), then
+# tests/pip/check_installed.py, run from out/pip, checks the wheel's files (the package only)
+# and the installed `fibrilfit` command: --version, `run --layers 4 --json -`, `inspect` on tests/data. No make-managed venv is used.
+PIP_DIR ?= out/pip
+test-pip:
+	rm -rf $(PIP_DIR) && mkdir -p $(PIP_DIR)
+	$(PYTHON) -m venv $(PIP_DIR)/venv
+	$(PIP_DIR)/venv/bin/python -m pip install --quiet --upgrade pip build
+	$(PIP_DIR)/venv/bin/python -m build --outdir $(PIP_DIR)/dist . >$(PIP_DIR)/build.log
+	rm -rf build fibrilfit.egg-info  # setuptools' leftovers in the checkout
+	$(PIP_DIR)/venv/bin/python -m pip install --quiet $(PIP_DIR)/dist/fibrilfit-*.whl
+	cd $(PIP_DIR) && venv/bin/python $(CURDIR)/tests/pip/check_installed.py $(CURDIR) dist/fibrilfit-*.whl
 
 # Debian's Blender 3.4.1 (older than the 4.2 minimum) and Xvfb, as root, for the old-Blender tests
 # of tests/blender/test_entry_points.py (refused in one line, headless, as an add-on, windowed);

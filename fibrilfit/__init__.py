@@ -6,21 +6,33 @@ bodies), `analysis` (how it is judged), `pipeline` (one run, for every entry poi
 (how results are written), `batch`, `sweep` and `search` (many runs), `cli` and `ui` (how a
 user drives it, thin over the rest).
 
-Importing the package imports nothing else: `cli`, `model`, `run_model` and every submodule load
-on first use, so `headless.py inspect` never loads bpy, and an old Blender reaches register()'s
-version check (one line) rather than an import error from a module it cannot run.
+Importing the package imports nothing else: `cli`, `model`, `run_model`, `make_params` and every
+submodule load on first use, so `headless.py inspect` never loads bpy, and an old Blender reaches
+register()'s version check (one line) rather than an import error from a module it cannot run.
+
+The Python API (docs/reference/api.md): `run_model(make_params(...))` runs one model, as
+`fibrilfit run` does. `__version__` is blender_manifest.toml's version, the one place it is said
+(pyproject.toml reads it from here).
 """
 import importlib
 import pathlib
 
-__all__ = ["cli", "params", "run_model", "register", "unregister"]
+__all__ = ["__version__", "cli", "make_params", "model", "run_model", "register", "unregister"]
+
+# name -> the module that defines it, imported on first use
+LAZY = {"run_model": ".pipeline", "make_params": ".model.params"}
+
 
 def __getattr__(name):
-    """`run_model` and the submodules load on first use."""
+    """`run_model`, `make_params`, `__version__` and the submodules load on first use."""
     if name == "bl_info":
         return _old_blender_info()
-    if name == "run_model":
-        return importlib.import_module(".pipeline", __name__).run_model
+    if name == "__version__":  # as model/version.py's fibrilfit_version(), without numpy
+        import tomllib         # (pip's build reads it with only this file importable)
+        manifest = pathlib.Path(__file__).parent / "blender_manifest.toml"
+        return tomllib.loads(manifest.read_text(encoding="utf-8"))["version"]
+    if name in LAZY:
+        return getattr(importlib.import_module(LAZY[name], __name__), name)
     here = pathlib.Path(__file__).parent
     if not name.startswith("__") and ((here / name).is_dir() or (here / f"{name}.py").is_file()):
         return importlib.import_module(f".{name}", __name__)

@@ -10,8 +10,8 @@ from typing import Callable
 
 import bpy
 
-from .model import params as P
-from .model import version as model_version
+from .model import bound, params as P
+from .model import terminus, version as model_version
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -132,6 +132,9 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
         result["timings_s"][stage] = round(time.perf_counter() - t, 4)
         return out
 
+    if p.free_linker < 1:  # no exit: the linker cannot reach the surface; nothing to build
+        return {**result, **terminus.no_exit_result(p),
+                "bound": timed("bound", lambda: bound.bound_block(p))}
     model = timed("build", lambda: build(p, scene, force=force))
     if stop_after == "build":
         return result
@@ -139,6 +142,8 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
     if stop_after == "bake" or result["cancelled"]:
         return result
     result.update(timed("check", lambda: check(model, scene)))
+    # impossible below B: the bracket's proven side (docs/model/bound.md#derivation)
+    result["bound"] = timed("bound", lambda: bound.bound_block(p))
     return result
 
 

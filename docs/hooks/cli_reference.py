@@ -13,7 +13,10 @@ PAGE = "reference/cli.md"
 
 
 def _cell(text) -> str:
-    return " ".join(str(text).split()).replace("|", "\\|")
+    # "[...]" escaped: help text such as "(x, y, z) [Å/s², default 0.5]" would otherwise read
+    # as a reference-style link (mkdocstrings' autorefs then fails --strict on it)
+    text = " ".join(str(text).split()).replace("|", "\\|")
+    return text.replace("[", "\\[").replace("]", "\\]")
 
 
 def _help(action: argparse.Action) -> str:

@@ -185,11 +185,11 @@ class LayerBuilder:
 
     def _linker(self, k):
         for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
-            for i in range(1, self.p.linker):
+            for i in range(1, self.p.free_linker):
                 self._chain_member(k, j, i)
 
     def _globule(self, k):
-        self._member(k, self.p.linker)
+        self._member(k, self.p.free_linker)
         self._further_domains(k)
 
     def _further_domains(self, k):
@@ -197,7 +197,7 @@ class LayerBuilder:
         (beads, globule, beads, globule ...), bonds in chain order."""
         last = self.globule_members[-1]
         for j in range(self.pfs):
-            for i in range(self.p.linker + 1, last + 1):
+            for i in range(self.p.free_linker + 1, last + 1):
                 self._chain_member(k, j, i)
 
     def _domain_scale(self, members: np.ndarray):

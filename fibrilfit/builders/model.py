@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import bpy
 
 from ..model import params as P
+from .exit_path import build_exit_path
 from .layers import LayerBuilder
 from .physics import check_world_free, ensure_world
 from .scene import (INDEX, LAYER, PART_COLLECTIONS, PROTOFILAMENT, ROOT, TAG, clear_model,
@@ -104,6 +105,8 @@ def build_steps(p: P.Params, scene: bpy.types.Scene | None = None, *, upto: str 
     if "layers" in steps and model.params.periodic:
         from .periodic import build_images
         model.root[IMAGES] = build_images(model, scene)
+    if "layers" in steps:
+        build_exit_path(model)  # a buried anchor's exit, drawn (none on the surface)
     # No view_layer.update() here: place() sets valid world matrices, and the depsgraph is
     # built once, on first use (the bake's first frame, or the viewport's next redraw).
     set_stage(model, upto)

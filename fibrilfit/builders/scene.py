@@ -60,7 +60,8 @@ def clear_model(scene: bpy.types.Scene) -> int:
     if scene.world is not None and is_ours(scene.world):  # the render's backdrop (exports/)
         scene.world = None
     # Meshes first: a material is an orphan only once the meshes using it are gone.
-    for kinds in ((bpy.data.meshes, bpy.data.cameras, bpy.data.lights, bpy.data.worlds),
+    for kinds in ((bpy.data.meshes, bpy.data.curves, bpy.data.cameras, bpy.data.lights,
+                   bpy.data.worlds),
                   (bpy.data.materials,)):
         bpy.data.batch_remove([d for kind in kinds for d in kind if is_ours(d) and d.users == 0])
     return removed

@@ -60,6 +60,10 @@ def missing_module(name: str, prog: str = "headless.py") -> str:
     if prog == "headless.py":
         how = ("run it with the checkout's .venv/bin/python headless.py ... (`make run` sets up "
                ".venv with the bpy module), or inside Blender: blender -b -P headless.py -- ...")
+    elif prog == "fibrilfit":  # pip's command (fibrilfit/__main__.py)
+        how = ("install FibrilFit on Python 3.11 (bpy 4.2-5.0) or 3.13 (bpy 5.1-5.2), where pip "
+               "installs bpy with it (docs/guide/install.md#pip), or run it inside Blender: "
+               "blender -b -c fibrilfit ...")
     else:
         how = "run it inside Blender: blender -b -c fibrilfit ..."
     return f"FibrilFit needs {NEEDS[name]}, which {where} does not have: {how}"

@@ -14,6 +14,7 @@ import re
 from ..exits import UsageError
 from ..exports import options as export_options
 from ..model import params as P
+from ..model.version import fibrilfit_version
 from .structure_files import add_structure_options
 
 
@@ -131,6 +132,8 @@ def _default_text(f) -> str:
 def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
                                                      "on an amyloid fibril, headless.")
+    parser.add_argument("--version", action="version",
+                        version=f"FibrilFit {fibrilfit_version()}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     run = sub.add_parser("run", help="build, bake and check one model")
     add_param_options(run)

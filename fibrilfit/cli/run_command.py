@@ -9,7 +9,7 @@ from ..exits import EXIT_INTERSECTION, EXIT_OK, EXIT_OUTPUT_FAILED, EXIT_USAGE
 from .. import files
 from ..exports import options as export_options
 from ..model import cases
-from ..structure.from_files import say_warnings
+from ..structure.from_files import exit_block, say_warnings
 from .parser import option
 from .structure_files import structure_options
 from .values import checked_params, param_sources, params_from
@@ -127,6 +127,9 @@ def _annotate(args, p, result: dict, structure_block, restarts) -> None:
     warnings = list((structure_block or {}).get("warnings", []))
     if structure_block:
         result["structure"] = structure_block
+        way = exit_block(p, structure_block)
+        if way is not None:
+            result["exit"] = way
     if restarts is not None:
         best = next(r for r in restarts["runs"] if r["seed"] == p.seed)
         # the verdict is what must reproduce; the stretch may differ in its last digits

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..model.helix import handedness
-from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, of_result
+from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, NO_EXIT, of_result
 
 
 def percent(fraction: float) -> str:
@@ -24,10 +24,16 @@ def text(r: dict, quiet: bool = False, files: dict | None = None) -> str:
             f"\n{line}" for line in _file_lines(r, files))
     if quiet:
         return _quiet_line(r)
-    return "\n".join([head, _bake_line(r), *_inflate_lines(r), *_clash_lines(r),
+    if r.get("answer") == NO_EXIT:  # settled without a bake (model/terminus.py)
+        return "\n".join([head, *_exit_lines(r), *_file_lines(r, files),
+                          f"answer: no exit. {r['no_exit'][0].upper()}{r['no_exit'][1:]}: no "
+                          f"layout can exist (nothing was simulated; "
+                          f"docs/model/buried-terminus.md#model)."])
+    return "\n".join([head, *_exit_lines(r), _bake_line(r), *_inflate_lines(r), *_clash_lines(r),
                       *_linker_lines(r), *_periodic_lines(r),
                       *[f"warning: {w}" for w in r.get("warnings", [])],
-                      *_envelope_lines(r), *_export_lines(r), *_file_lines(r, files),
+                      *_envelope_lines(r), *_bound_lines(r), *_export_lines(r),
+                      *_file_lines(r, files),
                       _answer_line(r)])
 
 
@@ -158,6 +164,24 @@ def _clash_lines(r: dict) -> list[str]:
             lines.append(f"  {n} of them only graze (overlap at most {band:.2f} Å, the globule "
                          f"mesh's resolution)")
     return lines
+
+
+def _exit_lines(r: dict) -> list[str]:
+    """A measured anchor's exit in one line (the result's `exit`), when there is one."""
+    way = r.get("exit")
+    if not way:
+        return []
+    if not way.get("found"):
+        return [f"exit: none: no path from the anchor to the core's surface clears the core's "
+                f"atoms ({way['clearance']}); depth {way['depth']:.1f} Å"]
+    if not way["residues"]:
+        return [f"exit: the anchor is on the surface ({way['length']:.1f} Å from its CA out of "
+                f"the outline): no residues spent"]
+    left = (f"the free linker starts there with {way['free_linker']}" if way["free_linker"] >= 1
+            else "the linker ends before it")
+    return [f"exit: {way['residues']} linker residue(s) spent from the buried anchor to the "
+            f"surface ({way['length']:.1f} Å path, anchor {way['depth']:.1f} Å deep, clearance "
+            f"{way['clearance']}); {left}"]
 
 
 def _linker_lines(r: dict) -> list[str]:
@@ -291,3 +315,18 @@ def _file_lines(r: dict, files: dict | None) -> list[str]:
              if key in files and str(files[key]) != "-"
              and "error" not in (r.get(key) if isinstance(r.get(key), dict) else {})]
     return [f"wrote: {', '.join(wrote)}"] if wrote else []
+
+
+def bound_phrase(b: dict) -> str:
+    """The bracket's proven side in words (docs/model/bound.md#derivation)."""
+    return (f"no layout can exist below {b['impossible_below']} residues (proof: excluded "
+            f"volume over {b['over']})")
+
+
+def _bound_lines(r: dict) -> list[str]:
+    b = r.get("bound")
+    if not b:
+        return []
+    where = ("this linker is below it: settled, impossible" if b.get("below")
+             else "this linker is at or above it")
+    return [f"bound: {bound_phrase(b)}; {where}"]

@@ -20,7 +20,10 @@ result and the unit tests read the same rule (docs/model/verdict.md#answer):
 from __future__ import annotations
 
 FITS, BORDERLINE, NO_LAYOUT = "fits", "borderline", "no layout found"
-ANSWERS = (FITS, BORDERLINE, NO_LAYOUT)
+# A buried anchor whose exit the linker cannot pay for: settled without a relaxation, and a
+# proof that no layout exists (docs/model/buried-terminus.md#model; model/terminus.py)
+NO_EXIT = "no exit"
+ANSWERS = (FITS, BORDERLINE, NO_LAYOUT, NO_EXIT)
 # A stretch within one percentage point of the tolerance (e.g. 4-6 % for 5 %) is borderline:
 # the worst stretch of one layout varies by about this much between frames once settled
 # (docs/model/linker-integrity.md#linker-integrity).

@@ -44,6 +44,8 @@ def check_combination(p, force: bool) -> None:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
                                          f"(got {p.score_layers})")
+    if p.free_linker < 1:  # no exit: a verdict, settled without a model (model/terminus.py)
+        return
     _check_domains(p)
     p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
     check_anchors_apart(p)

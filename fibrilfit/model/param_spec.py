@@ -69,3 +69,6 @@ MAX_SHAPE_ROWS = 5_000
 # The parameters that carry the domains' real shapes, as rows of numbers
 SHAPE_ROWS = ("domain_atoms", "domain_spheres", "domain_joint", "further_atoms",
               "further_spheres", "further_joints", "domain_exits")
+# exit_residues of an anchor no clear path leaves within geom.exit_path.MAX_LENGTH: more than
+# any linker (docs/model/buried-terminus.md#model)
+SEALED = 1000

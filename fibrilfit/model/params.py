@@ -29,7 +29,8 @@ from .param_spec import (ANGLE_UNITS, DERIVED_WORDS, DOMAIN_SHAPES, GLOBULE_RING
                          GLOBULE_SEGMENTS, MAX_OBJECTS_UNFORCED, MAX_OUTLINE_POINTS,
                          MAX_SHAPE_ROWS, MAX_TWIST, MEMORY_PER_OBJECT_KIB, NUMBER_WORDS,
                          PROTOCOLS,
-                         RESIDUE_RINGS, RESIDUE_SEGMENTS, SHAPE_ROWS, SHOWN_IN, ParamError, spec)
+                         RESIDUE_RINGS, RESIDUE_SEGMENTS, SEALED, SHAPE_ROWS, SHOWN_IN, ParamError,
+                         spec)
 from .param_values import (angle_value, coerce, list_value, rows_value, split_unit,  # noqa: F401
                            vector_value)
 
@@ -117,6 +118,19 @@ class Params:
                                  "Where protofilament 0's anchor sits in the layer's frame: X Y",
                                  section="Anchor", size=2,
                                  derived="(slab X / 2 + residue radius, 0)")
+    # The buried terminus (docs/model/buried-terminus.md#model): the residues a chain spends
+    # from its buried anchor to the core's surface, measured from --fibril with their path; the
+    # model's chain (anchor, free linker, globule) then starts at the exit, `anchor`.
+    exit_residues: int = spec(0, 0, SEALED, "residues",
+                              "Residues of the linker spent from a buried anchor to the core's "
+                              "surface (measured from --fibril; 0: the anchor is on the "
+                              f"surface; {SEALED}: no clear path)", kind=int, section="Anchor",
+                              ui=False, cli=False)
+    exit_path: tuple | None = spec(None, -1000.0, 1000.0, "Å",
+                                   "The exit's path from the buried anchor's CA to the surface, "
+                                   "rows [x, y, z] in the layer's frame", kind="rows", size=3,
+                                   ui=False, cli=False, section="Anchor",
+                                   derived="none: the anchor on the surface")
 
     # Search protocol (docs/model/search.md#search). `tutorial`
     # starts every globule at full size on a straight chain and lets Bullet push them apart;
@@ -324,9 +338,17 @@ class Params:
         must exceed so that no globule meets its own image."""
         return max([self.globule_diameter, *(self.domain_diameters or ())])
 
+    @property
+    def free_linker(self) -> int:
+        """The linker the model simulates: `linker` less the residues spent on a buried
+        anchor's exit (exit_residues; 0 on the surface), counting the bead at the exit as
+        its passive anchor (docs/model/buried-terminus.md#model). Below 1: no exit."""
+        return self.linker - self.exit_residues
+
     def globule_members(self) -> list[int]:
-        """The member index of each domain along a chain (one domain: [linker], the last)."""
-        out = [self.linker]
+        """The member index of each domain along a chain (one domain: [free_linker], the
+        last)."""
+        out = [self.free_linker]
         for gap in self.domain_linker or ():
             out.append(out[-1] + gap + 1)
         return out
@@ -405,7 +427,7 @@ class Params:
             d["anchor"] = list(self.anchor)
         if self.core_outline is not None:
             d["core_outline"] = [list(xy) for xy in self.core_outline]
-        for name in SHAPE_ROWS:
+        for name in (*SHAPE_ROWS, "exit_path"):
             if d[name] is not None:
                 d[name] = [list(row) for row in d[name]]
         return d

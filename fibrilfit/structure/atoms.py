@@ -51,14 +51,15 @@ class Sources:
     anchor_residue: int | None = None
     side: str = "C"  # "C": the linker follows the anchor in sequence; "N": it precedes it
 
-    def linker_numbers(self, beads: int) -> np.ndarray:
+    def linker_numbers(self, beads: int, skip: int = 0) -> np.ndarray:
         """Residue numbers of a chain's `beads` linker residues (anchor side first): after the
         anchor (before it on the N side) in the protein's numbering, or 2 .. beads + 1 without
-        a fibril file."""
+        a fibril file; `skip` residues after the anchor first (a buried anchor's exit:
+        docs/model/buried-terminus.md#model)."""
         step = -1 if self.side == "N" else 1
         if self.anchor_residue is None:
-            return np.arange(2, beads + 2)
-        return self.anchor_residue + step * np.arange(1, beads + 1)
+            return np.arange(2 + skip, beads + 2 + skip)
+        return self.anchor_residue + step * np.arange(1 + skip, beads + 1 + skip)
 
 
 def core_atoms(path, geometry: F.FibrilGeometry, option: str = "--fibril") -> list:

@@ -12,8 +12,7 @@ from functools import reduce
 import numpy as np
 
 from ..geom import rigid as G
-from . import outline as O
-from . import reading
+from . import exit as X, outline as O, reading
 from .errors import StructureError
 
 STACK = (4.2, 5.6)  # Å: a residue is stacked when its CA sits this far over the same residue
@@ -62,6 +61,7 @@ class FibrilGeometry:
     layer_chains: list  # per protofilament, chain names from bottom to top
     axis_exact: bool  # False when the axis is only approximate (no screw symmetry)
     pf_offsets: list = field(default_factory=list)  # [[rotation, rise]] per protofilament
+    exit: dict = field(default_factory=dict)  # protofilament 0's anchor to the surface (exit.py)
     notes: list = field(default_factory=list)
     warnings: list = field(default_factory=list)
 
@@ -170,6 +170,8 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     anchors = _anchors(chains, refs, core, origin, frame, rise, terminus, anchor_residue, name,
                        warnings)
     sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
+    way_out = X.measure(chains, chains[refs[0]], anchors[0].residue,
+                        "N" if terminus == "N" else "C", origin, frame, np.round(poly, 2), rise)
     return FibrilGeometry(
         file=name, sha256=loaded.sha256,
         axis={"point": [round(float(v), 3) for v in origin],
@@ -185,7 +187,7 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
         anchors=[asdict(a) for a in anchors], tail_residues=anchors[0].tail_residues,
         terminus=f"residue {anchor_residue}" if anchor_residue is not None else terminus,
         layer_chains=[[chains[i].name for i in q] for q in paths], axis_exact=exact,
-        pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], notes=notes,
+        pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], exit=way_out, notes=notes,
         warnings=warnings)
 
 
@@ -372,7 +374,7 @@ def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
         if anchor.buried:
             warnings.append(f"anchor {c.name} {anchor.residue_name}{res} (protofilament {k}) is "
                             f"buried: core atoms reach {depth:.1f} Å farther out in its sector; "
-                            "not a free exit for a linker")
+                            "the linker's way out is measured (the result's `exit`)")
         anchors.append(anchor)
     return anchors
 

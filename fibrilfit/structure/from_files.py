@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from ..model import params as P
-from .mapping import RESIDUE_RADIUS, linker_source, model_values
+from .mapping import EXIT_PARAMS, RESIDUE_RADIUS, linker_source, model_values
 
 
 def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -> dict:
@@ -54,6 +54,20 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
                       f"{'-terminal residue' if f.terminus in ('N', 'C') else ''}"
                       f"{', BURIED' if a['buried'] else ''}",
         }
+        way = f.exit or {}
+        if "exit_residues" in applied:
+            said["exit_residues"] = (
+                f"{f.file}: measured, a {way['length']:g} Å path from {a['residue_name']}"
+                f"{a['residue']}'s CA to the surface, clear of the core's atoms by the "
+                f"{way['clearance']} (docs/model/buried-terminus.md#method)"
+                if way.get("found") else
+                f"{f.file}: measured, no path from {a['residue_name']}{a['residue']}'s CA to "
+                f"the surface clear of the core's atoms ({way.get('searched')}): no exit")
+            said["exit_path"] = f"{f.file}: measured, the exit's path"
+            if way.get("found"):
+                said["anchor"] = (f"{f.file}: measured, one bead outside the outline where "
+                                  f"the exit from chain {a['chain']} {a['residue_name']}"
+                                  f"{a['residue']} (BURIED) leaves it")
         if f.tail_residues:
             t = f.tail_residues
             said["linker"] = (f"{f.file}: modelled tail {t[0]}-{t[1]} (the anchor and "
@@ -79,12 +93,16 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
 
 
 def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = RESIDUE_RADIUS,
-          more_domains=(), shape: str = "sphere"):
-    """(values to apply, structure block). `explicit`: parameters given as options (they win);
-    `known`: the model's parameter names; `more_domains`: the domains after `domain`; `shape`:
-    the domain_shape asked for."""
+          more_domains=(), shape: str = "sphere",
+          residue_spacing: float = P.DEFAULTS.residue_spacing):
+    """(values to apply, structure block). `explicit`: parameters given as options (they win;
+    an explicit anchor takes the measured exit with it); `known`: the model's parameter names;
+    `more_domains`: the domains after `domain`; `shape`: the domain_shape asked for."""
     values = model_values(fibril, domain, residue_radius=residue_radius,
-                          more_domains=more_domains, shape=shape)
+                          more_domains=more_domains, shape=shape,
+                          residue_spacing=residue_spacing)
+    if "anchor" in explicit:  # the exit leads to the measured anchor, not to the one given
+        explicit = explicit | {k for k in EXIT_PARAMS if k in values}
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)
@@ -105,14 +123,16 @@ def merged(fib, doms: list, seg, explicit: dict) -> tuple[dict, dict]:
     result's `structure` block. (cli/structure_files.py reads the files the options name.)"""
     dom = doms[0] if doms else None
     radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
+    spacing = explicit.get("residue_spacing", P.DEFAULTS.residue_spacing)
     try:
-        radius = float(radius)
-    except (TypeError, ValueError):
-        radius = P.DEFAULTS.residue_radius  # make_params names the bad value below
+        radius, spacing = float(radius), float(spacing)
+    except (TypeError, ValueError):  # make_params names the bad value below
+        radius, spacing = P.DEFAULTS.residue_radius, P.DEFAULTS.residue_spacing
+    spacing = spacing if spacing > 0 else P.DEFAULTS.residue_spacing
     shape = str(explicit.get("domain_shape", P.DEFAULTS.domain_shape)).strip().lower()
     applied, block = split(fib, dom, explicit=set(explicit),
                            known={f.name for f in P.fields()}, residue_radius=radius,
-                           more_domains=doms[1:], shape=shape)
+                           more_domains=doms[1:], shape=shape, residue_spacing=spacing)
     if block["not_in_model"]:
         block["warnings"].append(f"measured but not in this model: "
                                  f"{', '.join(block['not_in_model'])}")
@@ -129,3 +149,23 @@ def say_warnings(block: dict | None) -> None:
     sweep), said once the run's input has passed its checks, so bad input stays one line."""
     for warning in (block or {}).get("warnings", []):
         print(f"fibrilfit: warning: {warning}", file=sys.stderr)
+
+
+def exit_block(p, block: dict | None) -> dict | None:
+    """The result's `exit` (docs/model/buried-terminus.md#model): the residues the chain spent
+    from its anchor to the surface (None when no path leaves it), the anchor's depth below the
+    outline, the path's length and points (layer frame, Å), the clearance it keeps, the free
+    linker left and where it came from; None without a measured fibril."""
+    way = ((block or {}).get("fibril") or {}).get("measured", {}).get("exit")
+    if not way:
+        return None
+    sealed = p.exit_residues >= P.SEALED
+    source = (block.get("sources") or {}).get("exit_residues") or (
+        "measured; the run's anchor and exit are its explicit values (--anchor, a case's "
+        "params)" if "exit_residues" in block["overridden"]
+        else "measured: the anchor is on the surface, its path costs no residue")
+    return {"residues": None if sealed else int(p.exit_residues), "found": way["found"],
+            "depth": way["depth"], "length": way["length"],
+            "path": way["path"],
+            "clearance": way["clearance"], "bead_radius": way["bead_radius"],
+            "free_linker": p.free_linker, "source": source}

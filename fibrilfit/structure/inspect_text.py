@@ -32,6 +32,13 @@ def fibril_lines(g) -> list:
         lines.append(f"  anchor pf {a['protofilament']}: {a['chain']} {a['residue_name']}"
                      f"{a['residue']} at r {a['radius']:.2f} Å, depth {a['depth']:.1f} Å"
                      f"{' BURIED' if a['buried'] else ''}{tail}")
+    way = g.exit or {}
+    if way:  # protofilament 0's anchor to the surface (docs/model/buried-terminus.md#method)
+        lines.append(f"  exit pf 0: {way['length']:.2f} Å to the surface, CA {way['depth']:.2f} Å "
+                     f"inside the outline (a {way['bead_radius']:g} Å bead clear of the atoms)"
+                     if way["found"] else
+                     f"  exit pf 0: sealed: no path to the surface for a {way['bead_radius']:g} "
+                     f"Å bead clear of the atoms ({way['searched']})")
     lines += [f"  warning: {w}" for w in g.warnings]
     return lines
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geom import polygons
+from ..geom import exit_path, polygons
 from ..model import params as P
 from .domain import DomainSize
 from .fibril import FibrilGeometry
@@ -12,7 +12,8 @@ RESIDUE_RADIUS = P.DEFAULTS.residue_radius  # Å, 1.75: the model's anchor bead,
 
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
 FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
-                 "anchor", "linker")
+                 "anchor", "exit_residues", "exit_path", "linker")
+EXIT_PARAMS = ("exit_residues", "exit_path")  # measured with the anchor: they follow it
 DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker", "domain_atoms",
                  "domain_spheres", "domain_joint", "further_atoms", "further_spheres",
                  "further_joints", "domain_exits")
@@ -37,14 +38,54 @@ def anchor_outside(outline, ca, residue_radius: float = RESIDUE_RADIUS) -> list:
     return [round(float(xy[0]), 3), round(float(xy[1]), 3)]
 
 
+def exit_values(fibril: FibrilGeometry, residue_radius: float = RESIDUE_RADIUS,
+                residue_spacing: float = P.DEFAULTS.residue_spacing) -> dict:
+    """A buried anchor's exit as model values (docs/model/buried-terminus.md#model): the
+    residues its path costs at the model's spacing, the path, and the model's anchor one bead
+    outside the outline where the path leaves it; {} for an anchor on the surface (its path
+    costs nothing: the anchor as anchor_outside puts it), exit_residues SEALED when no path
+    was found."""
+    way = fibril.exit or {}
+    if not way:
+        return {}
+    if not way["found"]:
+        return {"exit_residues": P.SEALED}
+    spent = exit_path.residues_spent(way["length"], residue_spacing)
+    if spent == 0:
+        return {}
+    end = way["path"][-1]
+    return {"exit_residues": spent, "exit_path": [list(p) for p in way["path"]],
+            "anchor": clear_of(fibril.core_outline,
+                               anchor_outside(fibril.core_outline, end[:2], residue_radius),
+                               residue_radius)}
+
+
+def clear_of(outline, xy, radius: float) -> list:
+    """`xy` moved straight away from the outline's nearest point until a bead of `radius` there
+    touches no edge: an exit's end lies in a groove (5OQV's), where the bead anchor_outside puts
+    one radius off the nearest edge can overlap the next one (by 0.33 Å there)."""
+    poly = np.asarray(outline, float)
+    xy = np.asarray(xy, float)
+    for _ in range(100):
+        dist, _ = polygons.edge_distance(poly, xy[None])
+        if dist[0] >= radius - 1e-3 and not polygons.even_odd(poly, xy)[0]:
+            break
+        point, _ = polygons.nearest_on_boundary(poly, xy)
+        away = xy - point
+        xy = xy + 0.05 * away / np.linalg.norm(away)
+    return [round(float(xy[0]), 3), round(float(xy[1]), 3)]
+
+
 def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None = None, *,
                  residue_radius: float = RESIDUE_RADIUS, more_domains=(),
-                 shape: str = "sphere") -> dict:
+                 shape: str = "sphere",
+                 residue_spacing: float = P.DEFAULTS.residue_spacing) -> dict:
     """Parameter name -> value for the model, in its units (Å, rad).
 
     The layer frame is the fibril's: Z = the helical axis through the origin, layer 0 of the model
     = the structure's reference layer, X along the long axis of its section. `anchor` is the bead
-    touching the outline nearest protofilament 0's anchor CA (anchor_outside); `linker` (anchor +
+    touching the outline nearest protofilament 0's anchor CA (anchor_outside), or for a buried
+    anchor where its exit leaves the outline (exit_values); `linker` (anchor +
     tail) only when the file models residues beyond the anchor (e.g. 2N0A's 98-140), since they
     are linker too. A `shape` other than the sphere also takes the domain's real shape and
     joint (docs/model/domain-shapes.md#domain-shapes); the sphere's model keeps its values.
@@ -57,6 +98,7 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
                       core_outline=[list(p) for p in fibril.core_outline],
                       anchor=anchor_outside(fibril.core_outline, fibril.anchors[0]["position"],
                                             residue_radius))
+        values.update(exit_values(fibril, residue_radius, residue_spacing))
         tail = fibril.tail_residues
         if tail:
             values["linker"] = 1 + tail[1] - tail[0] + 1

@@ -87,7 +87,8 @@ def rows(records: list[dict]) -> list[Row]:
         row.n += 1
         row.accommodated += bool(r["accommodated"])
         row.clashes += r.get("verdict") == "intersection"
-        row.stretches.append(r["max_bond_stretch"])
+        if r["max_bond_stretch"] is not None:  # None: "no exit", nothing simulated
+            row.stretches.append(r["max_bond_stretch"])
         row.frames.append(r["frames_simulated"])
         outer = (r.get("envelope") or {}).get("outer_diameter")
         if outer is not None:

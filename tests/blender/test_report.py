@@ -3,6 +3,7 @@ import base64
 import json
 import re
 
+import jsonschema
 import numpy as np
 from mathutils import Vector
 import pytest
@@ -119,6 +120,8 @@ def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "fibrilfit report" in proc.stderr  # the progress bar
     doc = json.loads((out / "report.json").read_text())
+    schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(doc)  # the published schema
     assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
             "files"} <= set(doc)
     pf = doc["p_fit"]
@@ -186,6 +189,8 @@ def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path):
     finally:
         ff.unregister()
     doc = json.loads((out / "report.json").read_text())
+    schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(doc)  # the published schema
     assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
             "files"} <= set(doc)
     assert doc["p_fit"]["runs"] == 2 and doc["sources"]["linker"] == "sidebar"

@@ -194,8 +194,9 @@ def test_model_anchor_touches_the_outline_from_outside(measured, name, S):
     assert not polygons.even_odd(outline, anchor)[0]
     point, _ = polygons.nearest_on_boundary(outline, anchor)
     assert np.linalg.norm(anchor - point) == pytest.approx(1.75, abs=0.3)
-    # next to the anchor CA: no farther than the CA's own depth below the outline, plus the bead
-    ca = np.array(g.anchors[0]["position"])
+    # next to the anchor CA (a buried one's: where its exit leaves the outline): no farther than
+    # its depth below the outline, plus the bead
+    ca = np.array(g.exit["path"][-1][:2] if v.get("exit_residues") else g.anchors[0]["position"])
     depth, _ = polygons.nearest_on_boundary(outline, ca)
     assert np.linalg.norm(anchor - ca) <= np.linalg.norm(depth - ca) + 1.75 + 0.3
 

@@ -1,0 +1,44 @@
+"""A buried anchor's exit drawn: one curve object in the model's root collection, a polyline
+per chain along its exit's path (the measured path of protofilament 0's chain, turned and raised
+by each chain's pose), beveled to the residue's radius. Not a body: nothing collides with it
+(docs/model/buried-terminus.md#model)."""
+from __future__ import annotations
+
+import bpy
+import numpy as np
+
+from ..model import helix
+from .scene import tag
+
+NAME = "FibrilFit exit path"
+ROLE = "exit_path"
+
+
+def chain_paths(p) -> np.ndarray:
+    """Every chain's exit path (chains, points, 3): p.exit_path turned and raised by the
+    chain's pose (helix.chain_transforms), as rest_positions places the chain's members."""
+    path = np.asarray(p.exit_path, dtype=float)
+    angle, height = helix.chain_transforms(p)
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    out = np.empty((len(angle), len(path), 3))
+    out[..., 0] = c * path[None, :, 0] - s * path[None, :, 1]
+    out[..., 1] = s * path[None, :, 0] + c * path[None, :, 1]
+    out[..., 2] = path[None, :, 2] + height[:, None]
+    return out
+
+
+def build_exit_path(model) -> bpy.types.Object | None:
+    """The exit's curve in the model's root collection, or None on a surface anchor."""
+    p = model.params
+    if p.exit_path is None or p.free_linker < 1:
+        return None
+    curve = tag(bpy.data.curves.new(NAME, "CURVE"), ROLE)
+    curve.dimensions = "3D"
+    curve.bevel_depth = p.residue_radius
+    for pts in chain_paths(p):
+        spline = curve.splines.new("POLY")
+        spline.points.add(len(pts) - 1)
+        spline.points.foreach_set("co", np.hstack([pts, np.ones((len(pts), 1))]).ravel())
+    ob = tag(bpy.data.objects.new(NAME, curve), ROLE)
+    model.root.objects.link(ob)
+    return ob

@@ -37,3 +37,19 @@ def test_the_auto_cell_fits_20A_globules_at_linker_4_in_most_seeds(scene, ff):
     cell from the lattice start (seed 4 ends near: 2 pairs, 3.6 %), where the 9-layer cell
     `auto` picked before fitted none and the 12-layer cell from the random start 2 of 5."""
     assert _fits(scene, ff, 20, 4) == 4
+
+
+@pytest.mark.slow
+def test_the_auto_cell_gives_the_30A_row_of_the_map(scene, ff):
+    """Measured 2026-11-25 (docs/notebook/search.md#auto-cell), the 18-layer cell from the
+    lattice start: linker 7 fits every seed (cycles 0, 1, 2, 2, 4), linker 6 none (10-17
+    clashing pairs, 34-45 % stretch)."""
+    assert _fits(scene, ff, 30, 7) == 5
+    assert _fits(scene, ff, 30, 6) == 0
+
+
+@pytest.mark.slow
+def test_twice_the_auto_cell_fits_20A_globules_at_linker_4_as_often(scene, ff):
+    """The check at 2x the cell: 24 layers fit linker 4 in 4 of seeds 0-4 (seed 3 ends near:
+    clash-free, 9.5 %), the 12-layer cell's share."""
+    assert _fits(scene, ff, 20, 4, cell=24) == 4

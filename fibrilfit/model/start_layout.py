@@ -92,7 +92,7 @@ def lattice_columns(p) -> int:
     (helix.lattice_rows), or 0 (no lattice: random amplitudes, as in a fibril with ends) unless
     the cell's M layers hold a whole number of periods. Measured: the one layout found for 20 Å
     globules at linker 4 (a 12-layer cell, seed 2) repeats every 4 layers, its chains in 2 rows
-    a side; started so, seeds 0-4 fit (docs/model/search.md#lattice-start)."""
+    a side; started so, 4 of seeds 0-4 fit (docs/model/search.md#lattice-start)."""
     rows = helix.lattice_rows(p) if getattr(p, "periodic", 0) else 0
     return rows if rows and p.periodic % (2 * rows) == 0 else 0
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import bound, gravity, helix
+from ..model import bound, gravity, helix, start_layout
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, reach_from_axis
@@ -273,10 +273,10 @@ def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
 
 
 def _cell_warnings(p) -> list[str]:
-    margin = helix.auto_cell_layers(p)
+    margin = helix.base_cell_layers(p)
     if p.periodic and p.periodic < margin:
         return [f"a cell of {p.periodic} layers is shorter than the measured margin "
-                f"({margin}, 'auto'): cells this short were not measured against long "
+                f"({margin}): cells this short were not measured against long "
                 f"fibrils (docs/notebook/periodic-cell.md#agreement)"]
     return []
 
@@ -286,7 +286,8 @@ def periodic_block(model, cells: int) -> dict:
     images = model.root.get("fibrilfit_images")
     images = images.to_dict() if hasattr(images, "to_dict") else dict(images or {})
     return {"cell_layers": model.params.periodic,
-            "auto_cell_layers": helix.auto_cell_layers(model.params), "chains": len(model.chain),
+            "auto_cell_layers": helix.auto_cell_layers(model.params),
+            "lattice_rows": start_layout.lattice_columns(model.params), "chains": len(model.chain),
             "images": {"moving": int(images.get("moving", 0)), "static": int(images.get("static", 0)),
                        "cells": [int(m) for m in images.get("cells", [])]},
             "check_cells": cells,

@@ -5,8 +5,10 @@ protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A period
 layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
 (`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
-any turn and rise). `layer_frame_xy` is the inverse: a point's layer and its position in that
-layer's own frame. `handedness` names a twist's hand.
+any turn and rise); the cell `auto` picks (`auto_cell_layers`) and the period of the inflate
+start's lattice it holds (`lattice_rows`).
+`layer_frame_xy` is the inverse: a point's layer and its position in that layer's own frame.
+`handedness` names a twist's hand.
 
 How far a body reaches is the domains' (model/domains.py); which part of gravity a cell feels,
 model/gravity.py.
@@ -104,18 +106,43 @@ def min_cell_layers(p) -> int:
     return int(math.floor(p.widest_diameter / p.rise)) + 1
 
 
-# `auto`: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum. Measured
-# (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only gravity's axial
-# part, cell_gravity): at linker 7, where the answer is a probability, 13 layers fit 91 of 100
-# seeds, the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82 of 100 (p =
-# 0.10; why longer cells may fit less is not known); linkers 6, 8 and 12 give the same verdict at
-# 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 % and `auto` was
-# 8·D/rise = 50.)
+# The shortest cell `auto` takes: M = ceil(AUTO_FACTOR · D / rise), and never below the minimum.
+# Measured (docs/notebook/periodic-cell.md#agreement, 30 Å globules, the cell feeling only
+# gravity's axial part, cell_gravity): at linker 7, where the answer is a probability, 13 layers
+# fit 91 of 100 seeds, the interior of 200 layers 38 of 40 (under the same gravity), 26 layers 82
+# of 100 (p = 0.10; why longer cells may fit less is not known); linkers 6, 8 and 12 give the
+# same verdict at 13, 26 and 50. (Under the sideways gravity cells felt before, 13 fitted 38 %
+# and `auto` was 8·D/rise = 50.)
 AUTO_FACTOR = 2.0
 
 
-def auto_cell_layers(p) -> int:
+def lattice_rows(p) -> int:
+    """Rows of chains on each side of the inflate start's lattice in a cell: round(D / (2·rise)),
+    at least 1, so that a row's chains (2 rows' worth of layers apart) stand about a diameter
+    apart along the axis. Its period, 2 rows' worth of layers, is what a cell must hold whole
+    for the lattice start (model/start_layout.py, lattice_columns). 0 (no lattice) for several
+    domains per chain or a real domain shape: measured on one sphere per chain only."""
+    if len(p.globule_members()) > 1 or p.shape.real:
+        return 0
+    return max(1, int(round(p.widest_diameter / (2.0 * p.rise))))
+
+
+def base_cell_layers(p) -> int:
+    """The measured margin: ceil(AUTO_FACTOR · D / rise), and never below the minimum."""
     return max(min_cell_layers(p), int(math.ceil(AUTO_FACTOR * p.widest_diameter / p.rise - 1e-9)))
+
+
+def auto_cell_layers(p) -> int:
+    """The cell `auto` picks: the measured margin (base_cell_layers), and under the inflate
+    protocol the shortest cell at or above it that holds whole periods of the inflate start's
+    lattice (2 · lattice_rows layers). Why: one cell length decided the answer (20 Å globules
+    at linker 4, inflate, seeds 0-4: 0 of 5 in the 9-layer cell, 2 of 5 in a 12-layer one), and
+    the layout found repeats every 4 layers, which a cell of 9 cannot hold
+    (docs/model/periodic-cell.md#auto-cell)."""
+    if getattr(p, "protocol", "tutorial") != "inflate" or not lattice_rows(p):
+        return base_cell_layers(p)
+    period = 2 * lattice_rows(p)
+    return -(-base_cell_layers(p) // period) * period
 
 
 def image_gap(p, m: int, k: int) -> float:

@@ -65,7 +65,7 @@ def fan_frames(rest: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def fan_directions(rest: np.ndarray, rng: np.random.Generator,
-                   periodic: bool = False) -> np.ndarray:
+                   periodic: bool = False, columns: int = 0) -> np.ndarray:
     """Each chain's fan direction: outward, tilted along the axis in proportion to its anchor's
     height (monotone, so neighbouring chains never cross) and sideways, alternating from one
     height to the next (so neighbours part) with a random amplitude.
@@ -73,15 +73,39 @@ def fan_directions(rest: np.ndarray, rng: np.random.Generator,
     In a screw-periodic cell (`periodic`) there is no axial tilt: any tilt that grows with the
     height would jump back at the cell's end, where the top chain and the bottom chain's image
     (one rise above it) would then cross. An infinite fibril cannot spread along its axis, so
-    the chains part sideways only; the images, S^m of the originals, follow that layout."""
+    the chains part sideways only; the images, S^m of the originals, follow that layout. With
+    `columns` (lattice_columns) the sideways amplitudes form a lattice instead of random ones."""
     u, a, s = fan_frames(rest)
     h = rest[:, 0, 2]
     span = np.ptp(h) / 2.0
     axial = (h - h.mean()) / span if span > 0 and not periodic else np.zeros_like(h)
     levels = np.unique(np.round(h, 3), return_inverse=True)[1].ravel()
     side = np.where(levels % 2 == 0, 1.0, -1.0) * rng.choice([-1.0, 1.0])
-    side = side * rng.uniform(0.5, 1.0, len(h))
-    return _unit(u + FAN_AXIAL * axial[:, None] * a + FAN_SIDE * side[:, None] * s)
+    amplitude = rng.uniform(0.5, 1.0, len(h))
+    if columns:  # a lattice: each side's chains in `columns` rows (lattice_amplitudes)
+        amplitude = lattice_amplitudes(levels, columns)
+    return _unit(u + FAN_AXIAL * axial[:, None] * a + FAN_SIDE * (side * amplitude)[:, None] * s)
+
+
+def lattice_columns(p) -> int:
+    """The inflate start's lattice in a periodic cell: how many rows of chains each side holds
+    (helix.lattice_rows), or 0 (no lattice: random amplitudes, as in a fibril with ends) unless
+    the cell's M layers hold a whole number of periods. Measured: the one layout found for 20 Å
+    globules at linker 4 (a 12-layer cell, seed 2) repeats every 4 layers, its chains in 2 rows
+    a side; started so, 4 of seeds 0-4 fit (docs/model/search.md#lattice-start)."""
+    rows = helix.lattice_rows(p) if getattr(p, "periodic", 0) else 0
+    return rows if rows and p.periodic % (2 * rows) == 0 else 0
+
+
+def lattice_amplitudes(levels: np.ndarray, columns: int) -> np.ndarray:
+    """Sideways amplitude of each chain at height index `levels` in a lattice of `columns`
+    rows a side: chain k's side alternates with k (fan_directions), its row is (k // 2) mod
+    columns, from the outermost (1.0) to the innermost (0.5) on one side and the other way
+    round on the other, so that neighbours one layer apart stand in different rows."""
+    levels = np.asarray(levels)
+    row = (levels // 2) % columns
+    row = np.where(levels % 2 == 0, row, columns - 1 - row)
+    return 1.0 - 0.5 * row / max(1, columns - 1) if columns > 1 else np.full(len(levels), 0.75)
 
 
 def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarray]:
@@ -201,7 +225,8 @@ def walk_directions(p, rest: np.ndarray, seed: int) -> np.ndarray:
     n, m, _ = rest.shape
     rng = np.random.default_rng([int(seed), SEED_SALT])
     u = fan_frames(rest)[0]
-    fan = fan_directions(rest, rng, periodic=bool(getattr(p, "periodic", 0)))
+    fan = fan_directions(rest, rng, periodic=bool(getattr(p, "periodic", 0)),
+                         columns=lattice_columns(p))
     out = np.empty((n, m - 1, 3))
     for i in range(1, m):
         w = min(1.0, (i - 1) / 2.0)

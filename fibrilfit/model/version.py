@@ -20,11 +20,13 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+MODEL_VERSION = 5  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
-# measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
+# measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch); 5: a buried anchor's
+# exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
+# inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7aa696eca89eec69ecee4b448baf0aea6103e470463818e8b287feba74f5e1a7"
+MODEL_SOURCES_SHA256 = "b6d7bb6d889943c02f8c50a3e420edf224692853d762f7c579e31da265e30626"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -149,8 +149,8 @@ def run_minimal(args, values: dict) -> int:
         print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
               file=sys.stderr)
         return exits.EXIT_INTERRUPTED
-    rows = [{"kind": kind_of(dict(values)), **w.row(), "protocol": values["protocol"]}
-            for w in walks]
+    rows = [{"kind": kind_of(dict(values)), **w.row(), "protocol": values["protocol"],
+             **_cells(args, values, w.diameter, seeds)} for w in walks]
     _write_minimal(args, values, seeds, rows, out)
     errors = [r for r in rows if r.get("error")]
     for r in errors:
@@ -193,9 +193,15 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
     one executor (started only if something is left to run), recorded in RESULTS."""
     results = out / RESULTS
 
-    def base_of(walk, linker):
-        return P.make_params(force=args.force, **values, globule_diameter=walk.diameter,
-                             linker=linker, seed=seeds[0]).to_dict()
+    def points_of(walk, linker, some):
+        return restart_points(values, walk.diameter, linker, some, args.force)
+
+    def records_of(walk, linker):
+        # every restart of L run so far counts (a screened length completed later, or a
+        # resumed walk's records), none beyond the walk's seeds
+        return [r for pt in restart_points(values, walk.diameter, linker, seeds, args.force)
+                for r in restarts.read(results, pt.params)
+                if r["params"]["seed"] == pt.params["seed"]]
 
     with contextlib.ExitStack() as stack:
         executor = None
@@ -206,7 +212,7 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
             if not wanted:
                 return
             done = runner.done_keys(runner.read_lines(results)[0])
-            todo = [pt for w, L, some in wanted for pt in restarts.points(base_of(w, L), some)
+            todo = [pt for w, L, some in wanted for pt in points_of(w, L, some)
                     if pt.key not in done]
             if todo:
                 if executor is None:  # SLURM: one job per run of this first step, at most 16
@@ -219,14 +225,28 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
                 runner.run_points(executor, todo, results, force=args.force,
                                   progress=not args.quiet, version=fibrilfit_version())
             for w, L, some in wanted:
-                # every restart of L run so far counts (a screened length completed later, or
-                # a resumed walk's records), none beyond the walk's seeds
-                recs = [r for r in restarts.read(results, base_of(w, L))
-                        if r["params"]["seed"] in seeds]
+                recs = records_of(w, L)
                 ok = [r for r in recs if r.get("status") == "ok"]
                 if not ok:
                     w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
                 w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
+
+
+def restart_points(values: dict, diameter: float, linker: int, seeds, force: bool = False
+                   ) -> list:
+    """One sweep point per restart of the walk at (diameter, linker): each seed's own model,
+    so with `--periodic auto` each restart runs in its seed's cell (helix.cell_ladder)."""
+    return [pt for s in seeds for pt in restarts.points(
+        P.make_params(force=force, **values, globule_diameter=diameter, linker=linker,
+                      seed=s).to_dict(), [s])]
+
+
+def _cells(args, values: dict, diameter: float, seeds: range) -> dict:
+    """In a periodic cell, the cell each restart ran in, by seed (`auto`: each seed its own
+    rung of helix.cell_ladder)."""
+    cells = {str(pt.params["seed"]): pt.params["periodic"]
+             for pt in restart_points(values, diameter, 1, seeds, args.force)}
+    return {"cells": cells} if any(cells.values()) else {}
 
 
 def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:

@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "1aa4755bdfcf86b83febc5729f2e6def7131dcca9568a4bd79b19baf3f368c61"
+MODEL_SOURCES_SHA256 = "566e77f3d3e41553759d8e143f1efa9b297f395033ef08dc3aa79253c8fc54eb"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

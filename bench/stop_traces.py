@@ -48,11 +48,12 @@ def run(out: pathlib.Path, only: set | None) -> None:
             sys.exit(f"{name}: sweep exited {proc.returncode}")
 
 
-def traces(out: pathlib.Path) -> list[dict]:
-    """One row per run: its system, params, whether it fit, frames, and its cycles."""
+def traces(out: pathlib.Path, also=()) -> list[dict]:
+    """One row per run: its system (its folder's name), params, whether it fit, frames, and its
+    cycles; from DIR/*/results.jsonl and the results files in `also` (e.g. a report's)."""
     from fibrilfit.model.version import MODEL_VERSION
     rows = []
-    for path in sorted(out.glob("*/results.jsonl")):
+    for path in sorted(out.glob("*/results.jsonl")) + [pathlib.Path(a) for a in also]:
         for line in path.read_text().splitlines():
             try:
                 r = json.loads(line)
@@ -98,8 +99,15 @@ def rule(after: int, pairs: int | None = None, stretch: float | None = None):
     return ", ".join(bits), fires
 
 
+def no_near_cycles():
+    """The near-miss cycles never granted: stop at the last regular cycle's judgement."""
+    return ("cycle >= regrow_cycles (no near-miss cycles)",
+            lambda p, c: not c["accommodated"] and c["cycle"] >= p["regrow_cycles"])
+
+
 RULES = [rule(0), rule(1), rule(2), rule(0, pairs=4), rule(1, pairs=4), rule(0, stretch=5),
-         rule(1, stretch=5), rule(0, pairs=8, stretch=10), rule(1, pairs=8, stretch=10)]
+         rule(1, stretch=5), rule(0, pairs=8, stretch=10), rule(1, pairs=8, stretch=10),
+         no_near_cycles()]
 
 
 def replay(rows: list[dict], fires) -> dict:
@@ -118,8 +126,8 @@ def replay(rows: list[dict], fires) -> dict:
             "frames_saved": round(saved / total, 3) if total else 0.0}
 
 
-def table(out: pathlib.Path) -> str:
-    rows = traces(out)
+def table(out: pathlib.Path, also=()) -> str:
+    rows = traces(out, also)
     fits = sum(r["fit"] for r in rows)
     late = sum(r["fit"] and len(r["cycles"]) > 1 for r in rows)
     lines = [f"{len(rows)} runs ({fits} fit, {late} of them after a regrow; "
@@ -159,10 +167,12 @@ def main() -> None:
     ap.add_argument("what", choices=("run", "table"))
     ap.add_argument("--out", type=pathlib.Path, default=ROOT / "out" / "stop_traces")
     ap.add_argument("--only", help="comma-separated system names")
+    ap.add_argument("--also", nargs="*", default=[],
+                    help="more results.jsonl files (e.g. a report's) for the table")
     args = ap.parse_args()
     if args.what == "run":
         run(args.out, set(args.only.split(",")) if args.only else None)
-    print(table(args.out))
+    print(table(args.out, args.also))
 
 
 if __name__ == "__main__":

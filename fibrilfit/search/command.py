@@ -235,8 +235,8 @@ def floor_of(base: P.Params) -> int:
 
 def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> None:
     """Step every walk until each has its minimum: the restarts of each wanted length run on
-    one executor (`executor`, or one started here only if something is left to run), recorded
-    in RESULTS. A walk that stops at a fit (Walk.stop_at_fit) starts no more restarts of a
+    one executor (`executor()`, a caller's, or one started here), started only if something is
+    left to run, recorded in RESULTS. A walk that stops at a fit (Walk.stop_at_fit) starts no more restarts of a
     length once one of them fits there."""
     results = out / RESULTS
 
@@ -256,6 +256,7 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
             for r in records)
 
     with contextlib.ExitStack() as stack:
+        started = None
         while True:
             steps = [(w, w.next_step()) for w in walks]
             wanted = [(w, step[0], seeds[:step[1] or len(seeds)])
@@ -266,15 +267,15 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
             todo = [pt for w, L, some in wanted for pt in restarts.points(base_of(w, L), some)
                     if pt.key not in done]
             if todo:
-                if executor is None:  # SLURM: one job per run of this first step, at most 16
-                    executor = stack.enter_context(make_executor(
-                        args, out=out, runs=len(todo), log_path=out / LOG))
+                if started is None:  # SLURM: one job per run of this first step, at most 16
+                    started = executor() if executor is not None else stack.enter_context(
+                        make_executor(args, out=out, runs=len(todo), log_path=out / LOG))
                 if not args.quiet:
                     print("minimal-linker: trying " + ", ".join(
                         f"{w.diameter:g} Å at linker {L} ({len(some)} restarts"
                         + (", until one fits" if w.stop_at_fit else "") + ")"
                         for w, L, some in wanted), file=sys.stderr)
-                runner.run_points(executor, todo, results, force=args.force,
+                runner.run_points(started, todo, results, force=args.force,
                                   progress=not args.quiet, version=fibrilfit_version(),
                                   skip=decided if stopping else None,
                                   window=batch_options.width(args, len(todo)))

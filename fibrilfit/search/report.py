@@ -108,12 +108,18 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     t0 = time.perf_counter()
     timings = {}
     with _stages(not args.quiet) as stage, contextlib.ExitStack() as workers:
-        # one executor for the restarts and the walk: its workers keep bpy loaded across both
-        try:
-            executor = workers.enter_context(make_executor(
-                args, out=out, runs=len(seeds), log_path=out / command.LOG))
-        except SweepError as exc:
-            raise exits.UsageError(str(exc)) from None
+        started = []
+
+        def executor():
+            """One executor for the restarts and the walk, started when first needed: its
+            workers keep bpy loaded across both."""
+            if not started:
+                try:
+                    started.append(workers.enter_context(make_executor(
+                        args, out=out, runs=len(seeds), log_path=out / command.LOG)))
+                except SweepError as exc:
+                    raise exits.UsageError(str(exc)) from None
+            return started[0]
         stage("restarts")
         t = time.perf_counter()
         records = _restarts(args, p, seeds, out, executor)
@@ -169,12 +175,20 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
 
 
 def _restarts(args, p: P.Params, seeds: range, out, executor) -> list[dict]:
+    """The restarts at the asked linker; with --resume, a seed already in RESULTS is not run
+    again (as the walk's runs)."""
+    results = out / outdir.RESULTS
+    done = {r["params"]["seed"] for r in restarts.read(results, p.to_dict())
+            if r.get("status") == "ok"} if args.resume and results.exists() else set()
+    todo = [s for s in seeds if s not in done]
     try:
-        return restarts.run_restarts(executor, p.to_dict(), seeds, out / outdir.RESULTS,
-                                     width=args.interval_width,
-                                     window=batch_options.width(args, len(seeds)),
-                                     force=args.force, progress=not args.quiet,
-                                     version=fibrilfit_version())
+        if todo:
+            restarts.run_restarts(executor(), p.to_dict(), todo,
+                                  results, width=args.interval_width,
+                                  window=batch_options.width(args, len(seeds)),
+                                  force=args.force, progress=not args.quiet,
+                                  version=fibrilfit_version())
+        return [r for r in restarts.read(results, p.to_dict()) if r["params"]["seed"] in seeds]
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
 

@@ -314,7 +314,7 @@ def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
         ex = Table(fits=set())
         out = tmp_path / f"every{every}"
         out.mkdir()
-        command._walk(args, {"protocol": "inflate"}, range(5), [w], out, ex)
+        command._walk(args, {"protocol": "inflate"}, range(5), [w], out, lambda: ex)
         assert w.minimal == 5 and w.tried[4] == (0, 5)
         assert sorted(s for L, s in ex.ran if L == 5) == ran_at_5
         assert sorted(s for L, s in ex.ran if L == 4) == [0, 1, 2, 3, 4]

@@ -5,7 +5,8 @@ restarts is accommodated; each accommodated layout passed the model's check at t
 reported for, so a "fits" is a proof by example. A "no" is only "no layout found in R restarts".
 The walk starts at a guess and moves away from it in doubling steps (1, 2, 4, ... residues)
 until a fit and a miss bracket the minimum, then bisects; it ends at a length L with a fit and
-R failed restarts at L - 1, both measured with all R restarts, whatever the guess and the path.
+R failed restarts at L - 1 (L itself with all R too, unless its restarts stopped at its first
+fit: decided lengths, below), whatever the guess and the path.
 It relies on one assumption only to skip the lengths it did not try: a longer linker never fits
 worse (a longer tether reaches everything a shorter one reaches). The guess changes the cost,
 never the answer under that assumption.

@@ -318,3 +318,25 @@ def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
         assert w.minimal == 5 and w.tried[4] == (0, 5)
         assert sorted(s for L, s in ex.ran if L == 5) == ran_at_5
         assert sorted(s for L, s in ex.ran if L == 4) == [0, 1, 2, 3, 4]
+
+
+@pytest.mark.parametrize("args, named", [
+    (["run", "--interval-width", "0.3"], "--interval-width: only with --restarts"),
+    (["run", "--restarts", "2", "--interval-width", "1.5"], "--interval-width: must be between"),
+])
+def test_interval_width_is_refused_in_one_line(args, named):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), *args], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and proc.stderr.strip().count("\n") == 0
+    assert named in proc.stderr
+
+
+def test_the_restarts_line_says_how_many_ran_and_why_it_stopped():
+    from fibrilfit.search import command
+    recs = [_record(0, False, 1), _record(1, True)]
+    s = {**restarts.tally(recs), "stop_on_fit": True, "asked": 5,
+         "decided": restarts.decided(recs, stop_on_fit=True)}
+    line = command.restarts_line(s)
+    assert "1/2 accommodated" in line and "stopped after 2 of 5 runs: a fit found" in line
+    s["decided"] = None
+    assert "stopped" not in command.restarts_line(s)

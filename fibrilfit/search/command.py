@@ -358,7 +358,7 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
         fit = (f"{r['p_fit']:.2f} [{r['p_fit_interval'][0]:.2f}-{r['p_fit_interval'][1]:.2f}]"
                f" ({r['fits']}/{r['restarts']})" if m is not None else "-")
         if r.get("below_settled_by_bound"):
-            below = f"0 (proven: below the bound, {r['floor']}) at {r['linker_below']}, no runs"
+            below = f"0 at {r['linker_below']} (no layout below {r['floor']}: the proven bound; not run)"
         elif r["p_fit_below"] is not None:
             below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
                      f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']} "

@@ -264,8 +264,12 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
             if not wanted:
                 return
             done = runner.done_keys(runner.read_lines(results)[0])
-            todo = [pt for w, L, some in wanted for pt in restarts.points(base_of(w, L), some)
-                    if pt.key not in done]
+            # a length already decided by a fit in RESULTS (a resumed walk, the report's
+            # restarts) runs nothing more
+            wanted_runs = [(w, L, some) for w, L, some in wanted
+                           if not (w.stop_at_fit and _fit_recorded(results, base_of(w, L), seeds))]
+            todo = [pt for w, L, some in wanted_runs
+                    for pt in restarts.points(base_of(w, L), some) if pt.key not in done]
             if todo:
                 if started is None:  # SLURM: one job per run of this first step, at most 16
                     started = executor() if executor is not None else stack.enter_context(
@@ -288,6 +292,11 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
                 if not ok:
                     w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
                 w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
+
+
+def _fit_recorded(results, base: dict, seeds) -> bool:
+    return any(r.get("status") == "ok" and r.get("accommodated")
+               for r in restarts.read(results, base) if r["params"]["seed"] in seeds)
 
 
 def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:

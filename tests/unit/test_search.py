@@ -340,3 +340,33 @@ def test_the_restarts_line_says_how_many_ran_and_why_it_stopped():
     assert "1/2 accommodated" in line and "stopped after 2 of 5 runs: a fit found" in line
     s["decided"] = None
     assert "stopped" not in command.restarts_line(s)
+
+
+def test_a_resumed_walk_runs_nothing_again(tmp_path):
+    """The walk stopped a length at its first fit; walked again over the same results it runs
+    nothing (the length is decided by the recorded fit), and gives the same row."""
+    import argparse
+    from fibrilfit.search import command
+
+    class Table(FakeExecutor):
+        def wait(self):
+            job = self.queue.pop(0)
+            p = job["params"]
+            self.ran.append((p["linker"], p["seed"]))
+            return job, {"id": job["id"], "ok": True, "result": {
+                **_record(p["seed"], p["linker"] >= 5 and p["seed"] != 1), "params": p}}
+
+    args = argparse.Namespace(force=False, quiet=True, executor="processes", workers=1,
+                              max_linker=20, all_restarts=False, known_fit=None)
+    base = P.make_params(globule_diameter=30.0, linker=1)
+    rows = []
+    for k in range(2):
+        w = command.new_walk(args, base, 5)
+        ex = Table(fits=set())
+        command._walk(args, {"protocol": "inflate"}, range(5), [w], tmp_path, lambda: ex)
+        rows.append(w.row())
+        if k == 0:
+            assert (5, 0) in ex.ran and (5, 1) not in ex.ran  # one worker: stopped at seed 0
+        else:
+            assert ex.ran == []
+    assert rows[0] == rows[1] and rows[0]["minimal_linker"] == 5

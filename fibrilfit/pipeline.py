@@ -10,7 +10,7 @@ from typing import Callable
 
 import bpy
 
-from .model import params as P
+from .model import bound, params as P
 from .model import version as model_version
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
@@ -139,6 +139,8 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
     if stop_after == "bake" or result["cancelled"]:
         return result
     result.update(timed("check", lambda: check(model, scene)))
+    # impossible below B: the bracket's proven side (docs/model/bound.md#derivation)
+    result["bound"] = timed("bound", lambda: bound.bound_block(p))
     return result
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import gravity, helix
+from ..model import bound, gravity, helix
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, reach_from_axis
@@ -119,6 +119,12 @@ def check_model(model) -> dict:
         if chains["inside_core"]:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
+    # the bound's third assumption, measured on this layout (docs/model/bound.md#assumptions)
+    entry = bound.core_entry(p, matrices[c_lo:c_hi])
+    if entry > bound.CORE_ENTRY:
+        warnings.append(f"a domain enters the core by {entry:.2f} Å, more than the "
+                        f"{bound.CORE_ENTRY} Å the linker bound assumes: this layout is not one "
+                        f"the bound speaks of")
     centres = clashes["centres"]
     reach = None if clashes["reach"] is None else clashes["reach"][scored[:n]]
     overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius,
@@ -138,6 +144,7 @@ def check_model(model) -> dict:
         "checks_agree": not clashes["disagree"],
         "warnings": warnings,
         "max_bond_stretch": round(max_stretch, 6),
+        "core_entry": entry,
         "linker_intact": bool(intact),
         "accommodated": bool(verdict == "successful" and intact),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)

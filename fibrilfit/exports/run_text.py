@@ -27,7 +27,8 @@ def text(r: dict, quiet: bool = False, files: dict | None = None) -> str:
     return "\n".join([head, _bake_line(r), *_inflate_lines(r), *_clash_lines(r),
                       *_linker_lines(r), *_periodic_lines(r),
                       *[f"warning: {w}" for w in r.get("warnings", [])],
-                      *_envelope_lines(r), *_export_lines(r), *_file_lines(r, files),
+                      *_envelope_lines(r), *_bound_lines(r), *_export_lines(r),
+                      *_file_lines(r, files),
                       _answer_line(r)])
 
 
@@ -291,3 +292,18 @@ def _file_lines(r: dict, files: dict | None) -> list[str]:
              if key in files and str(files[key]) != "-"
              and "error" not in (r.get(key) if isinstance(r.get(key), dict) else {})]
     return [f"wrote: {', '.join(wrote)}"] if wrote else []
+
+
+def bound_phrase(b: dict) -> str:
+    """The bracket's proven side in words (docs/model/bound.md#derivation)."""
+    return (f"no layout can exist below {b['impossible_below']} residues (proof: excluded "
+            f"volume over {b['over']})")
+
+
+def _bound_lines(r: dict) -> list[str]:
+    b = r.get("bound")
+    if not b:
+        return []
+    where = ("this linker is below it: settled, impossible" if b.get("below")
+             else "this linker is at or above it")
+    return [f"bound: {bound_phrase(b)}; {where}"]

@@ -170,3 +170,24 @@ def outward(rows, point, n: int = SUPPORT_DIRECTIONS) -> np.ndarray:
     u = directions(n)
     gap = grown_support(rows[:, :3], rows[:, 3], u) - u @ np.asarray(point, float)
     return u[int(np.argmin(gap))]
+
+
+def uv_sphere_inradius(segments: int, rings: int) -> float:
+    """The inradius of a unit UV sphere (Blender's create_uvsphere: `segments` around, `rings`
+    from pole to pole, vertices on the sphere): the least distance from its centre to a face's
+    plane. A quad between two rings is planar (an isosceles trapezoid); the poles' triangles too."""
+    theta = np.linspace(0.0, math.pi, rings + 1)
+    phi = 2.0 * math.pi / segments
+    inner = 1.0
+    for t0, t1 in zip(theta[:-1], theta[1:]):
+        corners = np.array([[math.sin(t) * math.cos(a), math.sin(t) * math.sin(a), math.cos(t)]
+                            for t in (t0, t1) for a in (0.0, phi)])
+        pts = corners[np.linalg.norm(corners - corners[:, None], axis=2).sum(1) > 0]
+        # the face's plane through three distinct corners (a pole's quad has two equal)
+        uniq = [pts[0]]
+        for q in pts[1:]:
+            if all(np.linalg.norm(q - u) > 1e-12 for u in uniq):
+                uniq.append(q)
+        n = np.cross(uniq[1] - uniq[0], uniq[2] - uniq[0])
+        inner = min(inner, abs(float(n @ uniq[0])) / float(np.linalg.norm(n)))
+    return inner

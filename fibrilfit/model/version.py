@@ -24,7 +24,7 @@ MODEL_VERSION = 4  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "566e77f3d3e41553759d8e143f1efa9b297f395033ef08dc3aa79253c8fc54eb"
+MODEL_SOURCES_SHA256 = "c2e8a2add2ca6b7708c7c6ec264be3817ca06c5c835c7763321566f5afc2fec5"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -11,7 +11,7 @@ from fibrilfit import pipeline
 
 CONTRACT = {"fibrilfit_version", "blender_version", "params", "seed", "gravity", "verdict",
             "intersecting_faces", "clashing_pairs", "max_bond_stretch", "linker_intact",
-            "accommodated", "frames_simulated", "timings_s"}
+            "accommodated", "frames_simulated", "timings_s", "bound", "core_entry"}
 
 
 def test_result_contract(scene):
@@ -19,7 +19,11 @@ def test_result_contract(scene):
     assert CONTRACT <= set(r)
     assert r["params"]["layers"] == 6 and r["seed"] == 0
     assert r["blender_version"] == bpy.app.version_string
-    assert set(r["timings_s"]) == {"build", "bake", "check"}
+    assert set(r["timings_s"]) == {"build", "bake", "check", "bound"}
+    # the bracket's proven side (docs/model/bound.md): the default 6-layer model fits at 6, so
+    # its bound lies at or below 6, and this layout keeps to the bound's core assumption
+    assert 1 <= r["bound"]["impossible_below"] <= 6 and r["bound"]["below"] is False
+    assert r["bound"]["linker"] == 6 and 0.0 <= r["core_entry"] <= 0.5
     assert r["verdict"] in ("successful", "intersection")
     assert (r["verdict"] == "intersection") == (r["intersecting_faces"] > 0)
     assert all(i < j for i, j, _ in r["clashing_pairs"])

@@ -13,7 +13,7 @@ import sys
 import tempfile
 
 from .. import exits, files
-from ..model import params as P
+from ..model import bound, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import options as batch_options, outdir, slurm
@@ -213,23 +213,27 @@ def _minimal_plan(args, values: dict) -> tuple:
     return values, seeds, walks
 
 
-def new_walk(args, base: P.Params, restarts: int, known_fit: int | None = None) -> minimal.Walk:
+def new_walk(args, base: P.Params, restarts: int, known_fit: int | None = None,
+             records: list | None = None) -> minimal.Walk:
     """The walk for `base`'s diameter: from minimal-linker's guess, stopping a length at its
-    first fit unless --all-restarts, and starting no lower than the proven bound (when the
-    model has one: lengths below it are settled, never run)."""
+    first fit unless --all-restarts, and starting no lower than the proven bound (lengths below
+    it are settled, never run). `records`: runs of this geometry already made (each carries the
+    bound it was judged under, so it is not computed again here: 3-16 s per geometry)."""
     return minimal.Walk(base.globule_diameter,
                         min(minimal.first_guess(base.globule_diameter), args.max_linker),
                         args.max_linker, known_fit=known_fit, restarts=restarts,
                         stop_at_fit=not getattr(args, "all_restarts", False),
-                        floor=floor_of(base))
+                        floor=floor_of(base, records))
 
 
-def floor_of(base: P.Params) -> int:
-    """The shortest linker not ruled out by the proven bound (model/bound.py), or 1 without it."""
-    try:
-        from ..model import bound
-    except ImportError:  # the bound is not part of this model yet
-        return 1
+def floor_of(base: P.Params, records: list | None = None) -> int:
+    """The shortest linker the proven bound does not rule out (docs/model/bound.md#derivation):
+    every shorter one is settled, never run. Its linker aside, the bound is `base`'s geometry:
+    read from a run of it in `records` if there is one."""
+    for r in records or ():
+        known = (r.get("bound") or {}).get("impossible_below") if r.get("status") == "ok" else None
+        if known is not None:
+            return max(1, int(known))
     return max(1, int(bound.linker_bound(base)["impossible_below"]))
 
 

@@ -138,7 +138,7 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         # from minimal-linker's own guess: a miss runs to the frame cap and costs ~10x a fit
         # (6CU7 + ubiquitin: 130-150 s against 9-20 s per run), so walking down from a long
         # asked linker costs more than it saves; the asked length's runs are reused if reached
-        walk = command.new_walk(args, p, len(seeds))
+        walk = command.new_walk(args, p, len(seeds), records=records)
         try:
             command._walk(args, walk_values, seeds, [walk], out, executor)
         except SweepError as exc:

@@ -370,3 +370,17 @@ def test_a_resumed_walk_runs_nothing_again(tmp_path):
         else:
             assert ex.ran == []
     assert rows[0] == rows[1] and rows[0]["minimal_linker"] == 5
+
+
+def test_the_walk_takes_the_bound_from_a_run_of_its_geometry():
+    """A run's record carries the bound it was judged under (pipeline: `bound`); the walk uses
+    it rather than computing it again, and starts at it when the guess lies below."""
+    import argparse
+    from fibrilfit.search import command
+    args = argparse.Namespace(max_linker=20, all_restarts=False)
+    base = P.make_params(globule_diameter=30.0, linker=1)
+    rec = {**_record(0, True), "bound": {"impossible_below": 7}}
+    w = command.new_walk(args, base, 5, records=[rec])
+    assert w.floor == 7 and w.start == 7 and w.next_step() == (7, minimal.SCREEN)
+    failed = {"params": {"seed": 1}, "status": "failed", "bound": {"impossible_below": 9}}
+    assert command.floor_of(base, [failed, rec]) == 7

@@ -43,12 +43,18 @@ def tree_rss_kib(pid: int) -> int:
     return total
 
 
-def measured(cmd: list[str]) -> dict:
+def measured(cmd: list[str], code: pathlib.Path | None = None) -> dict:
     """Run `cmd`; its wall time, the load before and after, and the peak resident memory of its
-    whole process tree (the command and its workers, sampled every 0.25 s)."""
+    whole process tree (the command and its workers, sampled every 0.25 s). `code`: the
+    checkout whose package the command's Python imports first (PYTHONPATH), for a baseline."""
+    env = dict(os.environ)
+    if code is not None:
+        env["PYTHONPATH"] = os.pathsep.join([str(code)] + ([env["PYTHONPATH"]]
+                                                          if env.get("PYTHONPATH") else []))
     load0 = os.getloadavg()
     t = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=env)
     peak = [0]
 
     def sample():
@@ -97,6 +103,8 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=1)
     ap.add_argument("--baseline", type=pathlib.Path,
                     help="a checkout of the code to compare against (its headless.py)")
+    ap.add_argument("--code", type=pathlib.Path, default=ROOT,
+                    help="the checkout measured as 'this' (default: this one)")
     ap.add_argument("--restarts", type=int, default=8)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--linker", type=int, default=8)
@@ -106,14 +114,15 @@ def main() -> None:
     args = ap.parse_args()
     if args.quick:
         args.restarts = min(args.restarts, 2)
-    sides = [("this", ROOT)] + ([("baseline", args.baseline.resolve())] if args.baseline else [])
+    sides = [("this", args.code.resolve())] + ([("baseline", args.baseline.resolve())]
+                                                if args.baseline else [])
     rounds = []
     for k in range(args.rounds):
         row = {}
         for name, code in (sides if k % 2 == 0 else sides[::-1]):
             out = args.out / f"{name}-{k}"
             shutil.rmtree(out, ignore_errors=True)
-            m = measured(command(code, args, out))
+            m = measured(command(code, args, out), code)
             if m["returncode"] != 0:
                 sys.exit(f"{name}: report failed ({m['returncode']}): {m['stderr_tail']}")
             row[name] = {**m, **answer(out)}

@@ -31,8 +31,8 @@ TARGETS_S = {"report": 60, "map": 600, "validate": 600}
 
 def commands(code: pathlib.Path, name: str, out: pathlib.Path, quick: bool) -> list[str]:
     py = sys.executable
-    if name == "report":
-        cmd = [py, str(code / "bench" / "report.py"), "--out", str(out)]
+    if name == "report":  # this checkout's bench/report.py, running `code`'s headless.py
+        cmd = [py, str(ROOT / "bench" / "report.py"), "--code", str(code), "--out", str(out)]
         return cmd + (["--quick"] if quick else [])
     if name == "map":
         return [py, str(code / "headless.py"), "minimal-linker", "--globule-diameter",
@@ -65,7 +65,7 @@ def main() -> None:
             for side, code in (sides if k % 2 == 0 else sides[::-1]):
                 out = args.out / f"{name}-{side}-{k}"
                 shutil.rmtree(out, ignore_errors=True)
-                m = report_bench.measured(commands(code, name, out, args.quick))
+                m = report_bench.measured(commands(code, name, out, args.quick), code)
                 figures.setdefault(name, {}).setdefault(side, []).append(m)
                 ok = m["returncode"] == 0
                 failed |= not ok

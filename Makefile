@@ -175,9 +175,17 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 	$(VENV)/bin/python -m pip install --quiet -r bench/requirements.txt
 	touch $@
 
-# Speed and memory side by side with bench/baselines/ (the seed tutorial's port, pybullet); see docs/benchmarks.md.
+# The three targets of issue #35 (the report, the infinite fibril's map, make validate: wall time,
+# peak memory, load), then speed and memory side by side with bench/baselines/ (the seed
+# tutorial's port, pybullet); see docs/benchmarks.md. QUICK=1: only checks that the three still
+# run and answer, on small cases (their times mean nothing; what CI can afford).
 bench: $(VENV)/.bench-installed
+ifeq ($(QUICK),1)
+	$(VENV)/bin/python bench/targets.py --quick $(TARGETS_ARGS)
+else
+	$(VENV)/bin/python bench/targets.py --json out/bench_targets.json $(TARGETS_ARGS)
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
+endif
 
 # The gallery (examples/*.toml): P(fit), minimal linker and envelope per case; rewrites the
 # table in docs/validation.md. Results stay in out/validate, so running it again resumes.

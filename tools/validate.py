@@ -59,6 +59,9 @@ def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
     cmd = [sys.executable, str(ROOT / "headless.py"), "minimal-linker", "--case", str(case_path),
            "--restarts", str(restarts), "--max-linker", str(top), "--out", str(out),
            "--workers", str(workers), "--quiet", "--no-plot", *extra]
+    # all R at the minimum too: the table gives P(fit) there (k/R); a fit costs a few seconds,
+    # the misses one below (all R either way) are the cost (docs/model/search.md#decided)
+    cmd.append("--all-restarts")
     if fits_at_real:  # beyond MAX_LINKER too: the walk then still stops at the cap
         cmd += ["--known-fit", str(p.linker)]
     if (out / "results.jsonl").exists():

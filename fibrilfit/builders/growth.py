@@ -297,7 +297,8 @@ class Inflate:
             "gravity": [round(float(g), 6) for g in self.gravity],
             "accommodated": bool(verdict["accommodated"]),
             "clashing_pairs": pairs if isinstance(pairs, int) else len(pairs),
-            "max_bond_stretch": verdict["max_bond_stretch"], "polished": self.polishing})
+            "max_bond_stretch": verdict["max_bond_stretch"],
+            "max_overlap": verdict.get("max_overlap"), "polished": self.polishing})
         if self.polishing:
             self._polish(scene, False)
         elif p.polish_factor > 1 and near_fit(p, verdict):

@@ -96,10 +96,17 @@ def linker_rows(doc: dict) -> str:
     found = (f"<b>{m['linker']}</b> residues: P(fit) {m['p_fit']:.2f} "
              f"(95 % Wilson {interval(m['interval'])})" if m.get("linker") else
              f"none up to {m['max_linker']} residues")
-    below = (f"; one below, at {m['linker_below']}: P(fit) {m['p_fit_below']:.2f} "
-             f"(95 % Wilson {interval(m['interval_below'])})"
-             if m.get("p_fit_below") is not None else "")
-    return (f"<p>Minimal linker: {found}{below}. Restarts per length: {m['restarts']}, "
+    if m.get("stopped_at_fit"):
+        found += (f" from {m['runs']} restarts, stopped at the first fit (the others could not "
+                  f"change that it fits)")
+    if m.get("below_settled_by_bound"):
+        below = (f"; one below, at {m['linker_below']}: no layout possible, by the proven bound "
+                 f"({m['floor']} residues at least), not simulated")
+    else:
+        below = (f"; one below, at {m['linker_below']}: P(fit) {m['p_fit_below']:.2f} "
+                 f"(95 % Wilson {interval(m['interval_below'])})"
+                 if m.get("p_fit_below") is not None else "")
+    return (f"<p>Minimal linker: {found}{below}. Restarts per length: up to {m['restarts']}, "
             f"protocol {esc(pf['protocol'])}, seeds {pf['seeds'][0]}–{pf['seeds'][1]}.</p>"
             f"<table><tr><th>linker</th><th>accommodated</th><th>reading</th></tr>{rows}"
             f"</table><p class='small'>{esc(m.get('method', ''))}</p>")

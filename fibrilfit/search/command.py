@@ -13,7 +13,7 @@ import sys
 import tempfile
 
 from .. import exits, files
-from ..model import params as P
+from ..model import bound, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import options as batch_options, outdir, slurm
@@ -35,6 +35,10 @@ def add_restart_options(parser: argparse.ArgumentParser) -> None:
                         "--json/--blend/--pdb)")
     g.add_argument("--stop-on-fit", action="store_true",
                    help="with --restarts: start no more seeds once one is accommodated")
+    g.add_argument("--interval-width", type=float, metavar="W",
+                   help="with --restarts: start no more seeds once P(fit)'s 95 %% Wilson "
+                        "interval is at most W wide (0 < W < 1); P(fit) is reported from the "
+                        "runs made [default: all R]")
 
 
 def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
@@ -49,6 +53,7 @@ def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
                         "guess in doubling steps, and bisects; the minimum and one residue "
                         "below are measured as always [default: none; the walk brackets from "
                         "the guess alone]")
+    add_all_restarts_option(g)
     g.add_argument("--out", metavar="DIR", default="out/minimal_linker",
                    help=f"{RESULTS}, {CSV}, {JSON}, {PNG} and {LOG} go here")
     g.add_argument("--resume", action="store_true",
@@ -57,21 +62,38 @@ def add_minimal_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
+def add_all_restarts_option(group) -> None:
+    """minimal-linker's and report's --all-restarts (the walk's stop at a length's first fit)."""
+    group.add_argument("--all-restarts", action="store_true",
+                       help="run all R restarts at the minimal linker too, for P(fit) there "
+                            "from R runs [default: a length's restarts stop at its first fit, "
+                            "which decides that it fits; the row says how many ran]")
+
+
 # ---- run --restarts ----------------------------------------------------------------------------
 
 def check_restart_options(args) -> None:
     if args.restarts is None:
         if args.stop_on_fit:
             raise exits.UsageError("--stop-on-fit: only with --restarts")
+        if args.interval_width is not None:
+            raise exits.UsageError("--interval-width: only with --restarts")
         if args.executor == "slurm" or slurm.given(args):
             name = "executor" if args.executor == "slurm" else slurm.given(args)[0]
             raise exits.UsageError(f"--{name.replace('_', '-')}: only with --restarts")
         return
     if args.restarts < 1:
         raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
+    check_interval_width(args.interval_width)
     if args.stop_after != "check":
         raise exits.UsageError("--restarts: judges every seed, so --stop-after must be check")
     batch_options.check(args)
+
+
+def check_interval_width(width) -> None:
+    if width is not None and not 0.0 < width < 1.0:
+        raise exits.UsageError(f"--interval-width: must be between 0 and 1, exclusive "
+                               f"(got {width:g})")
 
 
 def run_restarts(args, p: P.Params, version: str) -> dict:
@@ -89,6 +111,7 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
                                log_path=f"{tmp}/{LOG}") as executor:
                 records = restarts.run_restarts(executor, p.to_dict(), seeds, results,
                                                 stop_on_fit=args.stop_on_fit,
+                                                width=args.interval_width,
                                                 window=batch_options.width(args, len(seeds)),
                                                 force=args.force, progress=not args.quiet,
                                                 version=version)
@@ -96,6 +119,10 @@ def run_restarts(args, p: P.Params, version: str) -> dict:
             raise exits.UsageError(str(exc)) from None
     tally = restarts.tally(records)
     tally["stop_on_fit"] = bool(args.stop_on_fit)
+    tally["asked"] = args.restarts
+    tally["decided"] = (restarts.decided(records, stop_on_fit=args.stop_on_fit,
+                                         width=args.interval_width)
+                        if len(records) < args.restarts else None)
     return tally
 
 
@@ -106,7 +133,8 @@ def restarts_line(s: dict, protocol: str | None = None) -> str:
             f"{f' (protocol {protocol})' if protocol else ''}, P(fit) {fit} "
             f"(95 % Wilson {low:.2f}-{high:.2f})"
             + (f", {s['failed']} failed" if s["failed"] else "")
-            + (", stopped at the first fit" if s["stop_on_fit"] and s["accommodated"] else "")
+            + (f", stopped after {s['restarts'] + s['failed']} of {s['asked']} runs: "
+               f"{s['decided']}" if s.get("decided") else "")
             + f"; best layout: seed {s['best_seed']}"
             + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
                f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "
@@ -181,16 +209,39 @@ def _minimal_plan(args, values: dict) -> tuple:
     for d in diameters:
         base = P.make_params(force=args.force, **values, globule_diameter=d, linker=1)
         base.replace(linker=args.max_linker, seed=seeds[-1])
-        walks.append(minimal.Walk(base.globule_diameter,
-                                  min(minimal.first_guess(base.globule_diameter), args.max_linker),
-                                  args.max_linker, known_fit=args.known_fit,
-                                  restarts=len(seeds)))
+        walks.append(new_walk(args, base, len(seeds), known_fit=args.known_fit))
     return values, seeds, walks
 
 
-def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
+def new_walk(args, base: P.Params, restarts: int, known_fit: int | None = None,
+             records: list | None = None) -> minimal.Walk:
+    """The walk for `base`'s diameter: from minimal-linker's guess, stopping a length at its
+    first fit unless --all-restarts, and starting no lower than the proven bound (lengths below
+    it are settled, never run). `records`: runs of this geometry already made (each carries the
+    bound it was judged under, so it is not computed again here: 3-16 s per geometry)."""
+    return minimal.Walk(base.globule_diameter,
+                        min(minimal.first_guess(base.globule_diameter), args.max_linker),
+                        args.max_linker, known_fit=known_fit, restarts=restarts,
+                        stop_at_fit=not getattr(args, "all_restarts", False),
+                        floor=floor_of(base, records))
+
+
+def floor_of(base: P.Params, records: list | None = None) -> int:
+    """The shortest linker the proven bound does not rule out (docs/model/bound.md#derivation):
+    every shorter one is settled, never run. Its linker aside, the bound is `base`'s geometry:
+    read from a run of it in `records` if there is one."""
+    for r in records or ():
+        known = (r.get("bound") or {}).get("impossible_below") if r.get("status") == "ok" else None
+        if known is not None:
+            return max(1, int(known))
+    return max(1, int(bound.linker_bound(base)["impossible_below"]))
+
+
+def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> None:
     """Step every walk until each has its minimum: the restarts of each wanted length run on
-    one executor (started only if something is left to run), recorded in RESULTS."""
+    one executor (`executor()`, a caller's, or one started here), started only if something is
+    left to run, recorded in RESULTS. A walk that stops at a fit (Walk.stop_at_fit) starts no more restarts of a
+    length once one of them fits there."""
     results = out / RESULTS
 
     def points_of(walk, linker, some):
@@ -203,8 +254,19 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
                 for r in restarts.read(results, pt.params)
                 if r["params"]["seed"] == pt.params["seed"]]
 
+    def length_of(params):
+        return (float(params["globule_diameter"]), int(params["linker"]))
+
+    stopping = {w.diameter for w in walks if w.stop_at_fit}
+
+    def decided(point, records):  # a fit already found at this point's length
+        key = length_of(point.params)
+        return key[0] in stopping and any(
+            r.get("status") == "ok" and r.get("accommodated") and length_of(r["params"]) == key
+            for r in records)
+
     with contextlib.ExitStack() as stack:
-        executor = None
+        started = None
         while True:
             steps = [(w, w.next_step()) for w in walks]
             wanted = [(w, step[0], seeds[:step[1] or len(seeds)])
@@ -212,18 +274,25 @@ def _walk(args, values: dict, seeds: range, walks: list, out) -> None:
             if not wanted:
                 return
             done = runner.done_keys(runner.read_lines(results)[0])
-            todo = [pt for w, L, some in wanted for pt in points_of(w, L, some)
+            # a length already decided by a fit in RESULTS (a resumed walk, the report's
+            # restarts) runs nothing more
+            wanted_runs = [(w, L, some) for w, L, some in wanted
+                           if not (w.stop_at_fit and _fit_recorded(records_of(w, L)))]
+            todo = [pt for w, L, some in wanted_runs for pt in points_of(w, L, some)
                     if pt.key not in done]
             if todo:
-                if executor is None:  # SLURM: one job per run of this first step, at most 16
-                    executor = stack.enter_context(make_executor(
-                        args, out=out, runs=len(todo), log_path=out / LOG))
+                if started is None:  # SLURM: one job per run of this first step, at most 16
+                    started = executor() if executor is not None else stack.enter_context(
+                        make_executor(args, out=out, runs=len(todo), log_path=out / LOG))
                 if not args.quiet:
                     print("minimal-linker: trying " + ", ".join(
-                        f"{w.diameter:g} Å at linker {L} ({len(some)} restarts)"
+                        f"{w.diameter:g} Å at linker {L} ({len(some)} restarts"
+                        + (", until one fits" if w.stop_at_fit else "") + ")"
                         for w, L, some in wanted), file=sys.stderr)
-                runner.run_points(executor, todo, results, force=args.force,
-                                  progress=not args.quiet, version=fibrilfit_version())
+                runner.run_points(started, todo, results, force=args.force,
+                                  progress=not args.quiet, version=fibrilfit_version(),
+                                  skip=decided if stopping else None,
+                                  window=batch_options.width(args, len(todo)))
             for w, L, some in wanted:
                 recs = records_of(w, L)
                 ok = [r for r in recs if r.get("status") == "ok"]
@@ -249,6 +318,10 @@ def _cells(args, values: dict, diameter: float, seeds: range) -> dict:
     return {"cells": cells} if any(cells.values()) else {}
 
 
+def _fit_recorded(records: list) -> bool:
+    return any(r.get("status") == "ok" and r.get("accommodated") for r in records)
+
+
 def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
     """minimal_linker.json, .csv and .png, and the table on stdout."""
     import bpy
@@ -258,8 +331,11 @@ def _write_minimal(args, values: dict, seeds: range, rows: list, out) -> None:
                    "minimum, then bisection"
                    + ("" if args.known_fit is None else f", below the known fit at {args.known_fit}")
                    + f"; lengths on the way screened with {min(minimal.SCREEN, args.restarts)} "
-                   "restarts; ends at a fit at L and R missed restarts at L - 1, both with all R "
-                   "(search/minimal.py)"),
+                   "restarts; ends at a fit at L and R missed restarts at L - 1"
+                   + (", all R at both" if args.all_restarts else
+                      " (a length's restarts stop at its first fit: P(fit) at L is from the "
+                      "runs made)")
+                   + "; lengths below the proven bound settled without runs (search/minimal.py)"),
         "known_fit": args.known_fit,
         "model": {**values, "seeds": list(seeds)}, "protocol": values["protocol"],
         "restarts": args.restarts,
@@ -306,14 +382,25 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
         lines.append(f"minimal linker: the shortest length at which at least one of {restarts} "
                      f"restarts (protocol {protocol}, seeds {seeds[0]}-{seeds[-1]}) found a "
                      f"layout, with none found one residue shorter")
-    lines.append("diameter (Å)  minimal linker  P(fit) [95 % CI]     P(fit) one below [95 % CI]")
+    lines.append("diameter (Å)  minimal linker  P(fit) [95 % CI] (runs)     "
+                 "P(fit) one below [95 % CI] (runs)")
+    notes = []
     for r in rows:
         m = r["minimal_linker"]
         fit = (f"{r['p_fit']:.2f} [{r['p_fit_interval'][0]:.2f}-{r['p_fit_interval'][1]:.2f}]"
-               if m is not None else "-")
-        below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
-                 f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']}"
-                 if r["p_fit_below"] is not None else "-")
+               f" ({r['fits']}/{r['restarts']})" if m is not None else "-")
+        if r.get("below_settled_by_bound"):
+            below = f"0 at {r['linker_below']} (no layout below {r['floor']}: the proven bound; not run)"
+        elif r["p_fit_below"] is not None:
+            below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
+                     f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']} "
+                     f"(0/{r.get('restarts_below', r['restarts'])})")
+        else:
+            below = "-"
         shown = str(m) if m is not None else f"> {r['linker_below']}" if r["linker_below"] else "?"
-        lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<19}  {below}")
-    return "\n".join(lines)
+        lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<25}  {below}")
+        if r.get("stopped_at_fit"):
+            notes.append(f"{r['globule_diameter']:g} Å: the restarts at {m} stopped at the first "
+                         f"fit ({r['restarts']} of the restarts ran): the other restarts could not change that it "
+                         f"fits (--all-restarts runs them)")
+    return "\n".join(lines + notes)

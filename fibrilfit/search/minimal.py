@@ -5,7 +5,8 @@ restarts is accommodated; each accommodated layout passed the model's check at t
 reported for, so a "fits" is a proof by example. A "no" is only "no layout found in R restarts".
 The walk starts at a guess and moves away from it in doubling steps (1, 2, 4, ... residues)
 until a fit and a miss bracket the minimum, then bisects; it ends at a length L with a fit and
-R failed restarts at L - 1, both measured with all R restarts, whatever the guess and the path.
+R failed restarts at L - 1 (L itself with all R too, unless its restarts stopped at its first
+fit: decided lengths, below), whatever the guess and the path.
 It relies on one assumption only to skip the lengths it did not try: a longer linker never fits
 worse (a longer tether reaches everything a shorter one reaches). The guess changes the cost,
 never the answer under that assumption.
@@ -16,6 +17,13 @@ walk, so the two lengths the answer rests on (L and L - 1), and the cap when not
 all R before the walk ends, and a screened miss that then fits moves the walk down again. A miss
 costs about ten times a fit (every regrow and near-miss cycle runs to its end), so screening
 saves most of the cost of the lengths far below the minimum without changing what is reported.
+
+Decided lengths (issue #35, docs/model/search.md#decided): with `stop_at_fit` (the command
+line's default), a length's restarts stop at its first fit: the walk asks only whether any
+restart fits there, and the rest cannot change that; P(fit) at the minimum is then the runs
+made (the row says how many). A miss still needs every restart. Lengths below `floor` (the
+proven lower bound, model/bound.py: no clash-free layout with intact linkers exists there) are
+settled, not run: a fit at the floor is the minimum with nothing simulated below it.
 """
 from __future__ import annotations
 
@@ -47,6 +55,12 @@ class Walk:
     # the bracket's ceiling until the walk measures a fit below it
     known_fit: int | None = None
     restarts: int | None = None
+    stop_at_fit: bool = False  # a length with a fit is decided: its other restarts not needed
+    floor: int = 1  # lengths below it are settled misses (the proven bound), never run
+
+    def __post_init__(self):
+        self.floor = max(1, int(self.floor))
+        self.start = max(self.start, min(self.floor, self.max_linker))
 
     def record(self, linker: int, fits: int, runs: int) -> None:
         self.tried[linker] = (fits, runs)
@@ -55,11 +69,19 @@ class Walk:
         return sorted(L for L, (k, n) in self.tried.items() if k > 0)
 
     def _misses(self):
-        return sorted(L for L, (k, n) in self.tried.items() if k == 0 and n > 0)
+        measured = [L for L, (k, n) in self.tried.items() if k == 0 and n > 0]
+        return sorted(set(measured) | ({self.floor - 1} if self.floor > 1 else set()))
+
+    def settled(self, linker: int) -> bool:
+        """Below the proven bound: a miss without a run."""
+        return linker < self.floor
 
     def _complete(self, linker: int) -> bool:
-        """Every restart run at `linker` (a fit's first success counts only with all R)."""
-        return self.restarts is None or self.tried.get(linker, (0, 0))[1] >= self.restarts
+        """Every restart run at `linker`, or the length decided without them: a fit there with
+        stop_at_fit, or below the floor."""
+        k, n = self.tried.get(linker, (0, 0))
+        return (self.restarts is None or n >= self.restarts or self.settled(linker)
+                or (self.stop_at_fit and k > 0))
 
     @property
     def screen(self) -> int | None:
@@ -71,7 +93,7 @@ class Walk:
         if not fits or not self._complete(fits[0]):
             return None
         m = fits[0]
-        if m == 1 or (m - 1 in self._misses() and self._complete(m - 1)):
+        if m <= self.floor or (m - 1 in self._misses() and self._complete(m - 1)):
             return m
         return None
 
@@ -86,9 +108,10 @@ class Walk:
             return None
         fits, misses = self._fits(), self._misses()
         full = self.restarts
-        if fits and (fits[0] == 1 or fits[0] - 1 in misses):  # bracketed: measure both fully
+        if fits and (fits[0] <= self.floor or fits[0] - 1 in misses):  # bracketed: measure both
             m = fits[0]
-            return (m - 1, full) if m > 1 and not self._complete(m - 1) else (m, full)
+            return ((m - 1, full) if m > self.floor and not self._complete(m - 1)
+                    else (m, full))
         known = self.known_fit
         if known is not None and known in misses and self._complete(known):
             known = None  # all R missed there: the known fit came from other seeds or protocol
@@ -109,15 +132,15 @@ class Walk:
         gallops from the guess."""
         start = self.start
         if not self.tried:
-            return max(1, min(start, hi - 1, self.max_linker))
+            return max(self.floor, 1, min(start, hi - 1, self.max_linker))
         if not measured_fit and lo >= start:  # misses from the guess up: gallop up
             step = lo - start + 1
             if lo + step < hi:
                 return min(lo + step, self.max_linker)
-        if measured_fit and lo == 0 and hi <= start:  # fits from the guess down: gallop down
+        if measured_fit and lo == self.floor - 1 and hi <= start:  # fits from the guess down
             step = start - hi + 1
             if hi - step > lo:
-                return max(1, hi - step)
+                return max(self.floor, hi - step)
         if hi == math.inf:  # misses only, all below the guess (a resumed walk): go up one
             return min(max(lo + 1, start), self.max_linker)
         return min((lo + int(hi)) // 2, self.max_linker)
@@ -128,16 +151,24 @@ class Walk:
         at = self.tried.get(m, (0, 0)) if m is not None else (0, 0)
         below_linker = (m - 1) if m is not None else (max(self._misses()) if self._misses() else None)
         below = self.tried.get(below_linker, (0, 0)) if below_linker else (0, 0)
+        settled = bool(below_linker) and self.settled(below_linker)
         return {
             "globule_diameter": self.diameter,
             "minimal_linker": m,
             "p_fit": _fraction(*at),
             "p_fit_interval": _interval(*at),
-            "p_fit_below": _fraction(*below) if below_linker else None,
-            "p_fit_below_interval": _interval(*below) if below_linker else None,
+            # below the proven bound P(fit) is 0 by proof, with no run and no interval
+            "p_fit_below": 0.0 if settled else _fraction(*below) if below_linker else None,
+            "p_fit_below_interval": None if settled else _interval(*below) if below_linker else None,
             "linker_below": below_linker,
+            "below_settled_by_bound": settled,
             "restarts": at[1] if m is not None else below[1],
+            "restarts_below": below[1],
             "fits": at[0],
+            # the minimum's restarts stopped at its first fit (the rest could not change it)
+            "stopped_at_fit": bool(m is not None and self.stop_at_fit and self.restarts
+                                   and at[1] < self.restarts),
+            "floor": self.floor,
             "error": self.error,
             "tried": {str(L): {"accommodated": k, "restarts": n}
                       for L, (k, n) in sorted(self.tried.items())},

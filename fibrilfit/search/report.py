@@ -38,6 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--restarts", type=int, default=DEFAULT_RESTARTS, metavar="R",
                    help=f"seeds run at the linker and at every length the minimal-linker walk "
                         f"tries (SEED..SEED+R-1) [default {DEFAULT_RESTARTS}]")
+    g.add_argument("--interval-width", type=float, metavar="W",
+                   help="start no more restarts at the linker once P(fit)'s 95 %% Wilson "
+                        "interval there is at most W wide (0 < W < 1) [default: all R]")
+    command.add_all_restarts_option(g)
     g.add_argument("--max-linker", type=int, default=DEFAULT_MAX_LINKER, metavar="N",
                    help=f"the walk gives up when no length up to N fits "
                         f"[default {DEFAULT_MAX_LINKER}]")
@@ -53,7 +57,7 @@ def options(**given) -> argparse.Namespace:
     """The report's options with their command-line defaults, for callers without a command
     line (the sidebar's Report… button)."""
     out = {"restarts": DEFAULT_RESTARTS, "max_linker": DEFAULT_MAX_LINKER, "out": "out/report",
-           "resume": False, "quiet": False, **batch_options.defaults(), "force": False,
+           "interval_width": None, "all_restarts": False, "resume": False, "quiet": False, **batch_options.defaults(), "force": False,
            "command_line": [], "command": "report"}
     unknown = set(given) - set(out)
     if unknown:
@@ -66,6 +70,7 @@ def check_options(args) -> None:
     batch_options.check(args)
     if args.restarts < 1:
         raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
+    command.check_interval_width(args.interval_width)
     lmax = P.field_spec("linker")["max"]
     if not 1 <= args.max_linker <= lmax:
         raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
@@ -100,11 +105,26 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     runner.repair_tail(results)
     t0 = time.perf_counter()
     timings = {}
-    with _stages(not args.quiet) as stage:
+    with _stages(not args.quiet) as stage, contextlib.ExitStack() as workers:
+        started = []
+
+        def executor():
+            """One executor for the restarts and the walk, started when first needed: its
+            workers keep bpy loaded across both."""
+            if not started:
+                try:
+                    started.append(workers.enter_context(make_executor(
+                        args, out=out, runs=len(seeds), log_path=out / command.LOG)))
+                except SweepError as exc:
+                    raise exits.UsageError(str(exc)) from None
+            return started[0]
         stage("restarts")
         t = time.perf_counter()
-        records = _restarts(args, p, seeds, out)
+        records = _restarts(args, p, seeds, out, executor)
         tally = restarts.tally(records)
+        tally["asked"] = len(seeds)
+        tally["decided"] = (restarts.decided(records, width=args.interval_width)
+                            if len(records) < len(seeds) else None)
         timings["restarts"] = round(time.perf_counter() - t, 1)
 
         stage("minimal linker")
@@ -116,15 +136,14 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         # from minimal-linker's own guess: a miss runs to the frame cap and costs ~10x a fit
         # (6CU7 + ubiquitin: 130-150 s against 9-20 s per run), so walking down from a long
         # asked linker costs more than it saves; the asked length's runs are reused if reached
-        walk = minimal.Walk(p.globule_diameter,
-                            min(minimal.first_guess(p.globule_diameter), args.max_linker),
-                            args.max_linker, restarts=len(seeds))
+        walk = command.new_walk(args, p, len(seeds), records=records)
         try:
-            command._walk(args, walk_values, seeds, [walk], out)
+            command._walk(args, walk_values, seeds, [walk], out, executor)
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
         row = walk.row()
         timings["minimal_linker"] = round(time.perf_counter() - t, 1)
+        workers.close()  # the pictures are made here: the workers' cores are free again
 
         stage("best layout")
         t = time.perf_counter()
@@ -153,13 +172,21 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     return doc
 
 
-def _restarts(args, p: P.Params, seeds: range, out) -> list[dict]:
+def _restarts(args, p: P.Params, seeds: range, out, executor) -> list[dict]:
+    """The restarts at the asked linker; with --resume, a seed already in RESULTS is not run
+    again (as the walk's runs)."""
+    results = out / outdir.RESULTS
+    done = {r["params"]["seed"] for r in restarts.read(results, p.to_dict())
+            if r.get("status") == "ok"} if args.resume and results.exists() else set()
+    todo = [s for s in seeds if s not in done]
     try:
-        with make_executor(args, out=out, runs=len(seeds),
-                           log_path=out / command.LOG) as executor:
-            return restarts.run_restarts(executor, p.to_dict(), seeds, out / outdir.RESULTS,
-                                window=batch_options.width(args, len(seeds)), force=args.force,
-                                progress=not args.quiet, version=fibrilfit_version())
+        if todo:
+            restarts.run_restarts(executor(), p.to_dict(), todo,
+                                  results, width=args.interval_width,
+                                  window=batch_options.width(args, len(seeds)),
+                                  force=args.force, progress=not args.quiet,
+                                  version=fibrilfit_version())
+        return [r for r in restarts.read(results, p.to_dict()) if r["params"]["seed"] in seeds]
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
 
@@ -246,11 +273,15 @@ def document(args, p: P.Params, best: dict, tally: dict, row: dict, *, sources: 
                   "low": low, "high": high, "p": tally["p_fit"], "linker": p.linker,
                   "protocol": p.protocol, "seeds": [p.seed, p.seed + args.restarts - 1],
                   "failed": tally["failed"], "best_seed": tally["best_seed"],
+                  "asked": tally["asked"], "decided": tally["decided"],
                   "per_seed": tally["runs"]},
         "minimal_linker": {
             "linker": m, "p_fit": row["p_fit"], "interval": row["p_fit_interval"],
             "linker_below": row["linker_below"], "p_fit_below": row["p_fit_below"],
             "interval_below": row["p_fit_below_interval"], "restarts": args.restarts,
+            "runs": row["restarts"], "runs_below": row["restarts_below"],
+            "stopped_at_fit": row["stopped_at_fit"], "floor": row["floor"],
+            "below_settled_by_bound": row["below_settled_by_bound"],
             "max_linker": args.max_linker, "tried": row["tried"], "error": row["error"],
             "method": minimal.__doc__.split("\n\n")[1].replace("\n", " ")},
         "margin": {

@@ -20,21 +20,41 @@ def points(base: dict, seeds) -> list[Point]:
 
 
 def run_restarts(executor, base: dict, seeds, results_path, *, stop_on_fit: bool = False,
-                 window: int = 1, force: bool = False, progress: bool = False,
-                 version: str = "") -> list[dict]:
+                 width: float | None = None, window: int = 1, force: bool = False,
+                 progress: bool = False, version: str = "") -> list[dict]:
     """Run `base` at each seed; return their records (results.jsonl lines), in seed order.
 
-    With `stop_on_fit`, seeds go out `window` at a time and no more are started once one is
-    accommodated (the runs already started still finish and are recorded).
+    Seeds go out in order, `window` in flight. With `stop_on_fit`, no more are started once one
+    is accommodated; with `width`, none once P(fit)'s 95 % Wilson interval is at most that wide
+    (decided). The runs already started still finish and are recorded, and the tally is taken
+    from the runs made.
     """
     todo = points(base, seeds)
-    batch = max(1, window) if stop_on_fit else len(todo)
-    for start in range(0, len(todo), batch):
-        runner.run_points(executor, todo[start:start + batch], results_path, force=force,
-                          progress=progress, version=version)
-        if stop_on_fit and any(r.get("accommodated") for r in read(results_path, base)):
-            break
+    skip = None
+    if stop_on_fit or width is not None:
+        def skip(point, records):
+            return decided(records, stop_on_fit=stop_on_fit, width=width) is not None
+    runner.run_points(executor, todo, results_path, force=force, progress=progress,
+                      version=version, skip=skip, window=window)
     return read(results_path, base)
+
+
+def decided(records: list[dict], *, stop_on_fit: bool = False,
+            width: float | None = None) -> str | None:
+    """Why the restarts still to run cannot change what is reported, or None (run them).
+
+    'a fit found' (stop_on_fit: the question is whether any restart fits, and a fit is a proof by
+    example), or 'interval at most W wide' (the user asked for P(fit) to that width: the 95 %
+    Wilson interval of the runs made is that narrow)."""
+    ok = [r for r in records if r.get("status") == "ok"]
+    fits = sum(bool(r.get("accommodated")) for r in ok)
+    if stop_on_fit and fits:
+        return "a fit found"
+    if width is not None and ok:
+        low, high = wilson(fits, len(ok))
+        if high - low <= width:
+            return f"interval at most {width:g} wide"
+    return None
 
 
 def read(results_path, base: dict) -> list[dict]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import pathlib
 import sys
+from typing import Callable
 
 from .. import files
 from ..model.version import MODEL_VERSION
@@ -90,30 +91,49 @@ def _record(point: Point, job: dict, reply: dict, errors: list[str], version: st
 
 class Counts:
     def __init__(self):
-        self.ok = self.failed = self.accommodated = self.retried = 0
+        self.ok = self.failed = self.accommodated = self.retried = self.skipped = 0
 
     def __str__(self):
         return (f"accommodated {self.accommodated}/{self.ok}"
                 + (f", retried {self.retried}" if self.retried else "")
+                + (f", {self.skipped} not needed" if self.skipped else "")
                 + (f", failed {self.failed}" if self.failed else ""))
 
 
 def run_points(executor, points: list[Point], results_path, *, force: bool = False,
                progress: bool = True, version: str = "", extra: dict | None = None,
-               case: dict | None = None) -> Counts:
+               case: dict | None = None, skip: Callable | None = None,
+               window: int = 1) -> Counts:
     """Run every point on `executor` (already entered); append each record as it finishes,
     with `extra` (e.g. the structure block) in every record, and `case` (the --case,
-    Case.resolved) with the point's params."""
+    Case.resolved) with the point's params.
+
+    With `skip(point, records)` (records: this call's, so far), points go out in order with at
+    most `window` in flight, and a point for which skip says True when its turn comes is not
+    run (counted in Counts.skipped): what a run that cannot change the answer costs is nothing
+    (docs/model/search.md#decided). The runs already in flight finish and are recorded."""
     counts = Counts()
     errors: dict[int, list[str]] = {i: [] for i in range(len(points))}
+    records: list[dict] = []
+    queue = list(range(len(points)))
     bar = None
     if progress:
         from tqdm import tqdm
         bar = tqdm(total=len(points), unit="run", file=sys.stderr, dynamic_ncols=True,
                    smoothing=0.05, desc="sweep")
+
+    def feed():
+        while queue and (skip is None or executor.pending() < max(1, window)):
+            i = queue.pop(0)
+            if skip is not None and skip(points[i], records):
+                counts.skipped += 1
+                if bar is not None:
+                    bar.update(1)
+                continue
+            executor.submit({"id": i, "attempt": 1, "params": points[i].params, "force": force})
+
     try:
-        for i, pt in enumerate(points):
-            executor.submit({"id": i, "attempt": 1, "params": pt.params, "force": force})
+        feed()
         while executor.pending():
             job, reply = executor.wait()
             i = job["id"]
@@ -127,6 +147,7 @@ def run_points(executor, points: list[Point], results_path, *, force: bool = Fal
                     continue
             record = _record(points[i], job, reply, errors[i], version, extra, case)
             files.append_line(results_path, json.dumps(record))
+            records.append(record)
             if reply["ok"]:
                 counts.ok += 1
                 counts.accommodated += bool(record.get("accommodated"))
@@ -135,6 +156,7 @@ def run_points(executor, points: list[Point], results_path, *, force: bool = Fal
             if bar is not None:
                 bar.set_postfix_str(str(counts), refresh=False)
                 bar.update(1)
+            feed()
     finally:
         if bar is not None:
             bar.close()

@@ -222,3 +222,165 @@ def test_a_known_fit_that_a_screen_misses_is_measured_in_full_before_it_is_dropp
     asked = _screened(w, 6, p_fit=lambda L, s: L >= 7 or s == 3)
     assert (6, 5) in asked and w.minimal == 6 and w.tried[5] == (0, 5)
     assert len(asked) == len(set(asked))  # nothing asked twice
+
+
+# ---- issue #35: restarts that cannot change the answer are not run ----------------------------
+
+@pytest.mark.parametrize("start", [1, 3, 9, 19])
+@pytest.mark.parametrize("minimum", [1, 2, 11, 20])
+def test_stopping_at_a_fit_keeps_the_minimal_linker_and_the_misses_below_it(start, minimum):
+    """The walk's question at a length is whether any restart fits: stopping at the first fit
+    gives the same minimum, with all R missed one below, and costs fewer runs."""
+    luck = lambda L, s: s % 3 == 2 or L >= minimum + 2  # the first two seeds miss near the minimum
+    full = minimal.Walk(30.0, start, max_linker=20, restarts=5)
+    _screened(full, minimum, luck)
+    fast = minimal.Walk(30.0, start, max_linker=20, restarts=5, stop_at_fit=True)
+    asked = _screened_stopping(fast, minimum, luck)
+    assert fast.minimal == full.minimal == minimum
+    assert minimum == 1 or fast.tried[minimum - 1] == (0, 5)
+    assert fast.tried[minimum][0] >= 1 and fast.tried[minimum][1] <= 5
+    row = fast.row()
+    assert row["stopped_at_fit"] == (fast.tried[minimum][1] < 5)
+    assert row["p_fit"] == round(fast.tried[minimum][0] / fast.tried[minimum][1], 4)
+    assert asked <= sum(n for _, n in full.tried.values())
+
+
+def _screened_stopping(w, minimum, luck):
+    """_screened with each length's seeds stopping at the first fit; returns the runs made."""
+    runs = 0
+    while (step := w.next_step()) is not None:
+        L, n = step
+        k, done = w.tried.get(L, (0, 0))
+        assert runs < 300 and 1 <= L <= w.max_linker and not (k and w.stop_at_fit)
+        for s in range(done, n):
+            runs += 1
+            done += 1
+            if L >= minimum and luck(L, s):
+                k += 1
+                break
+        w.record(L, k, done)
+    return runs
+
+
+def test_lengths_below_the_proven_bound_are_settled_not_run():
+    """A fit at the bound is the minimum with nothing run below it; above it the walk is as
+    before, and never tries a length below the bound."""
+    w = minimal.Walk(30.0, 2, max_linker=20, restarts=5, stop_at_fit=True, floor=6)
+    _screened_stopping(w, 6, lambda L, s: True)
+    assert w.minimal == 6 and min(w.tried) == 6
+    row = w.row()
+    assert row["below_settled_by_bound"] and row["p_fit_below"] == 0.0
+    assert row["p_fit_below_interval"] is None and row["restarts_below"] == 0
+    w = minimal.Walk(30.0, 2, max_linker=20, restarts=5, floor=4)
+    _screened(w, 7)
+    assert w.minimal == 7 and w.tried[6] == (0, 5) and min(w.tried) >= 4
+    assert not w.row()["below_settled_by_bound"]
+    w = minimal.Walk(30.0, 2, max_linker=10, restarts=5, floor=12)  # nothing possible up to the cap
+    assert w.next_step() is None and w.row()["minimal_linker"] is None
+
+
+def test_restarts_decided_by_a_fit_or_by_the_interval_asked():
+    ok = [_record(s, s == 1) for s in range(3)]
+    assert restarts.decided(ok[:1], stop_on_fit=True) is None
+    assert restarts.decided(ok[:2], stop_on_fit=True) == "a fit found"
+    assert restarts.decided(ok, stop_on_fit=False) is None  # all R by default
+    misses = [_record(s, False) for s in range(12)]
+    # 0 of n: the Wilson interval's width is 3.84 / (n + 3.84): 0.28 at 10, 0.24 at 12
+    assert restarts.decided(misses[:9], width=0.25) is None
+    assert restarts.decided(misses, width=0.25) == "interval at most 0.25 wide"
+
+
+def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
+    """command._walk on an executor that answers from a table: at the minimum the walk stops
+    at the first fit (seed 1: seeds 0 and 1 were in flight on 2 workers), one below every seed
+    runs; with --all-restarts every seed runs at both."""
+    import argparse
+    from fibrilfit.search import command
+
+    class Table(FakeExecutor):
+        def wait(self):
+            job = self.queue.pop(0)
+            p = job["params"]
+            self.ran.append((p["linker"], p["seed"]))
+            fits = p["linker"] >= 5 and p["seed"] >= 1
+            return job, {"id": job["id"], "ok": True, "result": {
+                **_record(p["seed"], fits), "params": p}}
+
+    for every, ran_at_5 in ((False, [0, 1]), (True, [0, 1, 2, 3, 4])):
+        args = argparse.Namespace(force=False, quiet=True, executor="processes", workers=2,
+                                  max_linker=20, all_restarts=every, known_fit=None)
+        base = P.make_params(globule_diameter=30.0, linker=1)
+        w = command.new_walk(args, base, 5)
+        ex = Table(fits=set())
+        out = tmp_path / f"every{every}"
+        out.mkdir()
+        command._walk(args, {"protocol": "inflate"}, range(5), [w], out, lambda: ex)
+        assert w.minimal == 5 and w.tried[4] == (0, 5)
+        assert sorted(s for L, s in ex.ran if L == 5) == ran_at_5
+        assert sorted(s for L, s in ex.ran if L == 4) == [0, 1, 2, 3, 4]
+
+
+@pytest.mark.parametrize("args, named", [
+    (["run", "--interval-width", "0.3"], "--interval-width: only with --restarts"),
+    (["run", "--restarts", "2", "--interval-width", "1.5"], "--interval-width: must be between"),
+])
+def test_interval_width_is_refused_in_one_line(args, named):
+    proc = subprocess.run([PY, str(ROOT / "headless.py"), *args], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and proc.stderr.strip().count("\n") == 0
+    assert named in proc.stderr
+
+
+def test_the_restarts_line_says_how_many_ran_and_why_it_stopped():
+    from fibrilfit.search import command
+    recs = [_record(0, False, 1), _record(1, True)]
+    s = {**restarts.tally(recs), "stop_on_fit": True, "asked": 5,
+         "decided": restarts.decided(recs, stop_on_fit=True)}
+    line = command.restarts_line(s)
+    assert "1/2 accommodated" in line and "stopped after 2 of 5 runs: a fit found" in line
+    s["decided"] = None
+    assert "stopped" not in command.restarts_line(s)
+
+
+def test_a_resumed_walk_runs_nothing_again(tmp_path):
+    """The walk stopped a length at its first fit; walked again over the same results it runs
+    nothing (the length is decided by the recorded fit), and gives the same row."""
+    import argparse
+    from fibrilfit.search import command
+
+    class Table(FakeExecutor):
+        def wait(self):
+            job = self.queue.pop(0)
+            p = job["params"]
+            self.ran.append((p["linker"], p["seed"]))
+            return job, {"id": job["id"], "ok": True, "result": {
+                **_record(p["seed"], p["linker"] >= 5 and p["seed"] != 1), "params": p}}
+
+    args = argparse.Namespace(force=False, quiet=True, executor="processes", workers=1,
+                              max_linker=20, all_restarts=False, known_fit=None)
+    base = P.make_params(globule_diameter=30.0, linker=1)
+    rows = []
+    for k in range(2):
+        w = command.new_walk(args, base, 5)
+        ex = Table(fits=set())
+        command._walk(args, {"protocol": "inflate"}, range(5), [w], tmp_path, lambda: ex)
+        rows.append(w.row())
+        if k == 0:
+            assert (5, 0) in ex.ran and (5, 1) not in ex.ran  # one worker: stopped at seed 0
+        else:
+            assert ex.ran == []
+    assert rows[0] == rows[1] and rows[0]["minimal_linker"] == 5
+
+
+def test_the_walk_takes_the_bound_from_a_run_of_its_geometry():
+    """A run's record carries the bound it was judged under (pipeline: `bound`); the walk uses
+    it rather than computing it again, and starts at it when the guess lies below."""
+    import argparse
+    from fibrilfit.search import command
+    args = argparse.Namespace(max_linker=20, all_restarts=False)
+    base = P.make_params(globule_diameter=30.0, linker=1)
+    rec = {**_record(0, True), "bound": {"impossible_below": 7}}
+    w = command.new_walk(args, base, 5, records=[rec])
+    assert w.floor == 7 and w.start == 7 and w.next_step() == (7, minimal.SCREEN)
+    failed = {"params": {"seed": 1}, "status": "failed", "bound": {"impossible_below": 9}}
+    assert command.floor_of(base, [failed, rec]) == 7

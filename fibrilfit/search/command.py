@@ -276,6 +276,12 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
             done = runner.done_keys(runner.read_lines(results)[0])
             # a length already decided by a fit in RESULTS (a resumed walk, the report's
             # restarts) runs nothing more
+            for w, L, some in wanted:  # a length whose model cannot start is a miss, unrun
+                try:
+                    points_of(w, L, some[:1])
+                except P.ParamError as exc:
+                    w.unstarted[L] = str(exc)
+            wanted = [(w, L, some) for w, L, some in wanted if L not in w.unstarted]
             wanted_runs = [(w, L, some) for w, L, some in wanted
                            if not (w.stop_at_fit and _fit_recorded(records_of(w, L)))]
             todo = [pt for w, L, some in wanted_runs for pt in points_of(w, L, some)
@@ -391,6 +397,8 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
                f" ({r['fits']}/{r['restarts']})" if m is not None else "-")
         if r.get("below_settled_by_bound"):
             below = f"0 at {r['linker_below']} (no layout below {r['floor']}: the proven bound; not run)"
+        elif r.get("below_unstarted"):
+            below = f"- at {r['linker_below']} (not started: {r['below_unstarted']})"
         elif r["p_fit_below"] is not None:
             below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
                      f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']} "
@@ -399,6 +407,12 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
             below = "-"
         shown = str(m) if m is not None else f"> {r['linker_below']}" if r["linker_below"] else "?"
         lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<25}  {below}")
+        open_from = r.get("floor") or 1
+        if m is not None:  # the bracket: impossible below the bound, fits at m
+            notes.append(f"{r['globule_diameter']:g} Å: impossible below {open_from} (the proven "
+                         f"bound), fits at {m} (a layout found)"
+                         + (f", open from {open_from} to {m - 1}" if m - 1 >= open_from
+                            else ", closed") + " (docs/model/bound.md#bracket)")
         if r.get("stopped_at_fit"):
             notes.append(f"{r['globule_diameter']:g} Å: the restarts at {m} stopped at the first "
                          f"fit ({r['restarts']} of the restarts ran): the other restarts could not change that it "

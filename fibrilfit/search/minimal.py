@@ -57,6 +57,10 @@ class Walk:
     restarts: int | None = None
     stop_at_fit: bool = False  # a length with a fit is decided: its other restarts not needed
     floor: int = 1  # lengths below it are settled misses (the proven bound), never run
+    # lengths whose model the search cannot start (e.g. a buried anchor's groove leaves the
+    # globule no straight way out: param_checks' refusal), with the reason: misses without a
+    # run, and not a proof (docs/model/search.md#unstarted)
+    unstarted: dict = field(default_factory=dict)
 
     def __post_init__(self):
         self.floor = max(1, int(self.floor))
@@ -70,7 +74,8 @@ class Walk:
 
     def _misses(self):
         measured = [L for L, (k, n) in self.tried.items() if k == 0 and n > 0]
-        return sorted(set(measured) | ({self.floor - 1} if self.floor > 1 else set()))
+        return sorted(set(measured) | set(self.unstarted)
+                      | ({self.floor - 1} if self.floor > 1 else set()))
 
     def settled(self, linker: int) -> bool:
         """Below the proven bound: a miss without a run."""
@@ -81,7 +86,7 @@ class Walk:
         stop_at_fit, or below the floor."""
         k, n = self.tried.get(linker, (0, 0))
         return (self.restarts is None or n >= self.restarts or self.settled(linker)
-                or (self.stop_at_fit and k > 0))
+                or linker in self.unstarted or (self.stop_at_fit and k > 0))
 
     @property
     def screen(self) -> int | None:
@@ -169,6 +174,8 @@ class Walk:
             "stopped_at_fit": bool(m is not None and self.stop_at_fit and self.restarts
                                    and at[1] < self.restarts),
             "floor": self.floor,
+            "below_unstarted": self.unstarted.get(below_linker) if below_linker else None,
+            "unstarted": {str(L): why for L, why in sorted(self.unstarted.items())},
             "error": self.error,
             "tried": {str(L): {"accommodated": k, "restarts": n}
                       for L, (k, n) in sorted(self.tried.items())},

@@ -384,3 +384,24 @@ def test_the_walk_takes_the_bound_from_a_run_of_its_geometry():
     assert w.floor == 7 and w.start == 7 and w.next_step() == (7, minimal.SCREEN)
     failed = {"params": {"seed": 1}, "status": "failed", "bound": {"impossible_below": 9}}
     assert command.floor_of(base, [failed, rec]) == 7
+
+
+def test_a_length_whose_model_cannot_start_is_a_miss_without_runs():
+    # 5OQV + GFP: with the exit's 5 residues spent, linkers 6 and 7 leave the globule no straight
+    # way out of the groove (param_checks refuses the model); the walk must go on, not stop
+    from fibrilfit.search.minimal import Walk
+    w = Walk(43.9, 8, 30, restarts=3, stop_at_fit=True)
+    for _ in range(50):
+        step = w.next_step()
+        if step is None:
+            break
+        L = step[0]
+        if L in (6, 7):
+            w.unstarted[L] = "anchor: no straight direction"
+            continue
+        w.record(L, 1 if L >= 8 else 0, 1 if L >= 8 else 3)
+    row = w.row()
+    assert w.minimal == 8 and row["linker_below"] == 7
+    assert row["below_unstarted"] == "anchor: no straight direction"
+    assert row["p_fit_below"] is None or row["p_fit_below"] == 0.0
+    assert 7 not in w.tried  # nothing ran there

@@ -106,7 +106,18 @@ def linker_rows(doc: dict) -> str:
         below = (f"; one below, at {m['linker_below']}: P(fit) {m['p_fit_below']:.2f} "
                  f"(95 % Wilson {interval(m['interval_below'])})"
                  if m.get("p_fit_below") is not None else "")
-    return (f"<p>Minimal linker: {found}{below}. Restarts per length: up to {m['restarts']}, "
+    br = doc.get("bracket")
+    if br:
+        hi = br["open"][1] if br.get("open") else None
+        bracket = (f"<p><b>The bracket</b>: impossible below {br['impossible_below']} residues "
+                   f"(proof: the geometry, the proven bound)"
+                   + (f"; fits at {br['fits_at']} (proof: a layout)" if br.get("fits_at") else "")
+                   + (f"; open from {br['impossible_below']} to {hi}: neither proof reaches "
+                      f"there" if hi is not None else "; closed" if br.get("fits_at") else "")
+                   + ".</p>")
+    else:
+        bracket = ""
+    return (f"{bracket}<p>Minimal linker: {found}{below}. Restarts per length: up to {m['restarts']}, "
             f"protocol {esc(pf['protocol'])}, seeds {pf['seeds'][0]}–{pf['seeds'][1]}.</p>"
             f"<table><tr><th>linker</th><th>accommodated</th><th>reading</th></tr>{rows}"
             f"</table><p class='small'>{esc(m.get('method', ''))}</p>")

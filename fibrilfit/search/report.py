@@ -242,6 +242,19 @@ def warnings_of(best: dict, structure_block: dict | None, tally: dict, row: dict
     return [w for w in out if not (w in seen or seen.add(w))]
 
 
+def bracket_of(bound: dict | None, minimal_linker: int | None) -> dict | None:
+    """Impossible below B (the proven bound), fits at L (the minimal linker's layout), and the
+    lengths between, which neither settles (None without a bound)."""
+    if not bound:
+        return None
+    b = int(bound["impossible_below"])
+    if minimal_linker is None:
+        return {"impossible_below": b, "fits_at": None, "open": [b, None]}
+    top = minimal_linker - 1
+    return {"impossible_below": b, "fits_at": minimal_linker,
+            "open": [b, top] if top >= b else None}
+
+
 def versions(version: str) -> dict:
     import bpy
     import numpy
@@ -284,6 +297,10 @@ def document(args, p: P.Params, best: dict, tally: dict, row: dict, *, sources: 
             "below_settled_by_bound": row["below_settled_by_bound"],
             "max_linker": args.max_linker, "tried": row["tried"], "error": row["error"],
             "method": minimal.__doc__.split("\n\n")[1].replace("\n", " ")},
+        # the bracket: impossible below the bound (a proof), fits at the minimal linker (a
+        # layout), open between (docs/model/bound.md#bracket)
+        "bound": best.get("bound"),
+        "bracket": bracket_of(best.get("bound"), m),
         "margin": {
             "linker_residues": None if m is None else p.linker - m,
             "stretch_tolerance": tol,

@@ -83,3 +83,14 @@ def test_report_refuses_in_one_line_without_matplotlib(monkeypatch):
                         lambda name: None if name == "matplotlib" else real(name))
     with pytest.raises(UsageError, match="^the report needs the Python package matplotlib, which "):
         report.check_options(report.options())
+
+
+def test_the_report_brackets_the_answer():
+    # impossible below the bound, fits at the minimal linker, open between (docs/model/bound.md)
+    from fibrilfit.search.report import bracket_of
+    assert bracket_of({"impossible_below": 1}, 3) == {"impossible_below": 1, "fits_at": 3,
+                                                      "open": [1, 2]}
+    assert bracket_of({"impossible_below": 3}, 3)["open"] is None  # closed
+    assert bracket_of({"impossible_below": 5}, None) == {"impossible_below": 5, "fits_at": None,
+                                                         "open": [5, None]}
+    assert bracket_of(None, 3) is None

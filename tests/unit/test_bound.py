@@ -174,7 +174,7 @@ def _check_random(g):
         assert oracle.layout(p, seed=0, R=R) is None, f"a layout at {L} below the bound {b}: {g}"
 
 
-@settings(max_examples=10, deadline=None,
+@settings(max_examples=6, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(geometries)
 def test_no_layout_below_the_bound_on_random_geometries(g):

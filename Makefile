@@ -99,6 +99,8 @@ test-alone: $(ALONE_VENV)/.installed
 
 # Only the slow tests, on every bpy (pytest's exit 5, "none selected", counts as a pass).
 test-slow: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
+	$(VENV)/bin/python $(PYTEST) --junitxml=out/junit/$@-unit.xml $(UNIT_TESTS) -m slow \
+	  $(PYTEST_ARGS); rc=$$?; [ $$rc -eq 0 ] || [ $$rc -eq 5 ] || exit $$rc
 	for venv in $(VENV) $(VENV_LTS) $(VENV_52); do \
 	  $$venv/bin/python $(PYTEST) --junitxml=out/junit/$@-$$(basename $$venv).xml \
 	    $(BLENDER_TESTS) -m slow $(PYTEST_ARGS); rc=$$?; \

@@ -160,8 +160,8 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
         row["exit"] = {k: records[0]["exit"].get(k) for k in ("residues", "length", "depth",
                                                                "free_linker")}
     row["measured"] = code_now(records)
-    row["minimal"] = {"status": "not computed in this run (time budget, --until); "
-                                "make validate again resumes"}
+    row["minimal"] = {"status": "walk not run (--no-walk, or the time budget of --until); "
+                                "make validate resumes it"}
     return row
 
 
@@ -192,7 +192,7 @@ def save_stored(stored: dict, shape: str | None = None) -> None:
 
 def kept(row: dict) -> dict:
     """A row as stored: its measured numbers and the few parameters the table reads."""
-    out = {k: v for k, v in row.items() if k != "params"}
+    out = {k: v for k, v in row.items() if k not in ("params", "meta", "name")}
     if "params" in row:
         out["params"] = {k: row["params"][k] for k in KEPT_PARAMS if k in row["params"]}
     return out
@@ -204,8 +204,8 @@ def gallery_rows(gallery: list, stored: dict) -> list[dict]:
     if the row has none (geometry only: about a minute for a structure-file case)."""
     rows = []
     for path in gallery:
-        row = stored.get(path.name)
-        if row is None:
+        row = dict(stored.get(path.name) or {})
+        if not row:
             rows.append({"case": path.name, "error": "not measured yet: make validate runs it"})
             continue
         if "error" not in row:
@@ -214,7 +214,7 @@ def gallery_rows(gallery: list, stored: dict) -> list[dict]:
                 row["meta"] = case.meta
                 row["name"] = case.meta.get("name", path.stem)
                 if not row.get("bound"):
-                    row["bound"] = case_bound(path)
+                    row["bound"] = stored[path.name]["bound"] = case_bound(path)
             except Exception as exc:  # noqa: BLE001 (the row says why)
                 row = {"case": path.name, "error": f"case file: {exc}"}
         rows.append(row)
@@ -344,6 +344,11 @@ def main(argv=None) -> int:
     stored = stored_rows(args.domain_shape)
     for row in rows:  # a skipped case keeps its stored row
         if row is not None and not str(row.get("error", "")).startswith("skipped"):
+            old = stored.get(row["case"], {})
+            if ("row" not in row.get("minimal", {}) and "row" in old.get("minimal", {})
+                    and old.get("measured", {}).get("model_version")
+                    == row.get("measured", {}).get("model_version")):
+                row["minimal"] = old["minimal"]  # a walk this run did not redo stays
             stored[row["case"]] = kept(row)
     shown = gallery_rows(gallery, stored)
     save_stored(stored, args.domain_shape)

@@ -82,11 +82,12 @@ BOUND_KEYS = ("impossible_below", "over", "fails_below", "exit_residues")
 
 
 def git_commit() -> str:
-    """This checkout's commit, "+changes" if the model's code differs from it."""
+    """The last commit that changed fibrilfit/ (the code the runs ran), "+changes" if the
+    checkout's fibrilfit/ differs from it."""
     def git(*a):
         return subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     dirty = git("status", "--porcelain", "--", "fibrilfit")
-    return git("rev-parse", "--short", "HEAD") + ("+changes" if dirty else "")
+    return git("log", "-1", "--format=%h", "--", "fibrilfit") + ("+changes" if dirty else "")
 
 
 def code_now(records=()) -> dict:
@@ -129,7 +130,8 @@ def contour_radius(p) -> float:
     return p.chain_x()[-1]
 
 
-def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = ()) -> dict:
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = (),
+             collect: bool = False) -> dict:
     """The real linker's seeds (the minimal linker comes in a second pass, see main)."""
     row = {"case": case_path.name}
     try:
@@ -139,8 +141,13 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
         return row
     p = case.make_params()
     row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
-    records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
-    if records and "params" in records[0]:  # as run: structure files may have filled some
+    if collect:  # the runs already there, however many seeds finished
+        records = runner.read_lines(out / case_path.stem / "real" / "results.jsonl")[0]
+    else:
+        records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
+    if not records:
+        return {"case": case_path.name, "error": "no seed finished (make validate runs it)"}
+    if "params" in records[0]:  # as run: structure files may have filled some
         p = P.make_params(force=True, **records[0]["params"])
         row["params"] = p.to_dict()
     (r,) = summary.rows(records)
@@ -268,9 +275,15 @@ def main(argv=None) -> int:
     ap.add_argument("--table-only", action="store_true",
                     help="run nothing: write the table from the stored rows (examples/"
                          "measured.json), computing the bound of a row that has none")
+    ap.add_argument("--collect", action="store_true",
+                    help="run nothing new: make the rows of the cases named from the runs "
+                         "already in --out (the seeds that finished), e.g. after a run was cut "
+                         "short; implies --no-walk")
     ap.add_argument("--walk", dest="walk", action=argparse.BooleanOptionalAction, default=True,
                     help="the minimal-linker walk after the seeds [default: on]")
     args = ap.parse_args(argv)
+    if args.collect:
+        args.walk = False
     if args.until:
         hh, mm = (int(x) for x in args.until.split(":"))
         now = datetime.datetime.now(datetime.timezone.utc)
@@ -307,7 +320,7 @@ def main(argv=None) -> int:
                                                    "lack of time; make validate runs it"}
             return
         said(f"{path.name} at its real linker")
-        rows[i] = validate(path, args.out, args.workers, extra)
+        rows[i] = validate(path, args.out, args.workers, extra, collect=args.collect)
         said(f"{path.name} at its real linker: done")
         with lock:
             save()

@@ -80,6 +80,8 @@ def bracket(row) -> str:
             parts.append(f"below the bound: a contradiction (one of them is wrong)" if L < B
                          else f"closed: the minimum is {B}" if L == B
                          else f"open {B}-{L - 1}" if L - 1 > B else f"open at {B}")
+    elif "row" not in (row.get("minimal") or {}):
+        parts.append("no walk run")
     else:
         parts.append(r or "no fit found")
         if B is not None:

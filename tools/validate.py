@@ -82,12 +82,15 @@ BOUND_KEYS = ("impossible_below", "over", "fails_below", "exit_residues")
 
 
 def git_commit() -> str:
-    """The last commit that changed fibrilfit/ (the code the runs ran), "+changes" if the
-    checkout's fibrilfit/ differs from it."""
+    """The last commit that changed the model's code (version.MODEL_SOURCES: what the runs'
+    numbers depend on), "+changes" if the checkout's model code differs from it."""
+    from fibrilfit.model import version
+    paths = [f"fibrilfit/{x}" for x in version.MODEL_SOURCES]
+
     def git(*a):
         return subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
-    dirty = git("status", "--porcelain", "--", "fibrilfit")
-    return git("log", "-1", "--format=%h", "--", "fibrilfit") + ("+changes" if dirty else "")
+    dirty = git("status", "--porcelain", "--", *paths)
+    return git("log", "-1", "--format=%h", "--", *paths) + ("+changes" if dirty else "")
 
 
 def code_now(records=()) -> dict:

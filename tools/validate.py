@@ -15,6 +15,7 @@ saying why. Nothing is filled in by hand.
 from __future__ import annotations
 
 import argparse
+import collections
 import concurrent.futures
 import datetime
 import importlib
@@ -28,7 +29,8 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 from fibrilfit.model import cases, params as P  # noqa: E402
-from fibrilfit.sweep import runner, stats, summary  # noqa: E402
+from fibrilfit.sweep import runner, stats, summary, validation  # noqa: E402
+from fibrilfit.sweep.validation import provenance, table  # noqa: E402,F401 (tests)
 wilson = stats.wilson
 
 MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
@@ -79,6 +81,46 @@ def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
     return {"row": row, "max": top, "restarts": restarts}
 
 
+BOUND_KEYS = ("impossible_below", "over", "fails_below", "exit_residues")
+
+
+def git_commit() -> str:
+    """The last commit that changed the model's code (version.MODEL_SOURCES: what the runs'
+    numbers depend on), "+changes" if the checkout's model code differs from it."""
+    from fibrilfit.model import version
+    paths = [f"fibrilfit/{x}" for x in version.MODEL_SOURCES]
+
+    def git(*a):
+        return subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    dirty = git("status", "--porcelain", "--", *paths)
+    return git("log", "-1", "--format=%h", "--", *paths) + ("+changes" if dirty else "")
+
+
+def code_now(records=()) -> dict:
+    """The code a row is measured with now: date, commit, MODEL_VERSION, bpy."""
+    from fibrilfit.model import version
+    first = records[0] if records else {}
+    bpy = first.get("blender_version")
+    return {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d"),
+            "commit": git_commit(),
+            "model_version": first.get("model_version", version.MODEL_VERSION),
+            "bpy": ".".join(str(x) for x in bpy) if isinstance(bpy, list) else bpy}
+
+
+def case_bound(case_path) -> dict:
+    """The bound of a case's model at its real linker (geometry only, no run; structure files
+    measured as `run` measures them), with the code it was computed with."""
+    from fibrilfit.cli import parser, values
+    from fibrilfit.model import bound
+    args = parser.build_parser().parse_args(["run", "--case", str(case_path)])
+    values.apply_case(args, ["run", "--case", str(case_path)])
+    p, _, _ = values.checked_params(args)
+    b = bound.linker_bound(p)
+    out = {k: b.get(k) for k in BOUND_KEYS}
+    out["computed"] = {k: v for k, v in code_now().items() if k != "bpy"}
+    return out
+
+
 def bodies(case_path) -> int:
     """A case's size at its real linker: the rigid bodies it builds (chains x members), what a
     run's cost grows with; 0 for a case that cannot be read (its row will say why)."""
@@ -94,7 +136,8 @@ def contour_radius(p) -> float:
     return p.chain_x()[-1]
 
 
-def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = ()) -> dict:
+def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = (),
+             collect: bool = False) -> dict:
     """The real linker's seeds (the minimal linker comes in a second pass, see main)."""
     row = {"case": case_path.name}
     try:
@@ -104,8 +147,13 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
         return row
     p = case.make_params()
     row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
-    records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
-    if records and "params" in records[0]:  # as run: structure files may have filled some
+    if collect:  # the runs already there, however many seeds finished
+        records = runner.read_lines(out / case_path.stem / "real" / "results.jsonl")[0]
+    else:
+        records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
+    if not records:
+        return {"case": case_path.name, "error": "no seed finished (make validate runs it)"}
+    if "params" in records[0]:  # as run: structure files may have filled some
         p = P.make_params(force=True, **records[0]["params"])
         row["params"] = p.to_dict()
     (r,) = summary.rows(records)
@@ -117,87 +165,73 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
     row["envelope_at_contour"] = bool(medians) and all(
         abs(m - contour_radius(p)) < 0.01 * contour_radius(p) for m in medians)
     row["frames"] = sorted({x["frames_simulated"] for x in records if "frames_simulated" in x})
-    row["minimal"] = {"status": "not computed in this run (time budget, --until); "
-                                "make validate again resumes"}
+    row["answers"] = dict(collections.Counter(x["answer"] for x in records if x.get("answer")))
+    if records and records[0].get("bound"):  # every result carries it (docs/model/bound.md)
+        row["bound"] = {k: records[0]["bound"].get(k) for k in BOUND_KEYS}
+        row["bound"]["computed"] = None  # with the runs (the row's `measured`)
+    if records and records[0].get("exit"):
+        row["exit"] = {k: records[0]["exit"].get(k) for k in ("residues", "length", "depth",
+                                                               "free_linker")}
+    row["measured"] = code_now(records)
+    row["minimal"] = {"status": "walk not run (--no-walk, or the time budget of --until); "
+                                "make validate resumes it"}
     return row
 
 
-def _fit_text(row) -> str:
-    f = row["fit"]
-    if not f["n"]:
-        return f"no run finished ({f['failed']} failed)"
-    low, high = f["wilson95"]
-    return f"{f['accommodated']}/{f['n']} ({low:.2f}-{high:.2f})"
-
-
-def _minimal_text(row) -> tuple[str, str]:
-    m, real = row["minimal"], row["params"]["linker"]
-    if "row" not in m:
-        return m["status"], "-"
-    r = m["row"]
-    if r.get("error"):
-        return f"not found: {r['error']}", "-"
-    if r["minimal_linker"] is None:
-        return f"none up to {m['max']} ({m['restarts']} restarts each)", "-"
-    below = (f"; {r['linker_below']}: 0/{m['restarts']}" if r.get("linker_below") else "")
-    return (f"{r['minimal_linker']} ({r['fits']}/{r['restarts']} fit{below})",
-            f"{real / r['minimal_linker']:.1f}")
-
-
-def _envelope_text(row) -> str:
-    d = row["outer_diameter"]
-    if d["median"] is None:
-        return "-"
-    text = f"{d['median'] / 10:.1f} nm ({d['min'] / 10:.1f}-{d['max'] / 10:.1f})"
-    if row["envelope_at_contour"]:
-        text += ", = the stretched linker (upper bound)"
-    return text
-
-
-def _agreement(row) -> str:
-    meta, f = row["meta"], row["fit"]
-    expected = meta.get("expected", "unknown")
-    fits = f["accommodated"] > 0
-    if expected == "unknown" or not f["n"]:
-        verdict = "no verdict to compare"
-    elif (expected == "fits") == fits:
-        verdict = "agrees" + (" (a clash-free layout exists)" if fits else "")
-    elif expected == "fits":
-        verdict = ("disagrees: no seed found room; a failed search is not proof that none "
-                   "exists (docs/model/verdict.md#proves), or an estimate is off")
-    else:
-        verdict = "disagrees: the model finds room the literature says is missing"
-    width = meta.get("envelope_width")
-    if width and row["outer_diameter"]["median"] is not None:
-        ratio = row["outer_diameter"]["median"] / width
-        verdict += f"; width {ratio:.1f}x the measured"
-        if row["envelope_at_contour"]:
-            verdict += " (the model's width is the linker's full extension, not a prediction)"
-    return verdict
-
-
-def table(rows: list[dict]) -> str:
-    head = ("| case | source | observed | P(fit) at the real linker | real linker | minimal "
-            "linker | margin (real / minimal) | predicted outer diameter | measured width | "
-            "FibrilFit vs literature |")
-    lines = [head, "|" + "---|" * 10]
-    for row in rows:
-        if "error" in row:
-            lines.append(f"| `{row['case']}` | | | not run: {row['error']} | | | | | | |")
-            continue
-        meta = row["meta"]
-        source = meta.get("pdb", "") + (f", doi:{meta['doi']}" if meta.get("doi") else "")
-        minimal, margin = _minimal_text(row)
-        width = meta.get("envelope_width")
-        lines.append("| " + " | ".join([
-            f"`{row['case']}` {row['name']}", source or meta.get("source", ""),
-            meta.get("observed", ""), _fit_text(row), str(row["params"]["linker"]), minimal,
-            margin, _envelope_text(row), f"{width / 10:.0f} nm" if width else "-",
-            _agreement(row)]) + " |")
-    return "\n".join(lines)
-
-
 PAGE = ROOT / "docs" / "validation.md"  # the page whose table this writes
+# Every row measured so far, with the code it was measured with: the table is written from it,
+# so a row outlives a run that did not re-run its case (a full make validate: 17 min).
+STORED = ROOT / "examples" / "measured.json"
+KEPT_PARAMS = ("linker", "layers", "score_layers", "periodic", "protocol", "globule_diameter",
+               "exit_residues")
+
+
+def stored_path(shape: str | None = None) -> pathlib.Path:
+    return STORED if shape is None else STORED.with_name(f"measured-{shape}.json")
+
+
+def stored_rows(shape: str | None = None) -> dict:
+    path = stored_path(shape)
+    if not path.exists():
+        return {}
+    return {r["case"]: r for r in json.loads(path.read_text(encoding="utf-8"))}
+
+
+def save_stored(stored: dict, shape: str | None = None) -> None:
+    rows = [stored[k] for k in sorted(stored)]
+    stored_path(shape).write_text(json.dumps(rows, indent=1, ensure_ascii=False) + "\n",
+                                  encoding="utf-8")
+
+
+def kept(row: dict) -> dict:
+    """A row as stored: its measured numbers and the few parameters the table reads."""
+    out = {k: v for k, v in row.items() if k not in ("params", "meta", "name")}
+    if "params" in row:
+        out["params"] = {k: row["params"][k] for k in KEPT_PARAMS if k in row["params"]}
+    return out
+
+
+def gallery_rows(gallery: list, stored: dict) -> list[dict]:
+    """The table's rows in the gallery's order: each case's stored row, with the case file's
+    own words (what the experiment says is the paper's, not a run's), and its bound computed
+    if the row has none (geometry only: about a minute for a structure-file case)."""
+    rows = []
+    for path in gallery:
+        row = dict(stored.get(path.name) or {})
+        if not row:
+            rows.append({"case": path.name, "error": "not measured yet: make validate runs it"})
+            continue
+        if "error" not in row:
+            try:
+                case = cases.load(path)
+                row["meta"] = case.meta
+                row["name"] = case.meta.get("name", path.stem)
+                if not row.get("bound"):
+                    row["bound"] = stored[path.name]["bound"] = case_bound(path)
+            except Exception as exc:  # noqa: BLE001 (the row says why)
+                row = {"case": path.name, "error": f"case file: {exc}"}
+        rows.append(row)
+    return rows
 
 
 def markers(shape: str | None) -> tuple:
@@ -244,16 +278,29 @@ def main(argv=None) -> int:
                     help="leave this case out (its row says so); repeatable")
     ap.add_argument("--no-docs", action="store_true",
                     help="print the table only; leave docs/validation.md as it is")
+    ap.add_argument("--table-only", action="store_true",
+                    help="run nothing: write the table from the stored rows (examples/"
+                         "measured.json), computing the bound of a row that has none")
+    ap.add_argument("--collect", action="store_true",
+                    help="run nothing new: make the rows of the cases named from the runs "
+                         "already in --out (the seeds that finished), e.g. after a run was cut "
+                         "short; implies --no-walk")
+    ap.add_argument("--walk", dest="walk", action=argparse.BooleanOptionalAction, default=True,
+                    help="the minimal-linker walk after the seeds [default: on]")
     args = ap.parse_args(argv)
+    if args.collect:
+        args.walk = False
     if args.until:
         hh, mm = (int(x) for x in args.until.split(":"))
         now = datetime.datetime.now(datetime.timezone.utc)
         args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
-    paths = args.cases or sorted((ROOT / "examples").glob("*.toml"),
-                                 key=lambda q: (q.stem != "tutorial", q.stem))
+    gallery = sorted((ROOT / "examples").glob("*.toml"),
+                     key=lambda q: (q.stem != "tutorial", q.stem))
+    paths = [] if args.table_only else (args.cases or gallery)
     extra = ()
     if args.domain_shape:
         paths = [q for q in paths if has_domain_file(q)]
+        gallery = [q for q in gallery if has_domain_file(q)]
         extra = ("--domain-shape", args.domain_shape)
     if args.out is None:
         args.out = ROOT / "out" / ("validate" + (f"-{args.domain_shape}" if args.domain_shape else ""))
@@ -279,14 +326,14 @@ def main(argv=None) -> int:
                                                    "lack of time; make validate runs it"}
             return
         said(f"{path.name} at its real linker")
-        rows[i] = validate(path, args.out, args.workers, extra)
+        rows[i] = validate(path, args.out, args.workers, extra, collect=args.collect)
         said(f"{path.name} at its real linker: done")
         with lock:
             save()
 
     def walk(i, path):
         row = rows[i]
-        if "error" in row or (args.until and time.time() > args.until):
+        if not args.walk or "error" in row or (args.until and time.time() > args.until):
             return  # the row keeps saying it was not computed
         said(f"minimal linker of {path.name}")
         minimal = minimal_linker(path, P.make_params(force=True, **row["params"]),
@@ -313,7 +360,18 @@ def main(argv=None) -> int:
                  for i in order]
         for done in list(reals.values()) + walks:
             done.result()
-    text = table(rows)
+    stored = stored_rows(args.domain_shape)
+    for row in rows:  # a skipped case keeps its stored row
+        if row is not None and not str(row.get("error", "")).startswith("skipped"):
+            old = stored.get(row["case"], {})
+            if ("row" not in row.get("minimal", {}) and "row" in old.get("minimal", {})
+                    and old.get("measured", {}).get("model_version")
+                    == row.get("measured", {}).get("model_version")):
+                row["minimal"] = old["minimal"]  # a walk this run did not redo stays
+            stored[row["case"]] = kept(row)
+    shown = gallery_rows(gallery, stored)
+    save_stored(stored, args.domain_shape)
+    text = table(shown) + "\n\n" + provenance(shown)
     print(text)
     if not args.no_docs:
         write_page(text, shape=args.domain_shape)

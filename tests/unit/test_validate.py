@@ -1,46 +1,144 @@
-"""tools/validate.py's table: every row from measured numbers, and rows it cannot compute say why."""
+"""The validation table (fibrilfit/sweep/validation.py, written by tools/validate.py): what the
+experiment says against what FibrilFit says, and the agree? logic, from rows and from the stored
+results (examples/measured.json); the negative control's case files."""
 import importlib.util
+import json
+import re
+
+import pytest
 
 from helpers import ROOT
+from fibrilfit.model import cases
+from fibrilfit.sweep import validation
 
 spec = importlib.util.spec_from_file_location("validate", ROOT / "tools" / "validate.py")
 validate = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(validate)
 
+NEGATIVE = sorted((ROOT / "examples").glob("abeta42_5oqv_gfp_*.toml"))
 
-def _row(accommodated, n, expected="fits", width=None, at_contour=False, minimal=None):
-    meta = {"name": "X", "pdb": "1ABC", "observed": "fits", "expected": expected}
+
+def _row(accommodated, n, expected="fits", width=None, at_contour=False, minimal=None,
+         bound=1, linker=24, periodic=0, observed="fits: fibrils form", answers=None):
+    meta = {"name": "X", "doi": "10.1/x", "observed": observed, "expected": expected}
     if width:
         meta["envelope_width"] = width
-    return {"case": "x.toml", "name": "X", "meta": meta, "params": {"linker": 24},
-            "fit": {"accommodated": accommodated, "n": n, "failed": 0,
-                    "wilson95": [0.1, 1.0]},
+    return {"case": "x.toml", "name": "X", "meta": meta,
+            "params": {"linker": linker, "periodic": periodic},
+            "fit": {"accommodated": accommodated, "n": n, "failed": 0, "wilson95": [0.1, 1.0]},
+            "answers": answers,
             "outer_diameter": {"median": 1000.0, "min": 990.0, "max": 1010.0},
             "envelope_at_contour": at_contour,
+            "bound": {"impossible_below": bound},
+            "measured": {"date": "2026-11-25", "commit": "abc1234", "model_version": 4,
+                         "bpy": "5.0.1"},
             "minimal": minimal or {"max": 24, "restarts": 3, "row": {
                 "minimal_linker": 8, "fits": 2, "restarts": 3, "linker_below": 7,
                 "error": None}}}
 
 
-def test_rows():
-    text = validate.table([
+NONE_FOUND = {"max": 15, "restarts": 3, "row": {"minimal_linker": None, "fits": 0, "restarts": 3,
+                                                 "linker_below": 15, "error": None}}
+
+
+def cells(line):
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
+def test_the_columns_and_the_agree_logic():
+    rows = [
         {"case": "k2.toml", "error": "params.protofilaments: unknown parameter; known: ..."},
-        _row(3, 3), _row(0, 3), _row(2, 3, expected="does not fit"),
-        _row(3, 3, width=650, at_contour=True, minimal={"max": 24, "restarts": 3, "row": {
-            "minimal_linker": None, "fits": 0, "restarts": 3, "linker_below": 24,
-            "error": None}}),
-    ])
-    lines = text.splitlines()
-    assert len(lines) == 7 and all(line.count("|") == 11 for line in lines)
-    assert "not run: params.protofilaments: unknown parameter" in lines[2]
-    assert ("| 3/3 (0.10-1.00) | 24 | 8 (2/3 fit; 7: 0/3) | 3.0 | 100.0 nm (99.0-101.0) |"
-            in lines[3])
-    assert "agrees (a clash-free layout exists)" in lines[3]
-    assert "disagrees: no seed found room" in lines[4]
-    assert "disagrees: the model finds room" in lines[5]
-    assert "= the stretched linker (upper bound)" in lines[6] and "65 nm" in lines[6]
-    assert "width 1.5x the measured (the model's width is the linker's full extension" in lines[6]
-    assert "none up to 24 (3 restarts each) | - |" in lines[6]
+        _row(3, 3),                                                  # fits, as the paper says
+        _row(0, 3),                                                  # paper: fits; none found
+        _row(0, 3, expected="does not fit", bound=25, minimal=NONE_FOUND),  # proven below B
+        _row(0, 3, expected="does not fit", bound=13, linker=15, periodic=9,
+             minimal=NONE_FOUND),                                    # weakly: not found
+        _row(2, 3, expected="does not fit", bound=7, linker=13),     # short fibril: room
+        _row(2, 3, expected="does not fit", bound=13, linker=13, periodic=9),
+        _row(3, 3, expected="unknown", observed="no experiment here"),
+        _row(3, 3, width=650, at_contour=True),
+        _row(0, 3, expected="does not fit", bound=1, linker=3, answers={"no exit": 3}),
+    ]
+    lines = validation.table(rows).splitlines()
+    assert cells(lines[0])[:4] == ["case", "experiment says",
+                                   "FibrilFit says at the real linker (answer: P(fit))", "agree?"]
+    assert len(lines) == 2 + len(rows)
+    assert all(line.count("|") == validation.COLUMNS + 1 for line in lines)
+    c = [cells(line) for line in lines[2:]]
+    assert c[0][2] == "not run: params.protofilaments: unknown parameter; known: ..."
+    assert c[1][1] == "fits: fibrils form (doi:10.1/x)"
+    assert c[1][2:7] == ["fits: 3/3 (0.10-1.00)", "**yes**: a clash-free layout exists", "24",
+                         "impossible below 1 / fits at 8 / open 1-7", "8 (2/3 fit; 7: 0/3)"]
+    assert c[1][10] == "2026-11-25, abc1234, MODEL_VERSION 4"
+    assert c[2][2] == "no layout found: 0/3 (0.10-1.00)" and c[2][3].startswith("**no**: no seed")
+    assert c[3][2] == "below the bound: 0/3 (0.10-1.00)"
+    assert c[3][3] == "**yes**: proven: the linker is below the bound (25)"
+    assert c[3][5] == ("impossible below 25 / no layout found up to 15 (3 restarts each) / "
+                       "open from 25")
+    assert c[4][3].startswith("**yes**: weakly: no layout found in 3 restarts")
+    assert c[5][3].startswith("**no**: the model finds room the experiment says is missing")
+    assert "a short fibril has room at its ends" in c[5][3]
+    assert "short fibril" not in c[6][3] and c[6][3].startswith("**no**")
+    assert c[6][5] == "impossible below 13 / fits at 8 / below the bound: a contradiction " \
+                      "(one of them is wrong)"
+    assert c[7][3] == "**no experiment**"
+    assert c[8][8].endswith("= the stretched linker (upper bound)")
+    assert c[8][9] == "65 nm (predicted 1.5x, the linker's full extension, not a prediction)"
+    assert c[9][2].startswith("no exit") and c[9][3] == "**yes**: proven: no exit"
+
+
+def test_the_provenance_line_names_every_code_the_rows_were_measured_with():
+    old = _row(3, 3)
+    old["measured"] = {"date": "2026-11-25", "commit": "189f900", "model_version": 2,
+                       "bpy": "5.0.1"}
+    old["bound"]["computed"] = {"date": "2026-11-25", "commit": "fadc955", "model_version": 4}
+    text = validation.provenance([_row(3, 3), _row(0, 3), old])
+    assert text == ("Rows measured: 1 on 2026-11-25 at 189f900, MODEL_VERSION 2, bpy 5.0.1; "
+                    "2 on 2026-11-25 at abc1234, MODEL_VERSION 4, bpy 5.0.1. Bounds of the "
+                    "older rows computed (geometry, no runs) on 2026-11-25 at fadc955, "
+                    "MODEL_VERSION 4.")
+
+
+def test_the_stored_results_make_the_pages_table():
+    """Every gallery case has a stored row with its bound and the code it was measured with, and
+    the table on docs/validation.md is the one those rows make (make validate --table-only)."""
+    stored = validate.stored_rows()
+    gallery = sorted((ROOT / "examples").glob("*.toml"))
+    assert {p.name for p in gallery} == set(stored)
+    assert all(r.get("bound", {}).get("impossible_below") for r in stored.values())
+    assert all(re.fullmatch(r"[0-9a-f]{7}(\+changes)?", r["measured"]["commit"])
+               for r in stored.values())
+    rows = validate.gallery_rows(sorted(gallery, key=lambda q: (q.stem != "tutorial", q.stem)),
+                                 stored)
+    text = validation.table(rows) + "\n\n" + validation.provenance(rows)
+    page = validate.PAGE.read_text(encoding="utf-8")
+    assert text in page
+    by_case = {r["case"]: r for r in rows}
+    for path in NEGATIVE:  # the negative control is compared with its experiment, not skipped
+        agree, _ = validation.agreement(by_case[path.name])
+        assert agree in ("yes", "no")
+    # the experiment's words come from the case file (its paper), never from a run
+    assert "not checked (the case file's notes)" in page and "doi:10.1038/srep22712" in page
+
+
+@pytest.mark.parametrize("path", NEGATIVE, ids=lambda p: p.stem)
+def test_the_negative_control_parses_and_cites_its_papers(path):
+    case = cases.load(path)
+    meta = case.meta
+    assert meta["expected"] == "does not fit" and meta["doi"] == "10.1038/srep22712"
+    assert "Ochiishi" in meta["citation"] and "10.1016/S0022-2836(02)00399-6" in meta["citation"]
+    assert "not checked" in meta["notes"].lower() and "not checked" in meta["source"]
+    published = int(re.search(r"(1[24])-residue linker", meta["name"]).group(1))
+    assert case.params["linker"] == published + 1  # the model's linker counts the anchor
+    assert case.params["protocol"] == "inflate" and len(case.seeds) >= 3
+    assert (case.params.get("periodic") == "auto") != ("layers" in case.params)
+    assert case.structure["fibril"].endswith("5oqv_addedH.pdb.gz")
+    assert case.structure["domain"].endswith("1gfl.pdb.gz")
+
+
+def test_the_stored_rows_are_json_the_table_can_read():
+    rows = json.loads(validate.STORED.read_text(encoding="utf-8"))
+    assert [r["case"] for r in rows] == sorted(r["case"] for r in rows)
 
 
 def test_the_table_goes_between_the_docs_pages_markers(tmp_path):

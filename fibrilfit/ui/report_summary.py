@@ -39,6 +39,9 @@ def summary_lines(summary: dict) -> list[tuple[str, str]]:
                           f"{summary['p_fit_below']:.2f}", "BLANK1"))
     else:
         lines.append((f"Minimal linker: none up to {summary['max_linker']}", "BLANK1"))
-    if summary.get("impossible_below") is not None:
-        lines.append((f"Impossible below {summary['impossible_below']} residues", "BLANK1"))
+    b = summary.get("impossible_below")
+    if b is not None and b > 1:  # the proven bound (docs/model/bound.md#derivation)
+        lines.append((f"Impossible below {b} residues", "BLANK1"))
+    elif b is not None:
+        lines.append(("The geometry rules out no linker", "BLANK1"))
     return lines

@@ -33,3 +33,11 @@ def test_every_line_fits_the_sidebar():
     doc = {**DOC, "bound": {"impossible_below": 123}}
     assert all(len(text) <= 36 for text, _ in summary_lines(summary_of(doc, "/tmp/r")))
     assert summary_lines({}) == []
+
+
+def test_a_bound_of_one_says_that_the_geometry_rules_out_nothing():
+    from fibrilfit.ui.report_summary import summary_lines
+    summary = {"answer": "fits", "minimal_linker": 3, "max_linker": 30, "linker_below": 2,
+               "p_fit_below": 0.0, "impossible_below": 1,
+               "p_fit": {"fits": 2, "runs": 2, "low": 0.34, "high": 1.0, "linker": 8}}
+    assert summary_lines(summary)[-1] == ("The geometry rules out no linker", "BLANK1")

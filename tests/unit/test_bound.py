@@ -65,7 +65,8 @@ def _half_space_volume(rho: float, rise: float, c: float) -> float:
     seg = np.where(s > c, s ** 2 * np.arccos(np.minimum(c / np.maximum(s, 1e-12), 1.0))
                    - c * np.sqrt(np.maximum(s ** 2 - c ** 2, 0.0)), 0.0)
     area = np.pi * s ** 2 - seg
-    return float(np.trapz(area, z)) if hasattr(np, "trapz") else float(np.trapezoid(area, z))
+    trapezoid = getattr(np, "trapezoid", None) or np.trapz  # numpy 2 renamed it
+    return float(trapezoid(area, z))
 
 
 def test_one_protofilament_on_a_wide_core_matches_its_closed_form():

@@ -1,0 +1,64 @@
+"""The minimal-linker map as text: minimal_linker.csv and the table `minimal-linker` prints, with
+each diameter's bracket (impossible below the bound, fits at the minimum: docs/model/bound.md#bracket)."""
+from __future__ import annotations
+
+import csv
+import io
+
+
+def csv_text(rows: list[dict]) -> str:
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(COLUMNS)
+    for r in rows:
+        lo, hi = r["p_fit_interval"] or (None, None)
+        below_hi = (r["p_fit_below_interval"] or (None, None))[1]
+        writer.writerow([_cell(v) for v in (r["kind"], r["globule_diameter"], r["minimal_linker"],
+                                            r["p_fit"], lo, hi, r["p_fit_below"], below_hi,
+                                            r["restarts"], r["linker_below"],
+                                            r.get("protocol"))])
+    return buf.getvalue()
+
+
+def _cell(v):
+    return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
+
+
+def table(rows: list[dict], protocol: str | None = None, restarts: int | None = None,
+          seeds=None) -> str:
+    """The printed map; its first line names the protocol and restarts behind every P(fit)."""
+    lines = []
+    if protocol is not None:
+        lines.append(f"minimal linker: the shortest length at which at least one of {restarts} "
+                     f"restarts (protocol {protocol}, seeds {seeds[0]}-{seeds[-1]}) found a "
+                     f"layout, with none found one residue shorter")
+    lines.append("diameter (Å)  minimal linker  P(fit) [95 % CI] (runs)     "
+                 "P(fit) one below [95 % CI] (runs)")
+    notes = []
+    for r in rows:
+        m = r["minimal_linker"]
+        fit = (f"{r['p_fit']:.2f} [{r['p_fit_interval'][0]:.2f}-{r['p_fit_interval'][1]:.2f}]"
+               f" ({r['fits']}/{r['restarts']})" if m is not None else "-")
+        if r.get("below_settled_by_bound"):
+            below = f"0 at {r['linker_below']} (no layout below {r['floor']}: the proven bound; not run)"
+        elif r.get("below_unstarted"):
+            below = f"- at {r['linker_below']} (not started: {r['below_unstarted']})"
+        elif r["p_fit_below"] is not None:
+            below = (f"{r['p_fit_below']:.2f} [{r['p_fit_below_interval'][0]:.2f}-"
+                     f"{r['p_fit_below_interval'][1]:.2f}] at {r['linker_below']} "
+                     f"(0/{r.get('restarts_below', r['restarts'])})")
+        else:
+            below = "-"
+        shown = str(m) if m is not None else f"> {r['linker_below']}" if r["linker_below"] else "?"
+        lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<25}  {below}")
+        open_from = r.get("floor") or 1
+        if m is not None:  # the bracket: impossible below the bound, fits at m
+            notes.append(f"{r['globule_diameter']:g} Å: impossible below {open_from} (the proven "
+                         f"bound), fits at {m} (a layout found)"
+                         + (f", open from {open_from} to {m - 1}" if m - 1 >= open_from
+                            else ", closed") + " (docs/model/bound.md#bracket)")
+        if r.get("stopped_at_fit"):
+            notes.append(f"{r['globule_diameter']:g} Å: the restarts at {m} stopped at the first "
+                         f"fit ({r['restarts']} of the restarts ran): the other restarts could not change that it "
+                         f"fits (--all-restarts runs them)")
+    return "\n".join(lines + notes)

@@ -295,7 +295,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     if p.free_linker < 1:  # a linker that leaves the core, for the chain's lengths (its
         p = dataclasses.replace(p, linker=first)  # checks aside: only chain_x is read)
     terms = reach_terms(p)
-    top = max(8, p.linker, first)
+    top = max(8, first)  # not the linker asked: the bound is the geometry's, whatever ran first
     while True:
         rho_top = reach(p, terms, top)
         room = Room(p, max(rho_top), periodic, lo, hi, budget)

@@ -195,3 +195,11 @@ def test_the_oracle_finds_layouts_where_the_model_does():
     assert oracle.layout(P.make_params(layers=6, linker=6), seed=0) is not None
     assert oracle.layout(P.make_params(layers=6, linker=1, globule_diameter=60.0),
                          seed=0) is None
+
+
+def test_the_bound_is_the_geometrys_whatever_linker_asked_first():
+    # a worker computes it once per geometry (cached): which linker came first must not show
+    # (a dask sweep's results differed from the local ones by the bound's voxel before)
+    first = B.linker_bound(P.make_params(layers=8, linker=3))
+    B._CACHE.clear()
+    assert B.linker_bound(P.make_params(layers=8, linker=12)) == first

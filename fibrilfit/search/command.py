@@ -21,8 +21,6 @@ from .table import csv_text, table
 
 RESULTS, CSV, JSON, PNG, LOG = (outdir.RESULTS, "minimal_linker.csv", "minimal_linker.json",
                                 "minimal_linker.png", "workers.log")
-COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
-           "p_fit_below", "p_fit_below_high", "restarts", "linker_below", "protocol")
 
 
 def add_restart_options(parser: argparse.ArgumentParser) -> None:

@@ -5,6 +5,9 @@ from __future__ import annotations
 import csv
 import io
 
+COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
+           "p_fit_below", "p_fit_below_high", "restarts", "linker_below", "protocol")
+
 
 def csv_text(rows: list[dict]) -> str:
     buf = io.StringIO()

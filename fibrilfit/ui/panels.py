@@ -75,6 +75,8 @@ def draw_structures(col, context):
     row = col.row(align=True)
     row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
     row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
+    col.operator("fibrilfit.import_full_length", icon="FILEBROWSER")
+    draw_domains(col, s)
     row = col.row(align=True)
     row.operator("fibrilfit.load_case", icon="FILE_FOLDER")
     row.operator("fibrilfit.save_case", icon="FILE_TICK")
@@ -83,6 +85,22 @@ def draw_structures(col, context):
         col.label(text=f"Case: {name}", icon="BOOKMARKS")
     for line in structure_lines(structure_trace.measured(context.scene)):
         col.label(text=line)
+
+
+def draw_domains(col, s):
+    """Several domains per chain (docs/guide/sidebar.md#domains): the list, from the core
+    outward, with each domain's linker to the next, and remove and move buttons; one domain (or
+    none) keeps the single globule's look."""
+    if len(s.domains) < 2:
+        return
+    col.label(text=f"{len(s.domains)} domains, core outward:")
+    row = col.row()
+    row.template_list("FIBRILFIT_UL_domains", "", s, "domains", s, "domain_index",
+                      rows=min(len(s.domains), 5))
+    side = row.column(align=True)
+    side.operator("fibrilfit.domain_move", icon="TRIA_UP", text="").direction = "UP"
+    side.operator("fibrilfit.domain_move", icon="TRIA_DOWN", text="").direction = "DOWN"
+    side.operator("fibrilfit.domain_remove", icon="X", text="")
 
 
 def _case_name(s) -> str:

@@ -10,11 +10,12 @@ import json
 
 import bpy
 import numpy as np
-from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty,
-                       IntProperty, PointerProperty, StringProperty)
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty,
+                       FloatVectorProperty, IntProperty, PointerProperty, StringProperty)
 
 from ..model import params as P
 from ..search import report
+from . import domain_list
 
 # The sidebar's sections, in the tutorial's order. A field goes where its metadata says;
 # a section this list does not know goes to "Simulation", so a new field is never hidden.
@@ -187,6 +188,13 @@ FIBRILFIT_PG_settings.__annotations__["report_max_linker"] = IntProperty(
     max=P.field_spec("linker")["max"],
     description="The minimal-linker walk gives up beyond this length (residues)")
 
+# Several domains per chain: the list (ui/domain_list.py) and its active entry.
+FIBRILFIT_PG_settings.__annotations__["domains"] = CollectionProperty(
+    type=domain_list.FIBRILFIT_PG_domain, name="Domains",
+    description="The chain's domains from the core outward, each with the linker to the next")
+FIBRILFIT_PG_settings.__annotations__["domain_index"] = IntProperty(
+    name="Domain", description="The list's selected domain", min=0)
+
 CLASSES = (FIBRILFIT_PG_settings,)
 
 
@@ -245,6 +253,7 @@ def list_value(text: str, item=float):
 
 def values(settings) -> dict:
     out = {f.name: _value(settings, f) for f in P.fields()}
+    out.update(domain_list.model_values(settings, out))  # several domains: the list's
     if not settings.use_periodic:
         out["periodic"] = 0
     else:  # the cell replaces the fibril's length and its ends

@@ -3,9 +3,9 @@ command line `blender -c fibrilfit ...` (entry.command)."""
 import bpy
 
 from ..cli import entry
-from . import operators, panels, properties
+from . import domain_list, operators, panels, properties
 
-CLASSES = (*properties.CLASSES, *operators.CLASSES, *panels.CLASSES)
+CLASSES = (*domain_list.CLASSES, *properties.CLASSES, *operators.CLASSES, *panels.CLASSES)
 _cli_commands = []  # handles from bpy.utils.register_cli_command, for unregister
 
 

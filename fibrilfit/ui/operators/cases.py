@@ -35,6 +35,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         case = cases.load(bpy.path.abspath(self.filepath))
         p = case.make_params()
         s = common.settings(context)
+        s.domains.clear()  # the case's values are the domains now
         properties.write_params(s, p)
         s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
         name = case.meta.get("name", case.path.name)

@@ -5,8 +5,8 @@ import bpy
 import numpy as np
 
 from ...model import params as P
-from .. import properties, structure_trace
-from ...structure import from_files, measure_domain, measure_fibril, trace
+from .. import domain_list, properties, structure_trace
+from ...structure import domain_list as domain_list_logic, from_files, measure_fibril, trace
 from . import common
 
 GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
@@ -70,6 +70,9 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         fib = measure_fibril(path, terminus=self.terminus,
                              anchor_residue=self.anchor_residue or None)
         names, missing = _fill(context, fib, None)
+        s = common.settings(context)
+        if len(s.domains) and "linker" in domain_list.filled(s, fib.to_dict(), first_changed=True):
+            names = sorted({*names, "linker"})  # from the fibril's and the domain's numbering
         p = common.panel_params(context)
         structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
         summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
@@ -85,23 +88,30 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
 class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
     bl_idname = "fibrilfit.import_domain"
     bl_label = "Import domain…"
-    bl_description = ("Measure a globular domain (PDB/mmCIF): the globule's diameter from its "
-                      "radius of gyration, 2·√(5/3)·Rg")
+    bl_description = ("Measure a globular domain (PDB/mmCIF) and add it to the chain's domains, "
+                      "outermost: the globule's diameter from its radius of gyration, "
+                      "2·√(5/3)·Rg, and its shape")
     chain: bpy.props.StringProperty(name="Chain", default="",
                                     description="The domain's chain (empty: the first)")
     residues: bpy.props.StringProperty(name="Residues", default="",
                                        description="a-b (empty: all)")
 
     def _import(self, context):
-        dom = measure_domain(bpy.path.abspath(self.filepath), chain=self.chain or None,
-                             residues=self.residues or None)
-        names, _ = _fill(context, None, dom)
-        chains = trace.domain_ca(bpy.path.abspath(self.filepath), chain=self.chain or None,
-                                 residues=self.residues or None)
+        path = bpy.path.abspath(self.filepath)
+        s, fibril = common.settings(context), structure_trace.measured(context.scene).get("fibril")
+        dom = domain_list_logic.measure(path, chain=self.chain or None,
+                                        residues=self.residues or None, fibril=fibril)
+        domain_list.add(s, path, dom)
+        if len(s.domains) > 1:
+            domain_list.set_gaps(s, fibril, len(s.domains) - 2)
+        names = domain_list.filled(s, fibril, first_changed=len(s.domains) == 1)
+        chains = trace.domain_ca(path, chain=self.chain or None, residues=self.residues or None)
         structure_trace.add_trace(context.scene, chains, dom.file,
                                   _beside_globule(common.panel_params(context), chains), "domain")
         structure_trace.store(context.scene, "domain", dom.to_dict())
-        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}")
+        more = (f"; domain {len(s.domains)} of the chain, {s.domains[-2].linker} residues after "
+                f"the one before (set it in the list)" if len(s.domains) > 1 else "")
+        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}{more}")
         return {"FINISHED"}
 
 

@@ -503,6 +503,13 @@ class FakeLayout:
         assert name in data.bl_rna.properties, f"{data} has no property {name}"
         self.log.append(("prop", name))
 
+    def template_list(self, listtype_name, list_id, dataptr, propname, active_dataptr,
+                      active_propname, **kw):
+        self._check("template_list", kw)
+        assert propname in dataptr.bl_rna.properties and listtype_name in dir(bpy.types)
+        assert active_propname in active_dataptr.bl_rna.properties
+        self.log.append(("template_list", propname))
+
     def operator(self, idname, **kw):
         self._check("operator", kw)
         assert _op_exists(idname), idname
@@ -570,7 +577,7 @@ def test_panels_draw_in_every_state(ui, scene):
                                                     "report", "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
-                                                    "import_domain")}
+                                                    "import_domain", "import_full_length")}
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

@@ -232,6 +232,8 @@ def shown(field, s) -> bool:
         return False  # at the top of the panel
     if _search(field):
         return s.protocol == "inflate"
+    if name == "domain_linker" and len(s.domains):
+        return False  # the list of domains has each linker (draw_domains)
     if name == "image_updates":
         return s.use_periodic
     if name in P.NOT_WITH_PERIODIC:

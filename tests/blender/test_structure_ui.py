@@ -87,16 +87,17 @@ def test_the_panel_draws_with_imports(ui, scene):
 
 
 def test_an_imported_domain_builds_as_its_hull(ui, scene, ff):
-    """Import domain… keeps the domain's real shape, so choosing Domain shape: hull later
-    builds the hull without a new import; the sphere's model ignores it."""
+    """Import domain… keeps the domain's real shape (in the list of domains), so choosing Domain
+    shape: hull later builds the hull without a new import; the sphere's model carries no
+    shape, as the command line's `--domain` gives none (tests/blender/test_domain_list.py)."""
     assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
     sphere = properties.read_params(ui)
-    assert sphere.domain_shape == "sphere" and sphere.domain_atoms is not None
+    assert sphere.domain_shape == "sphere" and sphere.domain_atoms is None
     assert sphere.chain_x() == ff.model.params.make_params(
         globule_diameter=sphere.globule_diameter).chain_x()  # the sphere's model as before
     ui.domain_shape = "hull"
     ui.layers = 2
     p = properties.read_params(ui)
-    assert p.domain_shape == "hull" and p.domain_joint == sphere.domain_joint
+    assert p.domain_shape == "hull" and p.domain_joint is not None
     model = ff.pipeline.build(p, scene)
     assert model.globules[0].rigid_body.collision_shape == "CONVEX_HULL"

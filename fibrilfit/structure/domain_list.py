@@ -54,9 +54,9 @@ def full_length_domains(path, fibril: dict | None) -> tuple:
     linker's side of the fibril's core, from the core outward, as `--full-length` finds them
     (cli/structure_files.py's domain_specs and measure_all)."""
     if not fibril:
-        raise StructureError(FULL_LENGTH, "import the fibril first (Import fibril…): its core "
-                                          "says which residues are the core and which side "
-                                          "carries the linker")
+        raise StructureError(FULL_LENGTH, "import the fibril first (Import fibril…), whose "
+                                          "core tells the model's domains from its core and "
+                                          "which side carries the linker")
     seg = full_length.segment(path, fibril["core_residues"])
     picked = seg.chain_order(side(fibril))
     if not picked:

@@ -10,6 +10,7 @@ Blender quits. An error is written to results.json as {"error": ...}.
 import json
 import os
 import pathlib
+import time
 import traceback
 
 import bpy
@@ -17,7 +18,7 @@ import bpy
 HERE = pathlib.Path(os.environ["FIBRILFIT_DOMAINS"])
 ADDON = "bl_ext.user_default.fibrilfit"
 PLAN = json.loads((HERE / "steps.json").read_text())
-_run = {"case": 0, "waiting": False, "results": []}
+_run = {"case": 0, "waiting": False, "results": [], "t0": time.monotonic()}
 
 
 def _override():
@@ -53,7 +54,8 @@ def _record(case) -> dict:
             "linkers": [e.linker for e in s.domains],
             "params": json.loads(json.dumps(properties.read_params(s).to_dict())),
             "verdict": s.verdict, "clash_count": s.clash_count,
-            "accommodated": s.accommodated, "max_bond_stretch": s.max_bond_stretch}
+            "accommodated": s.accommodated, "max_bond_stretch": s.max_bond_stretch,
+            "seconds": round(time.monotonic() - _run["t0"], 1)}
 
 
 def _tick():
@@ -68,6 +70,7 @@ def _tick():
             return 0.5
         _run["results"].append(_record(case))
         _run["case"] += 1
+        _run["t0"] = time.monotonic()
         _run["waiting"] = False
         if _run["case"] < len(cases):
             return 0.5

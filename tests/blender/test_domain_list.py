@@ -9,7 +9,7 @@ import pytest
 
 from fibrilfit.cli import build_parser
 from fibrilfit.cli.values import checked_params
-from fibrilfit.ui import panels, properties
+from fibrilfit.ui import domain_list, panels, properties
 from full_length_model import two_domain_model
 from helpers import ROOT, snapshot_user
 
@@ -70,6 +70,13 @@ def test_two_imported_domains_give_the_command_lines_params(registered, scene, u
     assert ("template_list", "domains") in log
     assert {"fibrilfit.domain_move", "fibrilfit.domain_remove"} <= {n for k, n in log
                                                                      if k == "operator"}
+    rows = []  # each row: its name, and the linker to the next (the last has none)
+    for i, item in enumerate(ui.domains):
+        from test_ui import FakeLayout
+        domain_list.FIBRILFIT_UL_domains.draw_item(None, bpy.context, FakeLayout(rows), ui,
+                                                   item, 0, ui, "domain_index", i)
+    assert rows == [("label", ui.domains[0].name), ("prop", "linker"),
+                    ("label", ui.domains[1].name), ("label", "last")]
     assert snapshot_user(user_objects) == before
     assert len(scene.objects) == len(user_objects) + 1  # and the domain's CA trace
 

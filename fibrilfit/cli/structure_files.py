@@ -94,8 +94,8 @@ def measure_all(args) -> tuple:
                                        anchor_residue=args.anchor_residue)
     specs, seg = domain_specs(args, fib)
     if seg is not None and not specs and args.command != "inspect":
-        raise UsageError(f"--full-length: no folded domain (pLDDT >= 70 over at least 40 "
-                         f"residues) on the linker's side of the core in {seg.file}")
+        from ..structure.full_length import no_domain
+        raise UsageError(f"--full-length: {no_domain(seg.file)}")
     option = "--full-length" if seg is not None else "--domain"
     doms = [structure.measure_domain(f, chain=c, residues=r, option=option,
                                        follows=args.terminus == "C",

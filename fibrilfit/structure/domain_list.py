@@ -60,10 +60,7 @@ def full_length_domains(path, fibril: dict | None) -> tuple:
     seg = full_length.segment(path, fibril["core_residues"])
     picked = seg.chain_order(side(fibril))
     if not picked:
-        raise StructureError(full_length.OPTION, f"no folded domain (pLDDT >= "
-                                                 f"{full_length.MIN_PLDDT:g} over at least "
-                                                 f"{full_length.MIN_DOMAIN} residues) on the "
-                                                 f"linker's side of the core in {seg.file}")
+        raise StructureError(full_length.OPTION, full_length.no_domain(seg.file))
     doms = [measure(path, chain=seg.chain, residues=f"{d['first']}-{d['last']}",
                     option=full_length.OPTION, fibril=fibril) for d in picked]
     return seg, doms

@@ -45,6 +45,12 @@ class Segmentation:
         return picked if side == "C" else picked[::-1]
 
 
+def no_domain(file: str) -> str:
+    """Why a model gives the chain no domain (after its option's name)."""
+    return (f"no folded domain (pLDDT >= {MIN_PLDDT:g} over at least {MIN_DOMAIN} residues) on "
+            f"the linker's side of the core in {file}")
+
+
 def _runs(mask: np.ndarray) -> list:
     """[start, stop) of each run of True."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))

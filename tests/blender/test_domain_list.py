@@ -123,7 +123,8 @@ def test_move_and_remove_reorder_the_chain(registered, scene, user_objects, tmp_
     assert snapshot_user(user_objects) == before
 
 
-def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_path):
+def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_path, ff,
+                                                       capsys):
     ui = registered
     assert bpy.ops.fibrilfit.import_domain(filepath=UBQ) == {"FINISHED"}
     before = (names(ui), properties.values(ui))
@@ -141,6 +142,20 @@ def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_pa
     with pytest.raises(RuntimeError, match="do not cover the fibril's core"):
         bpy.ops.fibrilfit.import_full_length(filepath=UBQ)  # not in the fibril's numbering
     assert (names(ui), properties.values(ui)) == before
+    # the linker on the core's N side: the model's N-terminal tail is no domain; the panel says
+    # what the command line says
+    model = str(two_domain_model(tmp_path / "fl.pdb"))
+    assert bpy.ops.fibrilfit.import_fibril(filepath=FIBRIL, terminus="N") == {"FINISHED"}
+    before = (names(ui), properties.values(ui))
+    with pytest.raises(RuntimeError) as caught:
+        bpy.ops.fibrilfit.import_full_length(filepath=model)
+    assert (names(ui), properties.values(ui)) == before
+    assert ff.cli.main(["run", "--fibril", FIBRIL, "--terminus", "N", "--full-length", model,
+                        "--json", str(tmp_path / "r.json")]) == 2
+    said = capsys.readouterr().err.strip()
+    assert said == "fibrilfit: error: --full-length: no folded domain (pLDDT >= 70 over at " \
+                   "least 40 residues) on the linker's side of the core in fl.pdb"
+    assert str(caught.value).strip() == "Error: " + said.removeprefix("fibrilfit: error: ")
 
 
 def test_load_case_replaces_the_list(registered, scene, tmp_path):

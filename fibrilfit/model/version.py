@@ -26,7 +26,7 @@ MODEL_VERSION = 5  # 2: inflate deterministic and near-miss cycles (#25), domain
 # exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "4974c8befd891230e6c866ce1713c4c31f5ddb6a26a55ca7635988b481acce10"
+MODEL_SOURCES_SHA256 = "2b7e5f59b5bb6e7570f2557cf5433096c60093f9234078fb7a29b08cb020ac28"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -85,3 +85,18 @@ def test_a_case_loaded_and_run_in_the_panel_gives_the_command_lines_result(ui, t
                 "frames_simulated", "globule_centres", "bound"):
         assert panel[key] == line[key], key
     assert line["answer"] == "fits"
+
+
+def test_loading_a_case_with_structure_files_says_they_are_not_measured(ui):
+    """`run --case` measures a case's [structure] files; Load case does not (yet): it says so
+    rather than leaving the panel at values the case never meant."""
+    from helpers import ROOT
+    from fibrilfit.ui.operators import cases as case_ops
+    from test_ui import detached
+    op = detached(case_ops.FIBRILFIT_OT_load_case)
+    op.filepath = str(ROOT / "examples" / "asyn_2n0a_gfp.toml")
+    assert op.execute(bpy.context) == {"FINISHED"}
+    assert op.reports[0] == ({"WARNING"}, "Load case does not read the case's structure files "
+                                          "(2n0a.pdb.gz, 1gfl.pdb.gz): Import fibril… and "
+                                          "Import domain… measure them into the panel, as "
+                                          "`run --case` does")

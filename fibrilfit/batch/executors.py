@@ -26,6 +26,11 @@ class SweepError(RuntimeError):
     """The sweep cannot run at all (workers cannot start, scheduler unreachable)."""
 
 
+class Stopped(Exception):
+    """The caller stopped the executor from another thread (ProcessExecutor.stop: the sidebar's
+    Esc): raised where the runs are waited for, so leaving the executor kills its workers."""
+
+
 def cpu_count() -> int:
     try:
         return len(os.sched_getaffinity(0))
@@ -46,6 +51,7 @@ class ProcessExecutor:
         self.workers: list[pool.WorkerProcess] = []
         self.start_failures = 0
         self.log, self.log_lock = None, threading.Lock()
+        self.stopped = threading.Event()
 
     def __enter__(self):
         if self.log_path:
@@ -65,8 +71,16 @@ class ProcessExecutor:
         return len(self.queue) + sum(w.job is not None for w in self.workers)
 
     def submit(self, job: dict) -> None:
+        if self.stopped.is_set():
+            raise Stopped("stopped")
         self.queue.append(job)
         self._fill()
+
+    def stop(self) -> None:
+        """From another thread: the next submit() or wait() raises Stopped, and a wait() under
+        way wakes up to raise it (leaving the executor then kills the workers)."""
+        self.stopped.set()
+        self.events.put((None, {"stopped": True}))
 
     def _dispatch(self, w: pool.WorkerProcess) -> None:
         if w.ready and w.job is None and self.queue:
@@ -83,6 +97,8 @@ class ProcessExecutor:
 
     def wait(self) -> tuple[dict, dict]:
         while True:
+            if self.stopped.is_set():
+                raise Stopped("stopped")
             for w in self.workers:  # checked every turn: a busy event queue must not hide a hang
                 if w.overdue(self.timeout):
                     w.kill(self.timeout)
@@ -90,6 +106,8 @@ class ProcessExecutor:
                 w, message = self.events.get(timeout=0.5)
             except queue.Empty:
                 continue
+            if message.get("stopped"):
+                continue  # stop()'s wake-up: the loop's top raises Stopped
             if message.get("ready"):
                 w.ready, self.start_failures = True, 0
                 self._dispatch(w)

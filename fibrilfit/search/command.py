@@ -151,7 +151,7 @@ def kind_of(values: dict) -> str:
 
 def run_minimal(args, values: dict) -> int:
     """`values`: the model options given (strings, as cli.params_from returns them)."""
-    values, seeds, walks = _minimal_plan(args, values)
+    values, seeds, walks = minimal_plan(args, values)
     _need_packages(args)
     out = outdir.out_dir(args)
     script = batch_options.job_script(args, out)
@@ -174,8 +174,7 @@ def run_minimal(args, values: dict) -> int:
         print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
               file=sys.stderr)
         return exits.EXIT_INTERRUPTED
-    rows = [{"kind": kind_of(dict(values)), **w.row(), "protocol": values["protocol"],
-             **_cells(args, values, w.diameter, seeds)} for w in walks]
+    rows = minimal_rows(args, values, seeds, walks)
     _write_minimal(args, values, seeds, rows, out)
     errors = [r for r in rows if r.get("error")]
     for r in errors:
@@ -183,9 +182,29 @@ def run_minimal(args, values: dict) -> int:
     return exits.EXIT_OK
 
 
-def _minimal_plan(args, values: dict) -> tuple:
+def options(**given) -> argparse.Namespace:
+    """minimal-linker's options at their command-line defaults, with `given` (the sidebar's
+    Minimal linker…, which has no command line: no progress bar, no plot, no files kept)."""
+    parser = argparse.ArgumentParser(add_help=False)
+    add_minimal_arguments(parser)
+    batch_options.add_executor_options(parser)
+    out = {**vars(parser.parse_args([])), "force": False}
+    unknown = set(given) - set(out)
+    if unknown:
+        raise TypeError(f"unknown minimal-linker options: {sorted(unknown)}")
+    return argparse.Namespace(**{**out, **given})
+
+
+def minimal_rows(args, values: dict, seeds: range, walks: list) -> list:
+    """The map's rows (minimal_linker.json's), one per walk, once the walks are done."""
+    return [{"kind": kind_of(dict(values)), **w.row(), "protocol": values["protocol"],
+             **_cells(args, values, w.diameter, seeds)} for w in walks]
+
+
+def minimal_plan(args, values: dict) -> tuple:
     """The model options (protocol inflate unless given), the restarts' seeds and one walk per
-    diameter, every bad value refused before anything runs."""
+    diameter, every bad value refused before anything runs (each walk's floor, the proven
+    bound, costs 3-16 s per geometry)."""
     batch_options.check(args)
     if "linker" in values:
         raise exits.UsageError("--linker: minimal-linker searches the linker length; leave it out")
@@ -201,10 +220,11 @@ def _minimal_plan(args, values: dict) -> tuple:
                                 values.pop("globule_diameter", P.DEFAULTS.globule_diameter))
     values.setdefault("protocol", "inflate")
     first = int(P.make_params(**values).seed)
+    values.pop("seed", None)  # each restart's own (restart_points): --seed is the first
     seeds = range(first, first + args.restarts)
     walks = []
     for d in diameters:
-        base = P.make_params(force=args.force, **values, globule_diameter=d, linker=1)
+        base = P.make_params(force=args.force, **values, globule_diameter=d, linker=1, seed=first)
         base.replace(linker=args.max_linker, seed=seeds[-1])
         walks.append(new_walk(args, base, len(seeds), known_fit=args.known_fit))
     return values, seeds, walks

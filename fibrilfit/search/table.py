@@ -27,6 +27,15 @@ def _cell(v):
     return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
 
 
+def bracket_line(r: dict) -> str:
+    """A row's bracket, when it has a minimum: impossible below the bound, fits at the minimum."""
+    open_from, m = r.get("floor") or 1, r["minimal_linker"]
+    return (f"{r['globule_diameter']:g} Å: impossible below {open_from} (the proven bound), fits "
+            f"at {m} (a layout found)"
+            + (f", open from {open_from} to {m - 1}" if m - 1 >= open_from else ", closed")
+            + " (docs/model/bound.md#bracket)")
+
+
 def table(rows: list[dict], protocol: str | None = None, restarts: int | None = None,
           seeds=None) -> str:
     """The printed map; its first line names the protocol and restarts behind every P(fit)."""
@@ -54,12 +63,8 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
             below = "-"
         shown = str(m) if m is not None else f"> {r['linker_below']}" if r["linker_below"] else "?"
         lines.append(f"{r['globule_diameter']:>12g}  {shown:>14}  {fit:<25}  {below}")
-        open_from = r.get("floor") or 1
-        if m is not None:  # the bracket: impossible below the bound, fits at m
-            notes.append(f"{r['globule_diameter']:g} Å: impossible below {open_from} (the proven "
-                         f"bound), fits at {m} (a layout found)"
-                         + (f", open from {open_from} to {m - 1}" if m - 1 >= open_from
-                            else ", closed") + " (docs/model/bound.md#bracket)")
+        if m is not None:
+            notes.append(bracket_line(r))
         if r.get("stopped_at_fit"):
             notes.append(f"{r['globule_diameter']:g} Å: the restarts at {m} stopped at the first "
                          f"fit ({r['restarts']} of the restarts ran): the other restarts could not change that it "

@@ -10,7 +10,7 @@ import math
 import bpy
 
 from ..model import helix, params as P
-from . import properties, report_summary, structure_trace
+from . import minimal_summary, properties, report_summary, structure_trace
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -156,6 +156,7 @@ def draw_run(col, context):
     row.operator("fibrilfit.run_all", icon="PLAY")
     row.operator("fibrilfit.clear", icon="TRASH")
     col.operator("fibrilfit.report", icon="FILE")  # the whole answer as one page (report.md)
+    col.operator("fibrilfit.minimal_linker", icon="SORTSIZE")
     stage = model_stage(scene)
     text, icon = STATUS[stage]
     col.label(text=text, icon=icon)
@@ -165,6 +166,8 @@ def draw_run(col, context):
         draw_result(col.box(), s)
     if s.report_summary:
         draw_report(col.box(), s)
+    if s.minimal_map:
+        draw_minimal(col.box(), s)
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
@@ -221,6 +224,15 @@ def draw_report(box, s):
     for text, icon in report_summary.summary_lines(summary):
         box.label(text=text, icon=icon)
     box.operator("fibrilfit.open_report", icon="URL")
+
+
+def draw_minimal(box, s):
+    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled"."""
+    try:
+        summary = json.loads(s.minimal_map)
+    except ValueError:
+        return
+    minimal_summary.draw(box, summary)
 
 
 # ---- the collapsed sub-panels ----------------------------------------------------------------

@@ -187,6 +187,10 @@ FIBRILFIT_PG_settings.__annotations__["report_max_linker"] = IntProperty(
     name="Longest linker", default=report.DEFAULT_MAX_LINKER, min=1,
     max=P.field_spec("linker")["max"],
     description="The minimal-linker walk gives up beyond this length (residues)")
+# The last Minimal linker…'s map (ui/minimal_summary.py), or that it was cancelled.
+FIBRILFIT_PG_settings.__annotations__["minimal_map"] = StringProperty(
+    name="Minimal linker", description="The last minimal-linker map the panel shows (JSON)",
+    options={"HIDDEN"})
 
 # Several domains per chain: the list (ui/domain_list.py) and its active entry.
 FIBRILFIT_PG_settings.__annotations__["domains"] = CollectionProperty(

@@ -574,7 +574,8 @@ def test_panels_draw_in_every_state(ui, scene):
         assert sorted(props) == sorted(set(everything) - inapplicable)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
-                                                    "report", "load_case", "save_case",
+                                                    "report", "minimal_linker",
+                                                    "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
                                                     "import_domain", "import_full_length")}

@@ -1,6 +1,7 @@
 """Load case / Save case: the sidebar's values from and to a case file (cases.py, the same
 functions as --case and --save-case)."""
 import json
+import pathlib
 
 import bpy
 
@@ -39,6 +40,13 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         properties.write_params(s, p)
         s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
         name = case.meta.get("name", case.path.name)
+        if case.structure:  # `run --case` measures them; the panel does not yet (issue #33)
+            files_named = ", ".join(pathlib.Path(case.structure[k]).name for k in
+                                    ("fibril", "domain", "full_length") if case.structure.get(k)
+                                    and isinstance(case.structure[k], str))
+            self.report({"WARNING"}, f"Load case does not read the case's structure files "
+                                     f"({files_named}): Import fibril… and Import domain… "
+                                     f"measure them into the panel, as `run --case` does")
         self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
                               f"file, the rest at their defaults")
         return {"FINISHED"}

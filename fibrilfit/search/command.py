@@ -319,6 +319,8 @@ def _walk(args, values: dict, seeds: range, walks: list, out, executor=None) -> 
             for w, L, some in wanted:
                 recs = records_of(w, L)
                 ok = [r for r in recs if r.get("status") == "ok"]
+                if w.stop_at_fit:  # the same count whichever worker finished first
+                    ok = restarts.up_to_first_fit(ok)
                 if not ok:
                     w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
                 w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))

@@ -39,6 +39,18 @@ def run_restarts(executor, base: dict, seeds, results_path, *, stop_on_fit: bool
     return read(results_path, base)
 
 
+def up_to_first_fit(records: list[dict]) -> list[dict]:
+    """`records` (in seed order) up to and including the first accommodated one. A length that
+    stops at its first fit starts its seeds in order, so every seed before that fit has run; a
+    later seed already running when the fit came finishes too, and whether it had started
+    depends on which worker was faster. Counted up to the first fit, P(fit) there is the same on
+    every machine and under any load (docs/model/search.md#decided)."""
+    for i, r in enumerate(records):
+        if r.get("accommodated"):
+            return records[:i + 1]
+    return records
+
+
 def decided(records: list[dict], *, stop_on_fit: bool = False,
             width: float | None = None) -> str | None:
     """Why the restarts still to run cannot change what is reported, or None (run them).

@@ -405,3 +405,15 @@ def test_a_length_whose_model_cannot_start_is_a_miss_without_runs():
     assert row["below_unstarted"] == "anchor: no straight direction"
     assert row["p_fit_below"] is None or row["p_fit_below"] == 0.0
     assert 7 not in w.tried  # nothing ran there
+
+
+def test_a_decided_length_counts_its_seeds_up_to_the_first_fit_whatever_finished_first():
+    """Seeds 0-3 at a length that stops at its first fit: seed 1 fits. Seed 2 was already
+    running when the fit came, and finishing depends on the machine's speed; it is not
+    counted, so P(fit) there is 1 of 2 either way."""
+    from fibrilfit.search import restarts
+    runs = [{"params": {"seed": s}, "accommodated": s == 1, "status": "ok"} for s in range(3)]
+    assert restarts.up_to_first_fit(runs) == runs[:2]
+    assert restarts.up_to_first_fit(runs[:2]) == runs[:2]
+    misses = [dict(r, accommodated=False) for r in runs]
+    assert restarts.up_to_first_fit(misses) == misses  # a miss needs every restart

@@ -6,7 +6,7 @@ import bpy
 from .. import domain_list, structure_trace
 from ...structure import domain_list as logic
 from . import common
-from .structures import GLOB
+from .structures import _ImportBase
 
 
 def _fibril(context):
@@ -63,23 +63,13 @@ class FIBRILFIT_OT_domain_move(bpy.types.Operator):
         return {"FINISHED"}
 
 
-class FIBRILFIT_OT_import_full_length(bpy.types.Operator):
+class FIBRILFIT_OT_import_full_length(_ImportBase, bpy.types.Operator):
     bl_idname = "fibrilfit.import_full_length"
     bl_label = "Import full-length model…"
     bl_description = ("Segment a predicted model of the whole chain (pLDDT in the B-factor "
                       "column, the fibril's numbering) as --full-length does: its folded domains "
                       "on the linker's side of the core and the linkers between them replace "
                       "the chain's domains. Import the fibril first")
-    bl_options = {"REGISTER", "UNDO"}
-    filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
-    filter_glob: bpy.props.StringProperty(default=GLOB, options={"HIDDEN"})
-
-    def invoke(self, context, event):
-        context.window_manager.fileselect_add(self)
-        return {"RUNNING_MODAL"}
-
-    def execute(self, context):
-        return common.guarded(self, self._import, context)
 
     def _import(self, context):
         path, fibril = bpy.path.abspath(self.filepath), _fibril(context)

@@ -24,6 +24,8 @@ from .. import minimal_summary, properties, report_summary
 from . import common
 from .background import BackgroundOperator
 
+CASE = "case.toml"  # beside the report: what the page's command re-runs
+
 
 class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     bl_idname = "fibrilfit.report"
@@ -42,6 +44,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
                                                   "this length")
 
     what, job_name = "report", "report"
+    _out = None  # the folder the user picked
 
     @classmethod
     def poll(cls, context):
@@ -64,10 +67,10 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         the chosen one, and its restarts and walk started on their thread."""
         out = pathlib.Path(bpy.path.abspath(self.directory or "//fibrilfit_report"))
         p = properties.read_params(common.settings(context))
-        self._out, self._case_path = out, out / "case.toml"
+        self._out = out
         args = report.options(out=str(out), restarts=self.restarts, max_linker=self.max_linker,
                               resume=True, quiet=True, command_line=[
-                                  "headless.py", "report", "--case", str(self._case_path),
+                                  "headless.py", "report", "--case", str(out / CASE),
                                   "--restarts", str(self.restarts), "--max-linker",
                                   str(self.max_linker), "--out", str(out)])
         report.check_options(args)
@@ -75,14 +78,14 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         files.check_writable("directory", out / report.HTML, (".html",))
         work = BackgroundReport.folder_beside(out)
         args.out = str(work)  # the page's command names `out`, where it ends up
+        job = BackgroundReport(args, p, p.to_dict(), None, work)
         try:
-            executor = make_executor(args, out=work, runs=args.restarts,
-                                     log_path=work / command.LOG)
+            job.executor = make_executor(args, out=work, runs=args.restarts,
+                                         log_path=work / command.LOG)
         except BaseException:
-            BackgroundReport(args, p, {}, None, work).discard()
+            job.discard()
             raise
-        self._args, self._p = args, p
-        return BackgroundReport(args, p, p.to_dict(), executor, work).start()
+        return job.start()
 
     @staticmethod
     def progress_text(p) -> tuple:
@@ -111,7 +114,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
             raise
 
     def _write(self, context, job) -> set:
-        out, p, s = self._out, self._p, common.settings(context)
+        out, p, s = self._out, job.p, common.settings(context)
         case = cases.Case({}, {}).resolved(p)
         size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
         look = {"size": size, "aspect": size[0] / size[1], "samples": options.DEFAULT_SAMPLES,
@@ -122,10 +125,10 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         def run_best(q):  # the best layout, built, baked and checked in the scene
             best.update(pipeline.run_model(q, context.scene))
             return best
-        doc = report.write(self._args, p, job.result, job.work, lambda name: None,
+        doc = report.write(job.args, p, job.result, job.work, lambda name: None,
                            structure_block=None, case=case, look=look, sources=sources,
                            run_here=run_best)
-        cases.write(job.work / self._case_path.name, case)  # what the page's command reproduces
+        cases.write(job.work / CASE, case)  # what the page's command reproduces
         job.keep(out)
         model = find_model(context.scene)
         if model is not None and best:  # the scene holds the best layout: its verdict, framed

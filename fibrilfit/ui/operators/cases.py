@@ -37,11 +37,13 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
     def _do(self, context):
         case = cases.load(bpy.path.abspath(self.filepath))
         # Every file read and measured, and the values checked, before the panel changes
+        P.refuse_beside_periodic(case.params)
         opts = from_files.case_options(case.structure)
         m = (from_files.measure_files(opts, every_exit=True)
              if from_files.has_structure(opts) else None)
-        values = (from_files.merged(m.fibril, m.domains, m.segmentation, dict(case.params))[0]
-                  if m is not None else case.params)
+        values, block = (from_files.merged(m.fibril, m.domains, m.segmentation,
+                                           dict(case.params))
+                         if m is not None else (case.params, {}))
         p = P.make_params(**values)  # as `run --case` (cli/values.py's checked_params)
         s = common.settings(context)
         s.domains.clear()  # the case's values are the domains now
@@ -52,6 +54,8 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         name = case.meta.get("name", case.path.name)
         measured = (f", those measured from {' and '.join(_files(m))}" if m is not None
                     else "")
+        for warning in block.get("warnings", []):  # as `run --case` prints them
+            self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
                               f"file{measured}, the rest at their defaults")
         return {"FINISHED"}

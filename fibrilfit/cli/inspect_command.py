@@ -6,7 +6,7 @@ import sys
 
 from ..exits import EXIT_OK, UsageError
 from .. import files
-from .structure_files import has_structure, measure_all
+from ..structure.from_files import has_structure, measure_all
 
 
 def command_inspect(args) -> int:
@@ -18,7 +18,7 @@ def command_inspect(args) -> int:
     to_stdout = args.json == files.STDOUT  # the JSON on stdout, the text on stderr
     path = (files.check_writable("--json", args.json, (".json",))
             if args.json and not to_stdout else None)
-    fib, doms, seg = measure_all(args)
+    fib, doms, seg = measure_all(args, inspect=True)
     dom = doms[0] if doms else None
     values = structure.model_values(fib, dom, more_domains=doms[1:])
     if args.json:

@@ -49,7 +49,7 @@ SEEDS = "seeds"
 # What a case says of its own model, stale once an option changes it (dropped from the case as run)
 STALE = ("description", "observed", "expected")
 STRUCTURE = "structure"
-# [structure]: the options of --fibril/--domain (cli/structure_files.py); files are relative to
+# [structure]: the options of --fibril/--domain (structure/from_files.py); files are relative to
 # the case file. Measured values fill the parameters the case and the command line leave unset.
 # "domain" (and its chain and residues) may be a list: several domains in chain order (#24).
 STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "full_length": "file",

@@ -26,7 +26,7 @@ MODEL_VERSION = 5  # 2: inflate deterministic and near-miss cycles (#25), domain
 # exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "2b7e5f59b5bb6e7570f2557cf5433096c60093f9234078fb7a29b08cb020ac28"
+MODEL_SOURCES_SHA256 = "68a87994aea27cc8cc9b21e8ac530be92b5e7dfe2e26f2031b0ef304c12b7b1f"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -1,27 +1,33 @@
-"""The minimal-linker walk on a thread of its own, for a caller that must stay responsive (the
-sidebar's Minimal linker…, ui/operators/minimal.py): the same plan, walk and rows as the
-`minimal-linker` command (command.py), on worker processes, with its progress readable and a
-stop that kills the workers. Nothing here touches bpy: the runs happen in the workers, and the
-thread only waits for them. Its runs go to a temporary folder removed at the end, so a stopped
-walk leaves nothing behind."""
+"""Batch work on a thread of its own, for a caller that must stay responsive (the sidebar's
+Minimal linker… and Report…, ui/operators/minimal.py and report.py): the same plan, runs and
+rows as the `minimal-linker` command (command.py), or the first stages of `report` (report.py's
+search), on worker processes, with their progress readable and a stop that kills the workers.
+Nothing here touches bpy: the runs happen in the workers, and the thread only waits for them.
+The walk's runs go to a temporary folder removed at the end, and the report's to a folder beside
+its own, moved into place only when the report is whole, so a stopped job leaves nothing
+behind."""
 from __future__ import annotations
 
+import os
 import pathlib
+import shutil
 import tempfile
 import threading
 
+from ..batch import outdir
 from ..batch.executors import Stopped
-from . import command
+from . import command, report
 from .table import table
 
 
 class Progress:
-    """What the walk has done so far, read by the caller while it runs."""
+    """What the job has done so far, read by the caller while it runs."""
 
-    def __init__(self):
+    def __init__(self, stage: str):
         self.submitted = self.done = 0
         self.running = None  # (diameter, linker) of the run submitted last
-        self.stage = "bound"  # "bound" (each diameter's floor), then "runs"
+        self.stage = stage  # the walk: "bound" (each diameter's floor), then "runs";
+        # the report: its STAGES
 
 
 class _Counted:
@@ -44,23 +50,24 @@ class _Counted:
         return job, reply
 
 
-class BackgroundWalk:
-    """`command.minimal_plan` and the walk for `values` (as minimal-linker takes them) on a
-    daemon thread. `executor`: an unentered executor with stop() (batch/executors.py's
-    ProcessExecutor), made by the caller on its own thread. When `finished`, exactly one of
-    `result` (the map: rows, table, seeds, protocol, restarts), `error` (an exception) or
+class Background:
+    """`_work()` on a daemon thread, its runs on `executor`: an unentered executor with stop()
+    (batch/executors.py's ProcessExecutor), made by the caller on its own thread. When
+    `finished`, exactly one of `result` (what _work returned), `error` (an exception) or
     `stopped` is set."""
 
-    def __init__(self, args, values: dict, executor):
-        self.args, self.values, self.executor = args, dict(values), executor
-        self.progress = Progress()
+    name = "fibrilfit-background"
+    first_stage = ""
+
+    def __init__(self, executor):
+        self.executor = executor
+        self.progress = Progress(self.first_stage)
         self.result = self.error = None
         self.stopped = False
         self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, name="fibrilfit-minimal-linker",
-                                        daemon=True)
+        self._thread = threading.Thread(target=self._run, name=self.name, daemon=True)
 
-    def start(self) -> "BackgroundWalk":
+    def start(self) -> "Background":
         self._thread.start()
         return self
 
@@ -69,7 +76,7 @@ class BackgroundWalk:
         return self._thread.ident is not None and not self._thread.is_alive()
 
     def stop(self) -> None:
-        """Stop the walk: no run is started after this, the runs under way are killed; the
+        """Stop the job: no run is started after this, the runs under way are killed; the
         thread ends soon after (at once unless it is computing a bound: seconds)."""
         self._stop.set()
         self.executor.stop()
@@ -77,23 +84,86 @@ class BackgroundWalk:
     def join(self, timeout: float | None = None) -> None:
         self._thread.join(timeout)
 
+    def stage(self, name: str) -> None:
+        """The job has reached stage `name`; a stop asked for before it is honoured here."""
+        self.progress.stage = name
+        if self._stop.is_set():
+            raise Stopped("stopped")
+
+    def counted(self, executor) -> _Counted:
+        return _Counted(executor, self.progress)
+
     def _run(self) -> None:
         try:
-            values, seeds, walks = command.minimal_plan(self.args, self.values)
-            self.progress.stage = "runs"
-            if self._stop.is_set():
-                raise Stopped("stopped")
-            with tempfile.TemporaryDirectory(prefix="fibrilfit-minimal-") as out, \
-                    self.executor as executor:
-                counted = _Counted(executor, self.progress)
-                command._walk(self.args, values, seeds, walks, pathlib.Path(out), lambda: counted)
-            rows = command.minimal_rows(self.args, values, seeds, walks)
-            self.result = {"rows": rows, "protocol": values["protocol"],
-                           "restarts": self.args.restarts, "seeds": [seeds[0], seeds[-1]],
-                           "max_linker": self.args.max_linker,
-                           "table": table(rows, values["protocol"], self.args.restarts, seeds)}
+            self.result = self._work()
         except Stopped:
             self.stopped = True
         except BaseException as exc:  # the caller reports it, on its own thread
             self.error = exc
 
+    def _work(self):
+        raise NotImplementedError
+
+
+class BackgroundWalk(Background):
+    """`command.minimal_plan` and the walk for `values` (as minimal-linker takes them); its
+    result is the map: rows, table, seeds, protocol, restarts."""
+
+    name, first_stage = "fibrilfit-minimal-linker", "bound"
+
+    def __init__(self, args, values: dict, executor):
+        super().__init__(executor)
+        self.args, self.values = args, dict(values)
+
+    def _work(self) -> dict:
+        values, seeds, walks = command.minimal_plan(self.args, self.values)
+        self.stage("runs")
+        with tempfile.TemporaryDirectory(prefix="fibrilfit-minimal-") as out, \
+                self.executor as executor:
+            counted = self.counted(executor)
+            command._walk(self.args, values, seeds, walks, pathlib.Path(out), lambda: counted)
+        rows = command.minimal_rows(self.args, values, seeds, walks)
+        return {"rows": rows, "protocol": values["protocol"], "restarts": self.args.restarts,
+                "seeds": [seeds[0], seeds[-1]], "max_linker": self.args.max_linker,
+                "table": table(rows, values["protocol"], self.args.restarts, seeds)}
+
+
+class BackgroundReport(Background):
+    """The report's restarts and minimal-linker walk (report.search) for the model `p` and
+    `values`, into `work`: a new folder beside `args.out` (the report's folder, which may hold
+    an earlier report: its runs are reused, as --resume does). The caller then writes the rest
+    on its own thread (report.write into `work`) and calls keep(), which moves it all into
+    args.out; or discard(), which removes `work`. Its result is report.search's."""
+
+    name, first_stage = "fibrilfit-report", report.STAGES[0]
+
+    def __init__(self, args, p, values: dict, executor, work: pathlib.Path):
+        super().__init__(executor)
+        self.args, self.p, self.values, self.work = args, p, dict(values), pathlib.Path(work)
+
+    @staticmethod
+    def folder_beside(final: pathlib.Path) -> pathlib.Path:
+        """A new empty folder beside `final` (on its file system, so keep() only renames),
+        holding a copy of `final`'s runs when it has any (reused as --resume reuses them)."""
+        final.parent.mkdir(parents=True, exist_ok=True)
+        work = pathlib.Path(tempfile.mkdtemp(prefix=f".{final.name}.fibrilfit-",
+                                             dir=final.parent))
+        if (final / outdir.RESULTS).is_file():
+            shutil.copy2(final / outdir.RESULTS, work / outdir.RESULTS)
+        return work
+
+    def _work(self) -> dict:
+        return report.search(self.args, self.p, self.values, self.work, self.stage,
+                             executor=self.executor, counted=self.counted)
+
+    def keep(self, final: pathlib.Path) -> None:
+        """Every file of `work` moved into `final` (replacing those of an earlier report), then
+        `work` removed."""
+        final.mkdir(parents=True, exist_ok=True)
+        for f in self.work.iterdir():
+            if f.name != ".lock":
+                os.replace(f, final / f.name)
+        shutil.rmtree(self.work, ignore_errors=True)
+
+    def discard(self) -> None:
+        shutil.rmtree(self.work, ignore_errors=True)

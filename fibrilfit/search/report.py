@@ -96,31 +96,46 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
     `run_here(p)`: builds, bakes and checks `p` in this process's scene (the command line's
     fresh scene, or the sidebar's) and returns the result. Returns report.json's document.
     """
-    from ..exports import report_page
-    seeds = seeds_of(p, args.restarts)
+    seeds_of(p, args.restarts)  # refused before the folder is made
     out = outdir.out_dir(args)
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
-    results = out / outdir.RESULTS
-    runner.repair_tail(results)
+    with _stages(not args.quiet) as stage:
+        searched = search(args, p, values, out, stage)
+        return write(args, p, searched, out, stage, structure_block=structure_block, case=case,
+                     look=look, sources=sources, run_here=run_here)
+
+
+def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
+           counted=None) -> dict:
+    """The first two STAGES into `out` (made, results.jsonl in it): the restarts at the linker
+    and the minimal-linker walk, every run on the executor's workers, none in this process (so a
+    thread may run it: search/background.py). `stage(name)` is told each stage; `executor`: an
+    unentered executor (default: the options', made when first needed); `counted(executor)`:
+    what the entered executor is used through (background.py counts its runs). Returns what
+    write() needs: seeds, tally, the walk's row and the timings."""
+    seeds = seeds_of(p, args.restarts)
+    runner.repair_tail(out / outdir.RESULTS)
     t0 = time.perf_counter()
     timings = {}
-    with _stages(not args.quiet) as stage, contextlib.ExitStack() as workers:
+    with contextlib.ExitStack() as workers:
         started = []
 
-        def executor():
+        def entered():
             """One executor for the restarts and the walk, started when first needed: its
             workers keep bpy loaded across both."""
             if not started:
                 try:
-                    started.append(workers.enter_context(make_executor(
-                        args, out=out, runs=len(seeds), log_path=out / command.LOG)))
+                    made = executor if executor is not None else make_executor(
+                        args, out=out, runs=len(seeds), log_path=out / command.LOG)
+                    made = workers.enter_context(made)
                 except SweepError as exc:
                     raise exits.UsageError(str(exc)) from None
+                started.append(counted(made) if counted is not None else made)
             return started[0]
         stage("restarts")
         t = time.perf_counter()
-        records = _restarts(args, p, seeds, out, executor)
+        records = _restarts(args, p, seeds, out, entered)
         tally = restarts.tally(records)
         tally["asked"] = len(seeds)
         tally["decided"] = (restarts.decided(records, width=args.interval_width)
@@ -138,37 +153,44 @@ def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None
         # asked linker costs more than it saves; the asked length's runs are reused if reached
         walk = command.new_walk(args, p, len(seeds), records=records)
         try:
-            command._walk(args, walk_values, seeds, [walk], out, executor)
+            command._walk(args, walk_values, seeds, [walk], out, entered)
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
-        row = walk.row()
         timings["minimal_linker"] = round(time.perf_counter() - t, 1)
-        workers.close()  # the pictures are made here: the workers' cores are free again
+    # the workers are gone: the pictures are made here with the cores free again
+    return {"tally": tally, "row": walk.row(), "timings": timings, "t0": t0}
 
-        stage("best layout")
-        t = time.perf_counter()
-        best_seed = tally["best_seed"] if tally["best_seed"] is not None else p.seed
-        best = run_here(p.replace(seed=best_seed))
-        if structure_block:
-            best["structure"] = structure_block
-        if case is not None:
-            best["case"] = case
-        timings["best_layout"] = round(time.perf_counter() - t, 1)
 
-        stage("pictures")
-        t = time.perf_counter()
-        pictures, problems = _pictures(best, out, look)
-        files.write_json(out / BEST, best)
-        timings["pictures"] = round(time.perf_counter() - t, 1)
+def write(args, p: P.Params, searched: dict, out, stage, *, structure_block: dict | None,
+          case: dict | None, look: dict, sources: dict, run_here) -> dict:
+    """The last three STAGES, in this process (bpy: its main thread): the best layout run again
+    by `run_here`, its pictures, report.json and report.html into `out`. Returns the document."""
+    from ..exports import report_page
+    tally, timings = searched["tally"], dict(searched["timings"])
+    stage("best layout")
+    t = time.perf_counter()
+    best_seed = tally["best_seed"] if tally["best_seed"] is not None else p.seed
+    best = run_here(p.replace(seed=best_seed))
+    if structure_block:
+        best["structure"] = structure_block
+    if case is not None:
+        best["case"] = case
+    timings["best_layout"] = round(time.perf_counter() - t, 1)
 
-        stage("page")
-        doc = document(args, p, best, tally, row, sources=sources,
-                       structure_block=structure_block, case=case, pictures=pictures,
-                       problems=problems, version=fibrilfit_version())
-        timings["total"] = round(time.perf_counter() - t0, 1)
-        doc["timings_s"] = timings
-        files.write_json(out / JSON, doc)
-        files.write_text(out / HTML, report_page.html(doc, out))
+    stage("pictures")
+    t = time.perf_counter()
+    pictures, problems = _pictures(best, out, look)
+    files.write_json(out / BEST, best)
+    timings["pictures"] = round(time.perf_counter() - t, 1)
+
+    stage("page")
+    doc = document(args, p, best, tally, searched["row"], sources=sources,
+                   structure_block=structure_block, case=case, pictures=pictures,
+                   problems=problems, version=fibrilfit_version())
+    timings["total"] = round(time.perf_counter() - searched["t0"], 1)
+    doc["timings_s"] = timings
+    files.write_json(out / JSON, doc)
+    files.write_text(out / HTML, report_page.html(doc, out))
     return doc
 
 

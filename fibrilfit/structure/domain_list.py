@@ -52,7 +52,7 @@ def from_text(text: str) -> DomainSize:
 def full_length_domains(path, fibril: dict | None) -> tuple:
     """(Segmentation, [DomainSize]) of a predicted full-length model: its folded domains on the
     linker's side of the fibril's core, from the core outward, as `--full-length` finds them
-    (cli/structure_files.py's domain_specs and measure_all)."""
+    (structure/from_files.py's domain_specs and measure_files)."""
     if not fibril:
         raise StructureError(FULL_LENGTH, "import the fibril first (Import fibril…), whose "
                                           "core tells the model's domains from its core and "

@@ -1,9 +1,14 @@
-"""`--fibril FILE` / `--domain FILE` for `run` and `sweep`: the model values measured from the
-files, the explicit options winning, and the `structure` block a result records."""
+"""`--fibril FILE` / `--domain FILE` / `--full-length FILE` for `run`, `sweep` and a case's
+[structure] (the command line's `--case` and the sidebar's Load case): the files measured, the
+model values measured from them, the explicit options winning, and the `structure` block a
+result records."""
 from __future__ import annotations
 
+import dataclasses
 import sys
+from types import SimpleNamespace
 
+from ..exits import UsageError
 from ..model import params as P
 from .mapping import EXIT_PARAMS, RESIDUE_RADIUS, linker_source, model_values
 
@@ -169,3 +174,111 @@ def exit_block(p, block: dict | None) -> dict | None:
             "path": way["path"],
             "clearance": way["clearance"], "bead_radius": way["bead_radius"],
             "free_linker": p.free_linker, "source": source}
+
+
+# ---- the files named: the command line's options, or a case's [structure] ------------------
+# `opts` has the options' names as attributes (fibril, domain, full_length, terminus,
+# anchor_residue, domain_chain, domain_residues): the command line's argparse namespace, or
+# case_options() of a case's [structure].
+
+TERMINUS = "C"  # the core terminus that carries the linker unless --terminus says otherwise
+
+
+def case_options(structure: dict) -> SimpleNamespace:
+    """A case's [structure] (cases.Case.structure, files absolute) as the options it stands for,
+    each option it leaves out at the command line's default."""
+    return SimpleNamespace(**{"fibril": None, "domain": None, "full_length": None,
+                              "terminus": TERMINUS, "anchor_residue": None,
+                              "domain_chain": None, "domain_residues": None, **structure})
+
+
+def _listed(value) -> list:
+    """An option that argparse appends to, or a case file gives as one value or a list."""
+    if value is None:
+        return []
+    return [value] if isinstance(value, (str, int)) else list(value)
+
+
+def domain_files(opts) -> list:
+    return [str(v) for v in _listed(getattr(opts, "domain", None))]
+
+
+def has_structure(opts) -> bool:
+    return bool(getattr(opts, "fibril", None) or domain_files(opts)
+                or getattr(opts, "full_length", None))
+
+
+def domain_specs(opts, fib=None) -> tuple[list, object]:
+    """[(file, chain, residues)] of the domains in chain order from the core outward, and the
+    full-length model's Segmentation (or None). --full-length gives the folded domains on the
+    linker's side of the core."""
+    files = domain_files(opts)
+    chains, ranges = _listed(opts.domain_chain), _listed(opts.domain_residues)
+    full = getattr(opts, "full_length", None)
+    if full:
+        if files:
+            raise UsageError("--full-length: gives the domains itself; leave out --domain")
+        if chains or ranges:
+            raise UsageError("--domain-chain/--domain-residues: not with --full-length")
+        from .full_length import segment
+        seg = segment(full, fib.core_residues if fib is not None else None)
+        side = "N" if fib is not None and fib.terminus == "N" else "C"
+        return [(full, seg.chain, f"{d['first']}-{d['last']}")
+                for d in seg.chain_order(side)], seg
+    for name, given in (("--domain-chain", chains), ("--domain-residues", ranges)):
+        if given and not files:
+            raise UsageError(f"{name}: needs --domain")
+        if len(given) > 1 and len(given) != len(files):
+            raise UsageError(f"{name}: given {len(given)} times for {len(files)} --domain "
+                             "files: give it once (for all) or once per --domain")
+    pick = (lambda given, i: None if not given else given[i] if len(given) > 1 else given[0])
+    return [(f, pick(chains, i), pick(ranges, i)) for i, f in enumerate(files)], None
+
+
+@dataclasses.dataclass
+class Measured:
+    """The files `opts` name, measured: the fibril (FibrilGeometry or None) and its file, the
+    domains' specs [(file, chain, residues)] and their DomainSizes in chain order, the
+    full-length model's Segmentation (or None)."""
+
+    fibril: object
+    fibril_path: str | None
+    specs: list
+    domains: list
+    segmentation: object
+
+    @property
+    def option(self) -> str:
+        return "--full-length" if self.segmentation is not None else "--domain"
+
+
+def measure_files(opts, *, inspect: bool = False, every_exit: bool = False) -> Measured:
+    """Measure the files `opts` name, as the command line does. `inspect`: a full-length model
+    with no folded domain is shown, not refused; `every_exit`: every domain's outgoing point,
+    the last one's too (the sidebar's list, whose order can change; the model never reads the
+    last one's: mapping.further_shapes)."""
+    from .domain import measure as measure_domain
+    from .fibril import measure as measure_fibril
+    if opts.anchor_residue is not None and not opts.fibril:
+        raise UsageError("--anchor-residue: needs --fibril")
+    fib = None
+    if opts.fibril:
+        fib = measure_fibril(opts.fibril, terminus=opts.terminus,
+                             anchor_residue=opts.anchor_residue)
+    specs, seg = domain_specs(opts, fib)
+    if seg is not None and not specs and not inspect:
+        from .full_length import no_domain
+        raise UsageError(f"--full-length: {no_domain(seg.file)}")
+    option = "--full-length" if seg is not None else "--domain"
+    doms = [measure_domain(f, chain=c, residues=r, option=option,
+                           follows=opts.terminus == "C",
+                           outgoing=every_exit or i < len(specs) - 1)
+            for i, (f, c, r) in enumerate(specs)]
+    return Measured(fib, opts.fibril, specs, doms, seg)
+
+
+def measure_all(opts, *, inspect: bool = False) -> tuple:
+    """(FibrilGeometry or None, [DomainSize] in chain order, Segmentation or None)."""
+    m = measure_files(opts, inspect=inspect)
+    return m.fibril, m.domains, m.segmentation
+

@@ -77,6 +77,21 @@ def add(settings, path: str, dom, *, option: str = "--domain") -> None:
     settings.domain_index = len(settings.domains) - 1
 
 
+def replace(settings, measured: list, option: str, linkers) -> None:
+    """The list made of `measured` [(path, DomainSize)] in chain order (`option`: --domain or
+    --full-length), each linker to the next from `linkers` (Params.domain_linker, None with one
+    domain); the fields the list gives (its real-shape rows, domain_linker) emptied, the
+    diameters left as they are (Load case: a case's [structure], already in the panel)."""
+    settings.domains.clear()
+    for path, dom in measured:
+        add(settings, path, dom, option=option)
+    for e, gap in zip(settings.domains, linkers or ()):
+        e.linker = gap
+    settings.domain_index = 0
+    for name in logic.SHAPE_PARAMS + ("domain_linker",):
+        setattr(settings, name, "")
+
+
 def filled(settings, fibril: dict | None, *, first_changed: bool) -> list:
     """After the list changed: the diameters from its domains, domain_linker's text and the
     real-shape rows emptied (the list gives them), and when the first domain changed, the linker

@@ -178,48 +178,6 @@ def test_report_refuses_what_run_refuses_and_writes_nothing(tmp_path, bad, needl
         assert ran.returncode == 2  # run refuses it too
 
 
-def test_sidebar_report_button_writes_the_same_page(scene, ff, tmp_path, monkeypatch):
-    import bpy
-    from fibrilfit.ui import properties, report_summary
-    from fibrilfit.ui.operators import report as report_op
-    opened = []
-    monkeypatch.setattr(report_op, "open_page", lambda path: opened.append(path) or True)
-    ff.register()
-    try:
-        properties.write_params(scene.fibrilfit, P.make_params(
-            layers=3, linker=3, globule_diameter=12, protocol="inflate", grow_frames=20,
-            hold_frames=20, regrow_cycles=0))
-        out = tmp_path / "page"
-        assert not bpy.ops.fibrilfit.open_report.poll()  # no report yet
-        assert bpy.ops.fibrilfit.report(directory=str(out), restarts=2, max_linker=4) == {
-            "FINISHED"}
-        # the panel then shows the report's numbers, and Open report opens its page
-        s = scene.fibrilfit
-        summary = json.loads(s.report_summary)
-        assert bpy.ops.fibrilfit.open_report() == {"FINISHED"}
-        assert opened == [out / "report.html"]
-        assert (s.report_dir, s.report_restarts, s.report_max_linker) == (str(out), 2, 4)
-        # the scene holds the best layout, checked: the panel's verdict box is its verdict
-        best = json.loads((out / "best_layout.json").read_text())
-        assert (s.verdict, s.accommodated) == (best["verdict"], best["accommodated"])
-        assert best["seed"] == json.loads((out / "report.json").read_text())["p_fit"]["best_seed"]
-    finally:
-        ff.unregister()
-    doc = json.loads((out / "report.json").read_text())
-    schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
-    jsonschema.Draft202012Validator(schema).validate(doc)  # the published schema
-    assert summary == report_summary.summary_of(doc, str(out))
-    assert summary["p_fit"]["runs"] == 2 and summary["p_fit"]["linker"] == 3
-    assert summary["minimal_linker"] == doc["minimal_linker"]["linker"]
-    assert {"model", "sources", "warnings", "p_fit", "minimal_linker", "envelope",
-            "files"} <= set(doc)
-    assert doc["p_fit"]["runs"] == 2 and doc["sources"]["linker"] == "sidebar"
-    assert (out / "report.html").read_text().count('src="data:image/png;base64,') == 2
-    # the page's command reproduces it from the case the button saved
-    assert doc["command"][1:4] == ["report", "--case", str(out / "case.toml")]
-    assert (out / "case.toml").is_file()
-
-
 def test_periodic_render_frames_the_cell_and_every_image(scene):
     from bpy_extras.object_utils import world_to_camera_view
 

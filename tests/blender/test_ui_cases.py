@@ -1,5 +1,6 @@
 """The sidebar's Load case and Save case: the same files as --case and --save-case."""
 import json
+import re
 import types
 
 import bpy
@@ -87,16 +88,56 @@ def test_a_case_loaded_and_run_in_the_panel_gives_the_command_lines_result(ui, t
     assert line["answer"] == "fits"
 
 
-def test_loading_a_case_with_structure_files_says_they_are_not_measured(ui):
-    """`run --case` measures a case's [structure] files; Load case does not (yet): it says so
-    rather than leaving the panel at values the case never meant."""
+def _cli_params(case):
+    """The Params `run --case CASE` runs with: the command line's parser, --case and merge."""
+    from fibrilfit.cli import build_parser
+    from fibrilfit.cli.values import apply_case, checked_params
+    args = build_parser().parse_args(["run", "--case", str(case)])
+    args.loaded_case = apply_case(args)
+    return checked_params(args)[0]
+
+
+def test_load_case_measures_the_cases_structure_files_as_run_does(ui, scene):
+    """examples/asyn_6cu7_ubiquitin.toml: 6CU7 and ubiquitin (the cheapest structure case: two
+    small files) measured by Load case give `run --case`'s Params, key by key; the list holds
+    the domain, the fibril's trace and measurement are in place."""
     from helpers import ROOT
-    from fibrilfit.ui.operators import cases as case_ops
-    from test_ui import detached
-    op = detached(case_ops.FIBRILFIT_OT_load_case)
-    op.filepath = str(ROOT / "examples" / "asyn_2n0a_gfp.toml")
-    assert op.execute(bpy.context) == {"FINISHED"}
-    assert op.reports[0] == ({"WARNING"}, "Load case does not read the case's structure files "
-                                          "(2n0a.pdb.gz, 1gfl.pdb.gz): Import fibril… and "
-                                          "Import domain… measure them into the panel, as "
-                                          "`run --case` does")
+    from fibrilfit.ui import structure_trace
+    case = ROOT / "examples" / "asyn_6cu7_ubiquitin.toml"
+    ui.layers, ui.globule_diameter = 33, 50.0  # not in the file: the case's values replace them
+    assert bpy.ops.fibrilfit.load_case(filepath=str(case)) == {"FINISHED"}
+    panel, line = properties.read_params(ui).to_dict(), _cli_params(case).to_dict()
+    assert panel.keys() == line.keys()
+    for key in line:
+        assert panel[key] == line[key], key
+    assert panel["linker"] == 30 and panel["protofilaments"] == 2  # the case's, the file's
+    assert panel["globule_diameter"] != P.DEFAULTS.globule_diameter  # measured from 1UBQ
+    assert [e.name.split(",")[0] for e in ui.domains] == ["1ubq.pdb.gz A 1-76"]
+    measured = structure_trace.measured(scene)
+    assert measured["fibril"]["file"] == "6cu7.pdb.gz" and set(measured) == {"fibril", "domain"}
+    assert json.loads(ui.case_metadata)["name"].startswith("α-synuclein 6CU7")
+
+
+@pytest.mark.parametrize("what", ["missing", "not a structure"])
+def test_a_case_naming_a_bad_structure_file_leaves_the_panel_unchanged(ui, scene, tmp_path,
+                                                                      what):
+    """A [structure] file that is not there (refused as the case is read) or is not a structure
+    (refused as it is measured): one sentence, and the panel, its list and the scene as they
+    were."""
+    from helpers import ROOT
+    if what == "not a structure":
+        (tmp_path / "fibril.pdb").write_text("not a structure\n", encoding="utf-8")
+    src = tmp_path / "c.toml"
+    src.write_text(f'[params]\nlinker = 12\n[structure]\nfibril = "fibril.pdb"\n'
+                   f'domain = "{ROOT / "tests" / "data" / "1ubq.pdb.gz"}"\n', encoding="utf-8")
+    assert bpy.ops.fibrilfit.load_case(
+        filepath=str(ROOT / "examples" / "hnrnpdl2_7zir.toml")) == {"FINISHED"}
+    before, meta, objects = properties.values(ui), ui.case_metadata, len(bpy.data.objects)
+    said = ("structure.fibril: no file 'fibril.pdb'" if what == "missing"
+            else re.escape("fibril.pdb: not a structure (no atoms)"))
+    with pytest.raises(RuntimeError, match=said) as caught:
+        bpy.ops.fibrilfit.load_case(filepath=str(src))
+    assert len(str(caught.value).strip().splitlines()) == 1
+    assert properties.values(ui) == before and len(ui.domains) == 0
+    assert ui.case_metadata == meta and json.loads(meta)["name"].startswith("hnRNPDL")
+    assert len(bpy.data.objects) == objects

@@ -17,7 +17,7 @@ import pytest
 from fibrilfit import cli
 from fibrilfit.model import params as P
 from fibrilfit.ui import minimal_summary, panels, properties
-from fibrilfit.ui.operators import minimal
+from fibrilfit.ui.operators import background, minimal
 from test_ui import _Progress, _text_px, _Workspace, FIELD_PX, detached, event
 
 TINY = dict(protocol="tutorial", layers=3, frames=60, seed=4)
@@ -28,7 +28,7 @@ SLOW = dict(protocol="inflate", layers=6, seed=0)  # runs long enough to be canc
 @pytest.fixture
 def ui(registered):
     yield registered
-    minimal.RUNNING["walk"] = None
+    background.RUNNING.clear()
 
 
 def _operator(restarts, max_linker, diameters=""):
@@ -69,7 +69,7 @@ def test_the_panels_walk_gives_the_commands_map(ui, tmp_path, capsys):
     assert ws.status[-1] is None  # the status bar is the user's again
     assert bars and bars[-1]["text"].startswith("FibrilFit: minimal linker: 20 Å at linker ")
     assert bars[-1]["text"].endswith(" runs done (Esc to cancel)")
-    mine = op._walk.result
+    mine = op._job.result
     summary = json.loads(ui.minimal_map)
     assert summary["state"] == "done" and op.reports[-1] == ({"INFO"},
                                                             "Minimal linker: 8 Å: 1, 20 Å: 2")
@@ -102,12 +102,12 @@ def test_esc_stops_the_workers_and_keeps_nothing(ui):
     op = _operator(2, 8)
     op.start(bpy.context)
     end = time.monotonic() + 120
-    while not (op._walk.executor.workers and all(w.ready for w in op._walk.executor.workers)
-               and op._walk.progress.submitted):
+    while not (op._job.executor.workers and all(w.ready for w in op._job.executor.workers)
+               and op._job.progress.submitted):
         assert op.modal(bpy.context, event("TIMER")) == {"PASS_THROUGH"}
         assert time.monotonic() < end, "no run started"
         time.sleep(0.05)
-    procs = [w.proc for w in op._walk.executor.workers]
+    procs = [w.proc for w in op._job.executor.workers]
     assert not bpy.ops.fibrilfit.minimal_linker.poll()  # one walk at a time
     assert op.modal(bpy.context, event("ESC")) == {"RUNNING_MODAL"}  # stopping
     assert _ticks(op, 60) == {"CANCELLED"}
@@ -115,8 +115,8 @@ def test_esc_stops_the_workers_and_keeps_nothing(ui):
     assert _walk_folders() == before  # its runs' folder too
     # a run was under way when Esc came (an inflate run of 6 layers takes tens of seconds: none
     # had ended here, 2026-11-26)
-    done = op._walk.progress.done
-    assert done < op._walk.progress.submitted
+    done = op._job.progress.done
+    assert done < op._job.progress.submitted
     assert json.loads(ui.minimal_map) == {"state": "cancelled", "runs": done}
     assert op.reports[-1] == ({"WARNING"}, f"Minimal linker cancelled after "
                                            f"{minimal_summary.runs(done)}; nothing kept")

@@ -5,10 +5,11 @@ import pathlib
 
 import bpy
 
-from ...model import cases
+from ...model import cases, params as P
 from ... import files
+from ...structure import from_files
 from .. import properties
-from . import common
+from . import common, structures
 
 
 class _CaseFile:
@@ -28,28 +29,42 @@ class _CaseFile:
 class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
     bl_idname = "fibrilfit.load_case"
     bl_label = "Load case"
-    bl_description = ("Set every parameter from a case file (.toml); parameters it leaves out "
-                      "take their defaults. The model is not rebuilt: Run all to use them")
+    bl_description = ("Set every parameter from a case file (.toml), its structure files "
+                      "measured as `run --case` measures them; parameters it leaves out take "
+                      "their defaults. The model is not rebuilt: Run all to use them")
     bl_options = {"REGISTER", "UNDO"}
 
     def _do(self, context):
         case = cases.load(bpy.path.abspath(self.filepath))
-        p = case.make_params()
+        # Every file read and measured, and the values checked, before the panel changes
+        P.refuse_beside_periodic(case.params)
+        opts = from_files.case_options(case.structure)
+        m = (from_files.measure_files(opts, every_exit=True)
+             if from_files.has_structure(opts) else None)
+        values, block = (from_files.merged(m.fibril, m.domains, m.segmentation,
+                                           dict(case.params))
+                         if m is not None else (case.params, {}))
+        p = P.make_params(**values)  # as `run --case` (cli/values.py's checked_params)
         s = common.settings(context)
         s.domains.clear()  # the case's values are the domains now
         properties.write_params(s, p)
+        if m is not None:
+            structures.show_measured(context, m, p)
         s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
         name = case.meta.get("name", case.path.name)
-        if case.structure:  # `run --case` measures them; the panel does not yet (issue #33)
-            files_named = ", ".join(pathlib.Path(case.structure[k]).name for k in
-                                    ("fibril", "domain", "full_length") if case.structure.get(k)
-                                    and isinstance(case.structure[k], str))
-            self.report({"WARNING"}, f"Load case does not read the case's structure files "
-                                     f"({files_named}): Import fibril… and Import domain… "
-                                     f"measure them into the panel, as `run --case` does")
+        measured = (f", those measured from {' and '.join(_files(m))}" if m is not None
+                    else "")
+        for warning in block.get("warnings", []):  # as `run --case` prints them
+            self.report({"WARNING"}, warning)
         self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
-                              f"file, the rest at their defaults")
+                              f"file{measured}, the rest at their defaults")
         return {"FINISHED"}
+
+
+def _files(m) -> list:
+    """The structure files a case named, once each, in the order it names them."""
+    return list(dict.fromkeys(([m.fibril.file] if m.fibril is not None else [])
+                              + [pathlib.Path(f).name for f, _, _ in m.specs]))
 
 
 class FIBRILFIT_OT_save_case(_CaseFile, bpy.types.Operator):

@@ -3,8 +3,9 @@ bound, doubling steps, then bisection) for the panel's model at the panel's glob
 the diameters given, with the command's options and seeds. The walk runs on worker processes,
 waited for on a thread (search/background.py), so Blender stays live: a timer polls it, the
 status bar shows the runs, Esc stops it (the workers killed, nothing kept, the panel says
-cancelled), and the panel shows the map (ui/minimal_summary.py). Called from a script or in the
-background (no event loop), it waits for the walk instead."""
+cancelled), and the panel shows the map (ui/minimal_summary.py); the modal part is
+background.py's. Called from a script or in the background (no event loop), it waits for the
+walk instead."""
 import json
 
 import bpy
@@ -14,14 +15,13 @@ from ...model import params as P
 from ...search import command
 from ...search.background import BackgroundWalk
 from .. import minimal_summary
-from . import common, simulate
+from . import common
+from .background import BackgroundOperator
 
 DEFAULTS = command.options()  # the command line's defaults
-POLL_SECONDS = 0.25
-RUNNING = {"walk": None}  # the walk under way: one at a time (poll reads it)
 
 
-class FIBRILFIT_OT_minimal_linker(bpy.types.Operator):
+class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
     bl_idname = "fibrilfit.minimal_linker"
     bl_label = "Minimal linker…"
     bl_description = ("The shortest linker at which a layout is found, for the panel's model "
@@ -39,37 +39,16 @@ class FIBRILFIT_OT_minimal_linker(bpy.types.Operator):
         name="Diameters", default="",
         description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
                     "empty: the panel's")
-    _walk = None
-    _timer = None
-    _cancelling = False
+    what, job_name = "minimal linker", "minimal-linker walk"
 
     @classmethod
     def poll(cls, context):
-        if context.scene is None:
-            return False
-        if RUNNING["walk"] is not None and not RUNNING["walk"].finished:
-            cls.poll_message_set("A minimal-linker walk is running: Esc stops it")
-            return False
-        return True
+        return context.scene is not None and not cls.running(context)
 
     def invoke(self, context, event):
         return context.window_manager.invoke_props_dialog(self)
 
-    def execute(self, context):
-        return common.guarded(self, self._execute, context)
-
-    def _execute(self, context):
-        self.start(context)
-        if bpy.app.background or context.window is None:  # no event loop: wait here
-            self._walk.join()
-            return self.finish(context)
-        wm = context.window_manager
-        self._timer = wm.event_timer_add(POLL_SECONDS, window=context.window)
-        wm.modal_handler_add(self)
-        self.show_progress(context)
-        return {"RUNNING_MODAL"}
-
-    def start(self, context) -> None:
+    def make_job(self, context) -> BackgroundWalk:
         """The panel's model and the walk's options, checked; the walk started on its thread."""
         values = common.panel_params(context).to_dict()
         values.pop("linker")  # the walk's to search
@@ -77,51 +56,19 @@ class FIBRILFIT_OT_minimal_linker(bpy.types.Operator):
             values["globule_diameter"] = self.diameters.strip()
         args = command.options(restarts=self.restarts, max_linker=self.max_linker, quiet=True,
                                no_plot=True)
-        self._walk = BackgroundWalk(args, values, make_executor(args)).start()
-        RUNNING["walk"] = self._walk
-        self._cancelling = False
+        return BackgroundWalk(args, values, make_executor(args)).start()
 
-    def modal(self, context, event):
-        return common.guarded(self, self._modal, context, event)
-
-    def _modal(self, context, event):
-        if event.type == "ESC" and not self._cancelling:
-            self._walk.stop()
-            self._cancelling = True
-            self.show_progress(context)
-            return {"RUNNING_MODAL"}
-        if event.type == "TIMER":
-            if self._walk.finished:
-                return self.finish(context)
-            self.show_progress(context)
-        # the scene is not the walk's (the workers have their own): the user goes on working
-        return {"PASS_THROUGH"}
-
-    def show_progress(self, context) -> None:
-        p = self._walk.progress
-        if self._cancelling:
-            simulate._status(context, "FibrilFit: minimal linker: cancelling…")
-        elif p.stage == "bound" or p.running is None:
-            simulate._status(context, "FibrilFit: minimal linker: the proven bound "
-                                      "(Esc to cancel)")
-        else:
-            d, linker = p.running
-            simulate._status(context, f"FibrilFit: minimal linker: {d:g} Å at linker {linker}, "
-                                      f"{p.done} of {p.submitted} runs done (Esc to cancel)",
-                             p.done / max(p.submitted, 1))
-
-    def end(self, context) -> None:
-        if self._timer is not None:
-            context.window_manager.event_timer_remove(self._timer)
-            self._timer = None
-        simulate._status(context, None)
-        if RUNNING["walk"] is self._walk:
-            RUNNING["walk"] = None
+    @staticmethod
+    def progress_text(p) -> tuple:
+        if p.stage == "bound" or p.running is None:
+            return "the proven bound", None
+        d, linker = p.running
+        return (f"{d:g} Å at linker {linker}, {p.done} of {p.submitted} runs done",
+                p.done / max(p.submitted, 1))
 
     def finish(self, context) -> set:
         """The walk has ended: its map, or cancelled, or its error, in the panel."""
-        self.end(context)
-        walk, s = self._walk, common.settings(context)
+        walk, s = self._job, common.settings(context)
         if walk.stopped:
             s.minimal_map = json.dumps(minimal_summary.cancelled(walk.progress.done))
             self.report({"WARNING"}, f"Minimal linker cancelled after "
@@ -135,12 +82,6 @@ class FIBRILFIT_OT_minimal_linker(bpy.types.Operator):
                  for r in walk.result["rows"]]
         self.report({"INFO"}, "Minimal linker: " + ", ".join(found))
         return {"FINISHED"}
-
-    def cancel(self, context):
-        """Blender ends the operator (a file loaded, the window closed): stop the walk."""
-        if self._walk is not None and not self._walk.finished:
-            self._walk.stop()
-        self.end(context)
 
 
 CLASSES = (FIBRILFIT_OT_minimal_linker,)

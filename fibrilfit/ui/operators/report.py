@@ -1,8 +1,11 @@
 """Report… in the sidebar: the panel's model through the same report as `headless.py report`
 (search/report.py), into a folder the user picks; then the panel shows its numbers
-(ui/report_summary.py) and Open report shows the page in the user's browser. Blender waits
-while it runs (minutes: the restarts run on worker processes; the progress is in the system
-console)."""
+(ui/report_summary.py) and Open report shows the page in the user's browser. Its restarts and
+minimal-linker walk (minutes) run on worker processes, waited for on a thread
+(search/background.py), so Blender stays live: the stage and runs in the status bar, Esc stops
+it (the workers killed, nothing written: the report is made in a folder beside its own, moved
+into place whole); the best layout, its pictures and the page are then made here (the modal
+part is background.py's)."""
 import json
 import pathlib
 import webbrowser
@@ -10,21 +13,27 @@ import webbrowser
 import bpy
 
 from ... import files, pipeline
+from ...batch.executors import make_executor
 from ...builders.model import find_model
 from ...exports import options
 from ...model import cases
 from ...model import params as P
-from ...search import report
-from .. import properties, report_summary
+from ...search import command, report
+from ...search.background import BackgroundReport
+from .. import minimal_summary, properties, report_summary
 from . import common
+from .background import BackgroundOperator
+
+CASE = "case.toml"  # beside the report: what the page's command re-runs
 
 
-class FIBRILFIT_OT_report(bpy.types.Operator):
+class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     bl_idname = "fibrilfit.report"
     bl_label = "Report…"
     bl_description = ("Write report.html and report.json for the panel's model: P(fit) over "
                       "restarts, the minimal linker, the best layout rendered and the envelope "
-                      "(the same report as `headless.py report`; takes minutes)")
+                      "(the same report as `headless.py report`; takes minutes on worker "
+                      "processes, Esc cancels)")
     bl_options = {"REGISTER", "UNDO"}  # it builds the best layout in the scene
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})
     restarts: bpy.props.IntProperty(name="Restarts", default=report.DEFAULT_RESTARTS, min=1,
@@ -34,9 +43,12 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
                                       description="the minimal-linker walk gives up beyond "
                                                   "this length")
 
+    what, job_name = "report", "report"
+    _out = None  # the folder the user picked
+
     @classmethod
     def poll(cls, context):
-        return context.scene is not None
+        return context.scene is not None and not cls.running(context)
 
     def invoke(self, context, event):
         """The folder chooser, offering the last report's folder and settings."""
@@ -50,21 +62,59 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
-    def execute(self, context):
-        return common.guarded(self, self._report, context)
-
-    def _report(self, context):
+    def make_job(self, context) -> BackgroundReport:
+        """The panel's model and the report's options checked, the folder it is made in beside
+        the chosen one, and its restarts and walk started on their thread."""
         out = pathlib.Path(bpy.path.abspath(self.directory or "//fibrilfit_report"))
-        s = common.settings(context)
-        p = properties.read_params(s)
-        case_path = out / "case.toml"
+        p = properties.read_params(common.settings(context))
+        self._out = out
         args = report.options(out=str(out), restarts=self.restarts, max_linker=self.max_linker,
-                              resume=True, command_line=[
-                                  "headless.py", "report", "--case", str(case_path),
+                              resume=True, quiet=True, command_line=[
+                                  "headless.py", "report", "--case", str(out / CASE),
                                   "--restarts", str(self.restarts), "--max-linker",
                                   str(self.max_linker), "--out", str(out)])
         report.check_options(args)
+        report.seeds_of(p, args.restarts)
         files.check_writable("directory", out / report.HTML, (".html",))
+        work = BackgroundReport.folder_beside(out)
+        args.out = str(work)  # the page's command names `out`, where it ends up
+        job = BackgroundReport(args, p, p.to_dict(), None, work)
+        try:
+            job.executor = make_executor(args, out=work, runs=args.restarts,
+                                         log_path=work / command.LOG)
+        except BaseException:
+            job.discard()
+            raise
+        return job.start()
+
+    @staticmethod
+    def progress_text(p) -> tuple:
+        step = report.STAGES.index(p.stage) + 1
+        runs = f", {p.done} of {p.submitted} runs done" if p.submitted else ""
+        return (f"{p.stage} (stage {step} of {len(report.STAGES)}){runs}",
+                (step - 1 + (p.done / p.submitted if p.submitted else 0)) / len(report.STAGES))
+
+    def finish(self, context) -> set:
+        """The restarts and walk have ended: the best layout, its pictures and the page made
+        here, the report moved into place and its numbers in the panel; or cancelled, or its
+        error, with nothing written."""
+        job = self._job
+        if job.stopped:
+            job.discard()
+            self.report({"WARNING"}, f"Report cancelled after "
+                                     f"{minimal_summary.runs(job.progress.done)}; nothing "
+                                     f"written")
+            return {"CANCELLED"}
+        try:
+            if job.error is not None:
+                raise job.error
+            return self._write(context, job)
+        except BaseException:
+            job.discard()
+            raise
+
+    def _write(self, context, job) -> set:
+        out, p, s = self._out, job.p, common.settings(context)
         case = cases.Case({}, {}).resolved(p)
         size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
         look = {"size": size, "aspect": size[0] / size[1], "samples": options.DEFAULT_SAMPLES,
@@ -75,18 +125,29 @@ class FIBRILFIT_OT_report(bpy.types.Operator):
         def run_best(q):  # the best layout, built, baked and checked in the scene
             best.update(pipeline.run_model(q, context.scene))
             return best
-        doc = report.make_report(args, p, p.to_dict(), structure_block=None, case=case,
-                                 look=look, sources=sources, run_here=run_best)
-        cases.write(case_path, case)  # what the page's command reproduces
+        doc = report.write(job.args, p, job.result, job.work, lambda name: None,
+                           structure_block=None, case=case, look=look, sources=sources,
+                           run_here=run_best)
+        cases.write(job.work / CASE, case)  # what the page's command reproduces
+        job.keep(out)
         model = find_model(context.scene)
         if model is not None and best:  # the scene holds the best layout: its verdict, framed
             common.record_check(context, model, best)
             common.show_model(context, model)
+            # the panel's seed is the best layout's: the panel describes the model in the scene
+            # (else a model the user never changed reads "Physics changed: Bake again", and
+            # Check and the exports refuse it as stale)
+            s.seed = best["seed"]
         s.report_dir = str(out)
         s.report_restarts, s.report_max_linker = self.restarts, self.max_linker
         s.report_summary = json.dumps(report_summary.summary_of(doc, str(out)))
         self.report({"INFO"}, f"{doc['answer']}: wrote {out / report.HTML}")
         return {"FINISHED"}
+
+    def discard(self) -> None:
+        if self._job is not None:
+            self._job.join(10)  # its workers are killed: it ends within seconds
+            self._job.discard()
 
 
 def open_page(path: pathlib.Path) -> bool:

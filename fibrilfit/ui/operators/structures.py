@@ -40,6 +40,40 @@ def _on_model(p: P.Params, path, fib) -> list:
     return moved
 
 
+def _show_fibril(context, path, fib, p: P.Params) -> None:
+    """The fibril's CA trace on the model `p`, and its measurement kept (the outline counted)."""
+    structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
+    summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
+    summary["outline_points"] = len(fib.core_outline)
+    structure_trace.store(context.scene, "fibril", summary)
+
+
+def _show_domain(context, path, chain, residues, dom, p: P.Params) -> None:
+    """The domain's CA trace beside the globule of the model `p`, and its measurement kept."""
+    chains = trace.domain_ca(path, chain=chain, residues=residues)
+    structure_trace.add_trace(context.scene, chains, dom.file, _beside_globule(p, chains),
+                              "domain")
+    structure_trace.store(context.scene, "domain", dom.to_dict())
+
+
+def show_measured(context, m, p: P.Params) -> None:
+    """A case's [structure] as Import fibril…, Import domain… and Import full-length model…
+    leave the panel (Load case; `m`: structure.from_files.Measured, `p` the case's Params,
+    already in the panel): the chain's domains in the list with their linkers to the next
+    (p.domain_linker), the imported structures' traces and measurements in place of any before."""
+    s = common.settings(context)
+    structure_trace.remove_all(context.scene)
+    domain_list.replace(s, [(f, d) for (f, _, _), d in zip(m.specs, m.domains)], m.option,
+                        p.domain_linker)
+    if m.fibril is not None:
+        _show_fibril(context, m.fibril_path, m.fibril, p)
+    if m.segmentation is not None:
+        structure_trace.store(context.scene, "full_length", m.segmentation.to_dict())
+    elif m.specs:  # the last domain's trace, as importing them one by one leaves it
+        f, chain, residues = m.specs[-1]
+        _show_domain(context, f, chain, residues, m.domains[-1], p)
+
+
 class _ImportBase:
     bl_options = {"REGISTER", "UNDO"}
     filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
@@ -73,11 +107,7 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         s = common.settings(context)
         if len(s.domains) and "linker" in domain_list.filled(s, fib.to_dict(), first_changed=True):
             names = sorted({*names, "linker"})  # from the fibril's and the domain's numbering
-        p = common.panel_params(context)
-        structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
-        summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
-        summary["outline_points"] = len(fib.core_outline)
-        structure_trace.store(context.scene, "fibril", summary)
+        _show_fibril(context, path, fib, common.panel_params(context))
         for w in fib.warnings:
             self.report({"WARNING"}, w)
         self.report({"INFO"}, f"{fib.file}: set {', '.join(names)}"
@@ -105,10 +135,8 @@ class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
         if len(s.domains) > 1:
             domain_list.set_gaps(s, fibril, len(s.domains) - 2)
         names = domain_list.filled(s, fibril, first_changed=len(s.domains) == 1)
-        chains = trace.domain_ca(path, chain=self.chain or None, residues=self.residues or None)
-        structure_trace.add_trace(context.scene, chains, dom.file,
-                                  _beside_globule(common.panel_params(context), chains), "domain")
-        structure_trace.store(context.scene, "domain", dom.to_dict())
+        _show_domain(context, path, self.chain or None, self.residues or None, dom,
+                     common.panel_params(context))
         more = (f"; domain {len(s.domains)} of the chain, {s.domains[-2].linker} residues after "
                 f"the one before (set it in the list)" if len(s.domains) > 1 else "")
         self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}{more}")

@@ -189,7 +189,7 @@ $(VENV)/.bench-installed: $(VENV)/.installed bench/requirements.txt
 # peak memory, load), then speed and memory side by side with bench/baselines/ (the seed
 # tutorial's port, pybullet); see docs/benchmarks.md. QUICK=1: only checks that the three still
 # run and answer, on small cases (their times mean nothing; what CI can afford).
-bench: $(VENV)/.bench-installed
+bench: $(if $(filter 1,$(QUICK)),$(VENV)/.installed,$(VENV)/.bench-installed)  # QUICK needs no pybullet
 ifeq ($(QUICK),1)
 	$(VENV)/bin/python bench/targets.py --quick $(TARGETS_ARGS)
 else

@@ -25,7 +25,7 @@ def test_load_then_save_keeps_parameters_and_metadata(ui, tmp_path):
     want = P.make_params(linker=12, twist=-0.0309, slab=(56.5, 22, 4.8))
     assert properties.read_params(ui) == want
     log = []
-    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=_Layout(log)), bpy.context)
+    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=Labels(log)), bpy.context)
     assert "Case: tdp" in log
     ui.globule_diameter = 40
     out = tmp_path / "out.toml"
@@ -49,7 +49,7 @@ def test_save_case_refuses_a_bad_path(ui, tmp_path):
         bpy.ops.fibrilfit.save_case(filepath=str(tmp_path / "case.txt"))
 
 
-class _Layout:
+class Labels:
     """Records labels; everything else is a no-op (test_ui.FakeLayout checks the RNA)."""
 
     def __init__(self, log):

@@ -23,6 +23,7 @@ from fibrilfit.ui import minimal_summary, panels, properties, report_summary
 from fibrilfit.ui.operators import background, report as report_op
 from helpers import ROOT
 from test_ui import _Progress, _Workspace, detached, event
+from test_ui_cases import Labels  # the panel's labels, recorded
 
 FAST = dict(layers=3, linker=3, globule_diameter=12, protocol="inflate", grow_frames=20,
             hold_frames=20, regrow_cycles=0)
@@ -100,7 +101,7 @@ def test_the_panels_report_is_the_commands_and_blender_stays_live(ui, tmp_path, 
     assert best["seed"] == 1 and s.seed == 1 and model.params.seed == 1
     assert properties.changed_fields(s, model.params) == []
     log = []
-    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=_Labels(log)), bpy.context)
+    panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=Labels(log)), bpy.context)
     assert not any("Physics changed" in t for t in log) and "Report: fits" in log
     schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
     jsonschema.Draft202012Validator(schema).validate(doc)  # the published schema
@@ -152,16 +153,3 @@ def test_stage_progress_reads_the_stages():
     assert text == "minimal linker (stage 2 of 5), 1 of 4 runs done"
     assert fraction == pytest.approx((1 + 1 / 4) / 5)
     assert report.STAGES[1] == "minimal linker"
-
-
-class _Labels:
-    """Records labels; everything else is a no-op (test_ui.FakeLayout checks the RNA)."""
-
-    def __init__(self, log):
-        self.log = log
-
-    def __getattr__(self, name):
-        return lambda *a, **kw: self
-
-    def label(self, text="", **kw):
-        self.log.append(text)

@@ -258,6 +258,16 @@ def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None) -
     page.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
 
 
+def case_file(name: pathlib.Path) -> pathlib.Path:
+    """A case named on the command line: a path to a .toml file, or a gallery case by its name
+    (`tutorial`, `orb2_6vps.toml`); anything else is refused (ValueError, one line)."""
+    for path in (name, ROOT / "examples" / name, ROOT / "examples" / f"{name}.toml"):
+        if path.suffix == ".toml" and path.is_file():
+            return path
+    known = ", ".join(sorted(q.stem for q in (ROOT / "examples").glob("*.toml")))
+    raise ValueError(f"cases: no case file {str(name)!r} (give a .toml path, or one of: {known})")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("cases", nargs="*", type=pathlib.Path)
@@ -298,7 +308,11 @@ def main(argv=None) -> int:
         args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
     gallery = sorted((ROOT / "examples").glob("*.toml"),
                      key=lambda q: (q.stem != "tutorial", q.stem))
-    paths = [] if args.table_only else (args.cases or gallery)
+    try:
+        paths = [] if args.table_only else ([case_file(c) for c in args.cases] or gallery)
+    except ValueError as exc:  # before anything runs or is written
+        print(f"validate: {exc}", file=sys.stderr)
+        return 2
     extra = ()
     if args.domain_shape:
         paths = [q for q in paths if has_domain_file(q)]

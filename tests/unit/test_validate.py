@@ -150,3 +150,21 @@ def test_the_table_goes_between_the_docs_pages_markers(tmp_path):
     validate.write_page("| new | rows |", page)
     assert page.read_text(encoding="utf-8") == (
         f"# V\n\nbefore\n{validate.START}\n| new | rows |\n{validate.END}\nafter\n")
+
+
+def test_a_case_is_named_by_path_or_by_its_gallery_name():
+    tutorial = ROOT / "examples" / "tutorial.toml"
+    assert validate.case_file(tutorial) == tutorial
+    assert validate.case_file(validate.pathlib.Path("tutorial")) == tutorial
+    assert validate.case_file(validate.pathlib.Path("tutorial.toml")) == tutorial
+
+
+def test_an_unknown_case_is_refused_before_anything_is_written(tmp_path, capsys):
+    # a bare name that is no case once ran nothing and stored an error row for it in
+    # examples/measured.json; now: one line naming the parameter, exit 2, nothing written
+    before = validate.STORED.read_bytes()
+    assert validate.main(["no_such_case", "--out", str(tmp_path / "v")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("validate: cases: no case file 'no_such_case'") and "tutorial" in err
+    assert "\n" not in err
+    assert validate.STORED.read_bytes() == before and not (tmp_path / "v").exists()

@@ -51,6 +51,14 @@ def run(out: pathlib.Path, only: set | None) -> None:
             sys.exit(f"{name}: sweep exited {proc.returncode}")
 
 
+def system(path: pathlib.Path) -> str:
+    """A results file's system: its folder, or for a validation run's `real` and
+    `minimal-linker` folders the case's folder too (out/validate/<case>/real)."""
+    if path.parent.name in ("real", "minimal-linker"):
+        return f"{path.parent.parent.name}/{path.parent.name}"
+    return path.parent.name
+
+
 def traces(out: pathlib.Path, also=()) -> list[dict]:
     """One row per run: its system (its folder's name), params, whether it fit, frames, and its
     cycles; from DIR/*/results.jsonl and the results files in `also` (e.g. a report's)."""
@@ -65,7 +73,9 @@ def traces(out: pathlib.Path, also=()) -> list[dict]:
             if r.get("status") != "ok" or r.get("model_version") != MODEL_VERSION:
                 continue
             cycles = (r.get("inflate") or {}).get("cycles") or []
-            rows.append({"system": path.parent.name, "linker": r["params"]["linker"],
+            if not cycles:  # not an inflate run (e.g. the tutorial protocol): no judgements
+                continue
+            rows.append({"system": system(path), "linker": r["params"]["linker"],
                          "diameter": r["params"]["globule_diameter"], "seed": r["seed"],
                          "fit": bool(r["accommodated"]), "frames": r["frames_simulated"],
                          "near": (r.get("inflate") or {}).get("near_cycles_granted"),
@@ -81,10 +91,10 @@ def _near(p, c) -> bool:
             and c["max_bond_stretch"] <= 3.0 * p["stretch_tolerance"])
 
 
-def rule(after: int, pairs: int | None = None, stretch: float | None = None):
+def rule(after: int, pairs: int | None = None, stretch: float | None = None, both: bool = False):
     """Stop after the judgement of cycle >= `after` when it is not a near miss and (if given)
     has at least `pairs` clashing pairs, or (if given) a worst stretch of at least `stretch`
-    times the tolerance."""
+    times the tolerance (with `both`: and, not or)."""
     def fires(p, c):
         if c["accommodated"] or c["cycle"] < after or _near(p, c):
             return False
@@ -93,13 +103,12 @@ def rule(after: int, pairs: int | None = None, stretch: float | None = None):
             hit.append(c["clashing_pairs"] >= pairs)
         if stretch is not None:
             hit.append(c["max_bond_stretch"] >= stretch * p["stretch_tolerance"])
-        return any(hit) if hit else True
-    bits = [f"cycle >= {after}", "not near"]
-    if pairs is not None:
-        bits.append(f"pairs >= {pairs}")
+        return (all(hit) if both else any(hit)) if hit else True
+    bits = [f"pairs >= {pairs}"] if pairs is not None else []
     if stretch is not None:
         bits.append(f"stretch >= {stretch:g} x tol")
-    return ", ".join(bits), fires
+    return ", ".join([f"cycle >= {after}", "not near"]
+                     + ([(" and " if both else " or ").join(bits)] if bits else [])), fires
 
 
 def no_near_cycles():
@@ -122,6 +131,7 @@ def regrow_cycles(c0: int):
 
 RULES = [rule(0), rule(1), rule(2), rule(0, pairs=4), rule(1, pairs=4), rule(0, stretch=5),
          rule(1, stretch=5), rule(0, pairs=8, stretch=10), rule(1, pairs=8, stretch=10),
+         rule(0, pairs=8, stretch=10, both=True),
          no_near_cycles(), regrow_cycles(0), regrow_cycles(1), regrow_cycles(2)]
 
 

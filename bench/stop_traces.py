@@ -8,7 +8,8 @@ runs it would have stopped early that went on to fit (must be 0), and the frames
 
 `run` goes through SYSTEMS in order, one `headless.py sweep --workers 1 --resume` each, into
 DIR/<name>/ (default out/stop_traces): interrupted, it continues where it stopped. `table`
-reads every DIR/*/results.jsonl (only records of the current MODEL_VERSION).
+reads every DIR/*/results.jsonl (only runs baked to their end: `to_the_end`). `run` switches
+the clear-miss rule off (--clear-miss-pairs 0 --clear-miss-stretch 0), so its runs are such.
 """
 import argparse
 import json
@@ -18,6 +19,19 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
+
+
+def to_the_end(r: dict) -> bool:
+    """Whether an inflate run was baked to the end of its schedule: MODEL_VERSION 5, or a later
+    one with the clear-miss rule off. From MODEL_VERSION 6 a clear miss ends a run early
+    (docs/model/search.md#clear-miss): its trace is cut where the rule fired and says nothing of
+    what would have come after."""
+    p = r.get("params") or {}
+    return r.get("model_version") == 5 or (
+        (r.get("model_version") or 0) >= 6
+        and p.get("clear_miss_pairs") == 0 and p.get("clear_miss_stretch") == 0)
+
+
 SEEDS = "10"  # seeds 0-9 per point (seed-major: an interrupted system covers its grid evenly)
 
 # (name, sweep options): small layer counts, linkers at and just below each system's minimum
@@ -43,7 +57,7 @@ def run(out: pathlib.Path, only: set | None) -> None:
         if only and name not in only:
             continue
         cmd = [sys.executable, str(ROOT / "headless.py"), "sweep", *opts, "--protocol", "inflate",
-               "--seeds", SEEDS, "--workers", "1", "--out", str(out / name), "--resume",
+               "--seeds", SEEDS, "--clear-miss-pairs", "0", "--clear-miss-stretch", "0", "--workers", "1", "--out", str(out / name), "--resume",
                "--no-plot", "--quiet"]
         print(" ".join(cmd[1:]), flush=True)
         proc = subprocess.run(cmd)
@@ -60,9 +74,9 @@ def system(path: pathlib.Path) -> str:
 
 
 def traces(out: pathlib.Path, also=()) -> list[dict]:
-    """One row per run: its system (its folder's name), params, whether it fit, frames, and its
-    cycles; from DIR/*/results.jsonl and the results files in `also` (e.g. a report's)."""
-    from fibrilfit.model.version import MODEL_VERSION
+    """One row per run: its system (`system`), params, whether it fit, frames, and its cycles;
+    from DIR/*/results.jsonl and the results files in `also` (e.g. a report's), of the model
+    runs baked to their end (`to_the_end`)."""
     rows = []
     for path in sorted(out.glob("*/results.jsonl")) + [pathlib.Path(a) for a in also]:
         for line in path.read_text().splitlines():
@@ -70,7 +84,7 @@ def traces(out: pathlib.Path, also=()) -> list[dict]:
                 r = json.loads(line)
             except json.JSONDecodeError:
                 continue
-            if r.get("status") != "ok" or r.get("model_version") != MODEL_VERSION:
+            if r.get("status") != "ok" or not to_the_end(r):
                 continue
             cycles = (r.get("inflate") or {}).get("cycles") or []
             if not cycles:  # not an inflate run (e.g. the tutorial protocol): no judgements

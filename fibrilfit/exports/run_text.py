@@ -139,9 +139,14 @@ def _inflate_lines(r: dict) -> list[str]:
             + ("accommodated" if c["accommodated"] else
                f"{c['clashing_pairs']} clashing pairs, stretch {percent(c['max_bond_stretch'])}")
             for c in cycles]
-    left = "" if cycles[-1]["accommodated"] else (
-        f"; gave up after {len(cycles)} of {1 + p['regrow_cycles']} cycles"
-        if len(cycles) >= 1 + p["regrow_cycles"] else "")
+    if cycles[-1]["accommodated"]:
+        left = ""
+    elif r["inflate"].get("clear_miss"):  # docs/model/search.md#clear-miss
+        left = f"; a clear miss: stopped after {len(cycles)} of {1 + p['regrow_cycles']} cycles"
+    elif len(cycles) >= 1 + p["regrow_cycles"]:
+        left = f"; gave up after {len(cycles)} of {1 + p['regrow_cycles']} cycles"
+    else:
+        left = ""
     return [f"inflate: globules grown from {r['inflate']['start_scale']:g} of full size over "
             f"{p['grow_frames']} frames; " + "; ".join(said) + left]
 

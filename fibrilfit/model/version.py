@@ -20,13 +20,14 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 5  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch); 5: a buried anchor's
 # exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
-# inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell)
+# inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
+# 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "68a87994aea27cc8cc9b21e8ac530be92b5e7dfe2e26f2031b0ef304c12b7b1f"
+MODEL_SOURCES_SHA256 = "64ee98bcb4bb398f77f6a1ea6e633832a13e639e6e757abeb2d1f5b61c177baf"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -569,7 +569,8 @@ def test_panels_draw_in_every_state(ui, scene):
         props = _props(drawn)
         assert len(props) == len(set(props))
         inapplicable = {"periodic", "image_updates", "grow_start", "grow_frames", "hold_frames",
-                        "regrow_cycles", "regrow_scale", "near_cycles",
+                        "regrow_cycles", "regrow_scale", "near_cycles", "clear_miss_pairs",
+                        "clear_miss_stretch",
                         "polish_factor"}  # tutorial protocol, no cell
         assert sorted(props) == sorted(set(everything) - inapplicable)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}

@@ -10,7 +10,9 @@ spec = importlib.util.spec_from_file_location("stop_traces", ROOT / "bench" / "s
 st = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(st)
 
-P = {"stretch_tolerance": 0.05, "regrow_cycles": 4, "near_cycles": 5}
+# the clear-miss rule off: a run baked to the end of its schedule (stop_traces.to_the_end)
+P = {"stretch_tolerance": 0.05, "regrow_cycles": 4, "near_cycles": 5, "clear_miss_pairs": 0,
+     "clear_miss_stretch": 0.0}
 
 
 def judged(cycle, pairs, stretch, overlap=2.0, frame=801):
@@ -51,3 +53,20 @@ def test_runs_without_inflate_judgements_are_not_traces(tmp_path):
     (case / "results.jsonl").write_text("".join(json.dumps(x) + "\n" for x in lines))
     rows = st.traces(tmp_path / "none", also=[case / "results.jsonl"])
     assert len(rows) == 1 and rows[0]["system"] == "tutorial/real"
+
+
+def test_only_runs_baked_to_their_end_are_traces(tmp_path):
+    """MODEL_VERSION 5 runs, and later ones with the clear-miss rule off; a run the rule cut
+    short is not a trace (docs/model/search.md#clear-miss)."""
+    runs = tmp_path / "sys" / "results.jsonl"
+    runs.parent.mkdir()
+    inflate = {"cycles": [judged(0, 9, 0.6)]}
+    base = {"status": "ok", "seed": 0, "accommodated": False, "frames_simulated": 801,
+            "inflate": inflate}
+    on = dict(P, clear_miss_pairs=8, clear_miss_stretch=10.0)
+    lines = [dict(base, model_version=5, params={"linker": 5, "globule_diameter": 20.0, **on}),
+             dict(base, model_version=6, params={"linker": 6, "globule_diameter": 20.0, **P}),
+             dict(base, model_version=6, params={"linker": 7, "globule_diameter": 20.0, **on}),
+             dict(base, model_version=4, params={"linker": 8, "globule_diameter": 20.0, **P})]
+    runs.write_text("".join(json.dumps(x) + "\n" for x in lines))
+    assert [r["linker"] for r in st.traces(tmp_path)] == [5, 6]

@@ -175,6 +175,24 @@ def test_several_domain_files_fill_the_chain(ff, scene, tmp_path):
     assert chains["0A2"][0].seqid.num == 230
 
 
+
+def test_the_two_domain_full_length_model_runs(ff, scene, tmp_path):
+    """docs/guide/atoms-and-domains.md#full-length-models' `run` on tests/full_length_model.py's
+    chain (fast: 3 layers, 10 frames): ubiquitin 118-193 after 20 residues from K97 (linker 21
+    with the anchor), GFP 209-438 after 15 more, each at its deposited size; built, baked and
+    judged."""
+    from full_length_model import two_domain_model
+    model, out = two_domain_model(tmp_path / "two.pdb"), tmp_path / "r.json"
+    assert ff.cli.main(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--full-length",
+                        str(model), *FAST, "--json", str(out)]) == 0
+    r = json.loads(out.read_text())
+    assert r["params"]["linker"] == 21 and r["params"]["domain_linker"] == [15]
+    assert r["params"]["globule_diameter"] == pytest.approx(30.28, abs=0.02)  # the first
+    assert r["params"]["domain_diameters"] == pytest.approx([43.94], abs=0.02)  # the next
+    assert [(d["first"], d["last"]) for d in r["structure"]["full_length"]["domains"]] == \
+        [(118, 193), (209, 438)]
+    assert r["frames_simulated"] == 10 and isinstance(r["accommodated"], bool)
+
 # ---- several domains under inflate and in a periodic cell -----------------------------------
 INFLATE = dict(protocol="inflate", grow_frames=15, hold_frames=15, regrow_cycles=1,
                near_cycles=0)

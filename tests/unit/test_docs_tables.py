@@ -12,10 +12,21 @@ it. The provenance must name:
 - a date (YYYY-MM-DD), a commit (7-40 hex digits, one that exists in this repository) and the model version (`MODEL_VERSION N`, or `before MODEL_VERSION 1` for numbers
   made before results recorded it: docs/changelog.md#model-1);
 - for a table of physics results (PHYSICS_WORDS in its header: P(fit), fits, accommodated,
-  verdict, answer, clash, stretch, minimal linker), the bpy it ran on (`bpy 5.0.1`, ...).
+  verdict, answer, clash, stretch, minimal linker), the bpy it ran on (`bpy 5.0.1`, ...), the
+  fibril's size (LAYERS: "20 layers", "20–40 layers", a "16-layer" fibril, `--layers 4`,
+  `layers = 20`, a header naming layers, or the periodic cell / infinite fibril: "cell",
+  "periodic", "infinite") and how many runs made each number (RESTARTS: "5 restarts", "3 seeds",
+  "48 runs", "seed 0", "seeds 0–4", `--restarts 5`, `--seed-list 0`, "R = 5", "one run", a
+  "restarts" / "seeds" / "runs" column).
 
-Layers and restarts are in the table or its text wherever they vary (the test cannot tell where
-they apply, so it does not ask)."""
+A physics table where one of these truly does not apply (the bound is geometry: no seeds) says
+so on the line above it (or above the blank line above it), one marker a line, each with its
+reason: `<!-- no seeds: REASON -->`, `<!-- no layers: REASON -->`. Where a fact was not recorded,
+the text says so and the marker gives that as its reason.
+
+The layer and restart words are searched in the same provenance text as the rest, so a table
+passes if that text names them for any reason (a paragraph about the infinite fibril above a
+table of finite ones, say): the check catches a table that says neither, not every wrong one."""
 import pathlib
 import re
 import shutil
@@ -32,6 +43,17 @@ COMMIT = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f]{7,40}\b")
 MODEL = re.compile(r"MODEL_VERSION \d+|before MODEL_VERSION 1")
 BPY = re.compile(r"\bbpy \d+\.\d+")
 NOT_RESULTS = re.compile(r"^<!-- not results: \S.* -->$")
+# the fibril's size: a number of layers, or the periodic cell / infinite fibril
+LAYERS = re.compile(r"\b\d+(?:\s*(?:–|-|to)\s*\d+)?(?: cell)?[ -]layers?\b|--layers[ =]\d+|"
+                    r"\blayers\s*=\s*\d+|\bperiodic\b|\binfinite\b|\bcell\b", re.I)
+# how many runs: restarts, seeds (a count, a list or one seed), R = N (not "R = 16.75 Å")
+RESTARTS = re.compile(r"\b\d+\s+(?:restarts?|seeds?|runs?)\b|\bseeds?\s+\d+|"
+                      r"--(?:restarts|seeds|seed-list)[ =]\d+|\brestarts\s*=\s*\d+|"
+                      r"\bR\s*=\s*\d+\b(?![.,]\d)|\b(?:one|a single|two|three|four|five|ten) "
+                      r"(?:runs?|restarts?|seeds?)\b", re.I)
+LAYERS_COLUMN = re.compile(r"\blayers\b", re.I)
+RESTARTS_COLUMN = re.compile(r"\|\s*(?:restarts|seeds?|runs)\b(?:\s*\([^|]*\))?\s*(?=\|)", re.I)
+WAIVER = re.compile(r"^<!-- no (layers|seeds): \S.* -->$")
 SEPARATOR = re.compile(r"^\|[-:| ]+\|\s*$")
 # Sections (a page and the start of its `## ` heading) whose tables other work is rewriting at the
 # time of writing: docs/benchmarks.md's last two sections, which the lead is extending (issue #35;
@@ -40,10 +62,20 @@ SEPARATOR = re.compile(r"^\|[-:| ]+\|\s*$")
 PENDING = {("docs/benchmarks.md", "## The report: 6CU7 + ubiquitin"),
            ("docs/benchmarks.md", "## The infinite fibril's minimal-linker map")}
 
+# Sections whose tables may lack the layers and restarts only (the rest of their provenance is
+# checked): docs/benchmarks.md's "The answer in a minute", which the lead is editing (issue #35):
+# its stopping-rule tables of pooled runs (at lines ~815 and ~898 on 2026-11-26) name no fibril
+# size. TEMPORARY: the lead fixes them, then takes the section off this list (the test fails
+# once no table of a listed section lacks them).
+PENDING_SIZE = {("docs/benchmarks.md", "## The answer in a minute")}
+SIZE = {"the layers", "the restarts"}
 
-def pending(name: str, heading: str):
-    """The PENDING entry a table of page `name` under `## ` heading `heading` falls in, or None."""
-    return next((e for e in PENDING if e[0] == name and heading.startswith(e[1])), None)
+
+def pending(name: str, heading: str, entries=None):
+    """The PENDING (or `entries`) entry a table of page `name` under `## ` heading `heading`
+    falls in, or None."""
+    return next((e for e in (PENDING if entries is None else entries)
+                 if e[0] == name and heading.startswith(e[1])), None)
 
 
 def section(path: pathlib.Path, line: int) -> str:
@@ -52,8 +84,22 @@ def section(path: pathlib.Path, line: int) -> str:
     return next((h for h in reversed(lines) if h.startswith("## ")), "")
 
 
+def markers(lines: list[str], start: int) -> list[str]:
+    """The `<!-- ... -->` lines right above line index `start` (or above the blank line above
+    it), one marker a line."""
+    k = start - 1
+    if k >= 0 and not lines[k].strip():
+        k -= 1
+    found = []
+    while k >= 0 and lines[k].startswith("<!-- ") and lines[k].rstrip().endswith("-->"):
+        found.append(lines[k].rstrip())
+        k -= 1
+    return found
+
+
 def tables(path: pathlib.Path):
-    """(line number, header, provenance text, whole table) of each results table of `path`."""
+    """(line number, header, provenance text, whole table, the facts waived by a `no layers` /
+    `no seeds` marker) of each results table of `path`."""
     lines = path.read_text(encoding="utf-8").splitlines()
     fenced, i = False, 0
     while i < len(lines):
@@ -65,26 +111,33 @@ def tables(path: pathlib.Path):
             while i < len(lines) and lines[i].startswith("|"):
                 i += 1
             header, body = lines[start], lines[start + 2:i]
-            above = [lines[k] for k in (start - 1, start - 2) if k >= 0]
-            marked = bool(above) and (NOT_RESULTS.match(above[0]) or (
-                len(above) == 2 and not above[0].strip() and NOT_RESULTS.match(above[1])))
+            notes = markers(lines, start)
+            marked = any(NOT_RESULTS.match(n) for n in notes)
             if (RESULT_WORDS.search(header) and any(re.search(r"\d", row) for row in body)
                     and not marked):
                 top = start - 1
                 while top > 0 and not lines[top].startswith("#") and start - top < 15:
                     top -= 1
                 context = "\n".join(lines[top:start] + lines[i:i + 4])
-                yield start + 1, header, context, "\n".join(lines[start:i])
+                waived = frozenset(m[1] for m in map(WAIVER.match, notes) if m)
+                yield start + 1, header, context, "\n".join(lines[start:i]), waived
             continue
         i += 1
 
 
-def missing(header: str, context: str, table: str) -> list[str]:
+def missing(header: str, context: str, table: str, waived=frozenset()) -> list[str]:
     text = context + "\n" + table
     need = [("a date", DATE), ("a commit", COMMIT), ("the MODEL_VERSION", MODEL)]
+    lacks = [what for what, pattern in need if not pattern.search(text)]
     if PHYSICS_WORDS.search(header):
-        need.append(("the bpy", BPY))
-    return [what for what, pattern in need if not pattern.search(text)]
+        if not BPY.search(text):
+            lacks.append("the bpy")
+        if "layers" not in waived and not (LAYERS_COLUMN.search(header) or LAYERS.search(text)):
+            lacks.append("the layers")
+        if "seeds" not in waived and not (RESTARTS_COLUMN.search(header)
+                                          or RESTARTS.search(text)):
+            lacks.append("the restarts")
+    return lacks
 
 
 def pages():
@@ -97,24 +150,29 @@ def test_results_tables_are_found():
 
 
 def test_every_results_table_names_its_provenance():
-    bad, pending_bad = [], set()
+    bad, pending_bad, size_bad = [], set(), set()
     for page in pages():
         name = page.relative_to(ROOT).as_posix()
-        for line, header, context, table in tables(page):
-            lacks = missing(header, context, table)
+        for line, header, context, table, waived in tables(page):
+            lacks = missing(header, context, table, waived)
             entry = pending(name, section(page, line))
+            size_entry = pending(name, section(page, line), PENDING_SIZE)
+            if size_entry and SIZE & set(lacks):
+                size_bad.add(size_entry)
+                lacks = [what for what in lacks if what not in SIZE]
             if lacks and entry:
                 pending_bad.add(entry)
             elif lacks:
                 bad.append(f"{name}:{line}: {header[:60]}... names no {', '.join(lacks)}")
     assert not bad, "\n".join(bad)
     assert pending_bad == PENDING, f"fixed: take {PENDING - pending_bad} off PENDING"
+    assert size_bad == PENDING_SIZE, f"fixed: take {PENDING_SIZE - size_bad} off PENDING_SIZE"
 
 
 def test_the_commits_named_exist():
     git = shutil.which("git")
     assert git and (ROOT / ".git").exists(), "a checkout with git (CI clones one)"
-    named = {c for page in pages() for line, _, context, _ in tables(page)
+    named = {c for page in pages() for line, _, context, _, _ in tables(page)
              if not pending(page.relative_to(ROOT).as_posix(), section(page, line))
              for c in COMMIT.findall(context)}
     assert named
@@ -128,12 +186,65 @@ def test_the_rule_catches_a_table_without_provenance(tmp_path):
     page = tmp_path / "p.md"
     page.write_text("## Measured\n\nSome text.\n\n| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n",
                     encoding="utf-8")
-    (line, header, context, table), = tables(page)
-    assert missing(header, context, table) == ["a date", "a commit", "the MODEL_VERSION", "the bpy"]
-    page.write_text("## Measured\n\n2026-11-25, commit 182851d, MODEL_VERSION 4, bpy 5.0.1:\n\n"
-                    "| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n", encoding="utf-8")
-    (line, header, context, table), = tables(page)
-    assert missing(header, context, table) == []
+    (line, header, context, table, waived), = tables(page)
+    assert missing(header, context, table, waived) == [
+        "a date", "a commit", "the MODEL_VERSION", "the bpy", "the layers", "the restarts"]
+    page.write_text("## Measured\n\n2026-11-25, commit 182851d, MODEL_VERSION 4, bpy 5.0.1, 20 "
+                    "layers, 5 restarts:\n\n| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n",
+                    encoding="utf-8")
+    (line, header, context, table, waived), = tables(page)
+    assert missing(header, context, table, waived) == []
     page.write_text("<!-- not results: a list of shapes -->\n| shape | clash check |\n|---|---|\n"
                     "| hull | 32 faces |\n", encoding="utf-8")
     assert list(tables(page)) == []
+
+
+PROVENANCE = "2026-11-25, commit 182851d, MODEL_VERSION 4, bpy 5.0.1"
+
+
+def lacks(tmp_path, text: str, table: str = "| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n"):
+    """What the rule finds missing from a one-table page: `text` above `table`."""
+    page = tmp_path / "p.md"
+    page.write_text(f"## Measured\n\n{text}\n\n{table}", encoding="utf-8")
+    (line, header, context, table, waived), = tables(page)
+    return missing(header, context, table, waived)
+
+
+def test_a_physics_table_names_its_layers_and_restarts(tmp_path):
+    assert lacks(tmp_path, PROVENANCE + ".") == ["the layers", "the restarts"]
+    # layer and seed numbers that say neither: a layer's index, a radius, a count of frames
+    assert lacks(tmp_path, PROVENANCE + "; chain 5 (layer 2), r + R = 16.75 Å, 250 frames, "
+                 "linker 20.") == ["the layers", "the restarts"]
+    for size in ("20 layers", "20–40 layers", "a 16-layer fibril", "`--layers 4`", "layers = 20",
+                 "the periodic cell", "the infinite fibril", "the `auto` cell"):
+        assert lacks(tmp_path, f"{PROVENANCE}, {size}, 5 restarts.") == [], size
+    for runs in ("5 restarts", "3 seeds", "48 runs", "seed 0", "seeds 0–4", "`--restarts 5`",
+                 "`--seed-list 0`", "R = 5", "one run each", "1 restart"):
+        assert lacks(tmp_path, f"{PROVENANCE}, 20 layers, {runs}.") == [], runs
+    columns = "| layers | seeds | P(fit) |\n|---|---|---|\n| 20 | 0, 1 | 2/2 |\n"
+    assert lacks(tmp_path, PROVENANCE + ".", columns) == []
+    columns = "| cell layers | restarts (seeds) | fits |\n|---|---|---|\n| 20 | 2 (0, 1) | 1 |\n"
+    assert lacks(tmp_path, PROVENANCE + ".", columns) == []
+    # a column about runs that is not a count of them does not count
+    columns = "| rule | runs stopped early | fits |\n|---|---|---|\n| a | 2 | 1 |\n"
+    assert lacks(tmp_path, PROVENANCE + ", 20 layers.", columns) == ["the restarts"]
+
+
+def test_a_table_where_seeds_or_layers_do_not_apply_says_why(tmp_path):
+    assert lacks(tmp_path, PROVENANCE + ", 20 layers.\n\n<!-- no seeds: the bound is geometry, "
+                 "no runs -->") == []
+    assert lacks(tmp_path, PROVENANCE + ".\n\n<!-- no layers: not recorded -->\n"
+                 "<!-- no seeds: not recorded -->") == []
+    # a marker needs its reason, and waives only what it names
+    assert lacks(tmp_path, PROVENANCE + ", 20 layers.\n\n<!-- no seeds: -->") == ["the restarts"]
+    assert lacks(tmp_path, PROVENANCE + ", 20 layers.\n\n<!-- no layers: geometry -->") == [
+        "the restarts"]
+    # a marker above an earlier table of the section does not carry over
+    page = tmp_path / "q.md"
+    page.write_text(f"## Measured\n\n{PROVENANCE}.\n\n<!-- no layers: x -->\n<!-- no seeds: x -->\n"
+                    "| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n\nMore.\n\n"
+                    "| linker | P(fit) |\n|---|---|\n| 6 | 0.8 |\n", encoding="utf-8")
+    first, second = tables(page)
+    assert missing(*first[1:]) == [] and missing(*second[1:]) == ["the layers", "the restarts"]
+    # a table of times (not physics) needs neither
+    assert lacks(tmp_path, PROVENANCE + ".", "| case | seconds |\n|---|---|\n| a | 12 |\n") == []

@@ -7,7 +7,8 @@ Wilson interval, and the envelope's outer diameter over the seeds), then the min
 inflate unless the case sets one), searched up to the real linker or MAX_LINKER.
 Runs go through `headless.py sweep` (results kept in out/validate/, so running again resumes).
 A case that cannot run in this build (e.g. a parameter from an issue not merged yet) gets a row
-saying why. Nothing is filled in by hand.
+saying why. Nothing is filled in by hand. (Over 400 lines: the runs, the walk, the stored rows and
+the page's text are one pipeline; the table's cells are fibrilfit/sweep/validation.py's.)
 
     python tools/validate.py [--out out/validate] [--workers 2] [--parallel 2] [--restarts 3]
                              [--no-docs] [CASE.toml ...]
@@ -234,6 +235,33 @@ def gallery_rows(gallery: list, stored: dict) -> list[dict]:
     return rows
 
 
+def fibrils_and_runs(rows: list[dict]) -> str:
+    """The line under the provenance: each measured row's fibril (its layers, or the periodic
+    cell of the infinite fibril) and its runs (the seeds at the real linker, the walk's restarts
+    a length), from the stored rows (docs/contributing.md#results-tables)."""
+    groups: dict = {"Fibrils": {}, "Runs at the real linker": {}, "The minimal-linker walk": {}}
+    for r in (r for r in rows if "error" not in r and (r.get("params") or {}).get("layers")):
+        p, case = r["params"], r["case"].removesuffix(".toml")
+        size = (f"a periodic cell of {p['periodic']} layers (the infinite fibril)" if p.get("periodic")
+                else f"{p['layers']} layers" + (f", {p['score_layers']} left out of the score at "
+                                                 "each end" if p.get("score_layers") else ""))
+        seeds, walk = (r.get("fit") or {}).get("n"), (r.get("minimal") or {}).get("restarts")
+        for name, key in (("Fibrils", size), ("Runs at the real linker", seeds and f"{seeds} seeds"),
+                          ("The minimal-linker walk", walk and f"{walk} restarts a length")):
+            if key:
+                groups[name].setdefault(key, []).append(case)
+    return " ".join(f"{name}: " + "; ".join(f"{k}: {', '.join(v)}" for k, v in g.items()) + "."
+                    for name, g in groups.items() if g)
+
+
+def page_text(rows: list[dict]) -> str:
+    """What make validate writes between the page's markers: the table, its provenance, and its
+    fibrils and runs."""
+    text = table(rows) + "\n\n" + provenance(rows)
+    more = fibrils_and_runs(rows)
+    return text + ("\n\n" + more if more else "")
+
+
 def markers(shape: str | None) -> tuple:
     """The page's markers around the table: the gallery's, or its re-run with a domain shape."""
     if shape is None:
@@ -386,7 +414,7 @@ def main(argv=None) -> int:
                 row["minimal"] = old["minimal"]  # a walk this run did not redo stays
             stored[row["case"]] = kept(row)
     shown = gallery_rows(gallery, stored)
-    text = table(shown) + "\n\n" + provenance(shown)
+    text = page_text(shown)
     print(text)
     if not args.no_docs:
         save_stored(stored, args.domain_shape)

@@ -99,6 +99,22 @@ def test_the_provenance_line_names_every_code_the_rows_were_measured_with():
                     "MODEL_VERSION 4.")
 
 
+def test_the_fibrils_and_runs_line_names_each_rows_layers_seeds_and_restarts():
+    a, b, c = _row(3, 3), _row(2, 2, periodic=19), _row(0, 3)
+    a["params"]["layers"], b["params"]["layers"] = 20, 19
+    c["params"].update(layers=40, score_layers=10)
+    a["case"], b["case"], c["case"] = "a.toml", "b.toml", "c.toml"
+    b["minimal"] = {"status": "walk not run"}
+    assert validate.fibrils_and_runs([a, b, c, {"case": "d.toml", "error": "skipped"}]) == (
+        "Fibrils: 20 layers: a; a periodic cell of 19 layers (the infinite fibril): b; 40 layers, "
+        "10 left out of the score at each end: c. Runs at the real linker: 3 seeds: a, c; 2 seeds: "
+        "b. The minimal-linker walk: 3 restarts a length: a, c.")
+    assert validate.fibrils_and_runs([_row(3, 3)]) == ""  # a row without its layers says nothing
+    assert validate.page_text([a]).endswith("\n\nFibrils: 20 layers: a. Runs at the real linker: "
+                                            "3 seeds: a. The minimal-linker walk: 3 restarts a "
+                                            "length: a.")
+
+
 def test_the_stored_results_make_the_pages_table():
     """Every gallery case has a stored row with its bound and the code it was measured with, and
     the table on docs/validation.md is the one those rows make (make validate --table-only)."""
@@ -110,7 +126,8 @@ def test_the_stored_results_make_the_pages_table():
                for r in stored.values())
     rows = validate.gallery_rows(sorted(gallery, key=lambda q: (q.stem != "tutorial", q.stem)),
                                  stored)
-    text = validation.table(rows) + "\n\n" + validation.provenance(rows)
+    text = validate.page_text(rows)
+    assert text.startswith(validation.table(rows) + "\n\n" + validation.provenance(rows))
     page = validate.PAGE.read_text(encoding="utf-8")
     assert text in page
     by_case = {r["case"]: r for r in rows}

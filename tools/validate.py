@@ -242,11 +242,12 @@ def fibrils_and_runs(rows: list[dict]) -> str:
     groups: dict = {"Fibrils": {}, "Runs at the real linker": {}, "The minimal-linker walk": {}}
     for r in (r for r in rows if "error" not in r and (r.get("params") or {}).get("layers")):
         p, case = r["params"], r["case"].removesuffix(".toml")
-        size = (f"a periodic cell of {p['periodic']} layers (the infinite fibril)" if p.get("periodic")
-                else f"{p['layers']} layers" + (f", {p['score_layers']} left out of the score at "
-                                                 "each end" if p.get("score_layers") else ""))
+        cut = p.get("score_layers") and f", {p['score_layers']} left out of the score at each end"
+        size = (f"a periodic cell of {p['periodic']} layers (the infinite fibril)"
+                if p.get("periodic") else f"{p['layers']} layers{cut or ''}")
         seeds, walk = (r.get("fit") or {}).get("n"), (r.get("minimal") or {}).get("restarts")
-        for name, key in (("Fibrils", size), ("Runs at the real linker", seeds and f"{seeds} seeds"),
+        for name, key in (("Fibrils", size),
+                          ("Runs at the real linker", seeds and f"{seeds} seeds"),
                           ("The minimal-linker walk", walk and f"{walk} restarts a length")):
             if key:
                 groups[name].setdefault(key, []).append(case)

@@ -9,8 +9,9 @@ holds at least one digit, unless the line above it (or above the blank line abov
 Its *provenance* is the text from the heading above it (at most 15 lines back) to 4 lines after
 it. The provenance must name:
 
-- a date (YYYY-MM-DD), a commit (7-40 hex digits, one that exists in this repository) and the model version (`MODEL_VERSION N`, or `before MODEL_VERSION 1` for numbers
-  made before results recorded it: docs/changelog.md#model-1);
+- a date (YYYY-MM-DD), a commit (7-40 hex digits, one that exists in this repository) and the
+  model version (`MODEL_VERSION N`, or `before MODEL_VERSION 1` for numbers made before results
+  recorded it: docs/changelog.md#model-1);
 - for a table of physics results (PHYSICS_WORDS in its header: P(fit), fits, accommodated,
   verdict, answer, clash, stretch, minimal linker), the bpy it ran on (`bpy 5.0.1`, ...), the
   fibril's size (LAYERS: "20 layers", "20–40 layers", a "16-layer" fibril, `--layers 4`,

@@ -82,6 +82,31 @@ def minimal_linker(case_path, p, out: pathlib.Path, workers: int, restarts: int,
     return {"row": row, "max": top, "restarts": restarts}
 
 
+def reuse_real_runs(case_path, real: pathlib.Path, walk: pathlib.Path) -> int:
+    """Copy into the walk's folder, before it first starts, the real linker's runs that the walk
+    would make again: a run is a pure function of its parameters (seed included), and the walk
+    resumes by the whole parameter set (sweep/grid.point_key), so it reuses exactly the runs
+    whose parameters are its own and bakes the rest. Only runs under the walk's protocol are
+    copied (minimal-linker's: inflate unless the case sets one; search/command.minimal_plan).
+    Measured 2026-11-26: the negative control's walks, and the near-threshold case's, baked
+    their real linker's restarts a second time, bit for bit the same runs, 12 % of make
+    validate's worker-seconds (docs/benchmarks.md#validate-v6). Returns how many were copied."""
+    source, target = real / "results.jsonl", walk / "results.jsonl"
+    if target.exists() or not source.exists():
+        return 0  # a walk already begun keeps its own runs
+    protocol = cases.load(case_path).params.get("protocol", "inflate")
+    lines = [line for line in source.read_text(encoding="utf-8").splitlines() if line.strip()]
+    keep = []
+    for line in lines:
+        r = json.loads(line)
+        if r.get("status") == "ok" and r.get("params", {}).get("protocol") == protocol:
+            keep.append(line)
+    if keep:
+        walk.mkdir(parents=True, exist_ok=True)
+        target.write_text("\n".join(keep) + "\n", encoding="utf-8")
+    return len(keep)
+
+
 BOUND_KEYS = ("impossible_below", "over", "fails_below", "exit_residues")
 
 
@@ -380,7 +405,10 @@ def main(argv=None) -> int:
         row = rows[i]
         if not args.walk or "error" in row or (args.until and time.time() > args.until):
             return  # the row keeps saying it was not computed
-        said(f"minimal linker of {path.name}")
+        reused = reuse_real_runs(path, args.out / path.stem / "real",
+                                 args.out / path.stem / "minimal-linker")
+        said(f"minimal linker of {path.name}"
+             + (f" ({reused} runs at its real linker reused)" if reused else ""))
         minimal = minimal_linker(path, P.make_params(force=True, **row["params"]),
                                  args.out / path.stem / "minimal-linker", args.workers,
                                  args.restarts, args.until,

@@ -185,3 +185,38 @@ def test_an_unknown_case_is_refused_before_anything_is_written(tmp_path, capsys)
     assert err.startswith("validate: cases: no case file 'no_such_case'") and "tutorial" in err
     assert "\n" not in err
     assert validate.STORED.read_bytes() == before and not (tmp_path / "v").exists()
+
+
+def _lines(tmp_path, *records):
+    real = tmp_path / "real"
+    real.mkdir()
+    text = "".join(json.dumps(r) + "\n" for r in records)
+    (real / "results.jsonl").write_text(text, encoding="utf-8")
+    return real, text.splitlines()
+
+
+def test_the_walk_reuses_only_the_real_linkers_runs_under_its_own_protocol(tmp_path):
+    inflate = [{"status": "ok", "params": {"protocol": "inflate", "linker": 7, "seed": s}}
+               for s in (0, 1)]
+    other = {"status": "ok", "params": {"protocol": "tutorial", "linker": 7, "seed": 2}}
+    failed = {"status": "failed", "params": {"protocol": "inflate", "linker": 7, "seed": 3}}
+    real, lines = _lines(tmp_path, *inflate, other, failed)
+    walk = tmp_path / "minimal-linker"
+    # the case sets protocol inflate: the two inflate runs that finished, line for line
+    case = ROOT / "examples" / "asyn_2n0a_gfp_linker7.toml"
+    assert validate.reuse_real_runs(case, real, walk) == 2
+    assert (walk / "results.jsonl").read_text(encoding="utf-8").splitlines() == lines[:2]
+    # a walk already begun keeps its own runs
+    (walk / "results.jsonl").write_text(lines[0] + "\n", encoding="utf-8")
+    assert validate.reuse_real_runs(case, real, walk) == 0
+    assert (walk / "results.jsonl").read_text(encoding="utf-8").splitlines() == lines[:1]
+
+
+def test_a_case_without_a_protocol_reuses_nothing_from_the_tutorial_protocol(tmp_path):
+    # minimal-linker walks under inflate unless the case sets a protocol; the tutorial case's
+    # real runs are the tutorial protocol's, so none of them is a run of its walk
+    real, _ = _lines(tmp_path, {"status": "ok", "params": {"protocol": "tutorial", "seed": 0}})
+    walk = tmp_path / "minimal-linker"
+    assert "protocol" not in cases.load(ROOT / "examples" / "tutorial.toml").params
+    assert validate.reuse_real_runs(ROOT / "examples" / "tutorial.toml", real, walk) == 0
+    assert not (walk / "results.jsonl").exists()

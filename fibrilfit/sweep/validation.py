@@ -26,8 +26,24 @@ def _minimal(row):
     if r.get("error"):
         return None, f"not found: {r['error']}"
     if r["minimal_linker"] is None:
+        if r.get("tried"):  # the lengths it ran: a walk screens some and skips others
+            return None, f"no layout found at {_lengths(r['tried'])}"
         return None, f"no layout found up to {m['max']} ({m['restarts']} restarts each)"
     return r["minimal_linker"], r
+
+
+def _lengths(tried: dict) -> str:
+    """The walk's lengths as run, with their restarts, runs of one count grouped:
+    "8, 9, 11 (2 restarts each), 13 (3 restarts)". A length it did not run is not named."""
+    groups: list = []
+    for length, v in sorted(tried.items(), key=lambda kv: int(kv[0])):
+        n = v.get("restarts")
+        if groups and groups[-1][1] == n:
+            groups[-1][0].append(str(length))
+        else:
+            groups.append(([str(length)], n))
+    return ", ".join(f"{', '.join(ls)} ({n} restart{'' if n == 1 else 's'}"
+                     f"{' each' if len(ls) > 1 else ''})" for ls, n in groups)
 
 
 def _minimal_text(row) -> tuple[str, str]:

@@ -220,3 +220,20 @@ def test_a_case_without_a_protocol_reuses_nothing_from_the_tutorial_protocol(tmp
     assert "protocol" not in cases.load(ROOT / "examples" / "tutorial.toml").params
     assert validate.reuse_real_runs(ROOT / "examples" / "tutorial.toml", real, walk) == 0
     assert not (walk / "results.jsonl").exists()
+
+
+def test_a_walk_that_found_nothing_names_the_lengths_it_ran():
+    # a walk screens lengths on its way (2 restarts) and skips some (10, 12): the row says
+    # which it ran, not "up to 13, 3 restarts each"
+    tried = {"13": {"restarts": 3}, "8": {"restarts": 2}, "9": {"restarts": 2},
+             "11": {"restarts": 2}}
+    found = {**NONE_FOUND, "row": {**NONE_FOUND["row"], "tried": tried}}
+    line = validation.table([_row(0, 3, expected="does not fit", bound=7, linker=13,
+                                  minimal=found)]).splitlines()[2]
+    c = cells(line)
+    assert c[5] == ("impossible below 7 / no layout found at 8, 9, 11 (2 restarts each), "
+                    "13 (3 restarts) / open from 7")
+    assert c[6] == "no layout found at 8, 9, 11 (2 restarts each), 13 (3 restarts)"
+    one = {**NONE_FOUND, "row": {**NONE_FOUND["row"], "tried": {"13": {"restarts": 1}}}}
+    assert "no layout found at 13 (1 restart) /" in validation.table(
+        [_row(0, 3, expected="does not fit", bound=13, linker=13, minimal=one)])

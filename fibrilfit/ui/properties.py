@@ -124,80 +124,96 @@ def _param_property(field):
     return FloatProperty(default=default, **units, **limits, **common)
 
 
+# The last check's result (RESULTS: what clear_result unsets and store_result writes).
+_RESULT_PROPERTIES = {
+    "verdict": StringProperty(
+        name="Verdict",
+        description='"successful" when no two globules intersect at the last frame, '
+                    '"intersection" otherwise; empty before a check'),
+    "clash_count": IntProperty(
+        name="Clashing pairs", min=0,
+        description="Number of globule pairs that intersect at the last frame"),
+    "max_bond_stretch": FloatProperty(
+        name="Worst bond stretch", precision=3,
+        description="Worst linker bond at the last frame: (distance - rest length) / rest length"),
+    "linker_intact": BoolProperty(
+        name="Linker intact", description="Every bond within the stretch tolerance"),
+    "accommodated": BoolProperty(
+        name="Accommodated",
+        description="No intersection and every linker intact: the domains fit on the fibril"),
+    "answer": StringProperty(
+        name="Answer",
+        description="What this one relaxation shows: fits, borderline (at the criterion) or no "
+                    "layout found (in this run; restarts or minimal-linker say more)"),
+    "bound": IntProperty(
+        name="Impossible below", min=0,
+        description="The proven lower bound: no clash-free layout with intact linkers exists "
+                    "with fewer linker residues (geometry alone; 0 = not computed)"),
+}
+RESULTS = tuple(_RESULT_PROPERTIES)
+_clash = set(RESULTS) & {f.name for f in P.fields()}
+assert not _clash, f"result properties shadow parameters: {_clash}"
+
+# What the next Report… offers: its restarts and longest linker. Kept in this one dict so that
+# making them from the report's own declaration changes only this spot.
+_REPORT_OPTIONS = {
+    "report_restarts": IntProperty(
+        name="Restarts", default=report.DEFAULT_RESTARTS, min=1, max=1000,
+        description="Seeds run at the linker and at each length the minimal-linker walk tries"),
+    "report_max_linker": IntProperty(
+        name="Longest linker", default=report.DEFAULT_MAX_LINKER, min=1,
+        max=P.field_spec("linker")["max"],
+        description="The minimal-linker walk gives up beyond this length (residues)"),
+}
+
+# Every property of scene.fibrilfit, in the panel's (and the .blend file's) order.
+_SETTINGS = {
+    **_RESULT_PROPERTIES,
+    **{f.name: _param_property(f) for f in P.fields()},
+    **{switch_name(f.name): BoolProperty(name=f"Set {label(f)[:1].lower()}{label(f)[1:]}",
+                                         description=f"Set by hand; off: {f.metadata['derived']}")
+       for f in derived_fields()},
+    "core_outline_file": StringProperty(
+        name="Outline file", description="The file the core outline was last loaded from"),
+    # The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
+    # Not a result: a bake or check leaves it alone.
+    "case_metadata": StringProperty(
+        name="Case", description="Metadata of the case file loaded last (JSON)",
+        options={"HIDDEN"}),
+    # The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
+    "use_periodic": BoolProperty(
+        name="Periodic cell",
+        description="Simulate the interior of an infinite fibril: a screw-periodic cell of M "
+                    "layers whose images stand in for the rest (Layers and Score layers are then "
+                    "unused)"),
+    # The last report (Report…): its folder and the numbers the panel shows (report_summary),
+    # kept across checks; the restarts and longest linker the next Report… offers.
+    "report_dir": StringProperty(
+        name="Report folder", subtype="DIR_PATH",
+        description="Where Report… wrote report.html last; the next Report… offers it"),
+    "report_summary": StringProperty(
+        name="Report", description="The last report's answer, P(fit), minimal linker and bound "
+                                   "(JSON)", options={"HIDDEN"}),
+    **_REPORT_OPTIONS,
+    # The last Minimal linker…'s map (ui/minimal_summary.py), or that it was cancelled.
+    "minimal_map": StringProperty(
+        name="Minimal linker", description="The last minimal-linker map the panel shows (JSON)",
+        options={"HIDDEN"}),
+    # Several domains per chain: the list (ui/domain_list.py) and its active entry.
+    "domains": CollectionProperty(
+        type=domain_list.FIBRILFIT_PG_domain, name="Domains",
+        description="The chain's domains from the core outward, each with the linker to the "
+                    "next"),
+    "domain_index": IntProperty(
+        name="Domain", description="The list's selected domain", min=0),
+}
+
+
 class FIBRILFIT_PG_settings(bpy.types.PropertyGroup):
     """The model's parameters (one per params.Params field) and the last check's result."""
 
-    verdict: StringProperty(
-        name="Verdict",
-        description='"successful" when no two globules intersect at the last frame, '
-                    '"intersection" otherwise; empty before a check')
-    clash_count: IntProperty(
-        name="Clashing pairs", min=0,
-        description="Number of globule pairs that intersect at the last frame")
-    max_bond_stretch: FloatProperty(
-        name="Worst bond stretch", precision=3,
-        description="Worst linker bond at the last frame: (distance - rest length) / rest length")
-    linker_intact: BoolProperty(
-        name="Linker intact", description="Every bond within the stretch tolerance")
-    accommodated: BoolProperty(
-        name="Accommodated",
-        description="No intersection and every linker intact: the domains fit on the fibril")
-    answer: StringProperty(
-        name="Answer",
-        description="What this one relaxation shows: fits, borderline (at the criterion) or no "
-                    "layout found (in this run; restarts or minimal-linker say more)")
-    bound: IntProperty(
-        name="Impossible below", min=0,
-        description="The proven lower bound: no clash-free layout with intact linkers exists "
-                    "with fewer linker residues (geometry alone; 0 = not computed)")
+    __annotations__ = _SETTINGS
 
-
-RESULTS = tuple(FIBRILFIT_PG_settings.__annotations__)
-_clash = set(RESULTS) & {f.name for f in P.fields()}
-assert not _clash, f"result properties shadow parameters: {_clash}"
-FIBRILFIT_PG_settings.__annotations__.update({f.name: _param_property(f) for f in P.fields()})
-FIBRILFIT_PG_settings.__annotations__.update({
-    switch_name(f.name): BoolProperty(name=f"Set {label(f)[:1].lower()}{label(f)[1:]}",
-                                      description=f"Set by hand; off: {f.metadata['derived']}")
-    for f in derived_fields()})
-FIBRILFIT_PG_settings.__annotations__["core_outline_file"] = StringProperty(
-    name="Outline file", description="The file the core outline was last loaded from")
-# The loaded case's metadata (name, citation, seeds, ...) as JSON, written back by Save case.
-# Not a result: a bake or check leaves it alone.
-FIBRILFIT_PG_settings.__annotations__["case_metadata"] = StringProperty(
-    name="Case", description="Metadata of the case file loaded last (JSON)", options={"HIDDEN"})
-# The periodic cell's checkbox: on, `periodic` is the cell's M (0 = auto); off, periodic is 0.
-FIBRILFIT_PG_settings.__annotations__["use_periodic"] = BoolProperty(
-    name="Periodic cell",
-    description="Simulate the interior of an infinite fibril: a screw-periodic cell of M layers "
-                "whose images stand in for the rest (Layers and Score layers are then unused)")
-
-# The last report (Report…): its folder and the numbers the panel shows (report_summary), kept
-# across checks; the restarts and longest linker the next Report… offers.
-FIBRILFIT_PG_settings.__annotations__["report_dir"] = StringProperty(
-    name="Report folder", subtype="DIR_PATH",
-    description="Where Report… wrote report.html last; the next Report… offers it")
-FIBRILFIT_PG_settings.__annotations__["report_summary"] = StringProperty(
-    name="Report", description="The last report's answer, P(fit), minimal linker and bound "
-                               "(JSON)", options={"HIDDEN"})
-FIBRILFIT_PG_settings.__annotations__["report_restarts"] = IntProperty(
-    name="Restarts", default=report.DEFAULT_RESTARTS, min=1, max=1000,
-    description="Seeds run at the linker and at each length the minimal-linker walk tries")
-FIBRILFIT_PG_settings.__annotations__["report_max_linker"] = IntProperty(
-    name="Longest linker", default=report.DEFAULT_MAX_LINKER, min=1,
-    max=P.field_spec("linker")["max"],
-    description="The minimal-linker walk gives up beyond this length (residues)")
-# The last Minimal linker…'s map (ui/minimal_summary.py), or that it was cancelled.
-FIBRILFIT_PG_settings.__annotations__["minimal_map"] = StringProperty(
-    name="Minimal linker", description="The last minimal-linker map the panel shows (JSON)",
-    options={"HIDDEN"})
-
-# Several domains per chain: the list (ui/domain_list.py) and its active entry.
-FIBRILFIT_PG_settings.__annotations__["domains"] = CollectionProperty(
-    type=domain_list.FIBRILFIT_PG_domain, name="Domains",
-    description="The chain's domains from the core outward, each with the linker to the next")
-FIBRILFIT_PG_settings.__annotations__["domain_index"] = IntProperty(
-    name="Domain", description="The list's selected domain", min=0)
 
 CLASSES = (FIBRILFIT_PG_settings,)
 

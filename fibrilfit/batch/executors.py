@@ -1,5 +1,5 @@
-"""Where the runs happen: local worker processes, a Dask cluster, or SLURM jobs (their options:
-options.py).
+"""Where the runs happen: local worker processes, a Dask cluster, or SLURM jobs (their plan:
+plans.py).
 
 Both offer submit(job), pending() and wait() -> (job, reply), where reply is the worker's
 {"ok": True, "result": ...} or {"ok": False, "error": ...}. Retrying is the runner's business.
@@ -323,27 +323,27 @@ class SlurmExecutor(DaskExecutor):
         return next(self.done)
 
 
-def executor_spec(args, *, out=None, runs: int = 0) -> dict:
-    """What the executor options ask for, as plain values (make_executor builds it): the kind,
-    the workers (SLURM: jobs sized for `runs`), the timeout, and the Dask scheduler or the
-    SLURMCluster's options (their job logs under `out`). The same options give the same spec
-    whichever command parsed them (batch/options.py declares them once)."""
-    spec = {"executor": args.executor, "timeout": args.timeout}
-    if args.executor == "slurm":
+def executor_spec(plan, *, out=None, runs: int = 0) -> dict:
+    """What an executor plan (batch/plans.py) asks for, as plain values (make_executor builds
+    it): the kind, the workers (SLURM: jobs sized for `runs`), the timeout, and the Dask scheduler or the
+    SLURMCluster's options (their job logs under `out`). The same plan gives the same spec
+    whichever command made it."""
+    spec = {"executor": plan.executor, "timeout": plan.timeout}
+    if plan.executor == "slurm":
         import pathlib
-        return {**spec, "workers": slurm.jobs(args, runs),
-                "cluster_options": slurm.cluster_options(args, pathlib.Path(out).resolve())}
-    spec["workers"] = args.workers or cpu_count()
-    if args.executor == "dask":
-        spec["scheduler"] = args.scheduler
+        return {**spec, "workers": slurm.jobs(plan, runs),
+                "cluster_options": slurm.cluster_options(plan, pathlib.Path(out).resolve())}
+    spec["workers"] = plan.workers or cpu_count()
+    if plan.executor == "dask":
+        spec["scheduler"] = plan.scheduler
     return spec
 
 
-def make_executor(args, *, out=None, runs: int = 0, log_path=None):
-    """The executor a batch command's options ask for: --executor slurm (jobs sized for `runs`,
+def make_executor(plan, *, out=None, runs: int = 0, log_path=None):
+    """The executor an executor plan asks for: --executor slurm (jobs sized for `runs`,
     their files under `out`), dask (--scheduler, or a local cluster), or worker processes on
     this machine (their stderr in `log_path`)."""
-    spec = executor_spec(args, out=out, runs=runs)
+    spec = executor_spec(plan, out=out, runs=runs)
     if spec["executor"] == "slurm":
         return SlurmExecutor(spec["workers"], spec["cluster_options"], timeout=spec["timeout"])
     if spec["executor"] == "dask":

@@ -19,13 +19,13 @@ def need(*modules: str) -> None:
             raise exits.UsageError(exits.missing_packages([name], "the sweep")) from None
 
 
-def out_dir(args) -> pathlib.Path:
+def out_dir(out, resume: bool) -> pathlib.Path:
     """--out, checked: a directory where RESULTS can be written, and not holding a finished
-    batch unless --resume continues it. Nothing is created here."""
-    results = files.check_writable("--out", pathlib.Path(args.out) / RESULTS, (".jsonl",))
+    batch unless `resume` continues it. Nothing is created here."""
+    results = files.check_writable("--out", pathlib.Path(out) / RESULTS, (".jsonl",))
     if results.parent.exists() and not results.parent.is_dir():
         raise files.OutputError("--out", f"must be a directory (got '{results.parent}')")
-    if results.exists() and not args.resume:
+    if results.exists() and not resume:
         raise exits.UsageError(f"--out: '{results.parent}' already holds {RESULTS}; pass --resume "
                                f"to continue that sweep, or choose another directory")
     return results.parent

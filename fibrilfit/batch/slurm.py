@@ -17,7 +17,7 @@ import subprocess
 import sys
 import threading
 
-from .. import exits
+from ..plans import PlanError
 
 JOB_LOGS = "slurm"  # under --out: one .out and one .err file per job
 MEMORY = "2GB"  # per job: a bpy worker (~0.45 GB at 20-40 layers) plus the Dask worker and nanny
@@ -45,63 +45,64 @@ def ctrl_c_kept():
             signal.signal(signal.SIGINT, previous)
 
 
-def given(args) -> list[str]:
-    """The SLURM options given (their dests), in OPTIONS order."""
-    return [name for name in OPTIONS if getattr(args, name) not in (None, [], False)]
+def given(plan) -> list[str]:
+    """The SLURM fields set in an executor plan (batch/plans.py), in OPTIONS order."""
+    return [name for name in OPTIONS if getattr(plan, name) not in (None, [], (), False)]
 
 
-def check(args) -> None:
-    """Usage errors in the SLURM options (before anything is written or submitted)."""
-    if args.executor != "slurm":
-        named = given(args)
+def check(plan) -> None:
+    """Usage errors in an executor plan's SLURM fields (before anything is written or
+    submitted)."""
+    if plan.executor != "slurm":
+        named = given(plan)
         if named:
-            raise exits.UsageError(f"--{named[0].replace('_', '-')}: only with --executor slurm")
+            raise PlanError(named[0], "only with --executor slurm")
         return
-    if args.walltime is not None and not _WALLTIME.fullmatch(args.walltime):
-        raise exits.UsageError(f"--walltime: must be a SLURM time such as 30, 04:00:00 or "
-                               f"1-12:00:00 (got '{args.walltime}')")
-    if args.memory is not None and not _MEMORY.fullmatch(args.memory.strip()):
-        raise exits.UsageError(f"--memory: must be a size such as 2GB or 1500MB "
-                               f"(got '{args.memory}')")
-    if args.python is not None and not os.access(args.python, os.X_OK):
-        raise exits.UsageError(f"--python: '{args.python}' is not an executable file here "
-                               f"(the jobs need it at the same path)")
-    for line in args.job_directive:
+    if plan.walltime is not None and not _WALLTIME.fullmatch(plan.walltime):
+        raise PlanError("walltime", f"must be a SLURM time such as 30, 04:00:00 or "
+                        f"1-12:00:00 (got '{plan.walltime}')")
+    if plan.memory is not None and not _MEMORY.fullmatch(plan.memory.strip()):
+        raise PlanError("memory", f"must be a size such as 2GB or 1500MB "
+                        f"(got '{plan.memory}')")
+    if plan.python is not None and not os.access(plan.python, os.X_OK):
+        raise PlanError("python", f"'{plan.python}' is not an executable file here "
+                        f"(the jobs need it at the same path)")
+    for line in plan.job_directive:
         if not line.startswith("-"):
-            raise exits.UsageError(f"--job-directive: must be an sbatch option such as "
-                                   f"--qos=short (got '{line}')")
+            raise PlanError("job_directive", f"must be an sbatch option such as "
+                            f"--qos=short (got '{line}')")
 
 
-def jobs(args, runs: int) -> int:
+def jobs(plan, runs: int) -> int:
     """How many SLURM jobs (= Dask workers) to keep: --workers, else one per run, at most 16."""
-    return args.workers or max(1, min(runs, MAX_JOBS))
+    return plan.workers or max(1, min(runs, MAX_JOBS))
 
 
-def cluster_options(args, out) -> dict:
+def cluster_options(plan, out) -> dict:
     """SLURMCluster's keyword arguments for these options (--out: where the job logs go)."""
     import dask
-    memory = args.memory or dask.config.get("jobqueue.slurm.memory", None) or MEMORY
+    memory = plan.memory or dask.config.get("jobqueue.slurm.memory", None) or MEMORY
     return dict(
         cores=1, processes=1, memory=memory.replace(" ", ""),
-        walltime=args.walltime, queue=args.partition, account=args.account,
-        job_name=args.job_name or JOB_NAME,
-        python=args.python or sys.executable,
-        job_extra_directives=list(args.job_directive),
-        job_script_prologue=list(args.job_prologue),
-        interface=args.interface,
+        walltime=plan.walltime, queue=plan.partition, account=plan.account,
+        job_name=plan.job_name or JOB_NAME,
+        python=plan.python or sys.executable,
+        job_extra_directives=list(plan.job_directive),
+        job_script_prologue=list(plan.job_prologue),
+        interface=plan.interface,
         log_directory=str(out / JOB_LOGS),
         scheduler_options={"dashboard": False, "dashboard_address": ":0"},  # no port clash
     )
 
 
-def job_script(args, out) -> str:
+def job_script(plan, out) -> str:
     """The batch script each job runs (what --show-job-script prints); submits nothing."""
     with ctrl_c_kept():
         from dask_jobqueue import SLURMCluster
     logs = out / JOB_LOGS
     made = [d for d in (logs, *logs.parents) if not d.exists()]  # dask-jobqueue makes the log dir
     try:
-        with SLURMCluster(**cluster_options(args, out)) as cluster:
+        with SLURMCluster(**cluster_options(plan, out)) as cluster:
             return cluster.job_script()
     finally:
         for d in made:  # deepest first: leave no empty folders behind

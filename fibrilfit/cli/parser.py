@@ -1,8 +1,9 @@
 """The one parser of the command line (headless.py and `blender -c fibrilfit`): every command and
-its options, from the parameter definition (model/params.py) and the rooms that own the other
-options (structure files: structure_files.py; executors: batch/options.py; pictures:
-exports/options.py; sweeps: sweep/options.py; restarts and the walk: search/). Bad input is one
-line (UsageError), never argparse's usage block."""
+its options, generated from the declarations: the model's from the parameter definition
+(model/params.py), every other from the command's plan (api/plans.py, whose nested plans are
+declared in the rooms that own them: plans.py says how). No option has an argparse default:
+what was not given is not in the namespace, and the plan's declaration supplies it. Bad input
+is one line (UsageError), never argparse's usage block."""
 from __future__ import annotations
 
 import argparse
@@ -11,11 +12,13 @@ import difflib
 import math
 import re
 
+from .. import plans
+from ..api.plans import COMMAND_PLANS, nested_fields
+from ..batch.plans import GROUPS as EXECUTOR_GROUPS
 from ..exits import UsageError
-from ..exports import options as export_options
 from ..model import params as P
 from ..model.version import fibrilfit_version
-from .structure_files import add_structure_options
+from ..search.plans import MINIMAL_FIELDS, REPORT_FIELDS
 
 
 class _Parser(argparse.ArgumentParser):
@@ -68,7 +71,8 @@ def option(name: str) -> str:
 
 def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False) -> None:
     """One option per parameter, from the parameter definition. Values stay strings here:
-    params.make_params (or the sweep's grid) validates them, so every message names the range."""
+    params.make_params (or the sweep's grid) validates them, so every message names the range.
+    Only what is given lands in the namespace (argparse.SUPPRESS)."""
     group = parser.add_argument_group(
         "model parameters (units: Å, frames; angles in rad, or with a unit: 1.95deg, 1.95°, "
         "0.034rad)")
@@ -80,7 +84,7 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
         help_ = f"{meta['doc']} [{unit + ', ' if unit else ''}{_default_text(f)}]"
         if meta["kind"] is bool:
             group.add_argument(option(f.name), action=argparse.BooleanOptionalAction,
-                               default=None, help=help_)
+                               help=help_)
         elif f.name == "slab":
             group.add_argument(option(f.name), nargs=3, metavar=("X", "Y", "Z"), help=help_)
         elif "choices" in meta and not as_lists:
@@ -93,9 +97,6 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                                              + ("; several: comma-separated" if as_lists else "")))
         else:
             group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
-    parser.add_argument("--force", action="store_true",
-                        help=f"build models beyond {P.MAX_OBJECTS_UNFORCED} objects, or with a "
-                             f"twist beyond ±{P.MAX_TWIST} rad per layer")
 
 
 def add_case_option(parser: argparse.ArgumentParser) -> None:
@@ -104,12 +105,55 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
                              "beside it win")
 
 
-def add_model_command(sub, name: str, help_: str, *, as_lists: bool = False):
-    """A subcommand that builds models: every parameter, --case and the structure files."""
+# What each command offers of its plan's nested plans (all of a plan's options unless named)
+OFFERED = {("minimal-linker", "search"): MINIMAL_FIELDS,
+           ("report", "search"): REPORT_FIELDS,
+           ("report", "output"): ("out", "resume", "quiet")}
+TYPES = {int: int, float: float}
+
+
+def add_plan_options(parser: argparse.ArgumentParser, plan, only=None,
+                     groups: dict | None = None) -> None:
+    """One option per field of `plan` (a plan instance: its values are the defaults shown),
+    from its declaration (plans.option), each in its argument group; `only`: these fields."""
+    made = {}
+    for f in plans.option_fields(type(plan)):
+        meta = f.metadata
+        if not meta["cli"] or (only is not None and f.name not in only):
+            continue
+        title = meta["group"] or "options"
+        if title not in made:
+            made[title] = parser.add_argument_group(title, (groups or {}).get(title))
+        help_ = plans.help_text(plan, f.name).replace("%", "%%")
+        kwargs = {"help": help_, "default": argparse.SUPPRESS}
+        if meta["kind"] is bool:
+            kwargs["action"] = "store_true"
+        else:
+            kwargs["metavar"] = meta["metavar"]
+            if meta["choices"] is not None:
+                kwargs["choices"] = meta["choices"]
+                kwargs.pop("metavar")
+            if meta["kind"] in TYPES:
+                kwargs["type"] = TYPES[meta["kind"]]
+            if meta["repeat"]:
+                kwargs["action"] = "append"
+        made[title].add_argument(plans.flag(f.name), **kwargs)
+
+
+def add_command(sub, name: str, help_: str):
+    """The subcommand `name`, every option from its plan (api/plans.py): the model's
+    parameters (a sweep's as lists), --case, the structure files and each nested plan's."""
+    cls = COMMAND_PLANS[name]
     command = sub.add_parser(name, help=help_)
-    add_param_options(command, as_lists=as_lists)
-    add_case_option(command)
-    add_structure_options(command)
+    if name != "inspect":
+        add_param_options(command, as_lists=name == "sweep")
+        add_case_option(command)
+    default = cls()
+    for nest in nested_fields(cls):
+        inner = getattr(default, nest.name)
+        add_plan_options(command, inner, only=OFFERED.get((name, nest.name)),
+                         groups=EXECUTOR_GROUPS)
+    add_plan_options(command, default)
     return command
 
 
@@ -129,60 +173,29 @@ def _default_text(f) -> str:
     return f"default {default}"
 
 
+HELP = {
+    "run": "build, bake and check one model",
+    "inspect": "measure a fibril and/or a domain structure file (PDB/mmCIF, .gz too) without "
+               "building anything",
+    "sweep": "run a grid of models (lists, ranges, seeds) on local processes or a Dask cluster "
+             "and summarise it",
+    "minimal-linker": "for each globule diameter, the shortest linker with an accommodated "
+                      "layout, searched with restarts (protocol inflate unless --protocol says "
+                      "otherwise)",
+    "report": "the whole answer in one page: P(fit) at the linker with restarts, the minimal "
+              "linker, the best layout rendered, the envelope (DIR/report.html, "
+              "DIR/report.json)"}
+
+
 def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
     parser = _Parser(prog=prog, description="FibrilFit: fit tethered globular domains "
-                                                     "on an amyloid fibril, headless.")
+                                            "on an amyloid fibril, headless.")
     parser.add_argument("--version", action="version",
                         version=f"FibrilFit {fibrilfit_version()}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    run = sub.add_parser("run", help="build, bake and check one model")
-    add_param_options(run)
-    add_case_option(run)
-    run.add_argument("--save-case", metavar="FILE.toml",
-                     help="write this run's case (every parameter, and the --case metadata)")
-    run.add_argument("--envelope-plot", metavar="PATH.png",
-                     help="draw the radial density of the domain centres (needs matplotlib)")
-    add_structure_options(run)
-    run.add_argument("--json", metavar="PATH", help="write the result as JSON ('-': to standard "
-                                                    "output, everything else then to standard "
-                                                    "error)")
-    run.add_argument("--blend", metavar="PATH", help="save the baked model (cache included)")
-    export_options.add_arguments(run)
-    run.add_argument("--stop-after", choices=("build", "bake", "check"), default="check")
-    run.add_argument("--fail-on-intersection", action="store_true",
-                     help="exit 1 when the verdict is intersection")
-    run.add_argument("--quiet", action="store_true", help="print only the verdict line")
-    run.add_argument("--progress", action="store_true",
-                     help="print the bake's frame to stderr at its start and every 25 frames")
-    inspect = sub.add_parser("inspect", help="measure a fibril and/or a domain structure file "
-                                             "(PDB/mmCIF, .gz too) without building anything")
-    add_structure_options(inspect)
-    inspect.add_argument("--json", metavar="PATH", help="write the measurements as JSON ('-': to "
-                                                        "standard output, the text then to "
-                                                        "standard error)")
-    from ..search import command as search_command  # argparse only: nothing runs at import
-    search_command.add_restart_options(run)
-    sweep = add_model_command(sub, "sweep", "run a grid of models (lists, ranges, seeds) on "
-                              "local processes or a Dask cluster and summarise it", as_lists=True)
-    from ..sweep import options as sweep_options  # argparse only: no tqdm/matplotlib/distributed
-    sweep_options.add_arguments(sweep)
-    minimal = add_model_command(
-        sub, "minimal-linker", "for each globule diameter, the shortest linker with an "
-                               "accommodated layout, searched with restarts (protocol inflate "
-                               "unless --protocol says otherwise)")
-    for action in minimal._actions:
+    commands = {name: add_command(sub, name, help_) for name, help_ in HELP.items()}
+    for action in commands["minimal-linker"]._actions:
         if action.dest == "globule_diameter":
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
-    search_command.add_minimal_arguments(minimal)
-    report = add_model_command(
-        sub, "report", "the whole answer in one page: P(fit) at the linker with restarts, the "
-                       "minimal linker, the best layout rendered, the envelope "
-                       "(DIR/report.html, DIR/report.json)")
-    export_options.add_render_options(report.add_argument_group("the report's picture"))
-    from ..search import report as search_report  # argparse only: nothing runs at import
-    search_report.add_arguments(report)
-    from ..batch import options as batch_options  # argparse only: no Dask, no bpy
-    for many in (run, sweep, minimal, report):  # every command that runs many models
-        batch_options.add_executor_options(many)
     return parser

@@ -24,7 +24,7 @@ from ..analysis import clash_kinds
 from ..builders import find_model
 from ..builders.colours import colour_globules
 from . import dressing, legend, render
-from .options import MOVIE_FORMATS, OptionError
+from .plans import MOVIE_FORMATS, OptionError
 
 FPS = 24
 GIF_FRAME_MS = 40          # GIF counts in hundredths of a second: 25 frames/s, not 24

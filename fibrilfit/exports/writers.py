@@ -16,7 +16,7 @@ from ..builders import find_model, keep_bake
 from ..model import cases
 from .. import files
 from . import dressing, envelope_plot, mmcif, movie, pdb, render
-from .options import MOVIE_FORMATS
+from .plans import MOVIE_FORMATS
 
 
 def prepare(scene: bpy.types.Scene, result: dict, *, aspect: float = 16 / 9) -> None:
@@ -110,7 +110,7 @@ class Job:
     scene: bpy.types.Scene
     result: dict
     paths: dict
-    look: dict = field(default_factory=dict)  # exports.options.render_options
+    look: dict = field(default_factory=dict)  # exports.plans.RenderLook.look
     pdb_frames: str = "last"
     pdb_images: int = 0
     movie_step: int = 1

@@ -16,7 +16,7 @@ import threading
 
 from ..batch import outdir
 from ..batch.executors import Stopped
-from . import command, report
+from . import linker_map, report
 from .table import table
 
 
@@ -106,40 +106,44 @@ class Background:
 
 
 class BackgroundWalk(Background):
-    """`command.minimal_plan` and the walk for `values` (as minimal-linker takes them); its
-    result is the map: rows, table, seeds, protocol, restarts."""
+    """`linker_map.walks_for` and the walk for `values` (as minimal-linker takes them) under
+    `plan` (api/plans.py's MinimalLinkerPlan); its result is the map: rows, table, seeds,
+    protocol, restarts."""
 
     name, first_stage = "fibrilfit-minimal-linker", "bound"
 
-    def __init__(self, args, values: dict, executor):
+    def __init__(self, plan, values: dict, executor):
         super().__init__(executor)
-        self.args, self.values = args, dict(values)
+        self.plan, self.values = plan, dict(values)
 
     def _work(self) -> dict:
-        values, seeds, walks = command.minimal_plan(self.args, self.values)
+        values, seeds, walks = linker_map.walks_for(self.values, self.plan)
         self.stage("runs")
         with tempfile.TemporaryDirectory(prefix="fibrilfit-minimal-") as out, \
                 self.executor as executor:
             counted = self.counted(executor)
-            command._walk(self.args, values, seeds, walks, pathlib.Path(out), lambda: counted)
-        rows = command.minimal_rows(self.args, values, seeds, walks)
-        return {"rows": rows, "protocol": values["protocol"], "restarts": self.args.restarts,
-                "seeds": [seeds[0], seeds[-1]], "max_linker": self.args.max_linker,
-                "table": table(rows, values["protocol"], self.args.restarts, seeds)}
+            linker_map.step_walks(values, seeds, walks, pathlib.Path(out), self.plan,
+                                  lambda: counted)
+        rows = linker_map.minimal_rows(values, seeds, walks, force=self.plan.force)
+        search = self.plan.search
+        return {"rows": rows, "protocol": values["protocol"], "restarts": search.restarts,
+                "seeds": [seeds[0], seeds[-1]], "max_linker": search.max_linker,
+                "table": table(rows, values["protocol"], search.restarts, seeds)}
 
 
 class BackgroundReport(Background):
     """The report's restarts and minimal-linker walk (report.search) for the model `p` and
-    `values`, into `work`: a new folder beside `args.out` (the report's folder, which may hold
+    `values` under `plan` (api/plans.py's ReportPlan), into `work`: a new folder beside
+    plan.output.out (the report's folder, which may hold
     an earlier report: its runs are reused, as --resume does). The caller then writes the rest
     on its own thread (report.write into `work`) and calls keep(), which moves it all into
-    args.out; or discard(), which removes `work`. Its result is report.search's."""
+    the report's folder; or discard(), which removes `work`. Its result is report.search's."""
 
     name, first_stage = "fibrilfit-report", report.STAGES[0]
 
-    def __init__(self, args, p, values: dict, executor, work: pathlib.Path):
+    def __init__(self, plan, p, values: dict, executor, work: pathlib.Path):
         super().__init__(executor)
-        self.args, self.p, self.values, self.work = args, p, dict(values), pathlib.Path(work)
+        self.plan, self.p, self.values, self.work = plan, p, dict(values), pathlib.Path(work)
 
     @staticmethod
     def folder_beside(final: pathlib.Path) -> pathlib.Path:
@@ -153,7 +157,7 @@ class BackgroundReport(Background):
         return work
 
     def _work(self) -> dict:
-        return report.search(self.args, self.p, self.values, self.work, self.stage,
+        return report.search(self.plan, self.p, self.values, self.work, self.stage,
                              executor=self.executor, counted=self.counted)
 
     def keep(self, final: pathlib.Path) -> None:

@@ -10,7 +10,6 @@ in docs/guide/report.md#method.
 """
 from __future__ import annotations
 
-import argparse
 import contextlib
 import importlib.util
 import platform
@@ -18,103 +17,56 @@ import sys
 import time
 
 from .. import exits, files
-from ..batch import options as batch_options, outdir
+from ..batch import outdir
 from ..batch.executors import SweepError, make_executor
 from ..model import params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
-from . import command, minimal, restarts
+from . import linker_map, minimal, restarts
+from .plans import SearchPlan, seed_range
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
                                       "envelope.png", "best_layout.json")
-DEFAULT_RESTARTS, DEFAULT_MAX_LINKER = 8, 30
 STAGES = ("restarts", "minimal linker", "best layout", "pictures", "page")
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """The report's own options (the model, case and structure options are `run`'s; the
-    executor's are batch/options.py's)."""
-    g = parser.add_argument_group("report")
-    g.add_argument("--restarts", type=int, default=DEFAULT_RESTARTS, metavar="R",
-                   help=f"seeds run at the linker and at every length the minimal-linker walk "
-                        f"tries (SEED..SEED+R-1) [default {DEFAULT_RESTARTS}]")
-    g.add_argument("--interval-width", type=float, metavar="W",
-                   help="start no more restarts at the linker once P(fit)'s 95 %% Wilson "
-                        "interval there is at most W wide (0 < W < 1) [default: all R]")
-    command.add_all_restarts_option(g)
-    g.add_argument("--max-linker", type=int, default=DEFAULT_MAX_LINKER, metavar="N",
-                   help=f"the walk gives up when no length up to N fits "
-                        f"[default {DEFAULT_MAX_LINKER}]")
-    g.add_argument("--out", metavar="DIR", default="out/report",
-                   help=f"{HTML}, {JSON}, the pictures and every run ({outdir.RESULTS}) go here "
-                        f"[default out/report]")
-    g.add_argument("--resume", action="store_true",
-                   help=f"reuse the runs already in DIR/{outdir.RESULTS}")
-    g.add_argument("--quiet", action="store_true", help="no progress bar")
-
-
-def options(**given) -> argparse.Namespace:
-    """The report's options with their command-line defaults, for callers without a command
-    line (the sidebar's Report… button)."""
-    out = {"restarts": DEFAULT_RESTARTS, "max_linker": DEFAULT_MAX_LINKER, "out": "out/report",
-           "interval_width": None, "all_restarts": False, "resume": False, "quiet": False, **batch_options.defaults(), "force": False,
-           "command_line": [], "command": "report"}
-    unknown = set(given) - set(out)
-    if unknown:
-        raise TypeError(f"unknown report options: {sorted(unknown)}")
-    return argparse.Namespace(**{**out, **given})
-
-
-def check_options(args) -> None:
-    """The report's own options, refused in one line before anything runs."""
-    batch_options.check(args)
-    if args.restarts < 1:
-        raise exits.UsageError(f"--restarts: must be at least 1 (got {args.restarts})")
-    command.check_interval_width(args.interval_width)
-    lmax = P.field_spec("linker")["max"]
-    if not 1 <= args.max_linker <= lmax:
-        raise exits.UsageError(f"--max-linker: must be from 1 to {lmax} (got {args.max_linker})")
-    wanted = ("tqdm", "matplotlib", *batch_options.packages(args))
+def need_packages(executor_plan) -> None:
+    """tqdm, matplotlib and the executor's packages, or one line, before anything runs."""
+    wanted = ("tqdm", "matplotlib", *executor_plan.packages())
     missing = [name for name in wanted if importlib.util.find_spec(name) is None]
     if missing:
         raise exits.UsageError(exits.missing_packages(missing, "the report"))
 
 
-def seeds_of(p: P.Params, r: int) -> range:
-    seeds = range(p.seed, p.seed + r)
-    if seeds[-1] > P.field_spec("seed")["max"]:
-        raise P.ParamError("seed", f"seed + restarts - 1 must be at most "
-                                   f"{P.field_spec('seed')['max']} (got {seeds[-1]})")
-    return seeds
+def make_report(plan, p: P.Params, values: dict, *, structure_block: dict | None,
+                case: dict | None, sources: dict, run_here, reproduce=()) -> dict:
+    """Run everything and write the report into plan.output.out (checked, not yet created).
 
-
-def make_report(args, p: P.Params, values: dict, *, structure_block: dict | None,
-                case: dict | None, look: dict, sources: dict, run_here) -> dict:
-    """Run everything and write the report into args.out (checked, not yet created).
-
-    `values`: the model values as given and measured (strings allowed; no linker needed);
-    `run_here(p)`: builds, bakes and checks `p` in this process's scene (the command line's
-    fresh scene, or the sidebar's) and returns the result. Returns report.json's document.
+    `plan`: the report's plan (api/plans.py's ReportPlan: .search, .output, .look, .executor,
+    .force); `values`: the model values as given and measured (strings allowed; no linker
+    needed); `run_here(p)`: builds, bakes and checks `p` in this process's scene (the command
+    line's fresh scene, or the sidebar's) and returns the result; `reproduce`: the command that
+    makes this report again (report.json's "command"). Returns report.json's document.
     """
-    seeds_of(p, args.restarts)  # refused before the folder is made
-    out = outdir.out_dir(args)
+    seed_range(p.seed, plan.search.restarts)  # refused before the folder is made
+    out = outdir.out_dir(plan.output.out, plan.output.resume)
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
-    with _stages(not args.quiet) as stage:
-        searched = search(args, p, values, out, stage)
-        return write(args, p, searched, out, stage, structure_block=structure_block, case=case,
-                     look=look, sources=sources, run_here=run_here)
+    with _stages(not plan.output.quiet) as stage:
+        searched = search(plan, p, values, out, stage)
+        return write(plan, p, searched, out, stage, structure_block=structure_block, case=case,
+                     sources=sources, run_here=run_here, reproduce=reproduce)
 
 
-def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
+def search(plan, p: P.Params, values: dict, out, stage, *, executor=None,
            counted=None) -> dict:
     """The first two STAGES into `out` (made, results.jsonl in it): the restarts at the linker
     and the minimal-linker walk, every run on the executor's workers, none in this process (so a
     thread may run it: search/background.py). `stage(name)` is told each stage; `executor`: an
-    unentered executor (default: the options', made when first needed); `counted(executor)`:
+    unentered executor (default: the plan's, made when first needed); `counted(executor)`:
     what the entered executor is used through (background.py counts its runs). Returns what
     write() needs: seeds, tally, the walk's row and the timings."""
-    seeds = seeds_of(p, args.restarts)
+    seeds = seed_range(p.seed, plan.search.restarts)
     runner.repair_tail(out / outdir.RESULTS)
     t0 = time.perf_counter()
     timings = {}
@@ -127,7 +79,8 @@ def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
             if not started:
                 try:
                     made = executor if executor is not None else make_executor(
-                        args, out=out, runs=len(seeds), log_path=out / command.LOG)
+                        plan.executor, out=out, runs=len(seeds),
+                        log_path=out / linker_map.LOG)
                     made = workers.enter_context(made)
                 except SweepError as exc:
                     raise exits.UsageError(str(exc)) from None
@@ -135,10 +88,10 @@ def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
             return started[0]
         stage("restarts")
         t = time.perf_counter()
-        records = _restarts(args, p, seeds, out, entered)
+        records = _restarts(plan, p, seeds, out, entered)
         tally = restarts.tally(records)
         tally["asked"] = len(seeds)
-        tally["decided"] = (restarts.decided(records, width=args.interval_width)
+        tally["decided"] = (restarts.decided(records, width=plan.search.interval_width)
                             if len(records) < len(seeds) else None)
         timings["restarts"] = round(time.perf_counter() - t, 1)
 
@@ -151,9 +104,9 @@ def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
         # from minimal-linker's own guess: a miss runs to the frame cap and costs ~10x a fit
         # (6CU7 + ubiquitin: 130-150 s against 9-20 s per run), so walking down from a long
         # asked linker costs more than it saves; the asked length's runs are reused if reached
-        walk = command.new_walk(args, p, len(seeds), records=records)
+        walk = linker_map.new_walk(plan.search, p, len(seeds), records=records)
         try:
-            command._walk(args, walk_values, seeds, [walk], out, entered)
+            linker_map.step_walks(walk_values, seeds, [walk], out, plan, entered)
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
         timings["minimal_linker"] = round(time.perf_counter() - t, 1)
@@ -161,8 +114,8 @@ def search(args, p: P.Params, values: dict, out, stage, *, executor=None,
     return {"tally": tally, "row": walk.row(), "timings": timings, "t0": t0}
 
 
-def write(args, p: P.Params, searched: dict, out, stage, *, structure_block: dict | None,
-          case: dict | None, look: dict, sources: dict, run_here) -> dict:
+def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dict | None,
+          case: dict | None, sources: dict, run_here, reproduce=()) -> dict:
     """The last three STAGES, in this process (bpy: its main thread): the best layout run again
     by `run_here`, its pictures, report.json and report.html into `out`. Returns the document."""
     from ..exports import report_page
@@ -179,14 +132,14 @@ def write(args, p: P.Params, searched: dict, out, stage, *, structure_block: dic
 
     stage("pictures")
     t = time.perf_counter()
-    pictures, problems = _pictures(best, out, look)
+    pictures, problems = _pictures(best, out, plan.look.look())
     files.write_json(out / BEST, best)
     timings["pictures"] = round(time.perf_counter() - t, 1)
 
     stage("page")
-    doc = document(args, p, best, tally, searched["row"], sources=sources,
+    doc = document(plan.search, p, best, tally, searched["row"], sources=sources,
                    structure_block=structure_block, case=case, pictures=pictures,
-                   problems=problems, version=fibrilfit_version())
+                   problems=problems, version=fibrilfit_version(), reproduce=reproduce)
     timings["total"] = round(time.perf_counter() - searched["t0"], 1)
     doc["timings_s"] = timings
     files.write_json(out / JSON, doc)
@@ -194,19 +147,19 @@ def write(args, p: P.Params, searched: dict, out, stage, *, structure_block: dic
     return doc
 
 
-def _restarts(args, p: P.Params, seeds: range, out, executor) -> list[dict]:
+def _restarts(plan, p: P.Params, seeds: range, out, executor) -> list[dict]:
     """The restarts at the asked linker; with --resume, a seed already in RESULTS is not run
     again (as the walk's runs)."""
     results = out / outdir.RESULTS
     done = {r["params"]["seed"] for r in restarts.read(results, p.to_dict())
-            if r.get("status") == "ok"} if args.resume and results.exists() else set()
+            if r.get("status") == "ok"} if plan.output.resume and results.exists() else set()
     todo = [s for s in seeds if s not in done]
     try:
         if todo:
             restarts.run_restarts(executor(), p.to_dict(), todo,
-                                  results, width=args.interval_width,
-                                  window=batch_options.width(args, len(seeds)),
-                                  force=args.force, progress=not args.quiet,
+                                  results, width=plan.search.interval_width,
+                                  window=plan.executor.width(len(seeds)),
+                                  force=plan.force, progress=not plan.output.quiet,
                                   version=fibrilfit_version())
         return [r for r in restarts.read(results, p.to_dict()) if r["params"]["seed"] in seeds]
     except SweepError as exc:
@@ -288,8 +241,9 @@ def versions(version: str) -> dict:
     return out
 
 
-def document(args, p: P.Params, best: dict, tally: dict, row: dict, *, sources: dict,
-             structure_block, case, pictures: dict, problems: list[str], version: str) -> dict:
+def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict, *,
+             sources: dict, structure_block, case, pictures: dict, problems: list[str],
+             version: str, reproduce=()) -> dict:
     """report.json: the question, the model and its sources, the answer and what it rests on."""
     low, high = tally["p_fit_interval"]
     tol = p.stretch_tolerance
@@ -299,25 +253,25 @@ def document(args, p: P.Params, best: dict, tally: dict, row: dict, *, sources: 
         "question": (f"Can domains of {p.globule_diameter:g} Å, tethered by {p.linker}-residue "
                      f"linkers to every {'chain' if p.protofilaments > 1 else 'layer'} of this "
                      f"fibril, all fit without clashing, and how long must the linker be?"),
-        "command": list(getattr(args, "command_line", None) or []),
+        "command": list(reproduce),
         "answer": answer_of(best),
         "model": p.to_dict(),
         "sources": {**sources, **(best.get("sources") or {})},
         "warnings": warnings_of(best, structure_block, tally, row, problems),
         "p_fit": {"fits": tally["accommodated"], "runs": tally["restarts"],
                   "low": low, "high": high, "p": tally["p_fit"], "linker": p.linker,
-                  "protocol": p.protocol, "seeds": [p.seed, p.seed + args.restarts - 1],
+                  "protocol": p.protocol, "seeds": [p.seed, p.seed + search.restarts - 1],
                   "failed": tally["failed"], "best_seed": tally["best_seed"],
                   "asked": tally["asked"], "decided": tally["decided"],
                   "per_seed": tally["runs"]},
         "minimal_linker": {
             "linker": m, "p_fit": row["p_fit"], "interval": row["p_fit_interval"],
             "linker_below": row["linker_below"], "p_fit_below": row["p_fit_below"],
-            "interval_below": row["p_fit_below_interval"], "restarts": args.restarts,
+            "interval_below": row["p_fit_below_interval"], "restarts": search.restarts,
             "runs": row["restarts"], "runs_below": row["restarts_below"],
             "stopped_at_fit": row["stopped_at_fit"], "floor": row["floor"],
             "below_settled_by_bound": row["below_settled_by_bound"],
-            "max_linker": args.max_linker, "tried": row["tried"], "error": row["error"],
+            "max_linker": search.max_linker, "tried": row["tried"], "error": row["error"],
             "method": minimal.__doc__.split("\n\n")[1].replace("\n", " ")},
         # the bracket: impossible below the bound (a proof), fits at the minimal linker (a
         # layout), open between (docs/model/bound.md#bracket)

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from types import SimpleNamespace
 
 from ..exits import UsageError
 from ..model import params as P
+from .request import StructureRequest
 from .mapping import EXIT_PARAMS, RESIDUE_RADIUS, linker_source, model_values
 
 
@@ -125,7 +125,7 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
 def merged(fib, doms: list, seg, explicit: dict) -> tuple[dict, dict]:
     """The model values measured from a fibril (or None), its domains in chain order and a
     full-length model's segmentation (or None), with the `explicit` values over them; and the
-    result's `structure` block. (cli/structure_files.py reads the files the options name.)"""
+    result's `structure` block. (measure_files reads the files a StructureRequest names.)"""
     dom = doms[0] if doms else None
     radius = explicit.get("residue_radius", P.DEFAULTS.residue_radius)
     spacing = explicit.get("residue_spacing", P.DEFAULTS.residue_spacing)
@@ -176,45 +176,20 @@ def exit_block(p, block: dict | None) -> dict | None:
             "free_linker": p.free_linker, "source": source}
 
 
-# ---- the files named: the command line's options, or a case's [structure] ------------------
-# `opts` has the options' names as attributes (fibril, domain, full_length, terminus,
-# anchor_residue, domain_chain, domain_residues): the command line's argparse namespace, or
-# case_options() of a case's [structure].
+# ---- the files named: a StructureRequest (request.py), from the command line, a case's
+# [structure] or the Python API
 
-TERMINUS = "C"  # the core terminus that carries the linker unless --terminus says otherwise
-
-
-def case_options(structure: dict) -> SimpleNamespace:
-    """A case's [structure] (cases.Case.structure, files absolute) as the options it stands for,
-    each option it leaves out at the command line's default."""
-    return SimpleNamespace(**{"fibril": None, "domain": None, "full_length": None,
-                              "terminus": TERMINUS, "anchor_residue": None,
-                              "domain_chain": None, "domain_residues": None, **structure})
+def domain_files(request: StructureRequest) -> list:
+    return [str(v) for v in request.domain]
 
 
-def _listed(value) -> list:
-    """An option that argparse appends to, or a case file gives as one value or a list."""
-    if value is None:
-        return []
-    return [value] if isinstance(value, (str, int)) else list(value)
-
-
-def domain_files(opts) -> list:
-    return [str(v) for v in _listed(getattr(opts, "domain", None))]
-
-
-def has_structure(opts) -> bool:
-    return bool(getattr(opts, "fibril", None) or domain_files(opts)
-                or getattr(opts, "full_length", None))
-
-
-def domain_specs(opts, fib=None) -> tuple[list, object]:
+def domain_specs(request: StructureRequest, fib=None) -> tuple[list, object]:
     """[(file, chain, residues)] of the domains in chain order from the core outward, and the
     full-length model's Segmentation (or None). --full-length gives the folded domains on the
     linker's side of the core."""
-    files = domain_files(opts)
-    chains, ranges = _listed(opts.domain_chain), _listed(opts.domain_residues)
-    full = getattr(opts, "full_length", None)
+    files = domain_files(request)
+    chains, ranges = list(request.domain_chain), list(request.domain_residues)
+    full = request.full_length
     if full:
         if files:
             raise UsageError("--full-length: gives the domains itself; leave out --domain")
@@ -237,7 +212,7 @@ def domain_specs(opts, fib=None) -> tuple[list, object]:
 
 @dataclasses.dataclass
 class Measured:
-    """The files `opts` name, measured: the fibril (FibrilGeometry or None) and its file, the
+    """The files a request names, measured: the fibril (FibrilGeometry or None) and its file, the
     domains' specs [(file, chain, residues)] and their DomainSizes in chain order, the
     full-length model's Segmentation (or None)."""
 
@@ -252,33 +227,34 @@ class Measured:
         return "--full-length" if self.segmentation is not None else "--domain"
 
 
-def measure_files(opts, *, inspect: bool = False, every_exit: bool = False) -> Measured:
-    """Measure the files `opts` name, as the command line does. `inspect`: a full-length model
+def measure_files(request: StructureRequest, *, inspect: bool = False,
+                  every_exit: bool = False) -> Measured:
+    """Measure the files `request` names. `inspect`: a full-length model
     with no folded domain is shown, not refused; `every_exit`: every domain's outgoing point,
     the last one's too (the sidebar's list, whose order can change; the model never reads the
     last one's: mapping.further_shapes)."""
     from .domain import measure as measure_domain
     from .fibril import measure as measure_fibril
-    if opts.anchor_residue is not None and not opts.fibril:
+    if request.anchor_residue is not None and not request.fibril:
         raise UsageError("--anchor-residue: needs --fibril")
     fib = None
-    if opts.fibril:
-        fib = measure_fibril(opts.fibril, terminus=opts.terminus,
-                             anchor_residue=opts.anchor_residue)
-    specs, seg = domain_specs(opts, fib)
+    if request.fibril:
+        fib = measure_fibril(request.fibril, terminus=request.terminus,
+                             anchor_residue=request.anchor_residue)
+    specs, seg = domain_specs(request, fib)
     if seg is not None and not specs and not inspect:
         from .full_length import no_domain
         raise UsageError(f"--full-length: {no_domain(seg.file)}")
     option = "--full-length" if seg is not None else "--domain"
     doms = [measure_domain(f, chain=c, residues=r, option=option,
-                           follows=opts.terminus == "C",
+                           follows=request.terminus == "C",
                            outgoing=every_exit or i < len(specs) - 1)
             for i, (f, c, r) in enumerate(specs)]
-    return Measured(fib, opts.fibril, specs, doms, seg)
+    return Measured(fib, request.fibril, specs, doms, seg)
 
 
-def measure_all(opts, *, inspect: bool = False) -> tuple:
+def measure_all(request: StructureRequest, *, inspect: bool = False) -> tuple:
     """(FibrilGeometry or None, [DomainSize] in chain order, Segmentation or None)."""
-    m = measure_files(opts, inspect=inspect)
+    m = measure_files(request, inspect=inspect)
     return m.fibril, m.domains, m.segmentation
 

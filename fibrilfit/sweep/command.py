@@ -12,52 +12,40 @@ from .. import exits, files
 from ..model.version import fibrilfit_version
 from ..structure.from_files import say_warnings
 from . import gate, grid, runner, summary
-from ..batch import options as batch_options, outdir
+from ..batch import outdir
 from ..batch.executors import SweepError, make_executor
 
 RESULTS, SUMMARY, PHASE, LOG = outdir.RESULTS, "summary.csv", "phase.png", "workers.log"
 
 
-def _check_options(args) -> None:
-    batch_options.check(args)
-    if not 0 < args.target <= 1:
-        raise exits.UsageError(f"--target: must be a fraction above 0 and at most 1 "
-                             f"(got {args.target:g})")
-    if args.retry_failed and not args.resume:
-        raise exits.UsageError("--retry-failed: only with --resume")
-    if args.seed is not None and args.seed_list is not None:
+def run_sweep(plan, specs: dict, structure_values: tuple, case: dict | None = None) -> int:
+    """The sweep of `specs` (parameter name -> list of value strings: grid.specs_from) under
+    `plan` (api/plans.py's SweepPlan: .sweep, .executor, .force, .seed), over the values
+    measured from structure files (`structure_values`: (merged values, structure block));
+    `case`: the --case as every record embeds it. Prints the table; returns the exit code."""
+    options = plan.sweep
+    if plan.seed is not None and options.seed_list is not None:
         raise exits.UsageError("give the seeds once: --seed and --seed-list are the same option")
-
-
-def _case(args) -> dict | None:
-    """The --case as every record embeds it (its params are each point's own)."""
-    case = getattr(args, "loaded_case", None)
-    if case is None:
-        return None
-    from ..model import params as P
-    return case.resolved(P.DEFAULTS, case.overridden)
-
-
-def run_sweep(args) -> int:
-    points, requirements, structure_block, out = _plan(args)
+    points, requirements, structure_block, out = _points(plan, specs, structure_values)
     results = out / RESULTS
-    outdir.need("tqdm", *(["matplotlib"] if not args.no_plot else []))
-    batch_options.need(args)
-    script = batch_options.job_script(args, args.out)
+    outdir.need("tqdm", *(["matplotlib"] if not options.no_plot else []))
+    plan.executor.need()
+    script = plan.executor.job_script(options.out)
     if script is not None:
         print(script)
         return exits.EXIT_OK
 
     out.mkdir(parents=True, exist_ok=True)  # from here on, files may be written
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
-    todo = _todo(args, points, results)
+    todo = _todo(plan, points, results)
     if todo:
         try:
-            with make_executor(args, out=out, runs=len(todo), log_path=out / LOG) as executor:
-                runner.run_points(executor, todo, results, force=args.force,
-                                  progress=not args.quiet, version=fibrilfit_version(),
+            with make_executor(plan.executor, out=out, runs=len(todo),
+                               log_path=out / LOG) as executor:
+                runner.run_points(executor, todo, results, force=plan.force,
+                                  progress=not options.quiet, version=fibrilfit_version(),
                                   extra={"structure": structure_block} if structure_block
-                                  else None, case=_case(args))
+                                  else None, case=case)
         except SweepError as exc:
             kept, _ = runner.read_lines(results)
             print(f"fibrilfit: error: {exc}" + (f"; {len(kept)} results kept in {results}, "
@@ -69,22 +57,21 @@ def run_sweep(args) -> int:
             print(f"fibrilfit: interrupted; {len(kept)} results kept in {results}; "
                   f"continue with --resume", file=sys.stderr)
             return exits.EXIT_INTERRUPTED
-    return _summarise(args, requirements, out)
+    return _summarise(options, requirements, out)
 
 
-def _plan(args) -> tuple:
+def _points(plan, specs: dict, structure_values: tuple) -> tuple:
     """The grid's points, the --require gates and the structure block, every one checked
     against the grid and the results already in --out before anything runs."""
-    _check_options(args)
-    specs = grid.specs_from(args)
-    seeds = grid.seed_values(args.seeds, args.seed_list if args.seed_list is not None
-                             else args.seed)
-    # measured from --fibril/--domain by the command line (cli/structure_files.py) under specs
-    merged, structure_block = args.structure_values
+    options = plan.sweep
+    seeds = grid.seed_values(options.seeds, options.seed_list if options.seed_list is not None
+                             else plan.seed)
+    # measured from --fibril/--domain (structure/from_files.py) under specs
+    merged, structure_block = structure_values
     base = {k: v for k, v in merged.items() if k not in specs}  # measured, the same everywhere
-    points = grid.build(specs, seeds, force=args.force, base=base)
-    requirements = [gate.parse(text) for text in args.require]
-    out = outdir.out_dir(args)
+    points = grid.build(specs, seeds, force=plan.force, base=base)
+    requirements = [gate.parse(text) for text in options.require]
+    out = outdir.out_dir(options.out, options.resume)
     records, _ = runner.read_lines(out / RESULTS)
     known = [p.params for p in points] + [r["params"] for r in records]
     for req in requirements:  # a typo in a selector should not cost hours of runs
@@ -94,7 +81,7 @@ def _plan(args) -> tuple:
     return points, requirements, structure_block, out
 
 
-def _todo(args, points: list, results: pathlib.Path) -> list:
+def _todo(plan, points: list, results: pathlib.Path) -> list:
     """The points not yet in `results` (a torn last line repaired, failed runs dropped with
     --retry-failed), said on stdout with where they will run."""
     if runner.repair_tail(results):
@@ -102,41 +89,41 @@ def _todo(args, points: list, results: pathlib.Path) -> list:
     aside = outdir.set_aside_other_code(results)  # never mix results of other code
     if aside:
         print(aside, file=sys.stderr)
-    if args.retry_failed:
+    if plan.sweep.retry_failed:
         runner.drop_failed(results)
     records, bad = runner.read_lines(results)
     if bad:
         print(f"fibrilfit: ignoring {bad} unreadable lines in {results}", file=sys.stderr)
     done = runner.done_keys(records)
     todo = [p for p in points if p.key not in done]
-    if not args.quiet:
+    if not plan.sweep.quiet:
         print(f"sweep: {len(points)} runs in the grid, {len(points) - len(todo)} already in "
               f"{results}, {len(todo)} to run on "
-              f"{batch_options.where(args, len(todo), results.parent)}")
+              f"{plan.executor.where(len(todo), results.parent)}")
     return todo
 
 
-def _summarise(args, requirements: list, out: pathlib.Path) -> int:
+def _summarise(options, requirements: list, out: pathlib.Path) -> int:
     """summary.csv, the phase plot, the table and the gates; the exit code the gates give."""
     results = out / RESULTS
     records, _ = runner.read_lines(results)
     rows = summary.rows(records)
     files.write_text(out / SUMMARY, summary.csv_text(rows))
-    if not args.no_plot:
+    if not options.no_plot:
         from . import plot
-        plot.write(out / PHASE, rows, args.target)
+        plot.write(out / PHASE, rows, options.target)
     met, failed = gate.check(requirements, rows)
 
     n_ok = sum(r.n for r in rows)
     n_failed = sum(r.failed for r in rows)
     head = (f"sweep: {len(records)} results in {results} ({n_ok} with a verdict, {n_failed} "
             f"failed), {len(rows)} grid points; summary in {out / SUMMARY}"
-            + ("" if args.no_plot else f", plot in {out / PHASE}"))
-    if args.quiet:
+            + ("" if options.no_plot else f", plot in {out / PHASE}"))
+    if options.quiet:
         print(head)
-        print("\n".join(summary.minimal_lines(rows, args.target)))
+        print("\n".join(summary.minimal_lines(rows, options.target)))
     else:
-        print(summary.table(rows, args.target))
+        print(summary.table(rows, options.target))
         print(head)
     if n_failed:
         print(f"warning: {n_failed} runs failed twice; their errors are in {results}")

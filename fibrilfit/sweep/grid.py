@@ -140,11 +140,12 @@ def build(specs: dict, seeds: list[str], *, force: bool = False,
     return points
 
 
-def specs_from(args) -> dict:
-    """name -> list of value strings, for every parameter given on the command line (not seed)."""
+def specs_from(values: dict) -> dict:
+    """name -> list of value strings, for every parameter given (`values`: name -> the value as
+    given, a list or range for a sweep; not seed)."""
     specs = {}
     for f in P.fields():
-        value = getattr(args, f.name, None)
+        value = values.get(f.name)
         if value is None or f.name == "seed":
             continue
         if f.metadata["kind"] is bool:

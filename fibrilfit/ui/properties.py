@@ -14,8 +14,9 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        FloatVectorProperty, IntProperty, PointerProperty, StringProperty)
 
 from ..model import params as P
-from ..search import report
+from ..search.plans import REPORT_SEARCH
 from . import domain_list
+from .plan_properties import plan_property
 
 # The sidebar's sections, in the tutorial's order. A field goes where its metadata says;
 # a section this list does not know goes to "Simulation", so a new field is never hidden.
@@ -154,17 +155,10 @@ RESULTS = tuple(_RESULT_PROPERTIES)
 _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 
-# What the next Report… offers: its restarts and longest linker. Kept in this one dict so that
-# making them from the report's own declaration changes only this spot.
-_REPORT_OPTIONS = {
-    "report_restarts": IntProperty(
-        name="Restarts", default=report.DEFAULT_RESTARTS, min=1, max=1000,
-        description="Seeds run at the linker and at each length the minimal-linker walk tries"),
-    "report_max_linker": IntProperty(
-        name="Longest linker", default=report.DEFAULT_MAX_LINKER, min=1,
-        max=P.field_spec("linker")["max"],
-        description="The minimal-linker walk gives up beyond this length (residues)"),
-}
+# What the next Report… offers: its restarts and longest linker, from the report's own
+# declaration (search/plans.py's REPORT_SEARCH)
+_REPORT_OPTIONS = {"report_restarts": plan_property(REPORT_SEARCH, "restarts"),
+                   "report_max_linker": plan_property(REPORT_SEARCH, "max_linker")}
 
 # Every property of scene.fibrilfit, in the panel's (and the .blend file's) order.
 _SETTINGS = {

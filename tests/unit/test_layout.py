@@ -8,8 +8,9 @@ from helpers import ROOT
 
 PACKAGE = ROOT / "fibrilfit"
 # The rooms, lowest first: a module may import its own room and the rooms before it.
-ROOMS = ["exits", "files", "blender_check", "geom", "model", "structure", "builders", "analysis",
-         "pipeline", "exports", "batch", "sweep", "search", "cli", "ui", "__init__", "__main__"]
+ROOMS = ["exits", "files", "plans", "blender_check", "geom", "model", "structure", "builders",
+         "analysis", "pipeline", "exports", "batch", "sweep", "search", "api", "cli", "ui",
+         "__init__", "__main__"]
 
 
 def modules():

@@ -8,6 +8,7 @@ import bpy
 from ...model import cases, params as P
 from ... import files
 from ...structure import from_files
+from ...structure.request import from_case
 from .. import properties
 from . import common, structures
 
@@ -38,9 +39,8 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         case = cases.load(bpy.path.abspath(self.filepath))
         # Every file read and measured, and the values checked, before the panel changes
         P.refuse_beside_periodic(case.params)
-        opts = from_files.case_options(case.structure)
-        m = (from_files.measure_files(opts, every_exit=True)
-             if from_files.has_structure(opts) else None)
+        request = from_case(case.structure)
+        m = from_files.measure_files(request, every_exit=True) if request.any else None
         values, block = (from_files.merged(m.fibril, m.domains, m.segmentation,
                                            dict(case.params))
                          if m is not None else (case.params, {}))

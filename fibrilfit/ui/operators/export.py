@@ -5,7 +5,8 @@ import bpy
 
 from ... import files
 from ... import pipeline
-from ...exports import options, writers
+from ...exports import writers
+from ...exports.plans import RenderLook
 from . import common
 
 WHY = "Check the model first: the picture and the PDB show its verdict"
@@ -48,10 +49,9 @@ class FIBRILFIT_OT_render(_ExportBase, bpy.types.Operator):
     filter_glob: bpy.props.StringProperty(default="*" + suffix, options={"HIDDEN"})
 
     def write(self, scene, result, path):
-        size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
-        opts = {"size": size, "samples": options.DEFAULT_SAMPLES, "engine": "cycles"}
-        writers.prepare(scene, result, aspect=size[0] / size[1])
-        info = writers.write_render(scene, result, path, opts) or {}
+        look = RenderLook().look()
+        writers.prepare(scene, result, aspect=look["aspect"])
+        info = writers.write_render(scene, result, path, look) or {}
         return f"{info['seconds']:.1f} s" if "seconds" in info else ""
 
 

@@ -10,15 +10,16 @@ import json
 
 import bpy
 
+from ...api.plans import MinimalLinkerPlan
 from ...batch.executors import make_executor
-from ...model import params as P
-from ...search import command
 from ...search.background import BackgroundWalk
+from ...search.plans import BatchOutput, SearchPlan
 from .. import minimal_summary
+from ..plan_properties import plan_property
 from . import common
 from .background import BackgroundOperator
 
-DEFAULTS = command.options()  # the command line's defaults
+SEARCH = SearchPlan()  # minimal-linker's own defaults (search/plans.py)
 
 
 class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
@@ -28,13 +29,8 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
                       "(the same walk as `minimal-linker`: restarts at each length tried, from "
                       "the proven bound); runs on worker processes, Esc cancels")
     bl_options = {"REGISTER", "UNDO"}  # it keeps the map in the scene's settings
-    restarts: bpy.props.IntProperty(name="Restarts", default=DEFAULTS.restarts, min=1, max=1000,
-                                    description="seeds tried at every linker length "
-                                                "(the panel's seed and the next ones)")
-    max_linker: bpy.props.IntProperty(name="Longest linker", default=DEFAULTS.max_linker, min=1,
-                                      max=P.field_spec("linker")["max"],
-                                      description="give up on a diameter when no length up to "
-                                                  "this one fits")
+    restarts: plan_property(SEARCH, "restarts")
+    max_linker: plan_property(SEARCH, "max_linker")
     diameters: bpy.props.StringProperty(
         name="Diameters", default="",
         description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
@@ -54,9 +50,11 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
         values.pop("linker")  # the walk's to search
         if self.diameters.strip():
             values["globule_diameter"] = self.diameters.strip()
-        args = command.options(restarts=self.restarts, max_linker=self.max_linker, quiet=True,
-                               no_plot=True)
-        return BackgroundWalk(args, values, make_executor(args)).start()
+        plan = MinimalLinkerPlan(
+            model=values, search=SEARCH.replace(restarts=self.restarts,
+                                                max_linker=self.max_linker),
+            output=BatchOutput(quiet=True, no_plot=True))
+        return BackgroundWalk(plan, values, make_executor(plan.executor)).start()
 
     @staticmethod
     def progress_text(p) -> tuple:

@@ -13,14 +13,15 @@ import webbrowser
 import bpy
 
 from ... import files, pipeline
+from ...api.plans import ReportPlan
 from ...batch.executors import make_executor
 from ...builders.model import find_model
-from ...exports import options
 from ...model import cases
-from ...model import params as P
-from ...search import command, report
+from ...search import linker_map, report
 from ...search.background import BackgroundReport
+from ...search.plans import REPORT_SEARCH, seed_range
 from .. import minimal_summary, properties, report_summary
+from ..plan_properties import plan_property
 from . import common
 from .background import BackgroundOperator
 
@@ -36,15 +37,12 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
                       "processes, Esc cancels)")
     bl_options = {"REGISTER", "UNDO"}  # it builds the best layout in the scene
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})
-    restarts: bpy.props.IntProperty(name="Restarts", default=report.DEFAULT_RESTARTS, min=1,
-                                    max=1000, description="seeds run at each linker length")
-    max_linker: bpy.props.IntProperty(name="Longest linker", default=report.DEFAULT_MAX_LINKER,
-                                      min=1, max=P.field_spec("linker")["max"],
-                                      description="the minimal-linker walk gives up beyond "
-                                                  "this length")
+    restarts: plan_property(REPORT_SEARCH, "restarts")
+    max_linker: plan_property(REPORT_SEARCH, "max_linker")
 
     what, job_name = "report", "report"
     _out = None  # the folder the user picked
+    _reproduce = ()  # the command that makes the report again (report.json's "command")
 
     @classmethod
     def poll(cls, context):
@@ -68,20 +66,21 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         out = pathlib.Path(bpy.path.abspath(self.directory or "//fibrilfit_report"))
         p = properties.read_params(common.settings(context))
         self._out = out
-        args = report.options(out=str(out), restarts=self.restarts, max_linker=self.max_linker,
-                              resume=True, quiet=True, command_line=[
-                                  "headless.py", "report", "--case", str(out / CASE),
-                                  "--restarts", str(self.restarts), "--max-linker",
-                                  str(self.max_linker), "--out", str(out)])
-        report.check_options(args)
-        report.seeds_of(p, args.restarts)
+        plan = ReportPlan.make(
+            model=p.to_dict(), search=REPORT_SEARCH.replace(restarts=self.restarts,
+                                                            max_linker=self.max_linker))
+        plan = plan.replace(output=plan.output.replace(out=str(out), resume=True, quiet=True))
+        self._reproduce = ["headless.py", "report", "--case", str(out / CASE), "--restarts",
+                           str(self.restarts), "--max-linker", str(self.max_linker), "--out",
+                           str(out)]
+        report.need_packages(plan.executor)
+        seed_range(p.seed, plan.search.restarts)
         files.check_writable("directory", out / report.HTML, (".html",))
         work = BackgroundReport.folder_beside(out)
-        args.out = str(work)  # the page's command names `out`, where it ends up
-        job = BackgroundReport(args, p, p.to_dict(), None, work)
+        job = BackgroundReport(plan, p, p.to_dict(), None, work)
         try:
-            job.executor = make_executor(args, out=work, runs=args.restarts,
-                                         log_path=work / command.LOG)
+            job.executor = make_executor(plan.executor, out=work, runs=plan.search.restarts,
+                                         log_path=work / linker_map.LOG)
         except BaseException:
             job.discard()
             raise
@@ -116,18 +115,15 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     def _write(self, context, job) -> set:
         out, p, s = self._out, job.p, common.settings(context)
         case = cases.Case({}, {}).resolved(p)
-        size = tuple(int(v) for v in options.DEFAULT_SIZE.split("x"))
-        look = {"size": size, "aspect": size[0] / size[1], "samples": options.DEFAULT_SAMPLES,
-                "engine": "cycles"}
         sources = {name: "sidebar" for name in p.to_dict()}
         best = {}
 
         def run_best(q):  # the best layout, built, baked and checked in the scene
             best.update(pipeline.run_model(q, context.scene))
             return best
-        doc = report.write(job.args, p, job.result, job.work, lambda name: None,
-                           structure_block=None, case=case, look=look, sources=sources,
-                           run_here=run_best)
+        doc = report.write(job.plan, p, job.result, job.work, lambda name: None,
+                           structure_block=None, case=case, sources=sources,
+                           run_here=run_best, reproduce=self._reproduce)
         cases.write(job.work / CASE, case)  # what the page's command reproduces
         job.keep(out)
         model = find_model(context.scene)

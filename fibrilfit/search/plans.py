@@ -1,0 +1,109 @@
+"""The search's plans: restarts of one model (`run --restarts`), the restarts and the
+minimal-linker walk (`minimal-linker`, `report`, the sidebar's Minimal linker… and Report…,
+the Python API), and the folder a batch of runs writes into. Declared once: the command line's
+options and the sidebar's properties are generated from these fields (plans.py).
+"""
+from __future__ import annotations
+
+import dataclasses
+
+from ..model import params as P
+from ..plans import Plan, PlanError, option
+
+RESTARTS = "restarts (independent seeds of this one model)"
+SEARCH = "the search: restarts and the minimal-linker walk"
+OUTPUT = "where the results go"
+LINKER_MAX = P.field_spec("linker")["max"]
+RESTARTS_MAX = 1000  # the sidebar's field needs a top; more restarts than this is a sweep
+
+
+def _width(value: float) -> str | None:
+    return None if 0.0 < value < 1.0 else (f"must be between 0 and 1, exclusive "
+                                           f"(got {value:g})")
+
+
+@dataclasses.dataclass(frozen=True)
+class RestartPlan(Plan):
+    """`run --restarts R`: R seeds of the one model on the executor, the best kept."""
+
+    restarts: int | None = option(None, "run seeds SEED..SEED+R-1 in parallel; report how many "
+                                        "were accommodated, P(fit) with its 95 % Wilson "
+                                        "interval, and keep the best layout (its "
+                                        "--json/--blend/--pdb)", kind=int, lo=1,
+                                  hi=RESTARTS_MAX, metavar="R", group=RESTARTS)
+    stop_on_fit: bool = option(False, "with --restarts: start no more seeds once one is "
+                                      "accommodated", group=RESTARTS)
+    interval_width: float | None = option(None, "with --restarts: start no more seeds once "
+                                                "P(fit)'s 95 % Wilson interval is at most W "
+                                                "wide (0 < W < 1); P(fit) is reported from the "
+                                                "runs made [default: all R]", kind=float,
+                                          metavar="W", check=_width, group=RESTARTS)
+
+    def check(self) -> None:
+        if self.restarts is None:
+            for name in ("stop_on_fit", "interval_width"):
+                if getattr(self, name) not in (None, False):
+                    raise PlanError(name, "only with --restarts")
+
+
+@dataclasses.dataclass(frozen=True)
+class SearchPlan(Plan):
+    """Restarts at every linker length the minimal-linker walk tries (and, for the report, at
+    the asked linker)."""
+
+    restarts: int = option(5, "seeds run at every linker length tried (SEED..SEED+R-1)",
+                           lo=1, hi=RESTARTS_MAX, metavar="R", group=SEARCH, label="Restarts")
+    max_linker: int = option(30, "the walk gives up on a diameter when no length up to N fits",
+                             lo=1, hi=LINKER_MAX, unit="", metavar="N", group=SEARCH,
+                             label="Longest linker")
+    known_fit: int | None = option(None, "a linker length at which a layout is known (e.g. a "
+                                         "case's seeds fitted at its real linker): the walk "
+                                         "brackets the minimum below L, from the guess in "
+                                         "doubling steps, and bisects; the minimum and one "
+                                         "residue below are measured as always [default: none; "
+                                         "the walk brackets from the guess alone]", kind=int,
+                                   lo=1, hi=LINKER_MAX, metavar="L", group=SEARCH)
+    all_restarts: bool = option(False, "run all R restarts at the minimal linker too, for P(fit) "
+                                       "there from R runs [default: a length's restarts stop at "
+                                       "its first fit, which decides that it fits; the row says "
+                                       "how many ran]", group=SEARCH)
+    interval_width: float | None = option(None, "report: start no more restarts at the linker "
+                                                "once P(fit)'s 95 % Wilson interval there is at "
+                                                "most W wide (0 < W < 1) [default: all R]",
+                                          kind=float, metavar="W", check=_width, group=SEARCH)
+
+
+# The report's search: more restarts than the map's, since its P(fit) at the asked linker is
+# the page's headline (docs/guide/report.md#method)
+REPORT_SEARCH = SearchPlan(restarts=8)
+# What each command offers of the search plan
+MINIMAL_FIELDS = ("restarts", "max_linker", "known_fit", "all_restarts")
+REPORT_FIELDS = ("restarts", "interval_width", "all_restarts", "max_linker")
+
+
+@dataclasses.dataclass(frozen=True)
+class BatchOutput(Plan):
+    """The folder a batch of runs (minimal-linker, report, sweep) writes into, and what it
+    prints."""
+
+    out: str = option("out/batch", "every run (results.jsonl) and the command's tables, pictures "
+                                   "and pages go here", kind="path", metavar="DIR", group=OUTPUT)
+    resume: bool = option(False, "continue in --out: runs already in results.jsonl are reused",
+                          group=OUTPUT)
+    no_plot: bool = option(False, "draw no plot", group=OUTPUT)
+    quiet: bool = option(False, "no progress bar", group=OUTPUT)
+
+
+MINIMAL_OUTPUT = BatchOutput(out="out/minimal_linker")
+REPORT_OUTPUT = BatchOutput(out="out/report")
+
+
+def seed_range(first: int, count: int) -> range:
+    """Seeds first .. first + count - 1, refused in one line when the last passes the seed's
+    range (the one check of every command that runs restarts)."""
+    seeds = range(first, first + count)
+    top = P.field_spec("seed")["max"]
+    if seeds[-1] > top:
+        raise P.ParamError("seed", f"seed + restarts - 1 must be at most {top} "
+                                   f"(got {seeds[-1]})")
+    return seeds

@@ -3,21 +3,24 @@
 A Blender extension. One room per question (CONTRIBUTING.md has the map): `model` (what a
 model is), `geom`, `structure` (reading deposited files), `builders` (how a model becomes
 bodies), `analysis` (how it is judged), `pipeline` (one run, for every entry point), `exports`
-(how results are written), `batch`, `sweep` and `search` (many runs), `cli` and `ui` (how a
-user drives it, thin over the rest).
+(how results are written), `batch`, `sweep` and `search` (many runs), `api` (every command as a
+function over its plan), `cli` and `ui` (how a user drives it, thin over the rest).
 
 Importing the package imports nothing else: `cli`, `model`, `run_model`, `make_params` and every
 submodule load on first use, so `headless.py inspect` never loads bpy, and an old Blender reaches
 register()'s version check (one line) rather than an import error from a module it cannot run.
 
-The Python API (docs/reference/api.md): `run_model(make_params(...))` runs one model, as
-`fibrilfit run` does. `__version__` is blender_manifest.toml's version, the one place it is said
+The Python API (docs/reference/api.md): `fibrilfit.api` has every command as a function
+(`api.run`, `api.restarts`, `api.minimal_linker`, `api.report`, `api.sweep`, `api.inspect`), each
+taking a plan or the command line's options as keywords and returning a typed result;
+`run_model(make_params(...))` runs one model in the current scene. `__version__` is blender_manifest.toml's version, the one place it is said
 (pyproject.toml reads it from here).
 """
 import importlib
 import pathlib
 
-__all__ = ["__version__", "cli", "make_params", "model", "run_model", "register", "unregister"]
+__all__ = ["__version__", "api", "cli", "make_params", "model", "run_model", "register",
+           "unregister"]
 
 # name -> the module that defines it, imported on first use
 LAZY = {"run_model": ".pipeline", "make_params": ".model.params"}

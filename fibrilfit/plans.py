@@ -161,7 +161,8 @@ def _one(name: str, meta: dict, value):
     shown = f"{value:g}" if isinstance(value, float) else value
     unit = f" {meta['unit']}" if meta["unit"] else ""
     if lo is not None and hi is not None and not lo <= value <= hi:
-        raise PlanError(name, f"must be from {lo} to {hi}{unit} (got {shown})")
+        what = "an integer " if kind is int else ""  # as the model's (param_values.describe_range)
+        raise PlanError(name, f"must be {what}from {lo} to {hi}{unit} (got {shown})")
     if lo is not None and value < lo:
         raise PlanError(name, f"must be at least {lo}{unit} (got {shown})")
     if hi is not None and value > hi:

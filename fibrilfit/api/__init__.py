@@ -17,6 +17,11 @@ executor (`executor="processes"|"dask"|"slurm"`, `workers=N`, ...).
 from __future__ import annotations
 
 from .plans import (InspectPlan, MinimalLinkerPlan, ReportPlan, RunPlan, SweepPlan, make_plan)
+# The submodules run.py and inspect.py share the functions' names: a submodule's first import
+# sets the package's attribute to the module, so imported lazily inside run() it replaced the
+# function `run` after its first call. Imported here, before the functions are defined, they
+# never replace them (no bpy, no gemmi: only numpy).
+from . import inspect as _inspect_module, run as _run_module  # noqa: F401,E402
 
 __all__ = ["run", "restarts", "minimal_linker", "report", "sweep", "inspect", "RunPlan",
            "MinimalLinkerPlan", "ReportPlan", "SweepPlan", "InspectPlan", "make_plan"]

@@ -109,13 +109,14 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
 OFFERED = {("minimal-linker", "search"): MINIMAL_FIELDS,
            ("report", "search"): REPORT_FIELDS,
            ("report", "output"): ("out", "resume", "quiet")}
-TYPES = {int: int, float: float}
 
 
 def add_plan_options(parser: argparse.ArgumentParser, plan, only=None,
                      groups: dict | None = None) -> None:
     """One option per field of `plan` (a plan instance: its values are the defaults shown),
-    from its declaration (plans.option), each in its argument group; `only`: these fields."""
+    from its declaration (plans.option), each in its argument group; `only`: these fields.
+    Values stay strings here, as the model's do: the plan types and checks them, so a bad one is
+    `--flag: reason` (plans.PlanError), never argparse's "invalid int value"."""
     made = {}
     for f in plans.option_fields(type(plan)):
         meta = f.metadata
@@ -133,8 +134,6 @@ def add_plan_options(parser: argparse.ArgumentParser, plan, only=None,
             if meta["choices"] is not None:
                 kwargs["choices"] = meta["choices"]
                 kwargs.pop("metavar")
-            if meta["kind"] in TYPES:
-                kwargs["type"] = TYPES[meta["kind"]]
             if meta["repeat"]:
                 kwargs["action"] = "append"
         made[title].add_argument(plans.flag(f.name), **kwargs)

@@ -14,7 +14,6 @@ RESTARTS = "restarts (independent seeds of this one model)"
 SEARCH = "the search: restarts and the minimal-linker walk"
 OUTPUT = "where the results go"
 LINKER_MAX = P.field_spec("linker")["max"]
-RESTARTS_MAX = 1000  # the sidebar's field needs a top; more restarts than this is a sweep
 
 
 def _width(value: float) -> str | None:
@@ -30,7 +29,7 @@ class RestartPlan(Plan):
                                         "were accommodated, P(fit) with its 95 % Wilson "
                                         "interval, and keep the best layout (its "
                                         "--json/--blend/--pdb)", kind=int, lo=1,
-                                  hi=RESTARTS_MAX, metavar="R", group=RESTARTS)
+                                  metavar="R", group=RESTARTS)
     stop_on_fit: bool = option(False, "with --restarts: start no more seeds once one is "
                                       "accommodated", group=RESTARTS)
     interval_width: float | None = option(None, "with --restarts: start no more seeds once "
@@ -52,7 +51,7 @@ class SearchPlan(Plan):
     the asked linker)."""
 
     restarts: int = option(5, "seeds run at every linker length tried (SEED..SEED+R-1)",
-                           lo=1, hi=RESTARTS_MAX, metavar="R", group=SEARCH, label="Restarts")
+                           lo=1, metavar="R", group=SEARCH, label="Restarts")
     max_linker: int = option(30, "the walk gives up on a diameter when no length up to N fits",
                              lo=1, hi=LINKER_MAX, unit="", metavar="N", group=SEARCH,
                              label="Longest linker")

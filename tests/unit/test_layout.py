@@ -169,3 +169,59 @@ def test_the_path_check_sees_each_kind_of_change():
                  "code = 'import sys; sys.path.append(1)'"):
         assert _changes_sys_path(ast.parse(code)), code
     assert not _changes_sys_path(ast.parse("import sys\nprint(sys.path[0])"))
+
+
+# ---- one plan per command (issue #43): the command line's namespace stays in cli/ ----------
+EDGES = ("cli", "ui")  # the rooms that turn a user's input into a plan
+NAMESPACE_NAMES = ("args", "opts", "namespace", "ns")
+
+
+def _argparse_imports(tree) -> list[int]:
+    return [node.lineno for node in ast.walk(tree)
+            if isinstance(node, ast.Import) and any(a.name == "argparse" for a in node.names)
+            or isinstance(node, ast.ImportFrom) and node.module == "argparse"]
+
+
+def _namespace_takers(tree) -> list[str]:
+    """'line: name' of every function (methods and nested ones too) with a parameter named as
+    a namespace (args, opts, namespace, ns) or annotated argparse.Namespace; *args is not one."""
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            continue
+        a = node.args
+        for arg in (*a.posonlyargs, *a.args, *a.kwonlyargs):
+            note = ast.unparse(arg.annotation) if arg.annotation is not None else ""
+            if arg.arg in NAMESPACE_NAMES or "Namespace" in note:
+                found.append(f"{node.lineno}: {getattr(node, 'name', 'lambda')}({arg.arg})")
+    return found
+
+
+def test_argparse_only_under_cli():
+    wrong = [f"{path.relative_to(ROOT)}:{line}" for path, _, room in modules() if room != "cli"
+             for line in _argparse_imports(ast.parse(path.read_text(encoding="utf-8")))]
+    assert not wrong, "argparse imported outside fibrilfit/cli/:\n" + "\n".join(wrong)
+
+
+def test_no_function_below_the_edges_takes_a_namespace():
+    """Below cli/ and ui/ every function takes plans (api/plans.py), never the command line's
+    namespace."""
+    wrong = [f"{path.relative_to(ROOT)}:{hit}" for path, _, room in modules()
+             if room not in EDGES
+             for hit in _namespace_takers(ast.parse(path.read_text(encoding="utf-8")))]
+    assert not wrong, "\n".join(wrong)
+
+
+def test_the_namespace_checks_see_what_they_guard():
+    """Planted: each kind of namespace-taker and argparse import is found; *args is not."""
+    takers = ("def f(args): pass", "def f(p, *, opts=None): pass",
+              "def f(x: argparse.Namespace): pass", "class C:\n    def m(self, ns): pass",
+              "def outer():\n    def inner(args): pass")
+    for code in takers:
+        assert _namespace_takers(ast.parse(code)), code
+    assert not _namespace_takers(ast.parse("def f(*args, **kwargs): pass"))
+    assert not _namespace_takers(ast.parse("def f(plan, executor_plan): pass"))
+    for code in ("import argparse", "from argparse import Namespace",
+                 "def f():\n    import argparse"):
+        assert _argparse_imports(ast.parse(code)), code
+    assert not _argparse_imports(ast.parse("import argparser"))

@@ -13,8 +13,8 @@ register()'s version check (one line) rather than an import error from a module 
 The Python API (docs/reference/api.md): `fibrilfit.api` has every command as a function
 (`api.run`, `api.restarts`, `api.minimal_linker`, `api.report`, `api.sweep`, `api.inspect`), each
 taking a plan or the command line's options as keywords and returning a typed result;
-`run_model(make_params(...))` runs one model in the current scene. `__version__` is blender_manifest.toml's version, the one place it is said
-(pyproject.toml reads it from here).
+`run_model(make_params(...))` runs one model in the current scene. `__version__` is
+blender_manifest.toml's version, the one place it is said (pyproject.toml reads it from here).
 """
 import importlib
 import pathlib

@@ -6,7 +6,7 @@ command line (cli/parser.py) and the sidebar (ui/) generate their options and pr
 these declarations and turn their input into a plan once, at the edge; every room below them
 takes plans, never an argparse namespace. The plans themselves live in the rooms whose question
 they answer: where the runs happen (batch/plans.py), the structure files to read
-(structure/request.py), the pictures and outputs (exports/options.py), a sweep (sweep/plans.py),
+(structure/request.py), the pictures and outputs (exports/plans.py), a sweep (sweep/plans.py),
 the restarts, the minimal-linker walk and the report (search/plans.py); a command's whole plan
 is api/plans.py's.
 

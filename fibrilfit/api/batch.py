@@ -73,12 +73,12 @@ def sweep(plan, *, case=None) -> SweepResult:
     the loaded Case its values came from, if any."""
     import dataclasses
     from ..model import params as P
-    from ..sweep import command, grid, runner, summary
+    from ..sweep import driver, grid, runner, summary
     specs = grid.specs_from(plan.given())
     values = resolved_model.measured_values(plan.structure, specs)[:2]
     embedded = case.resolved(P.DEFAULTS, case.overridden) if case is not None else None
-    code = command.run_sweep(plan, specs, values, embedded)
-    results = pathlib.Path(plan.sweep.out) / command.RESULTS
+    code = driver.run_sweep(plan, specs, values, embedded)
+    results = pathlib.Path(plan.sweep.out) / driver.RESULTS
     records, _ = runner.read_lines(results) if results.exists() else ([], 0)
     rows = [dataclasses.asdict(r) for r in summary.rows(records)]
     return SweepResult({"rows": rows, "results": str(results)}, exit_code=code)

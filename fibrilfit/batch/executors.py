@@ -45,7 +45,7 @@ class ProcessExecutor:
     def __init__(self, workers: int, *, timeout: float | None = None, log_path=None,
                  blender_binary: str = ""):
         self.size, self.timeout, self.log_path = workers, timeout, log_path
-        self.command = pool.worker_command(blender_binary)
+        self.worker_argv = pool.worker_command(blender_binary)
         self.events: queue.Queue = queue.Queue()
         self.queue: collections.deque = collections.deque()
         self.workers: list[pool.WorkerProcess] = []
@@ -91,7 +91,7 @@ class ProcessExecutor:
             self._dispatch(w)
         starting = sum(not w.ready for w in self.workers)
         while len(self.workers) < self.size and starting < len(self.queue):
-            self.workers.append(pool.WorkerProcess(self.command, self.events, self.log,
+            self.workers.append(pool.WorkerProcess(self.worker_argv, self.events, self.log,
                                                    self.log_lock))
             starting += 1
 

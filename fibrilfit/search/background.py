@@ -1,6 +1,6 @@
 """Batch work on a thread of its own, for a caller that must stay responsive (the sidebar's
 Minimal linker… and Report…, ui/operators/minimal.py and report.py): the same plan, runs and
-rows as the `minimal-linker` command (command.py), or the first stages of `report` (report.py's
+rows as the `minimal-linker` command (linker_map.py), or the first stages of `report` (report.py's
 search), on worker processes, with their progress readable and a stop that kills the workers.
 Nothing here touches bpy: the runs happen in the workers, and the thread only waits for them.
 The walk's runs go to a temporary folder removed at the end, and the report's to a folder beside

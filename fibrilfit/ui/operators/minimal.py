@@ -1,4 +1,4 @@
-"""Minimal linker… in the sidebar: the `minimal-linker` walk (search/command.py: from the proven
+"""Minimal linker… in the sidebar: the `minimal-linker` walk (search/linker_map.py: from the proven
 bound, doubling steps, then bisection) for the panel's model at the panel's globule diameter, or
 the diameters given, with the command's options and seeds. The walk runs on worker processes,
 waited for on a thread (search/background.py), so Blender stays live: a timer polls it, the

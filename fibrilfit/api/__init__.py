@@ -17,12 +17,6 @@ executor (`executor="processes"|"dask"|"slurm"`, `workers=N`, ...).
 from __future__ import annotations
 
 from .plans import (InspectPlan, MinimalLinkerPlan, ReportPlan, RunPlan, SweepPlan, make_plan)
-# The submodules run.py and inspect.py share the functions' names: a submodule's first import
-# sets the package's attribute to the module, so imported lazily inside run() it replaced the
-# function `run` after its first call. Imported here, before the functions are defined, they
-# never replace them (no bpy, no gemmi: only numpy).
-from . import inspect as _inspect_module, run as _run_module  # noqa: F401,E402
-
 __all__ = ["run", "restarts", "minimal_linker", "report", "sweep", "inspect", "RunPlan",
            "MinimalLinkerPlan", "ReportPlan", "SweepPlan", "InspectPlan", "make_plan"]
 
@@ -44,7 +38,7 @@ def run(plan: RunPlan | None = None, **values):
     """One model built, baked and checked in this process's scene, its outputs written, as
     `fibrilfit run` does: `run(linker=8, globule_diameter=30, layers=20)`. Returns a
     RunResult (the result JSON as `.data`)."""
-    from .run import run as _run
+    from .one_run import run as _run
     plan, case = _plan(RunPlan, plan, values)
     return _run(plan, case=case)
 
@@ -53,7 +47,7 @@ def restarts(restarts: int, plan: RunPlan | None = None, **values):
     """`restarts` seeds of one model (seed, seed + 1, ...) on the executor, P(fit) with its
     95 % Wilson interval, and the best seed run again here, as `fibrilfit run --restarts R`.
     Returns a RunResult whose `.restarts` is the tally."""
-    from .run import run as _run
+    from .one_run import run as _run
     plan, case = _plan(RunPlan, plan, {**values, "restarts": restarts})
     return _run(plan, case=case)
 
@@ -86,7 +80,7 @@ def sweep(plan: SweepPlan | None = None, **values):
 def inspect(plan: InspectPlan | None = None, **values):
     """Structure files measured, nothing built, as `fibrilfit inspect`: `inspect(
     fibril="6cu7.pdb.gz", domain="1ubq.pdb.gz")`. Returns an InspectResult (no bpy needed)."""
-    from .inspect import inspect as _inspect
+    from .measure import inspect as _inspect
     plan, _ = _plan(InspectPlan, plan, values)
     return _inspect(plan)
 

@@ -44,7 +44,7 @@ def report(plan, *, case=None, reproduce=(), run_here=None) -> ReportResult | Jo
     from .. import pipeline  # noqa: F401 (imports bpy first)
     from ..search import report as search_report
     from ..search.plans import seed_range
-    from .run import build_bake_check
+    from .one_run import build_bake_check
     search_report.need_packages(plan.executor)
     resolved = resolved_model.resolve(plan, REPORT_DEFAULTS)
     p = resolved.p

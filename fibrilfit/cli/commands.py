@@ -48,7 +48,7 @@ def command_run(plan, case, argv) -> int:
 
 
 def _run(plan, case) -> tuple[int, dict | None]:
-    from ..api.run import run
+    from ..api.one_run import run
     from ..exports import run_text
     done = run(plan, case=case)
     if isinstance(done, JobScript):
@@ -117,7 +117,7 @@ def command_sweep(plan, case, argv) -> int:
 
 def command_inspect(plan, case, argv) -> int:
     """The measurements as text (stdout), and with --json as JSON ('-': stdout, text to stderr)."""
-    from ..api.inspect import inspect
+    from ..api.measure import inspect
     if not plan.structure.any:
         raise UsageError("inspect: give --fibril FILE, --domain FILE and/or --full-length FILE")
     to_stdout = plan.json == files.STDOUT  # the JSON on stdout, the text on stderr

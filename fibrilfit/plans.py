@@ -39,19 +39,22 @@ def flag(name: str) -> str:
 def option(default: Any, help: str, *, kind: Any = None, lo=None, hi=None, unit: str = "",
            choices=None, metavar: str | None = None, repeat: bool = False,
            check: Callable[[Any], str | None] | None = None, label: str | None = None,
-           group: str = "", cli: bool = True, default_text: str | None = None):
+           group: str = "", cli: bool = True, default_text: str | None = None,
+           noun: str | None = None):
     """A plan's field. `kind`: int, float, str, bool or "path" (default: the default's type;
     str for None); `lo`/`hi`: the allowed range, inclusive (None: open); `choices`: the allowed
     words; `repeat`: given any number of times, a tuple; `check(value)`: a reason the value is
     wrong, or None; `label`: the sidebar's name for it; `group`: the command line's argument
     group; `cli`: offered on the command line; `default_text`: the help's default when the
-    default alone does not say it."""
+    default alone does not say it; `noun`: what a value of the wrong type should have been
+    ("a residue number"; default: "an integer" or "a number")."""
     if kind is None:
         kind = bool if isinstance(default, bool) else type(default) if default is not None \
             else str
     meta = {"help": help, "kind": kind, "min": lo, "max": hi, "unit": unit,
             "choices": tuple(choices) if choices is not None else None, "metavar": metavar,
             "repeat": repeat, "check": check, "label": label, "group": group, "cli": cli,
+            "noun": noun,
             "default_text": default_text}
     if repeat:
         default = tuple(default or ())
@@ -137,19 +140,20 @@ def _one(name: str, meta: dict, value):
         return value
     if kind is int:
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-            raise PlanError(name, f"must be an integer (got {value!r})")
+            raise PlanError(name, f"must be {meta['noun'] or 'an integer'} (got {value!r})")
         try:
             number = float(value)
             if not number.is_integer():
                 raise ValueError
             value = int(number)
         except (ValueError, OverflowError):
-            raise PlanError(name, f"must be an integer (got {value!r})") from None
+            raise PlanError(name, f"must be {meta['noun'] or 'an integer'} "
+                                  f"(got {value!r})") from None
     elif kind is float:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            raise PlanError(name, f"must be a number (got {value!r})") from None
+            raise PlanError(name, f"must be {meta['noun'] or 'a number'} (got {value!r})") from None
         if not math.isfinite(value):
             raise PlanError(name, f"must be a finite number (got {value!r})")
     elif kind in (str, "path"):

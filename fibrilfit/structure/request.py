@@ -35,7 +35,8 @@ class StructureRequest(Plan):
     terminus: str = option(TERMINUS, "the core terminus that carries the linker",
                            choices=("N", "C"), group=GROUP)
     anchor_residue: int | None = option(None, "anchor on this residue instead of the core's "
-                                              "terminus", kind=int, metavar="R", group=GROUP)
+                                              "terminus", kind=int, metavar="R", group=GROUP,
+                                noun="a residue number")
     domain_chain: tuple = option((), "the domain's chain [default: first]; once for every "
                                      "--domain, or once for all", kind=str, repeat=True,
                                  metavar="C", group=GROUP)

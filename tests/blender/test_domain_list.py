@@ -7,8 +7,9 @@ import types
 import bpy
 import pytest
 
+from fibrilfit.api import model as resolved_model
+from fibrilfit.api.plans import RunPlan, make_plan
 from fibrilfit.cli import build_parser
-from fibrilfit.cli.values import checked_params
 from fibrilfit.ui import domain_list, panels, properties
 from full_length_model import two_domain_model
 from helpers import ROOT, snapshot_user
@@ -18,8 +19,11 @@ UBQ, FIBRIL = str(DATA / "1ubq.pdb.gz"), str(DATA / "6cu7.pdb.gz")
 
 
 def cli_params(*argv):
-    """The Params `run ARGV` would run with (the command line's own parser and merge)."""
-    return checked_params(build_parser().parse_args(["run", *argv]))[0]
+    """The Params `run ARGV` would run with (the command line's own parser, plan and merge)."""
+    args = vars(build_parser().parse_args(["run", *argv]))
+    args.pop("command")
+    plan, _ = make_plan(RunPlan, args, case=args.pop("case", None), command="run")
+    return resolved_model.resolve(plan).p
 
 
 def names(ui) -> list:

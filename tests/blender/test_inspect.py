@@ -69,7 +69,7 @@ BAD = [
     (["--fibril", "{data}/6cu7.pdb.gz", "--anchor-residue", "5"], "--anchor-residue",
      "not in chain"),
     (["--fibril", "{data}/6cu7.pdb.gz", "--anchor-residue", "K97"], "--anchor-residue",
-     "residue number"),
+     "must be a residue number (got 'K97')"),
     (["--fibril", "{data}/6cu7.pdb.gz", "--terminus", "X"], "--terminus", "invalid choice"),
     (["--domain", "{data}/1gfl.pdb.gz", "--domain-chain", "Z"], "--domain-chain", "chains: A, B"),
     (["--domain", "{data}/1ubq.pdb.gz", "--domain-residues", "500-600"], "--domain-residues",

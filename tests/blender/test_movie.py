@@ -9,7 +9,7 @@ from helpers import run_cli
 from PIL import Image
 
 from fibrilfit import cli
-from fibrilfit.cli import run_command
+from fibrilfit.api import one_run
 from fibrilfit.exports import movie
 
 # 4 layers, linker 1: clashes at the end; 30 frames every 5th: 1, 6, ..., 26 and the last, 30
@@ -77,7 +77,7 @@ def test_gif_has_one_frame_per_baked_step_and_turns_red_at_the_end(tmp_path):
 ])
 def test_bad_movie_options_are_refused_before_the_bake(args, says, tmp_path, capsys, monkeypatch):
     baked = []
-    monkeypatch.setattr(run_command, "fresh_scene", lambda: baked.append(True))
+    monkeypatch.setattr(one_run, "fresh_scene", lambda: baked.append(True))
     args = [str(tmp_path / a) if a.startswith("x.") else a for a in args]
     assert cli.main(["run", *args, "--json", str(tmp_path / "r.json")]) == 2
     err = capsys.readouterr().err
@@ -88,7 +88,7 @@ def test_bad_movie_options_are_refused_before_the_bake(args, says, tmp_path, cap
 def test_a_gif_without_pillow_is_refused_before_the_bake(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "PIL", None)  # as in Blender's own Python
     baked = []
-    monkeypatch.setattr(run_command, "fresh_scene", lambda: baked.append(True))
+    monkeypatch.setattr(one_run, "fresh_scene", lambda: baked.append(True))
     assert cli.main(["run", "--movie", str(tmp_path / "m.gif")]) == 2
     err = capsys.readouterr().err
     assert err == (f"fibrilfit: error: --movie: a .gif needs the Python package Pillow, which "

@@ -230,15 +230,23 @@ def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
         assert mine[key] == api[key], key
 
 
-def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff, monkeypatch):
+def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff, monkeypatch,
+                                                                             tmp_path):
     """2N0A models a 43-residue tail past its anchor, which `run --fibril` takes as the linker;
     minimal-linker searches the linker, so it drops that value (an explicit --linker is refused)."""
-    from fibrilfit.search import command
+    from fibrilfit.search import linker_map
     seen = {}
-    monkeypatch.setattr(command, "run_minimal", lambda args, values: seen.update(values) or 0)
+
+    def walks_for(values, plan):  # what the walks would be planned from; nothing runs
+        seen.update(values)
+        return values, range(1), []
+    monkeypatch.setattr(linker_map, "walks_for", walks_for)
+    monkeypatch.setattr(linker_map, "minimal_map", lambda values, seeds, walks, plan: {
+        "rows": [], "table": "", "errors": [],
+        "paths": {"csv": "m.csv", "json": "m.json", "results": "results.jsonl"}})
     data = ROOT / "tests" / "data"
     argv = ["minimal-linker", "--fibril", str(data / "2n0a.pdb.gz"),
-            "--domain", str(data / "1gfl.pdb.gz")]
+            "--domain", str(data / "1gfl.pdb.gz"), "--out", str(tmp_path / "map")]
     assert ff.cli.main(argv) == 0
     assert "linker" not in seen
     assert float(seen["globule_diameter"]) == pytest.approx(43.9, abs=0.5)

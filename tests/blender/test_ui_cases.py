@@ -90,11 +90,13 @@ def test_a_case_loaded_and_run_in_the_panel_gives_the_command_lines_result(ui, t
 
 def _cli_params(case):
     """The Params `run --case CASE` runs with: the command line's parser, --case and merge."""
+    from fibrilfit.api import model as resolved_model
+    from fibrilfit.api.plans import RunPlan, make_plan
     from fibrilfit.cli import build_parser
-    from fibrilfit.cli.values import apply_case, checked_params
-    args = build_parser().parse_args(["run", "--case", str(case)])
-    args.loaded_case = apply_case(args)
-    return checked_params(args)[0]
+    args = vars(build_parser().parse_args(["run", "--case", str(case)]))
+    args.pop("command")
+    plan, _ = make_plan(RunPlan, args, case=args.pop("case", None), command="run")
+    return resolved_model.resolve(plan).p
 
 
 def test_load_case_measures_the_cases_structure_files_as_run_does(ui, scene):

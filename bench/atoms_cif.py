@@ -15,10 +15,10 @@ import time
 import bpy
 
 from fibrilfit import pipeline
-from fibrilfit.cli.parser import build_parser
+from fibrilfit.api.model import atom_sources, measured_values
 from fibrilfit.exports import mmcif, writers
 from fibrilfit.model import params as P
-from fibrilfit.cli.structure_files import atom_sources, params_and_structure
+from fibrilfit.structure.request import StructureRequest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
@@ -29,11 +29,11 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--layers", type=int, default=100)
     a = ap.parse_args()
-    args = build_parser().parse_args(["run", "--fibril", str(DATA / "6cu7.pdb.gz"), "--domain",
-                                      str(DATA / "1gfl.pdb.gz"), "--domain-chain", "A"])
-    values, block = params_and_structure(args, {"layers": a.layers})
+    request = StructureRequest(fibril=str(DATA / "6cu7.pdb.gz"), domain=str(DATA / "1gfl.pdb.gz"),
+                               domain_chain="A")
+    values, block, measured = measured_values(request, {"layers": a.layers})
     p = P.make_params(force=True, **values)
-    sources = atom_sources(args)
+    sources = atom_sources(request, measured)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     result = {**pipeline.describe(p), "structure": block}

@@ -14,8 +14,11 @@ import json
 import pathlib
 import tempfile
 
+from fibrilfit.api.plans import MinimalLinkerPlan
+from fibrilfit.batch.plans import ExecutorPlan
 from fibrilfit.model import params as P
-from fibrilfit.search import command, minimal
+from fibrilfit.search import linker_map, minimal
+from fibrilfit.search.plans import BatchOutput, SearchPlan
 
 
 class Replay:
@@ -56,19 +59,20 @@ def main() -> None:
     params = dict(ok[0]["params"])
     records = {(int(r["params"]["linker"]), int(r["params"]["seed"])): r for r in ok}
     seeds = range(min(s for _, s in records), min(s for _, s in records) + args.restarts)
-    ns = argparse.Namespace(force=True, quiet=True, executor="processes", workers=args.workers,
-                            max_linker=args.max_linker, all_restarts=args.all_restarts,
-                            known_fit=None)
+    plan = MinimalLinkerPlan(
+        search=SearchPlan(restarts=args.restarts, max_linker=args.max_linker,
+                          all_restarts=args.all_restarts),
+        output=BatchOutput(quiet=True),
+        executor=ExecutorPlan(executor="processes", workers=args.workers), force=True)
     values = {k: v for k, v in params.items() if k not in ("linker", "seed", "globule_diameter")}
     base = P.make_params(force=True, **{**params, "linker": 1})
-    walk = command.new_walk(ns, base, len(seeds))
+    walk = linker_map.new_walk(plan.search, base, len(seeds))
     if args.floor is not None:
         walk = minimal.Walk(walk.diameter, walk.start, walk.max_linker, restarts=walk.restarts,
                             stop_at_fit=walk.stop_at_fit, floor=args.floor)
     replay = Replay(records)
     with tempfile.TemporaryDirectory() as tmp:
-        command._walk(ns, values, seeds,
-                      [walk], pathlib.Path(tmp), lambda: replay)
+        linker_map.step_walks(values, seeds, [walk], pathlib.Path(tmp), plan, lambda: replay)
     row = walk.row()
 
     def cost(rs):

@@ -47,7 +47,7 @@ def relative(package: pathlib.Path, path: pathlib.Path) -> str:
 
 
 def room(rel: str) -> str:
-    """The top-level subpackage a file is in ("cli" for cli/values.py), or TOP."""
+    """The top-level subpackage a file is in ("cli" for cli/parser.py), or TOP."""
     return rel.split("/")[0] if "/" in rel else TOP
 
 

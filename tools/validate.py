@@ -87,7 +87,7 @@ def reuse_real_runs(case_path, real: pathlib.Path, walk: pathlib.Path) -> int:
     would make again: a run is a pure function of its parameters (seed included), and the walk
     resumes by the whole parameter set (sweep/grid.point_key), so it reuses exactly the runs
     whose parameters are its own and bakes the rest. Only runs under the walk's protocol are
-    copied (minimal-linker's: inflate unless the case sets one; search/command.minimal_plan).
+    copied (minimal-linker's: inflate unless the case sets one; search/linker_map.walks_for).
     Measured 2026-11-26: the negative control's walks, and the near-threshold case's, baked
     their real linker's restarts a second time, bit for bit the same runs, 12 % of make
     validate's worker-seconds (docs/benchmarks.md#validate-v6). Returns how many were copied."""
@@ -136,11 +136,11 @@ def code_now(records=()) -> dict:
 def case_bound(case_path) -> dict:
     """The bound of a case's model at its real linker (geometry only, no run; structure files
     measured as `run` measures them), with the code it was computed with."""
-    from fibrilfit.cli import parser, values
+    from fibrilfit.api.model import resolve
+    from fibrilfit.api.plans import RunPlan, make_plan
     from fibrilfit.model import bound
-    args = parser.build_parser().parse_args(["run", "--case", str(case_path)])
-    values.apply_case(args, ["run", "--case", str(case_path)])
-    p, _, _ = values.checked_params(args)
+    plan, _ = make_plan(RunPlan, {}, case=str(case_path), command="run")
+    p = resolve(plan).p
     b = bound.linker_bound(p)
     out = {k: b.get(k) for k in BOUND_KEYS}
     out["computed"] = {k: v for k, v in code_now().items() if k != "bpy"}

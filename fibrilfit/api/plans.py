@@ -20,6 +20,7 @@ import dataclasses
 import typing
 
 from ..batch.plans import ExecutorPlan
+from ..batch.slurm import OPTIONS as SLURM_FIELDS
 from ..exports.plans import OutputPlan, RenderLook
 from ..model import cases, params as P
 from ..model.param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST
@@ -57,6 +58,11 @@ class _CommandPlan(Plan):
         """The model's values as given (a copy)."""
         return dict(self.model)
 
+    @classmethod
+    def refuse(cls, nests: dict) -> None:
+        """Combinations refused before the nested plans are made (`nests`: nested field -> the
+        values given for it), so the command's own reason comes first."""
+
 
 @dataclasses.dataclass(frozen=True)
 class RunPlan(_CommandPlan):
@@ -78,13 +84,21 @@ class RunPlan(_CommandPlan):
                                    "frames", group=RUN)
     force: bool = option(False, FORCE_HELP, group=RUN)
 
+    @classmethod
+    def refuse(cls, nests: dict) -> None:
+        """The executor works only for restarts: a SLURM option without them is refused for
+        that reason, before the executor plan says it needs --executor slurm."""
+        if nests["restarts"].get("restarts") is not None:
+            return
+        given = nests["executor"]
+        if given.get("executor") == "slurm":
+            raise PlanError("executor", "only with --restarts")
+        slurm = [name for name in SLURM_FIELDS if given.get(name) not in (None, (), [], False)]
+        if slurm:
+            raise PlanError(slurm[0], "only with --restarts")
+
     def check(self) -> None:
-        if self.restarts.restarts is None:
-            slurm = self.executor.given_slurm()
-            if self.executor.executor == "slurm" or slurm:
-                raise PlanError("executor" if self.executor.executor == "slurm" else slurm[0],
-                                "only with --restarts")
-        elif self.stop_after != "check":
+        if self.restarts.restarts is not None and self.stop_after != "check":
             raise PlanError("restarts", "judges every seed, so --stop-after must be check")
 
 
@@ -198,6 +212,7 @@ def make_plan(cls, values: dict, *, case: str | None = None, command: str | None
             (own if nest is None else nests[nest])[leaf] = value
         else:
             raise PlanError(name, f"not an option of {_name(cls)}")
+    cls.refuse(nests)
     made = {}
     for name, given in nests.items():
         base = whole.get(name, cls.__dataclass_fields__[name].default)

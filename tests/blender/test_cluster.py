@@ -268,7 +268,7 @@ def test_the_jobs_run_the_python_they_are_given(tmp_path):
 
 
 def test_minimal_linker_through_slurm_gives_the_local_map(tmp_path):
-    """`minimal-linker --executor slurm` (batch/options.py: the sweep's executor options): a tiny
+    """`minimal-linker --executor slurm` (batch/plans.py: the executor plan of every batch command): a tiny
     walk (8 Å fits at linker 1; the walk ran 4 runs in CI's first try) gives the local executor's
     map from the same runs, each run in a job."""
     small = ("--globule-diameter", "8", "--restarts", "2", "--max-linker", "2", "--layers", "4",

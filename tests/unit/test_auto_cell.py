@@ -4,7 +4,7 @@ inflate start's lattice, and the start fans its chains in that lattice
 import numpy as np
 
 from fibrilfit.model import helix, params as P, start_layout as S
-from fibrilfit.search import command
+from fibrilfit.search import linker_map
 from fibrilfit.sweep import grid
 
 
@@ -29,8 +29,8 @@ def test_auto_is_every_seeds_and_the_walk_records_it():
     points = grid.build({"periodic": ["auto"], "globule_diameter": ["50"],
                          "protocol": ["inflate"]}, [str(s) for s in range(3)])
     assert [pt.params["periodic"] for pt in points] == [30, 30, 30]
-    walk = command.restart_points({"periodic": "auto", "protocol": "inflate"}, 40.0, 11,
-                                  range(5))
+    walk = linker_map.restart_points({"periodic": "auto", "protocol": "inflate"}, 40.0, 11,
+                                     range(5))
     assert [pt.params["periodic"] for pt in walk] == [24] * 5
     assert [pt.params["seed"] for pt in walk] == list(range(5))
 

@@ -7,9 +7,12 @@ import time
 
 import pytest
 
+from fibrilfit.api.plans import MinimalLinkerPlan
 from fibrilfit.batch.executors import ProcessExecutor, Stopped
-from fibrilfit.search import command
+from fibrilfit.plans import PlanError
+from fibrilfit.search import linker_map
 from fibrilfit.search.background import BackgroundWalk
+from fibrilfit.search.plans import BatchOutput, SearchPlan
 
 FITS_FROM = {8.0: 1, 20.0: 3}  # the shortest linker that fits, by diameter
 
@@ -59,6 +62,11 @@ class Hanging(Table):
 VALUES = {"globule_diameter": "8,20", "protocol": "tutorial", "layers": "3", "seed": "4"}
 
 
+def _plan(**search):
+    return MinimalLinkerPlan(search=SearchPlan(**search),
+                             output=BatchOutput(quiet=True, no_plot=True))
+
+
 def _finished(walk, seconds=300.0):  # a hang guard, not a timing: the walk computes its bound
     end = time.monotonic() + seconds
     while not walk.finished:
@@ -67,17 +75,17 @@ def _finished(walk, seconds=300.0):  # a hang guard, not a timing: the walk comp
 
 
 def test_the_background_walk_gives_the_commands_rows_and_counts_its_runs(tmp_path):
-    args = command.options(restarts=2, max_linker=6, quiet=True, no_plot=True)
+    plan = _plan(restarts=2, max_linker=6)
     ex = Table()
-    walk = BackgroundWalk(args, VALUES, ex).start()
+    walk = BackgroundWalk(plan, VALUES, ex).start()
     _finished(walk)
     assert walk.error is None and not walk.stopped and ex.exited is None
     got = walk.result
 
-    values, seeds, walks = command.minimal_plan(args, VALUES)  # the command's own steps
+    values, seeds, walks = linker_map.walks_for(VALUES, plan)  # the command's own steps
     again = Table()
-    command._walk(args, values, seeds, walks, tmp_path, lambda: again)
-    assert got["rows"] == command.minimal_rows(args, values, seeds, walks)
+    linker_map.step_walks(values, seeds, walks, tmp_path, plan, lambda: again)
+    assert got["rows"] == linker_map.minimal_rows(values, seeds, walks, force=plan.force)
     assert [r["minimal_linker"] for r in got["rows"]] == [1, 3]
     assert got["rows"][1]["tried"]["2"] == {"accommodated": 0, "restarts": 2}
     assert got["table"].splitlines()[0].startswith("minimal linker: the shortest length at "
@@ -88,9 +96,9 @@ def test_the_background_walk_gives_the_commands_rows_and_counts_its_runs(tmp_pat
 
 
 def test_a_stopped_walk_ends_with_nothing_but_stopped():
-    args = command.options(restarts=2, max_linker=6, quiet=True, no_plot=True)
+    plan = _plan(restarts=2, max_linker=6)
     ex = Hanging()
-    walk = BackgroundWalk(args, VALUES, ex).start()
+    walk = BackgroundWalk(plan, VALUES, ex).start()
     end = time.monotonic() + 300  # a hang guard (the bound comes first; slow on a loaded machine)
     while walk.progress.submitted == 0:  # a run is under way
         assert time.monotonic() < end
@@ -122,8 +130,13 @@ def test_a_process_executors_wait_wakes_up_to_stop():
     assert ex.workers == []  # nothing was started
 
 
-def test_bad_options_are_the_walks_error_in_one_line():
-    args = command.options(restarts=0)
-    walk = BackgroundWalk(args, VALUES, Table()).start()
+def test_bad_options_are_refused_in_one_line():
+    """A bad search option is refused when the plan is made, before any walk starts; a bad
+    model value is the walk's error, in one line."""
+    with pytest.raises(PlanError) as caught:
+        _plan(restarts=0)
+    assert str(caught.value) == "--restarts: must be at least 1 (got 0)"
+    walk = BackgroundWalk(_plan(), {**VALUES, "linker": "8"}, Table()).start()
     _finished(walk)
-    assert walk.result is None and str(walk.error) == "--restarts: must be at least 1 (got 0)"
+    assert walk.result is None and str(walk.error) == (
+        "--linker: minimal-linker searches the linker length; leave it out")

@@ -42,12 +42,11 @@ def test_examples_load():
 
 
 def test_sweep_grid_takes_inline_points():
-    from argparse import Namespace
     from fibrilfit.sweep import grid
     square = [[-20, -12], [20, -12], [20, 12], [-20, 12]]
-    args = Namespace(**{f.name: None for f in P.fields() if f.name != "core_outline"},
-                     core_outline=square)
-    (point,) = grid.build(grid.specs_from(args), ["0"])
+    values = {**{f.name: None for f in P.fields() if f.name != "core_outline"},
+              "core_outline": square}
+    (point,) = grid.build(grid.specs_from(values), ["0"])
     assert point.params["core_outline"] == square
 
 

@@ -161,9 +161,8 @@ def test_several_domains_in_the_one_parameter_definition():
 
 
 def test_a_sweep_takes_lists_of_domains_separated_by_semicolons():
-    from types import SimpleNamespace
     from fibrilfit.sweep import grid
-    args = SimpleNamespace(**{f.name: None for f in P.fields()})
-    args.domain_diameters, args.domain_linker = "30,20;25,25", "3,2"
-    specs = grid.specs_from(args)
+    values = {f.name: None for f in P.fields()}
+    values["domain_diameters"], values["domain_linker"] = "30,20;25,25", "3,2"
+    specs = grid.specs_from(values)
     assert specs["domain_diameters"] == ["30,20", "25,25"] and specs["domain_linker"] == ["3,2"]

@@ -62,27 +62,32 @@ def test_page_is_self_contained_and_says_no_layout_found_never_does_not_fit(tmp_
 
 
 def test_sources_name_option_file_and_defaults():
-    from fibrilfit.cli import build_parser, values
+    from fibrilfit.api.batch import REPORT_DEFAULTS
+    from fibrilfit.api.model import param_sources
+    from fibrilfit.api.plans import ReportPlan, make_plan
+    from fibrilfit.cli import build_parser
     from fibrilfit.model import params as P
     argv = ["report", "--linker=4"]
     args = build_parser().parse_args(argv)
-    args.loaded_case, args.command_line = None, ["headless.py", *argv]
+    plan, case = make_plan(ReportPlan, {k: v for k, v in vars(args).items() if k != "command"})
     p = P.make_params(linker=4, rise=4.8, protocol="inflate")
     block = {"fibril": {"file": "6cu7.pdb.gz"}, "applied": {"rise": 4.8},
              "sources": {"rise": "6cu7.pdb.gz: measured over 4 layer pairs"}}
-    s = values.sources_of(args, p, block, {"protocol": "inflate"})
+    s = param_sources(plan.model, p, block, case=case, command="report",
+                      defaults=REPORT_DEFAULTS)
     assert s["linker"] == "option"
     assert s["rise"] == "6cu7.pdb.gz: measured over 4 layer pairs"
     assert s["protocol"] == "report default" and s["twist"] == "default"
 
 
 def test_report_refuses_in_one_line_without_matplotlib(monkeypatch):
+    from fibrilfit.batch.plans import ExecutorPlan
     from fibrilfit.exits import UsageError
     real = report.importlib.util.find_spec
     monkeypatch.setattr(report.importlib.util, "find_spec",
                         lambda name: None if name == "matplotlib" else real(name))
     with pytest.raises(UsageError, match="^the report needs the Python package matplotlib, which "):
-        report.check_options(report.options())
+        report.need_packages(ExecutorPlan())
 
 
 def test_the_report_brackets_the_answer():

@@ -291,11 +291,13 @@ def test_restarts_decided_by_a_fit_or_by_the_interval_asked():
 
 
 def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
-    """command._walk on an executor that answers from a table: at the minimum the walk stops
-    at the first fit (seed 1: seeds 0 and 1 were in flight on 2 workers), one below every seed
-    runs; with --all-restarts every seed runs at both."""
-    import argparse
-    from fibrilfit.search import command
+    """linker_map.step_walks on an executor that answers from a table: at the minimum the walk
+    stops at the first fit (seed 1: seeds 0 and 1 were in flight on 2 workers), one below every
+    seed runs; with --all-restarts every seed runs at both."""
+    from fibrilfit.api.plans import MinimalLinkerPlan
+    from fibrilfit.batch.plans import ExecutorPlan
+    from fibrilfit.search import linker_map
+    from fibrilfit.search.plans import BatchOutput, SearchPlan
 
     class Table(FakeExecutor):
         def wait(self):
@@ -307,14 +309,15 @@ def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
                 **_record(p["seed"], fits), "params": p}}
 
     for every, ran_at_5 in ((False, [0, 1]), (True, [0, 1, 2, 3, 4])):
-        args = argparse.Namespace(force=False, quiet=True, executor="processes", workers=2,
-                                  max_linker=20, all_restarts=every, known_fit=None)
+        plan = MinimalLinkerPlan(search=SearchPlan(max_linker=20, all_restarts=every),
+                                 output=BatchOutput(quiet=True),
+                                 executor=ExecutorPlan(executor="processes", workers=2))
         base = P.make_params(globule_diameter=30.0, linker=1)
-        w = command.new_walk(args, base, 5)
+        w = linker_map.new_walk(plan.search, base, 5)
         ex = Table(fits=set())
         out = tmp_path / f"every{every}"
         out.mkdir()
-        command._walk(args, {"protocol": "inflate"}, range(5), [w], out, lambda: ex)
+        linker_map.step_walks({"protocol": "inflate"}, range(5), [w], out, plan, lambda: ex)
         assert w.minimal == 5 and w.tried[4] == (0, 5)
         assert sorted(s for L, s in ex.ran if L == 5) == ran_at_5
         assert sorted(s for L, s in ex.ran if L == 4) == [0, 1, 2, 3, 4]
@@ -332,21 +335,23 @@ def test_interval_width_is_refused_in_one_line(args, named):
 
 
 def test_the_restarts_line_says_how_many_ran_and_why_it_stopped():
-    from fibrilfit.search import command
+    from fibrilfit.search import linker_map
     recs = [_record(0, False, 1), _record(1, True)]
     s = {**restarts.tally(recs), "stop_on_fit": True, "asked": 5,
          "decided": restarts.decided(recs, stop_on_fit=True)}
-    line = command.restarts_line(s)
+    line = linker_map.restarts_line(s)
     assert "1/2 accommodated" in line and "stopped after 2 of 5 runs: a fit found" in line
     s["decided"] = None
-    assert "stopped" not in command.restarts_line(s)
+    assert "stopped" not in linker_map.restarts_line(s)
 
 
 def test_a_resumed_walk_runs_nothing_again(tmp_path):
     """The walk stopped a length at its first fit; walked again over the same results it runs
     nothing (the length is decided by the recorded fit), and gives the same row."""
-    import argparse
-    from fibrilfit.search import command
+    from fibrilfit.api.plans import MinimalLinkerPlan
+    from fibrilfit.batch.plans import ExecutorPlan
+    from fibrilfit.search import linker_map
+    from fibrilfit.search.plans import BatchOutput, SearchPlan
 
     class Table(FakeExecutor):
         def wait(self):
@@ -356,14 +361,16 @@ def test_a_resumed_walk_runs_nothing_again(tmp_path):
             return job, {"id": job["id"], "ok": True, "result": {
                 **_record(p["seed"], p["linker"] >= 5 and p["seed"] != 1), "params": p}}
 
-    args = argparse.Namespace(force=False, quiet=True, executor="processes", workers=1,
-                              max_linker=20, all_restarts=False, known_fit=None)
+    plan = MinimalLinkerPlan(search=SearchPlan(max_linker=20, all_restarts=False),
+                             output=BatchOutput(quiet=True),
+                             executor=ExecutorPlan(executor="processes", workers=1))
     base = P.make_params(globule_diameter=30.0, linker=1)
     rows = []
     for k in range(2):
-        w = command.new_walk(args, base, 5)
+        w = linker_map.new_walk(plan.search, base, 5)
         ex = Table(fits=set())
-        command._walk(args, {"protocol": "inflate"}, range(5), [w], tmp_path, lambda: ex)
+        linker_map.step_walks({"protocol": "inflate"}, range(5), [w], tmp_path, plan,
+                              lambda: ex)
         rows.append(w.row())
         if k == 0:
             assert (5, 0) in ex.ran and (5, 1) not in ex.ran  # one worker: stopped at seed 0
@@ -375,15 +382,15 @@ def test_a_resumed_walk_runs_nothing_again(tmp_path):
 def test_the_walk_takes_the_bound_from_a_run_of_its_geometry():
     """A run's record carries the bound it was judged under (pipeline: `bound`); the walk uses
     it rather than computing it again, and starts at it when the guess lies below."""
-    import argparse
-    from fibrilfit.search import command
-    args = argparse.Namespace(max_linker=20, all_restarts=False)
+    from fibrilfit.search import linker_map
+    from fibrilfit.search.plans import SearchPlan
+    search = SearchPlan(max_linker=20, all_restarts=False)
     base = P.make_params(globule_diameter=30.0, linker=1)
     rec = {**_record(0, True), "bound": {"impossible_below": 7}}
-    w = command.new_walk(args, base, 5, records=[rec])
+    w = linker_map.new_walk(search, base, 5, records=[rec])
     assert w.floor == 7 and w.start == 7 and w.next_step() == (7, minimal.SCREEN)
     failed = {"params": {"seed": 1}, "status": "failed", "bound": {"impossible_below": 9}}
-    assert command.floor_of(base, [failed, rec]) == 7
+    assert linker_map.floor_of(base, [failed, rec]) == 7
 
 
 def test_a_length_whose_model_cannot_start_is_a_miss_without_runs():

@@ -1,4 +1,4 @@
-"""The executor options (batch/options.py) without a SLURM: every command that runs many models
+"""The executor options (batch/plans.py's ExecutorPlan) without a SLURM: every command that runs many models
 takes the same ones and makes the same executor of them; sbatch's errors in one line.
 (Through a real SLURM: tests/blender/test_cluster.py, `make test-cluster`.)"""
 import argparse
@@ -37,6 +37,14 @@ def _parsed(argv):
     return build_parser().parse_args(argv)
 
 
+def _planned(argv):
+    """The command's plan from a command line, as cli/commands.main makes it."""
+    from fibrilfit.api.plans import COMMAND_PLANS, make_plan
+    args = _parsed(argv)
+    given = {k: v for k, v in vars(args).items() if k not in ("command", "case")}
+    return make_plan(COMMAND_PLANS[args.command], given)[0]
+
+
 def _subparsers():
     from fibrilfit.cli import build_parser
     (sub,) = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
@@ -44,8 +52,9 @@ def _subparsers():
 
 
 def test_every_batch_command_declares_the_same_executor_options():
-    from fibrilfit.batch import options
-    names = set(options.defaults())
+    from fibrilfit.batch.plans import ExecutorPlan
+    from fibrilfit.plans import option_fields
+    names = {f.name for f in option_fields(ExecutorPlan)}
     assert {"executor", "workers", "scheduler", "timeout", "partition", "walltime",
             "show_job_script"} <= names
     subs = _subparsers()
@@ -62,15 +71,13 @@ def test_every_batch_command_declares_the_same_executor_options():
 @pytest.mark.parametrize("given", [SLURM, DASK, ["--workers", "2"]],
                          ids=["slurm", "dask", "processes"])
 def test_the_same_options_give_the_same_executor_in_every_command(tmp_path, given):
-    from fibrilfit.batch import options
     from fibrilfit.batch.executors import executor_spec
     if given is SLURM:
         pytest.importorskip("dask")
     specs = {}
     for command, argv in MANY.items():
-        args = _parsed([*argv, *given])
-        options.check(args)  # accepted by every one
-        specs[command] = executor_spec(args, out=tmp_path, runs=5)
+        plan = _planned([*argv, *given])  # accepted by every one (checked when made)
+        specs[command] = executor_spec(plan.executor, out=tmp_path, runs=5)
     first = specs["sweep"]
     assert all(spec == first for spec in specs.values()), specs
     if given is SLURM:
@@ -92,8 +99,8 @@ def test_the_same_options_give_the_same_executor_in_every_command(tmp_path, give
 def test_slurm_jobs_default_to_one_per_run_at_most_sixteen(tmp_path):
     pytest.importorskip("dask")
     from fibrilfit.batch.executors import executor_spec
-    args = _parsed(["minimal-linker", "--executor", "slurm"])
-    assert [executor_spec(args, out=tmp_path, runs=n)["workers"] for n in (1, 5, 40)] == [1, 5, 16]
+    plan = _planned(["minimal-linker", "--executor", "slurm"]).executor
+    assert [executor_spec(plan, out=tmp_path, runs=n)["workers"] for n in (1, 5, 40)] == [1, 5, 16]
 
 
 @pytest.mark.parametrize("command", list(MANY))
@@ -105,29 +112,35 @@ def test_slurm_jobs_default_to_one_per_run_at_most_sixteen(tmp_path):
     (["--timeout", "0"], "--timeout: must be a positive number"),
 ])
 def test_every_batch_command_refuses_bad_executor_options_alike(command, bad, says):
-    from fibrilfit.batch import options
     from fibrilfit.exits import UsageError
     with pytest.raises(UsageError, match=f"^{re.escape(says)}"):
-        options.check(_parsed([*MANY[command], *bad]))
+        _planned([*MANY[command], *bad])
 
 
 def test_run_takes_executor_options_only_with_restarts():
     from fibrilfit.exits import UsageError
-    from fibrilfit.search.command import check_restart_options
+    # the command's own reason first (RunPlan.refuse), before the executor's plan would say
+    # that a SLURM option needs --executor slurm
     for bad, says in ((["--partition", "short"], "--partition: only with --restarts"),
+                      (["--executor", "slurm", "--partition", "short"],
+                       "--executor: only with --restarts"),
                       (["--executor", "slurm"], "--executor: only with --restarts")):
         with pytest.raises(UsageError, match=f"^{re.escape(says)}$"):
-            check_restart_options(_parsed(["run", *bad]))
-    check_restart_options(_parsed(["run", "--workers", "4"]))  # as before: ignored, no error
+            _planned(["run", *bad])
+    _planned(["run", "--workers", "4"])  # as before: ignored, no error
 
 
 def test_the_sidebars_report_has_every_executor_option_at_its_default():
-    from fibrilfit.batch import options
-    from fibrilfit.search import report
-    args = report.options()
-    assert {k: getattr(args, k) for k in options.defaults()} == options.defaults()
-    options.check(args)
-    assert vars(_parsed(["report"]))["executor"] == args.executor == "processes"
+    # as ui/operators/report.py makes its plan: the model and the search, nothing else
+    import dataclasses
+    from fibrilfit.api.plans import ReportPlan
+    from fibrilfit.batch.plans import ExecutorPlan
+    from fibrilfit.search.plans import REPORT_SEARCH
+    plan = ReportPlan.make(model={}, search=REPORT_SEARCH.replace(restarts=3, max_linker=10))
+    defaults = {f.name: f.default for f in dataclasses.fields(ExecutorPlan)}
+    assert {k: getattr(plan.executor, k) for k in defaults} == defaults
+    plan.executor.check()
+    assert _planned(["report"]).executor.executor == plan.executor.executor == "processes"
 
 
 def test_run_and_report_declare_the_same_render_options():

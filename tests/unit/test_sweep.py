@@ -160,7 +160,7 @@ def test_phase_plot_layouts(tmp_path):
 def test_workers_that_cannot_start_stop_the_sweep_with_one_line():
     from fibrilfit.batch.executors import ProcessExecutor, SweepError
     ex = ProcessExecutor(2)
-    ex.command = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
+    ex.worker_argv = [sys.executable, "-c", "import sys; print('no bpy here', file=sys.stderr); "
                                         "sys.exit(3)"]
     with ex, pytest.raises(SweepError, match="cannot start: worker pid .* exited with code 3: "
                                              "no bpy here"):
@@ -174,11 +174,13 @@ U_CORE = [[-20, -11], [20, -11], [20, 11], [8, 11], [8, -3], [-8, -3], [-8, 11],
 def test_geometry_parameters_are_sweep_axes(tmp_path):
     (tmp_path / "u.json").write_text(json.dumps(U_CORE))
     from fibrilfit import cli
+    from fibrilfit.api.plans import SweepPlan, make_plan
     args = cli.build_parser().parse_args([
         "sweep", "--protofilaments", "1,2", "--pf-rotation", "auto,3.1294", "--pf-rise", "0:2:2",
         "--core-outline", f"box,{tmp_path / 'u.json'}", "--anchor", "0,21.75", "-12.75",
         "--out", str(tmp_path / "s")])
-    specs = grid.specs_from(args)
+    plan, _ = make_plan(SweepPlan, {k: v for k, v in vars(args).items() if k != "command"})
+    specs = grid.specs_from(plan.model)
     assert specs["protofilaments"] == ["1", "2"] and specs["pf_rise"] == ["0", "2"]
     assert specs["anchor"] == ["0 -12.75", "21.75 -12.75"]
     points = grid.build(specs, ["0"])

@@ -256,8 +256,10 @@ def test_sweep_minimal_linker_says_what_two_seeds_show():
 
 
 def test_the_restarts_check_compares_verdicts():
-    from fibrilfit.cli import run_command
-    args = argparse.Namespace(loaded_case=None, restarts=2, fibril=None, domain=None)
+    from fibrilfit.api.model import ResolvedModel
+    from fibrilfit.api.plans import RunPlan, make_plan
+    from fibrilfit.api.one_run import annotate
+    plan, case = make_plan(RunPlan, {"restarts": 2})
     p = P.make_params(seed=1)
     best = {"seed": 1, "accommodated": True, "verdict": "successful", "max_bond_stretch": 0.0101}
     for stretch, verdict, accommodated, same in [(0.0102, "successful", True, True),
@@ -265,20 +267,23 @@ def test_the_restarts_check_compares_verdicts():
         restarts = {"runs": [best]}
         r = {"max_bond_stretch": stretch, "verdict": verdict, "accommodated": accommodated,
              "warnings": []}
-        run_command._annotate(args, p, r, None, restarts)
+        annotate(plan, p, r, ResolvedModel(p, {}, None, None), restarts, case)
         assert restarts["reproduced"] is same
         assert any("did not reproduce" in w for w in r["warnings"]) is not same
         assert r["sources"]["seed"].startswith("the best of --restarts 2")
 
 
 def test_sources_name_every_parameter(tmp_path):
-    from fibrilfit.cli import build_parser, values
+    from fibrilfit.api.model import param_sources
+    from fibrilfit.api.plans import RunPlan, make_plan
+    from fibrilfit.cli import build_parser
     case_file = tmp_path / "c.toml"
     case_file.write_text("[params]\nlinker = 9\nlayers = 8\n", encoding="utf-8")
     argv = ["run", "--case", str(case_file), "--layers", "6", "--twist=-0.9deg"]
     args = build_parser().parse_args(argv)
-    args.loaded_case = values.apply_case(args, argv)
-    src = values.param_sources(args, P.make_params(**values.params_from(args)))
+    given = {k: v for k, v in vars(args).items() if k not in ("command", "case")}
+    plan, case = make_plan(RunPlan, given, case=args.case, command="run")
+    src = param_sources(plan.model, P.make_params(**plan.model), case=case)
     assert set(src) == {f.name for f in P.fields()}
     assert (src["linker"], src["layers"], src["twist"], src["rise"]) == (
         "case", "option", "option", "default")

@@ -44,7 +44,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         values, block = (from_files.merged(m.fibril, m.domains, m.segmentation,
                                            dict(case.params))
                          if m is not None else (case.params, {}))
-        p = P.make_params(**values)  # as `run --case` (cli/values.py's checked_params)
+        p = P.make_params(**values)  # as `run --case` (api/model.py's resolve)
         s = common.settings(context)
         s.domains.clear()  # the case's values are the domains now
         properties.write_params(s, p)

@@ -4,7 +4,7 @@ tests/blender/test_domain_shapes.py."""
 import numpy as np
 import pytest
 from fibrilfit.model import params as P
-from fibrilfit.model.chain import body_radii, chain_radii, chain_x, rest_lengths
+from fibrilfit.model.chain import body_radii, chain_radii, chain_x, globule_offset, rest_lengths
 from fibrilfit.geom import shape
 from fibrilfit.structure import body_frame, measure_domain, model_values, reading
 from helpers import ROOT
@@ -65,7 +65,7 @@ def test_params_take_a_shape_only_with_its_geometry():
     dom = measure_domain(DATA / "1ubq.pdb.gz")
     assert "domain_atoms" not in model_values(None, dom)  # the sphere's model: as before
     p = P.make_params(domain_shape="hull", **model_values(None, dom, shape="hull"))
-    assert p.globule_offset == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
+    assert globule_offset(p) == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
     assert P.make_params(**p.to_dict()) == p  # the case file / sweep round trip
     assert p.replace(periodic=20).periodic == 20  # a cell's images carry the whole turn
     spheres = P.make_params(domain_shape="spheres", **model_values(None, dom, shape="spheres"))

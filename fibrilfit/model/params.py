@@ -22,12 +22,6 @@ from .param_checks import check_combination, check_twist
 from .param_spec import (DOMAIN_SHAPES, MAX_COORDINATE, NUMBER_WORDS, PROTOCOLS, SEALED,
                          ParamError, rows_spec, spec)
 from .param_values import field_value, plain
-# TEMPORARY, removed by the next commit: names params.py does not use, still read as P.<name>
-# by the command layer (cli/, sweep/grid.py, ui/operators/) until it imports them from where
-# they are defined (issue #43)
-from .param_checks import refuse_beside_periodic  # noqa: F401,E402
-from .param_spec import ANGLE_UNITS, DERIVED_WORDS, MAX_OBJECTS_UNFORCED, MAX_TWIST  # noqa: F401
-from .param_values import read_outline, split_unit  # noqa: F401
 
 
 @dataclass(frozen=True)
@@ -278,9 +272,6 @@ class Params:
         """Protofilament 0's chain in the layer's frame (chain.chain_layout), kept: the checks,
         the start layouts and the builders each ask for it. Raises ParamError."""
         return chain.chain_layout(self)
-
-    def chain_x(self) -> list[float]:  # TEMPORARY: ui/operators/structures.py; chain.chain_x
-        return chain.chain_x(self)
 
     @property
     def shape(self) -> chain_domains.Shape:

@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "19034d6b247596bae31c5be22ae4db1c3eaa92e5be10128216467c1e06a6e11b"
+MODEL_SOURCES_SHA256 = "ae4ca90a7e5e18d8209aa4e2c0826b81b613cc6d3ba9da12290b35301a39fe11"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

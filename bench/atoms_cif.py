@@ -48,7 +48,7 @@ def main() -> None:
         size = path.stat().st_size
         model = writers.find_model(scene)
         from fibrilfit.analysis.verdict import chain_positions, world_matrices
-        members = mmcif.domain_members(p)
+        members = [d.member for d in p.domains]
         for _ in range(a.repeat):
             t0 = time.perf_counter()
             pos = chain_positions(model)

@@ -31,6 +31,7 @@ def main(argv=None) -> int:
     import numpy as np
     import fibrilfit as ff
     from fibrilfit.geom import polygons
+    from fibrilfit.model.chain import rest_lengths
     from fibrilfit.model import params as P
     from fibrilfit import pipeline, structure
     from fibrilfit.analysis.stretch import bond_stretch
@@ -50,7 +51,7 @@ def main(argv=None) -> int:
             t = time.perf_counter()
             r = pipeline.run_model(p, bpy.context.scene)
             pos = chain_positions(pipeline.current_model())
-            s = bond_stretch(pos, p.rest_lengths())
+            s = bond_stretch(pos, rest_lengths(p))
             bad = sorted({int(c) for c in np.argwhere(s > p.stretch_tolerance)[:, 0]})
             K = p.protofilaments
             chains = [(c // K, c % K, f"{s[c].max():.0%}", round(float(pos[c, -1, 2]), 1))

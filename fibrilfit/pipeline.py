@@ -12,6 +12,7 @@ import bpy
 
 from .model import bound, params as P
 from .model import terminus, version as model_version
+from .model.chain import rest_lengths
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -40,7 +41,7 @@ class Baking:
     def __init__(self, model, scene=None):
         self.model, self.scene = model, scene or bpy.context.scene
         p = model.params
-        self.stretch = StretchLog(p.rest_lengths(), p.stretch_tolerance, slice(*scored_chains(p)))
+        self.stretch = StretchLog(rest_lengths(p), p.stretch_tolerance, slice(*scored_chains(p)))
         self.stats = BakeStats()
         # Hooks that judge a layout mid-bake (inflate) use the same check as the verdict.
         self.hooks = frame_hooks(model, self.scene, judge=check_model)

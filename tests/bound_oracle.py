@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from fibrilfit.model import helix
+from fibrilfit.model.chain import chain_x
 
 
 def anchors(p) -> np.ndarray:
@@ -22,7 +23,7 @@ def anchors(p) -> np.ndarray:
 
 
 def reach(p) -> float:
-    x = p.chain_x()
+    x = chain_x(p)
     return (x[p.linker] - x[0]) * (1.0 + p.stretch_tolerance)
 
 

@@ -30,6 +30,7 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 from fibrilfit.model import cases, params as P  # noqa: E402
+from fibrilfit.model.chain import chain_x  # noqa: E402
 from fibrilfit.sweep import runner, stats, summary, validation  # noqa: E402
 from fibrilfit.sweep.validation import provenance, table  # noqa: E402,F401 (tests)
 wilson = stats.wilson
@@ -159,7 +160,7 @@ def bodies(case_path) -> int:
 
 def contour_radius(p) -> float:
     """Where the build puts a globule: the linker fully stretched, radially."""
-    return p.chain_x()[-1]
+    return chain_x(p)[-1]
 
 
 def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tuple = (),

@@ -171,7 +171,7 @@ class SphereCheck:
 
     @staticmethod
     def band(p, meshes) -> float:
-        return grazing_depth(meshes[0]) * max(p.domain_radii) / p.globule_radius
+        return grazing_depth(meshes[0]) * max(d.radius for d in p.domains) / p.globule_radius
 
     @staticmethod
     def clashes(p, meshes, matrices, kinds, centres, radius, band):

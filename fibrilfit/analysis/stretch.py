@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..model.chain import joint_lever, rest_lengths
+
 
 def bond_stretch(positions: np.ndarray, rest_lengths) -> np.ndarray:
     """Stretch of each bond, (distance − rest) / rest, for chain positions (layers, members, 3).
@@ -29,13 +31,13 @@ def bond_ends(p, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarr
     matrices = np.asarray(matrices, dtype=float)
     positions = matrices[..., :3, 3]
     starts, ends = positions[:, :-1].copy(), positions[:, 1:].copy()
-    rest = np.asarray(p.rest_lengths(), dtype=float).copy()
+    rest = np.asarray(rest_lengths(p), dtype=float).copy()
     for d in p.domains:  # a sphere has no joint: its bonds end at its centre, as a bead's
         if d.joint is None:
             continue
         g, m = d.member, matrices[:, d.member]
         ends[:, g - 1] = m[:, :3, :3] @ d.joint + m[:, :3, 3]
-        rest[g - 1] = p.joint_lever
+        rest[g - 1] = joint_lever(p)
         if d.exit is not None and g < positions.shape[1] - 1:
             starts[:, g] = m[:, :3, :3] @ d.exit + m[:, :3, 3]
             rest[g] = p.residue_spacing

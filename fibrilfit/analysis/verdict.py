@@ -73,7 +73,7 @@ def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,
     return grazing, disagree
 
 
-def with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
+def matrices_with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
     """The cell's globule matrices followed by their images S^m for m = 1 .. cells, each m as a
     block, so that globule j of image m has index j + m·n (its chain in the infinite fibril).
 
@@ -103,7 +103,7 @@ def check_model(model) -> dict:
     warnings = list(clashes["warnings"])
     stretch = ends_stretch(*bond_ends(p, matrices[c_lo:c_hi]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
-    domains = len(p.globule_members())
+    domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
                                                            hi, domains)
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
@@ -166,7 +166,7 @@ def _clash_checks(model) -> dict:
     p = model.params
     c_lo, c_hi = scored_chains(p)
     globules = model.globules
-    domains = len(p.globule_members())  # globule g: domain g % D of chain g // D
+    domains = len(p.domains)  # globule g: domain g % D of chain g // D
     exact = EXACT_CHECKS[p.shape.name]
     # a real shape: each domain its own mesh (docs/guide/atoms-and-domains.md#shapes-of-several-domains),
     # globule g (and its images, blocks of n) domain g % D; spheres share domain 1's, scaled
@@ -176,12 +176,13 @@ def _clash_checks(model) -> dict:
     n = len(matrices)
     cells = 0
     if p.periodic:
-        matrices, cells = with_images(p, matrices, bounding_radius(meshes, matrices) + band)
+        matrices, cells = matrices_with_images(p, matrices,
+                                               bounding_radius(meshes, matrices) + band)
     everything = matrices[:, :3, 3]  # the cell's globules, then their images
     # further domains share the mesh, scaled: its facets' sag scales with them; an image's
     # radius is its original's (blocks of n: globule g is domain g % D)
     radius = (p.globule_radius if domains == 1 else
-              np.tile(np.asarray(p.domain_radii), len(everything) // domains))
+              np.tile(np.asarray([d.radius for d in p.domains]), len(everything) // domains))
     scored = np.zeros(len(everything), dtype=bool)
     scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
 
@@ -245,7 +246,7 @@ def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
 def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
     """Several domains per chain: which domain of which chain clashes (layer, protofilament,
     domain from the core outward, 0 first), and the envelope of each domain and of all."""
-    domains = len(p.globule_members())
+    domains = len(p.domains)
     layer_of, pf_of = helix.chain_layers(p)
 
     n = len(centres)
@@ -256,19 +257,20 @@ def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
                 "protofilament": int(pf_of[c]), "domain": int(g % domains)}
 
     which = np.arange(len(centres)) % domains
+    widest = max(d.radius for d in p.domains)
     if reach is not None:  # real shapes: each body's farthest point
         return {
             "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
-            "domain_envelopes": [envelope(centres[scored & (which == d)], r,
-                                          reach[scored & (which == d)])
-                                 for d, r in enumerate(p.domain_radii)],
-            "envelope": envelope(centres[scored], max(p.domain_radii), reach[scored]),
+            "domain_envelopes": [envelope(centres[scored & (which == d.index)], d.radius,
+                                          reach[scored & (which == d.index)])
+                                 for d in p.domains],
+            "envelope": envelope(centres[scored], widest, reach[scored]),
         }
     return {
         "clashing_domains": [[name(i), name(j), d] for i, j, d in clashing],
-        "domain_envelopes": [envelope(centres[scored & (which == d)], r)
-                             for d, r in enumerate(p.domain_radii)],
-        "envelope": envelope(centres[scored], max(p.domain_radii)),
+        "domain_envelopes": [envelope(centres[scored & (which == d.index)], d.radius)
+                             for d in p.domains],
+        "envelope": envelope(centres[scored], widest),
     }
 
 

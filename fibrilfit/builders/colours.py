@@ -46,7 +46,7 @@ def colour_globules(model, clashing_layers, scene=None, grazing=()) -> list[int]
     keep_bake(scene or bpy.context.scene)
     red = {int(k) for k in clashing_layers}
     pale = {int(k) for k in grazing} - red
-    places = model.params.globule_members()
+    places = [d.member for d in model.params.domains]
     for k, members in enumerate(model.chain):
         for ob in (members[i] for i in places if i < len(members)):
             if ob.get(TAG) != "globule":

@@ -21,7 +21,8 @@ from typing import Callable
 import numpy as np
 
 from ..geom.rigid import euler_xyz
-from ..model import domains, helix
+from ..model import helix
+from ..model.chain import rest_lengths
 from .readback import collection_matrices
 from .scene import INDEX, TAG
 
@@ -48,9 +49,9 @@ def start_scale(p, centres: np.ndarray) -> float:
     periodic cell, also with the images of the cell's globules). `centres`: every globule, in
     the order of Model.globules (several domains: each grows to its own size, so a pair meets at
     the scale d / (r_i + r_j))."""
-    if len(p.globule_members()) > 1:
+    if len(p.domains) > 1:
         return _start_scale_domains(p, centres)
-    d = _closest(with_images(p, centres)[0])
+    d = _closest(centres_with_images(p, centres)[0])
     if d is None:
         return p.grow_start
     return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
@@ -58,9 +59,9 @@ def start_scale(p, centres: np.ndarray) -> float:
 
 def _start_scale_domains(p, centres: np.ndarray) -> float:
     """start_scale for several domains per chain: the smallest d / (r_i + r_j) over pairs."""
-    points, _ = with_images(p, centres)
+    points, _ = centres_with_images(p, centres)
     # each body's reach, not its Rg sphere's (a sphere's reach is its radius: Domain.reach)
-    reach = domains.domain_reaches(p)
+    reach = [d.reach for d in p.domains]
     radii = np.tile(reach, -(-len(points) // len(reach)))[:len(points)]
     order = np.argsort(points[:, 2])
     c, r = points[order], radii[order]
@@ -79,29 +80,29 @@ def _start_scale_domains(p, centres: np.ndarray) -> float:
 def globule_radii(p, n: int) -> np.ndarray:
     """Full-size radii of n globules in the order of Model.globules, chain after chain (and
     image block after block): globule g is domain g % D."""
-    radii = np.asarray(p.domain_radii, dtype=float)
+    radii = np.asarray([d.radius for d in p.domains], dtype=float)
     return np.tile(radii, -(-n // len(radii)))[:n]
 
 
 def globule_scales(p, objects) -> np.ndarray | None:
     """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
     which they share (builders.layers); None for one domain (every full size is 1)."""
-    members = p.globule_members()
-    if len(members) == 1 or p.shape.real:  # real shapes: each its own mesh at full size
+    if len(p.domains) == 1 or p.shape.real:  # real shapes: each its own mesh at full size
         return None
-    size = dict(zip(members, np.asarray(p.domain_radii) / p.globule_radius))
+    size = {d.member: d.radius / p.globule_radius for d in p.domains}
     return np.array([size[int(ob[INDEX])] for ob in objects], dtype=float)
 
 
-def with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
+def centres_with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
     """The globule centres and, in a periodic cell, their images above it as far as a globule
     can reach (pairs with the images below are the same pairs shifted). Returns (centres, n):
     the first n are the cell's; image-image pairs repeat cell pairs and must not be counted."""
     centres = np.asarray(centres, dtype=float)
     if not p.periodic or not len(centres):
         return centres, len(centres)
-    # (one real-shaped domain: its Rg sphere's radius, as before the domains had a reach)
-    reach = max(domains.domain_reaches(p)) if p.several_shapes else p.widest_diameter / 2.0
+    # several domains: each body's reach, as _start_scale_domains counts them; one domain: its
+    # sphere's radius, as start_scale and sphere_judge count it (a real shape: its Rg sphere's)
+    reach = max(d.reach for d in p.domains) if len(p.domains) > 1 else p.domains[0].radius
     cells = helix.check_cells(p, centres[:, 2], reach)
     m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
     images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
@@ -135,15 +136,15 @@ def settle_tags(scene) -> None:
 def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
     """The fallback judgement: no scored globule pair overlapping by more than
     OVERLAP_TOLERANCE and every scored bond within the stretch tolerance."""
-    rest = np.asarray(p.rest_lengths(), dtype=float)
+    rest = np.asarray(rest_lengths(p), dtype=float)
     stretch = np.linalg.norm(np.diff(positions[scored], axis=1), axis=-1) / rest - 1.0
     worst = float(stretch.max()) if stretch.size else 0.0
-    members = p.globule_members()
+    members = [d.member for d in p.domains]
     centres = positions[:, members].reshape(-1, 3)  # one domain: positions[:, -1]
     domains = len(members)
     keep = np.zeros(len(centres), dtype=bool)
     keep[scored.start * domains:scored.stop * domains] = True
-    centres, _ = with_images(p, centres)
+    centres, _ = centres_with_images(p, centres)
     keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
     radii = globule_radii(p, len(centres))
     deep, overlap = 0, 0.0

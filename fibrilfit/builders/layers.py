@@ -9,6 +9,7 @@ import numpy as np
 from ..geom import shape
 from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, params as P
+from ..model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS, RESIDUE_RINGS, RESIDUE_SEGMENTS
 from ..model.bent_layout import domain_terminals, real_chain_layout, spread_chains
 from ..model.start_layout import (bond_pivots, inflate_layout, rest_positions, spread_layout,
                                   walk_directions)
@@ -43,7 +44,7 @@ class LayerBuilder:
         elif p.shape.spread:  # full size from the start: spread, or they can lock
             # (docs/model/domain-shapes.md#spheres-start)
             self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
-        self.globule_members = p.globule_members()
+        self.domain_at = {d.member: d for d in p.domains}  # each domain by its place
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
@@ -65,7 +66,7 @@ class LayerBuilder:
                 self.mesh[role] = globule_mesh(p, int(role.split()[1]))
             else:  # the anchor and the linker's residues are the same bead
                 self.mesh[role] = meshes.uv_sphere("FibrilFit residue", p.residue_radius,
-                                                   P.RESIDUE_SEGMENTS, P.RESIDUE_RINGS)
+                                                   RESIDUE_SEGMENTS, RESIDUE_RINGS)
         return self.mesh[role]
 
     def _slab(self, k):
@@ -117,10 +118,9 @@ class LayerBuilder:
     def _chain_member(self, k, j, i):
         p = self.p
         c = k * self.pfs + j
-        role = "anchor" if i == 0 else ("globule" if i in self.globule_members else "residue")
+        role = "anchor" if i == 0 else ("globule" if i in self.domain_at else "residue")
         # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
-        domain = (self.globule_members.index(i) if role == "globule" and p.shape.real
-                  else 0)
+        domain = self.domain_at[i].index if role == "globule" and p.shape.real else 0
         mesh = self._shared_mesh(("globule" if not domain else f"globule {domain}")
                                  if role == "globule" else "residue")
         shape = p.shape.collision if role == "globule" else "SPHERE"
@@ -149,12 +149,12 @@ class LayerBuilder:
         if not self.p.shape.compound:
             return
         key = "sphere_meshes" if not domain else f"sphere_meshes {domain}"
-        spheres = [tuple(row) for row in self.p.domain_rows(domain)]
+        spheres = [tuple(row) for row in self.p.domains[domain].rows]
         if key not in self.mesh:
             name = "FibrilFit globule sphere" if not domain else f"FibrilFit domain {domain} sphere"
             self.mesh[key] = [
-                meshes.uv_sphere(f"{name} {n}", r, P.GLOBULE_SEGMENTS,
-                                 P.GLOBULE_RINGS) for n, (*_, r) in enumerate(spheres)]
+                meshes.uv_sphere(f"{name} {n}", r, GLOBULE_SEGMENTS, GLOBULE_RINGS)
+                for n, (*_, r) in enumerate(spheres)]
         if not hasattr(self, "spheres_coll"):
             self.spheres_coll = new_collection("FibrilFit globule spheres", "globule_spheres",
                                                self.parts["globule"])
@@ -195,7 +195,7 @@ class LayerBuilder:
     def _further_domains(self, k):
         """Several domains per chain: each protofilament's chain on from its first globule
         (beads, globule, beads, globule ...), bonds in chain order."""
-        last = self.globule_members[-1]
+        last = self.p.domains[-1].member
         for j in range(self.pfs):
             for i in range(self.p.free_linker + 1, last + 1):
                 self._chain_member(k, j, i)
@@ -204,10 +204,9 @@ class LayerBuilder:
         """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
         sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
         one domain (no scale set: the build as before)."""
-        if len(self.globule_members) == 1 or self.p.shape.real:  # each its own mesh
+        if len(self.domain_at) == 1 or self.p.shape.real:  # each its own mesh
             return None
-        radius = dict(zip(self.globule_members, self.p.domain_radii))
-        return np.array([radius[int(i)] / self.p.globule_radius for i in members])
+        return np.array([self.domain_at[int(i)].radius / self.p.globule_radius for i in members])
 
     def place(self) -> None:
         """Location, rotation, world matrix and colour of every object, one foreach_set each.
@@ -238,7 +237,7 @@ class LayerBuilder:
             scale = self._domain_scale(i) if role == "globule" else None
             _place(objects, loc, rot_z, scale=scale)
             if role == "globule" and self.turns is not None:  # several real shapes
-                dom = np.array([self.globule_members.index(int(m)) for m in i])
+                dom = np.array([self.domain_at[int(m)].index for m in i])
                 self._turn_globules(objects, k, loc, self.turns[k, dom])
             elif role == "globule" and self.p.shape.real:  # one domain a chain
                 self._turn_globules(objects, k, loc)
@@ -282,10 +281,10 @@ class LayerBuilder:
 # How each shape of model.domains.SHAPES is drawn: its mesh from its name and rows.
 GLOBULE_MESHES = {
     "sphere": lambda p, name, rows: meshes.uv_sphere("FibrilFit globule", p.globule_radius,
-                                                      P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS),
+                                                      GLOBULE_SEGMENTS, GLOBULE_RINGS),
     "hull": lambda p, name, rows: meshes.convex_hull(name, shape.hull_points(rows)),
     "spheres": lambda p, name, rows: meshes.sphere_union(name, [tuple(r) for r in rows],
-                                                         P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS),
+                                                         GLOBULE_SEGMENTS, GLOBULE_RINGS),
 }
 
 
@@ -303,7 +302,7 @@ def spheres_body(p: P.Params):
     bond points along `d` (k of each)."""
     (terminal,) = domain_terminals(p)  # the joint and the spheres' nearest way out there
     joint, out = terminal["joint"], terminal["joint_out"]
-    spheres = p.domain_rows(0)
+    spheres = p.domains[0].rows
 
     def body(pivots, d):  # (k, 3) each -> (k, spheres, 4)
         rot = joint_rotations(out, np.asarray(d, float).reshape(-1, 3))

@@ -35,8 +35,8 @@ class Model:
     @property
     def globules(self) -> list:
         """Every chain's globules, chain-major: globule g is domain g % D of chain g // D
-        (D = len(params.globule_members()); one domain: the chain's last member)."""
-        members = self.params.globule_members()
+        (D = len(params.domains); one domain: the chain's last member)."""
+        members = [d.member for d in self.params.domains]
         return [c[i] for c in self.chain for i in members]
 
     @property

@@ -12,7 +12,8 @@ import numpy as np
 from mathutils import Matrix
 
 from ..geom.rigid import euler_xyz
-from ..model import domains, helix
+from ..model import helix
+from ..model.chain import body_radii, body_reach, chain_reach
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
@@ -29,12 +30,12 @@ def plan(p, chain_layers, core_layers) -> dict:
     """Which images to build: {"moving": [(m, chain, member)], "static": [(m, kind, index)]}.
 
     A body of an image layer a height gap g beyond the cell is built when its own reach
-    (domains.chain_reach, or half the core's height) plus the farthest reach of any cell body
+    (model.chain.chain_reach, or half the core's height) plus the farthest reach of any cell body
     covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
     """
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = domains.body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
-    member_reach = domains.chain_reach(p)
+    reach_cell = body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
+    member_reach = chain_reach(p)
     moving, static = [], []
     for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
         g = helix.image_gap(p, m, k)
@@ -170,7 +171,7 @@ class ImageFollower:
         # several domains per chain: the further globules share domain 1's mesh at their own
         # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
-        radii = domains.body_radii(self.p)  # a real shape's globule: its reach
+        radii = body_radii(self.p)  # a real shape's globule: its reach
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
@@ -190,7 +191,7 @@ class ImageFollower:
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
         z = positions[..., 2]
-        radii = domains.body_radii(self.p)
+        radii = body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
         out = np.zeros(self.count, dtype=bool)
@@ -297,7 +298,7 @@ class TurnedImages:
     than the check's (docs/model/domain-shapes.md#periodic)."""
 
     def __init__(self, model, follower):
-        self.rows = np.flatnonzero(np.isin(follower.member, model.params.globule_members()))
+        self.rows = np.flatnonzero(np.isin(follower.member, [d.member for d in model.params.domains]))
         sources = [follower.sources[k] for k in self.rows.tolist()]
         globules = [c for c in model.root.children if c.get(TAG) == "globules"]
         self.reader = MatrixReader(sources, globules)

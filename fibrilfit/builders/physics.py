@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 
 from ..model import params as P
+from ..model.chain import chain_members
 from ..model.gravity import cell_gravity
 from .hooks import frame_hooks, run_after, run_before
 from .readback import MatrixReader
@@ -120,7 +121,7 @@ def bake_steps(scene: bpy.types.Scene, model, stats: BakeStats | None = None, ho
     setup_world(scene, p)
     hooks = frame_hooks(model, scene) if hooks is None else list(hooks)
     chain_objects = [ob for members in model.chain for ob in members]
-    shape = (len(model.chain), len(p.chain_radii()), 3)  # members: linker + 1 per domain
+    shape = (len(model.chain), chain_members(p), 3)  # members: linker + 1 per domain
     # One foreach_get over the rigid-body world's objects per frame, not one read per object.
     reader = MatrixReader(chain_objects, (scene.rigidbody_world.collection,))
     prev, quiet = None, 0

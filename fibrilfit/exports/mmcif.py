@@ -20,6 +20,7 @@ import numpy as np
 
 from .. import files
 from ..model import helix
+from ..model.chain import chain_radii
 
 ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",
                 "label_comp_id", "label_asym_id", "label_entity_id", "label_seq_id",
@@ -139,11 +140,6 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
     return table.joined()
 
 
-def domain_members(p) -> list:
-    """The member index of each globule along a chain (one domain: the last member)."""
-    return p.globule_members()
-
-
 def header(result: dict | None) -> dict:
     """Title, details and parameters of the header from the run's result."""
     result = result or {}
@@ -186,7 +182,7 @@ def shown(value) -> str:
 
 
 def _member_radii(p, members: int) -> list:
-    radii = list(p.chain_radii())
+    radii = chain_radii(p)
     return radii if len(radii) == members else [p.residue_radius] * members
 
 

@@ -26,6 +26,7 @@ import numpy as np
 from .. import files
 from .mmcif import shown as _shown
 from ..model import helix
+from ..model.chain import chain_members, chain_radii
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
 
@@ -76,16 +77,15 @@ def hybrid36(value: int, width: int = 5) -> str:
 
 def residue_names(p) -> list[str]:
     """ANC, LNK ..., GLB per chain member (several domains: GLB at each globule)."""
-    globules = set(p.globule_members())
-    return ["ANC"] + ["GLB" if i in globules else "LNK"
-                      for i in range(1, len(p.chain_radii()))]
+    globules = {d.member for d in p.domains}
+    return ["ANC"] + ["GLB" if i in globules else "LNK" for i in range(1, chain_members(p))]
 
 
 def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -> str:
     """The PDB file for parameters `p` and [(frame, positions (chains, linker + 1, 3))]."""
-    layers, members = p.chains, len(p.chain_radii())  # "layers": PDB chains, one per chain
+    layers, members = p.chains, chain_members(p)  # "layers": PDB chains, one per chain
     names = residue_names(p)
-    radii = p.chain_radii()
+    radii = chain_radii(p)
     labels = [chain_label(k, layers) for k in range(layers)]
     pfs = (f" X {p.protofilaments} PROTOFILAMENTS" if p.protofilaments > 1 else "")
     lines = [f"TITLE     FIBRILFIT COARSE-GRAINED FIBRIL, {p.layers} LAYERS{pfs}, LINKER {p.linker}"]
@@ -179,7 +179,7 @@ def image_cells(images: int) -> list[int]:
     return [*range(-1, -images - 1, -1), *range(1, images + 1)]
 
 
-def with_images(p, positions: np.ndarray, images: int) -> np.ndarray:
+def chains_with_images(p, positions: np.ndarray, images: int) -> np.ndarray:
     """The cell's chain positions followed by their exact images S^m, cell by cell."""
     return np.concatenate([positions] + [helix.apply_points(p, m, positions)
                                          for m in image_cells(images)])
@@ -196,7 +196,7 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     p, remarks = model.params, result_remarks(result)
     if p.periodic and images:
         n = len(model.chain)
-        models = [(f, with_images(p, pos, images)) for f, pos in models]
+        models = [(f, chains_with_images(p, pos, images)) for f, pos in models]
         remarks.append(f"periodic cell: chains 0-{n - 1} are the cell; then its images, "
                        f"{n} chains per cell, in cells "
                        + ", ".join(f"{m:+d}" for m in image_cells(images))
@@ -206,5 +206,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     text = pdb_text(p, models, remarks)
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": p.chains * len(p.chain_radii()),
+            "atoms_per_model": p.chains * chain_members(p),
             **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

@@ -53,7 +53,7 @@ def write_atoms(scene: bpy.types.Scene, result: dict, path, sources) -> dict:
         keep_bake(scene)
         scene.frame_set(last)
     try:
-        members = mmcif.domain_members(model.params)
+        members = [d.member for d in model.params.domains]
         positions = chain_positions(model)
         globules = [members_[i] for members_ in model.chain for i in members]
         mats = world_matrices(globules, model.root.children).reshape(

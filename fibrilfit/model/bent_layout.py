@@ -38,7 +38,7 @@ def spread_chains(p, rest: np.ndarray, rounds: int = SPREAD_ROUNDS
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
     frames = domain_terminals(p)
-    members = p.globule_members()
+    members = [d.member for d in p.domains]
     u = fan_frames(rest)[0]
     cand = directions(SPREAD_DIRECTIONS)
     base = real_chain_layout(p, rest)  # straight out, the turn that clears it: option 0
@@ -118,7 +118,7 @@ def bent_layout(p, rest: np.ndarray, wanted: np.ndarray, frames: list[dict], rol
       into the one it left)."""
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
-    members = p.globule_members()
+    members = [d.member for d in p.domains]
     dom_of = {i: k for k, i in enumerate(members)}
     spacing, bead = p.residue_spacing, p.residue_radius
     pos = np.empty_like(rest)
@@ -171,7 +171,7 @@ def chain_clearance(p, pos: np.ndarray, rot: np.ndarray, frames: list[dict]) -> 
     planes between the two bodies' convex hulls (and the line of their centres): positive
     proves them apart; zero or less means no separating plane was found among them. For
     spheres it is exact: the closest two balls."""
-    members = p.globule_members()
+    members = [d.member for d in p.domains]
     dom_of = {i: k for k, i in enumerate(members)}
     u = directions(CLEAR_DIRECTIONS)
     n, m, _ = pos.shape

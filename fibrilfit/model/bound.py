@@ -36,6 +36,7 @@ import numpy as np
 
 from ..geom import polygons, shape as geom_shape
 from . import helix
+from .chain import chain_x
 from .param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 
 # How deep (Å) a domain's inner body may enter the core and still count as outside it: Bullet's
@@ -112,7 +113,7 @@ def ball_union_volume(balls) -> float:
 def reach_terms(p) -> list[tuple[float, float]]:
     """Per domain (from the core outward) (c, e): at linker L its centre lies within
     ((L − 1)·spacing + c)·(1 + tolerance) of the anchor, and its inner body within e of its centre."""
-    x = np.asarray(p.chain_x(), dtype=float)
+    x = np.asarray(chain_x(p), dtype=float)
     out = []
     for d in p.domains:
         c = float(x[d.member] - x[0]) - (p.linker - 1) * p.residue_spacing

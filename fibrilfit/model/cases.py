@@ -26,6 +26,7 @@ from typing import Any
 
 from .. import files
 from . import params as P
+from .param_spec import DERIVED_WORDS
 
 SUFFIXES = (".toml",)
 PARAMS = "params"
@@ -194,12 +195,12 @@ def _check_param(path, name: str, value):
     f = P.Params.__dataclass_fields__[name]
     meta, key = f.metadata, f"{PARAMS}.{name}"
     if meta["kind"] == "points" and isinstance(value, str) and not (
-            value.strip().lower() in P.DERIVED_WORDS or value.strip().startswith("[")):
+            value.strip().lower() in DERIVED_WORDS or value.strip().startswith("[")):
         return _file(path, key, value)  # a file of points, relative to the case file
     if meta.get("derived") and isinstance(value, str):
         return value
     if P.is_angle(name) and isinstance(value, str):
-        return value  # an angle with its unit, "-0.961deg" (params.angle_value reads it)
+        return value  # an angle with its unit, "-0.961deg" (param_values.angle_value reads it)
     if meta["kind"] is bool:
         if not isinstance(value, bool):
             raise _error(path, key, f"must be true or false (got {value!r})")

@@ -10,7 +10,7 @@ further_joints, domain_exits, domain_linker, domain_shape), which stay the one d
 the CLI, the panel, case files and JSON; one domain is a list of one.
 
 What differs between shapes is said once, in SHAPES (one `Shape` per word of
-params.DOMAIN_SHAPES): where its rows come from, how far its body reaches from its centre, the
+param_spec.DOMAIN_SHAPES): where its rows come from, how far its body reaches from its centre, the
 collision body Bullet gives it, and which exact clash check judges it
 (docs/model/domain-shapes.md#domain-shapes). Everything else asks a domain or its shape; only
 the builders' mesh makers and the analysis' exact checks are looked up by the shape's name,
@@ -102,6 +102,16 @@ class Domain:
         return self.radius if self.rows is None else self.shape.reach(self.rows)
 
 
+def member_indices(p) -> list[int]:
+    """Each domain's place along the chain (Domain.member), from the flat parameters: the first
+    at free_linker (one domain: the chain's last member), each next one its linker's residues
+    plus one further out. Read before the domains can be built (an unchecked Params)."""
+    out = [p.free_linker]
+    for gap in p.domain_linker or ():
+        out.append(out[-1] + gap + 1)
+    return out
+
+
 def shape_of(p) -> Shape:
     """The chain's domain shape (every domain of a chain has the same)."""
     return SHAPES[p.domain_shape]
@@ -128,7 +138,7 @@ def domains(p) -> list[Domain]:
     (several real shapes) theirs, and every domain but the last its exit."""
     shape = shape_of(p)
     diameters = [p.globule_diameter, *(p.domain_diameters or ())]
-    members = p.globule_members()
+    members = member_indices(p)
     gaps = list(p.domain_linker or ())
     real = shape.real and getattr(p, shape.rows) is not None and p.domain_joint is not None
     several = real and len(diameters) > 1
@@ -181,37 +191,3 @@ def _check_several_shapes(p) -> None:
                                           f"leaves one domain's terminal CA and enters the "
                                           f"next one's through at least one bead "
                                           f"(got {', '.join(map(str, p.domain_linker))})")
-
-
-def domain_reaches(p) -> list[float]:
-    """Each domain's reach (Domain.reach), from the core outward."""
-    return [d.reach for d in p.domains]
-
-
-def globule_reach(p) -> float:
-    """The first domain's reach (Domain.reach)."""
-    return p.domains[0].reach
-
-
-def body_radii(p) -> np.ndarray:
-    """How far each chain member's body reaches from its centre (Å): chain_radii, a real shape's
-    globule reaching its shape's reach (the sphere's: its radius, unchanged)."""
-    radii = np.asarray(p.chain_radii(), dtype=float)
-    for d in p.domains:
-        radii[d.member] = max(radii[d.member], d.reach)
-    return radii
-
-
-def chain_reach(p) -> np.ndarray:
-    """How far along Z each chain member's surface can get from its anchor's height (Å).
-
-    Member i's centre lies within the linker's length up to it (every bond at rest plus the
-    stretch tolerance) of the anchor; its surface one radius further.
-    """
-    x = np.asarray(p.chain_x(), dtype=float)
-    return (x - x[0]) * (1.0 + p.stretch_tolerance) + body_radii(p)
-
-
-def body_reach(p) -> float:
-    """The farthest any body of a layer reaches along Z from its own layer's height (Å)."""
-    return float(max(chain_reach(p).max(), p.slab[2] / 2.0))

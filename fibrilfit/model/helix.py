@@ -19,6 +19,8 @@ import math
 
 import numpy as np
 
+from .domains import member_indices
+
 
 def layer_turn(p, k):
     """Turn (rad) and height (Å) of layer k (an int or a float array): k·twist, k·rise."""
@@ -122,7 +124,7 @@ def lattice_rows(p) -> int:
     apart along the axis. Its period, 2 rows' worth of layers, is what a cell must hold whole
     for the lattice start (model/start_layout.py, lattice_columns). 0 (no lattice) for several
     domains per chain or a real domain shape: measured on one sphere per chain only."""
-    if len(p.globule_members()) > 1 or p.shape.real:
+    if len(member_indices(p)) > 1 or p.shape.real:
         return 0
     return max(1, int(round(p.widest_diameter / (2.0 * p.rise))))
 

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from . import domains, helix
+from . import chain, domains, helix
 from .bent_layout import chain_clearance, domain_terminals, real_chain_layout
 from .param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST, MEMORY_PER_OBJECT_KIB, ParamError
 from .param_values import split_unit
@@ -49,15 +49,25 @@ def check_combination(p, force: bool) -> None:
     _check_domains(p)
     p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
     check_anchors_apart(p)
-    n = p.estimated_objects()
+    n = estimated_objects(p)
     if n > MAX_OBJECTS_UNFORCED and not force:
-        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * p.globule_members()[-1] + 1))
+        most = MAX_OBJECTS_UNFORCED // (1 + p.protofilaments * (2 * chain.chain_members(p) - 1))
         chains = f" × {p.protofilaments} protofilaments" if p.protofilaments > 1 else ""
         raise ParamError("layers", f"{p.layers} layers{chains} × linker {p.linker} would make "
                                    f"{'up to ' if p.core_outline is not None else ''}{n} objects "
                                    f"(~{n * MEMORY_PER_OBJECT_KIB / 1024:.0f} MiB); at most {most} layers without "
                                    f"--force")
     check_real_start(p)
+
+
+def estimated_objects(p) -> int:
+    """Objects a build makes: exact without an outline, at most this with one.
+
+    Per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
+    constraint empties. An outline's core adds its convex pieces per layer: the n - 2
+    triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
+    pieces = 0 if p.core_outline is None else len(p.core_outline) - 2
+    return p.layers * (1 + pieces + p.protofilaments * (2 * chain.chain_members(p) - 1))
 
 
 def check_real_start(p) -> None:

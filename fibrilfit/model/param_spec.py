@@ -27,6 +27,11 @@ class ParamError(ValueError):
         self.param = param
 
 
+# Å: the range of a coordinate a parameter holds (the core's outline, the anchor, a shape's rows
+# in its body frame), from the fibril axis or the body's centre
+MAX_COORDINATE = 1000.0
+
+
 def spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="Simulation",
           derived=None, size=None, choices=None, item=None, label=None, shown_in=None,
           question=False):
@@ -45,6 +50,13 @@ def spec(default, lo, hi, unit, doc, *, kind=float, ui=True, cli=True, section="
     if item is not None:  # kind "list": any number of values of this type, comma-separated
         meta["item"] = item
     return field(default=default, metadata=meta)
+
+
+def rows_spec(doc, size, derived, section="Globule"):
+    """A parameter of rows of `size` numbers in Å (a real shape's atoms, spheres or joints, an
+    exit's path), measured from a structure file: not on the panel or the command line."""
+    return spec(None, -MAX_COORDINATE, MAX_COORDINATE, "Å", doc, kind="rows", size=size,
+                ui=False, cli=False, section=section, derived=derived)
 
 
 # A unit a parameter is shown in on the panel: (from `unit`, factor). The stretch tolerance is a

@@ -6,11 +6,82 @@ from __future__ import annotations
 
 import json
 import math
+import pathlib
 from typing import Any
 
 import numpy as np
 
-from .param_spec import ANGLE_UNITS, DERIVED_WORDS, MAX_SHAPE_ROWS, ParamError
+from ..geom import polygons
+from .param_spec import (ANGLE_UNITS, DERIVED_WORDS, MAX_COORDINATE, MAX_OUTLINE_POINTS,
+                         MAX_SHAPE_ROWS, NUMBER_WORDS, ParamError)
+
+
+def field_value(name: str, value: Any, meta: dict):
+    """Parameter `name`'s value (its spec `meta`) as given, made into the model's: score_layers'
+    word ('all') is 0; a derived parameter's word (DERIVED_WORDS) or None asks for its default
+    (None); anything else is read as its kind (typed_value). (periodic's word, 'auto', is
+    make_params': it needs the other values.)"""
+    if name == "score_layers" and isinstance(value, str) \
+            and value.strip().lower() == NUMBER_WORDS[name]:
+        value = 0
+    if meta["derived"] and (value is None or (isinstance(value, str)
+                                              and value.strip().lower() in DERIVED_WORDS)):
+        return None
+    return typed_value(name, value, meta)
+
+
+def plain(value):
+    """A parameter's value with its tuples (and their tuples) as lists, as JSON holds it."""
+    return [plain(v) for v in value] if isinstance(value, (tuple, list, np.ndarray)) else value
+
+
+def typed_value(name: str, value: Any, meta: dict):
+    """Parameter `name`'s value as its spec (`meta`) reads it: rows, an outline's points (a JSON
+    list, or a file naming one), a list, a vector, or one number, word or angle (coerce)."""
+    if meta["kind"] == "rows":
+        return None if value is None else rows_value(name, value, meta)
+    if meta["kind"] == "points":
+        if isinstance(value, str) and value.strip().startswith("["):
+            try:
+                value = json.loads(value)
+            except ValueError:
+                raise ParamError(name, f"is not a JSON list of [x, y] points "
+                                       f"(got {value[:40]!r})") from None
+        return (read_outline(value) if isinstance(value, (str, pathlib.Path))
+                else outline_value(value))
+    if meta["kind"] == "list":
+        return list_value(name, value, meta)
+    if name == "slab" or meta["size"]:
+        return vector_value(name, value, meta, meta["size"] or 3)
+    return coerce(name, value, meta)
+
+
+def read_outline(path) -> tuple:
+    """A core outline from a JSON file: a list of [x, y] in Å. Raises ParamError."""
+    try:
+        text = pathlib.Path(path).expanduser().read_text(encoding="utf-8")
+        data = json.loads(text)
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise ParamError("core_outline", f"cannot read '{path}' as a JSON list of [x, y] points "
+                                         f"({' '.join(str(reason).split())})") from None
+    return outline_value(data, f" in '{path}'")
+
+
+def outline_value(value, where: str = "") -> tuple:
+    """A core outline (core_outline) from a list of [x, y] points, cleaned and checked."""
+    try:
+        points = polygons.clean_outline(value)
+    except polygons.GeometryError as exc:
+        raise ParamError("core_outline", f"the outline{where} {exc}") from None
+    if len(points) > MAX_OUTLINE_POINTS:
+        raise ParamError("core_outline", f"the outline{where} has {len(points)} points; at most "
+                                         f"{MAX_OUTLINE_POINTS}")
+    if np.abs(points).max() > MAX_COORDINATE:
+        raise ParamError("core_outline", f"the outline{where} reaches {np.abs(points).max():g} Å "
+                                         f"from the axis; coordinates must be from "
+                                         f"{-MAX_COORDINATE:g} to {MAX_COORDINATE:g} Å")
+    return tuple((float(x), float(y)) for x, y in points)
 
 
 def coerce(name: str, value: Any, meta: dict):

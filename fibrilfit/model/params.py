@@ -1,38 +1,28 @@
 """The model's parameters: one definition of their defaults, units, ranges and validation.
 
 Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this module.
-1 Blender unit = 1 Å. Plain Python: importable without bpy.
-
-Over 400 lines because the Params class is the one definition of every parameter: its field
-list alone is some 200 lines, and the geometry every room derives from it (the chain's
-members, radii, rest lengths and layout) sits beside the fields it reads. Around it, in their
-own modules: the field specs and constants (param_spec.py), reading a typed value
-(param_values.py), the refused combinations (param_checks.py), the domains (domains.py).
+1 Blender unit = 1 Å. Plain Python: importable without bpy. Around it, in their own modules:
+the field specs and constants (param_spec.py), reading a typed value (param_values.py), the
+refused combinations (param_checks.py), the domains (domains.py) and the chain they make with
+the linker (chain.py).
 """
 from __future__ import annotations
 
 import dataclasses
 import functools
-import json
 import math
-import pathlib
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..geom import polygons
-from . import domains as chain_domains, helix
-# The field specs' constants and the checks are read as P.<name> by the rest of the package
-from .param_checks import NOT_WITH_PERIODIC, check_combination, check_twist, refuse_beside_periodic  # noqa: F401
-from .param_spec import (ANGLE_UNITS, DERIVED_WORDS, DOMAIN_SHAPES, GLOBULE_RINGS,  # noqa: F401
-                         GLOBULE_SEGMENTS, MAX_OBJECTS_UNFORCED, MAX_OUTLINE_POINTS,
-                         MAX_SHAPE_ROWS, MAX_TWIST, MEMORY_PER_OBJECT_KIB, NUMBER_WORDS,
-                         PROTOCOLS,
-                         RESIDUE_RINGS, RESIDUE_SEGMENTS, SEALED, SHAPE_ROWS, SHOWN_IN, ParamError,
-                         spec)
-from .param_values import (angle_value, coerce, list_value, rows_value, split_unit,  # noqa: F401
-                           vector_value)
+from . import chain, domains as chain_domains, helix
+from .param_checks import check_combination, check_twist
+from .param_spec import (DOMAIN_SHAPES, MAX_COORDINATE, NUMBER_WORDS, PROTOCOLS, SEALED,
+                         ParamError, rows_spec, spec)
+from .param_values import field_value, plain
+
 
 @dataclass(frozen=True)
 class Params:
@@ -62,8 +52,7 @@ class Params:
                         section="Layers")
     twist: float = spec(0.034, -math.pi, math.pi, "rad",
                          "Helical twist between consecutive layers about the fibril axis "
-                         "(positive: right-handed)",
-                         section="Layers")
+                         "(positive: right-handed)", section="Layers")
     gravity: float = spec(0.5, 0.0, 100.0, "Å/s²",
                            "Bound of the random gravity: each axis is drawn uniform in [-g, g]")
     seed: int = spec(0, 0, 2**31 - 1, "", "Random seed fixing the gravity", kind=int)
@@ -108,13 +97,13 @@ class Params:
                            "Rise along the fibril axis from one protofilament to the next "
                            "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers",
                            label="Protofilament rise")
-    core_outline: tuple | None = spec(None, -1000.0, 1000.0, "Å",
+    core_outline: tuple | None = spec(None, -MAX_COORDINATE, MAX_COORDINATE, "Å",
                                        "The core's cross-section: a closed polygon of [x, y] "
                                        "points in the layer's frame (axis at the origin), "
                                        "extruded by the rise; replaces the slab's box",
                                        kind="points", section="Slab",
                                        derived="the slab's X × Y box")
-    anchor: tuple | None = spec(None, -1000.0, 1000.0, "Å",
+    anchor: tuple | None = spec(None, -MAX_COORDINATE, MAX_COORDINATE, "Å",
                                  "Where protofilament 0's anchor sits in the layer's frame: X Y",
                                  section="Anchor", size=2,
                                  derived="(slab X / 2 + residue radius, 0)")
@@ -126,11 +115,9 @@ class Params:
                               "surface (measured from --fibril; 0: the anchor is on the "
                               f"surface; {SEALED}: no clear path)", kind=int, section="Anchor",
                               ui=False, cli=False)
-    exit_path: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                   "The exit's path from the buried anchor's CA to the surface, "
-                                   "rows [x, y, z] in the layer's frame", kind="rows", size=3,
-                                   ui=False, cli=False, section="Anchor",
-                                   derived="none: the anchor on the surface")
+    exit_path: tuple | None = rows_spec("The exit's path from the buried anchor's CA to the "
+                                        "surface, rows [x, y, z] in the layer's frame", 3,
+                                        "none: the anchor on the surface", section="Anchor")
 
     # Search protocol (docs/model/search.md#search). `tutorial`
     # starts every globule at full size on a straight chain and lets Bullet push them apart;
@@ -183,8 +170,7 @@ class Params:
                                "overlap at most 1 Å, stretch at most 3 times the tolerance) is "
                                "held once more, gravity off, with this many times the substeps "
                                "and solver iterations before it is regrown (1 = off; 4 was "
-                               "tried)",
-                               kind=int, section="Search")
+                               "tried)", kind=int, section="Search")
 
     periodic: int = spec(0, 0, 10_000, "layers",
                           "Simulate an infinite fibril as a screw-periodic cell of this many layers "
@@ -219,68 +205,39 @@ class Params:
                               "spheres covering them); hull and spheres need --domain and join the "
                               "linker at the domain's terminal CA",
                               kind=str, choices=DOMAIN_SHAPES, section="Globule")
-    domain_atoms: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                       "hull: the domain's outermost heavy atoms [x, y, z, r] in "
-                                       "its body frame (geom.shape.hull_atoms)",
-                                       kind="rows", size=4, ui=False, cli=False, section="Globule",
-                                       derived="none: the sphere")
-    domain_spheres: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                         "spheres: the covering spheres [x, y, z, r] in the "
-                                         "domain's body frame (geom.shape.covering_spheres)",
-                                         kind="rows", size=4, ui=False, cli=False,
-                                         section="Globule", derived="none: the sphere")
-    domain_joint: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                       "hull, spheres: the linker's joint in the domain's body "
-                                       "frame, its terminal residue's CA: one row [x, y, z]",
-                                       kind="rows", size=3, ui=False, cli=False,
-                                       section="Globule", derived="on the sphere's surface")
+    domain_atoms: tuple | None = rows_spec("hull: the domain's outermost heavy atoms [x, y, z, r] "
+                                           "in its body frame (geom.shape.hull_atoms)", 4,
+                                           "none: the sphere")
+    domain_spheres: tuple | None = rows_spec("spheres: the covering spheres [x, y, z, r] in the "
+                                             "domain's body frame (geom.shape.covering_spheres)",
+                                             4, "none: the sphere")
+    domain_joint: tuple | None = rows_spec("hull, spheres: the linker's joint in the domain's body "
+                                           "frame, its terminal residue's CA: one row [x, y, z]",
+                                           3, "on the sphere's surface")
     # Several real-shaped domains per chain (docs/guide/atoms-and-domains.md#shapes-of-several-domains):
     # the domains after the first, each in its own body frame, and where each domain but the
     # last lets its outgoing linker go (its other terminal CA).
-    further_atoms: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                        "hull, several domains: the outermost heavy atoms of the "
-                                        "domains after the first, rows [domain, x, y, z, r] "
-                                        "(domain 1 is the second on the chain), each in its own "
-                                        "body frame", kind="rows", size=5, ui=False, cli=False,
-                                        section="Globule", derived="none: one domain")
-    further_spheres: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                          "spheres, several domains: the covering spheres of the "
-                                          "domains after the first, rows [domain, x, y, z, r], "
-                                          "each in its own body frame", kind="rows", size=5,
-                                          ui=False, cli=False, section="Globule",
-                                          derived="none: one domain")
-    further_joints: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                         "hull, spheres, several domains: the incoming linker's "
-                                         "joint (terminal CA) of each domain after the first, "
-                                         "one row [x, y, z] each, in its own body frame",
-                                         kind="rows", size=3, ui=False, cli=False,
-                                         section="Globule", derived="none: one domain")
-    domain_exits: tuple | None = spec(None, -1000.0, 1000.0, "Å",
-                                       "hull, spheres, several domains: the outgoing linker's "
-                                       "joint (the other terminal CA) of each domain but the "
-                                       "last, one row [x, y, z] each, in its own body frame",
-                                       kind="rows", size=3, ui=False, cli=False,
-                                       section="Globule", derived="none: one domain")
+    further_atoms: tuple | None = rows_spec("hull, several domains: the outermost heavy atoms of "
+                                            "the domains after the first, rows [domain, x, y, z, "
+                                            "r] (domain 1 is the second on the chain), each in its "
+                                            "own body frame", 5, "none: one domain")
+    further_spheres: tuple | None = rows_spec("spheres, several domains: the covering spheres of "
+                                              "the domains after the first, rows [domain, x, y, z, "
+                                              "r], each in its own body frame", 5,
+                                              "none: one domain")
+    further_joints: tuple | None = rows_spec("hull, spheres, several domains: the incoming "
+                                             "linker's joint (terminal CA) of each domain after "
+                                             "the first, one row [x, y, z] each, in its own body "
+                                             "frame", 3, "none: one domain")
+    domain_exits: tuple | None = rows_spec("hull, spheres, several domains: the outgoing linker's "
+                                           "joint (the other terminal CA) of each domain but the "
+                                           "last, one row [x, y, z] each, in its own body frame",
+                                           3, "none: one domain")
 
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
         return self.globule_diameter / 2.0
-
-    @property
-    def globule_offset(self) -> float:
-        """From the last bond's pivot to the globule's centre: the sphere's radius, or with a real
-        shape the joint's distance from the domain's centroid."""
-        if self.domains[0].joint is None:
-            return self.globule_radius
-        return math.sqrt(sum(x * x for x in self.domain_joint[0]))
-
-    @property
-    def joint_lever(self) -> float:
-        """From the last linker bead's centre to the globule's joint: its radius (the sphere's
-        surface), or with a real shape one residue spacing (the joint is the domain's terminal
-        CA, the next residue along the chain)."""
-        return self.residue_spacing if self.shape.real else self.residue_radius
 
     @property
     def anchor_x(self) -> float:
@@ -311,14 +268,10 @@ class Params:
         return np.array(self.core_outline, dtype=float)
 
     @functools.cached_property
-    def chain_layout(self) -> "ChainLayout":
-        """Protofilament 0's chain in the layer's frame (see ChainLayout). Raises ParamError."""
-        return _chain_layout(self)
-
-    @property
-    def domain_radii(self) -> list[float]:
-        """Radius of each domain of a chain, from the core outward (one: globule_radius)."""
-        return [self.globule_radius] + [d / 2.0 for d in self.domain_diameters or ()]
+    def chain_layout(self) -> chain.ChainLayout:
+        """Protofilament 0's chain in the layer's frame (chain.chain_layout), kept: the checks,
+        the start layouts and the builders each ask for it. Raises ParamError."""
+        return chain.chain_layout(self)
 
     @property
     def shape(self) -> chain_domains.Shape:
@@ -335,15 +288,6 @@ class Params:
         """Several domains per chain, each with its real shape (hull, spheres)."""
         return chain_domains.several_shapes(self)
 
-    def domain_rows(self, k: int) -> np.ndarray:
-        """Domain k's (0 nearest the core) shape rows [x, y, z, r] in its body frame."""
-        return chain_domains.domain_rows(self, k)
-
-    def domain_joints(self) -> list:
-        """Each domain's incoming joint (terminal CA) in its body frame, (3,) each."""
-        rows = [self.domain_joint[0], *(self.further_joints or ())]
-        return [np.asarray(r, dtype=float) for r in rows]
-
     @property
     def widest_diameter(self) -> float:
         """The largest domain's diameter (one domain: globule_diameter): what a periodic cell
@@ -357,56 +301,6 @@ class Params:
         its passive anchor (docs/model/buried-terminus.md#model). Below 1: no exit."""
         return self.linker - self.exit_residues
 
-    def globule_members(self) -> list[int]:
-        """The member index of each domain along a chain (one domain: [free_linker], the
-        last)."""
-        out = [self.free_linker]
-        for gap in self.domain_linker or ():
-            out.append(out[-1] + gap + 1)
-        return out
-
-    def chain_x(self) -> list[float]:
-        """Distance of each chain member (anchor, residues, globules) from the axis, for a
-        radial linker (the tutorial's); in general the anchor's distance plus the distance along
-        the chain: consecutive residues `residue_spacing` apart, a globule touching its
-        neighbours; a real-shaped domain (hull, spheres) joined at its terminal CA, one residue
-        spacing from the last bead (joint_lever, globule_offset)."""
-        radii, globules = self.chain_radii(), set(self.globule_members())
-        first = min(globules)
-        # several real shapes: into domain k at its joint, out of it at its exit, each one
-        # residue spacing from the bead beside it (docs/guide/atoms-and-domains.md#shapes-of-several-domains)
-        # (the first domain's joint is globule_offset's, below)
-        into = {d.member: self.residue_spacing + float(np.linalg.norm(d.joint))
-                for d in self.domains if d.joint is not None}
-        out = {d.member: float(np.linalg.norm(d.exit)) + self.residue_spacing
-               for d in self.domains if d.exit is not None}
-        xs = [self.anchor_x]
-        for i in range(len(radii) - 1):
-            if i not in globules and i + 1 not in globules:
-                step = self.residue_spacing
-            elif i + 1 == first:  # the sphere's radius + the bead's, or the real joint
-                step = self.joint_lever + self.globule_offset
-            elif i + 1 in into:
-                step = into[i + 1]
-            elif i in out:
-                step = out[i]
-            else:
-                step = radii[i] + radii[i + 1]
-            xs.append(xs[-1] + step)
-        return xs
-
-    def chain_radii(self) -> list[float]:
-        members = self.globule_members()
-        radii = [self.residue_radius] * (members[-1] + 1)
-        for i, r in zip(members, self.domain_radii):
-            radii[i] = r
-        return radii
-
-    def rest_lengths(self) -> list[float]:
-        """Rest length of each bond along the chain (`linker` bonds)."""
-        xs = self.chain_x()
-        return [b - a for a, b in zip(xs, xs[1:])]
-
     def bake_frames(self) -> int:
         """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""
         if self.protocol == "inflate":
@@ -418,106 +312,16 @@ class Params:
             return cycles * (self.grow_frames + 1 + holds * self.hold_frames)
         return self.frames
 
-    def estimated_objects(self) -> int:
-        """Objects a build makes: exact without an outline, at most this with one.
-
-        Per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
-        constraint empties. An outline's core adds its convex pieces per layer: the n - 2
-        triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
-        pieces = 0 if self.core_outline is None else len(self.core_outline) - 2
-        members = self.globule_members()[-1] + 1
-        return self.layers * (1 + pieces + self.protofilaments * (2 * members - 1))
-
     # ---- conversion ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
-        d = {f.name: getattr(self, f.name) for f in fields()}
-        d["slab"] = list(self.slab)
-        for name in ("domain_diameters", "domain_linker"):
-            if d[name] is not None:
-                d[name] = list(d[name])
-        if self.anchor is not None:
-            d["anchor"] = list(self.anchor)
-        if self.core_outline is not None:
-            d["core_outline"] = [list(xy) for xy in self.core_outline]
-        for name in (*SHAPE_ROWS, "exit_path"):
-            if d[name] is not None:
-                d[name] = [list(row) for row in d[name]]
-        return d
+        """Every parameter by name, its tuples as lists (as JSON and case files hold them)."""
+        return {f.name: plain(getattr(self, f.name)) for f in fields()}
 
     def replace(self, **changes) -> "Params":
         """A copy with `changes`, validated under the force this one was (a forced model's
         copies stay forced)."""
         return make_params(force=self.__dict__.get(VALIDATED) is True,
                            **{**self.to_dict(), **changes})
-
-
-@dataclass(frozen=True)
-class ChainLayout:
-    """Protofilament 0's chain in the layer's frame: each member's centre (n, 2), the same in
-    polar form (radius, angle; exact for the tutorial's radial chain), the chain's direction
-    and the rule that chose it (polygons.linker_direction)."""
-
-    xy: np.ndarray
-    radius: np.ndarray
-    angle: np.ndarray
-    direction: np.ndarray
-    rule: str
-
-
-def _chain_layout(p: "Params") -> ChainLayout:
-    outline = p.outline()
-    anchor = np.array(p.anchor_xy, dtype=float)
-    offsets = np.asarray(p.chain_x()) - p.anchor_x  # along the chain from the anchor
-    copies = [j * p.pf_angle for j in range(p.protofilaments)]
-    for j, a in enumerate(copies):
-        xy = polygons.rotate(anchor, a)
-        if polygons.inside(outline, xy[None])[0]:
-            where = "" if j == 0 else (f" (protofilament {j}'s copy, turned by "
-                                       f"{math.degrees(a):.1f}°, at ({xy[0]:.2f}, {xy[1]:.2f}))")
-            raise ParamError("anchor", f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
-                                       f"{where}; the linker must start outside it: put the "
-                                       f"anchor on or outside the core's outline")
-    try:
-        direction, rule = polygons.linker_direction(outline, anchor, offsets, p.chain_radii(),
-                                                    copies)
-    except polygons.GeometryError as exc:
-        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}") from None
-    if rule == "radial":
-        radius = np.asarray(p.chain_x())
-        angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))
-        xy = np.stack([np.cos(angle) * radius, np.sin(angle) * radius], axis=1)
-    else:
-        xy = anchor[None] + offsets[:, None] * direction[None]
-        radius, angle = np.hypot(xy[:, 0], xy[:, 1]), np.arctan2(xy[:, 1], xy[:, 0])
-    return ChainLayout(xy, radius, angle, direction, rule)
-
-
-def read_outline(path) -> tuple:
-    """A core outline from a JSON file: a list of [x, y] in Å. Raises ParamError."""
-    try:
-        text = pathlib.Path(path).expanduser().read_text(encoding="utf-8")
-        data = json.loads(text)
-    except (OSError, UnicodeDecodeError, ValueError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise ParamError("core_outline", f"cannot read '{path}' as a JSON list of [x, y] points "
-                                         f"({' '.join(str(reason).split())})") from None
-    return _outline_value(data, f" in '{path}'")
-
-
-def _outline_value(value, where: str = "") -> tuple:
-    meta = field_spec("core_outline")
-    try:
-        points = polygons.clean_outline(value)
-    except polygons.GeometryError as exc:
-        raise ParamError("core_outline", f"the outline{where} {exc}") from None
-    if len(points) > MAX_OUTLINE_POINTS:
-        raise ParamError("core_outline", f"the outline{where} has {len(points)} points; at most "
-                                         f"{MAX_OUTLINE_POINTS}")
-    if np.abs(points).max() > meta["max"]:
-        raise ParamError("core_outline", f"the outline{where} reaches {np.abs(points).max():g} Å "
-                                         f"from the axis; coordinates must be from "
-                                         f"{meta['min']:g} to {meta['max']:g} Å")
-    return tuple((float(x), float(y)) for x, y in points)
 
 
 def fields() -> tuple[dataclasses.Field, ...]:
@@ -545,38 +349,11 @@ def make_params(*, force: bool = False, **values) -> Params:
         if name not in known:
             shown = name if str(name).isidentifier() else repr(name)  # keep the message one line
             raise ParamError(shown, f"unknown parameter; known: {', '.join(sorted(known))}")
-    clean = {}
-    for f in fields():
-        if f.name not in values:
-            continue
-        value, meta = values[f.name], f.metadata
-        word = isinstance(value, str) and value.strip().lower() == NUMBER_WORDS.get(f.name)
-        if word and f.name == "score_layers":
-            value = 0
-        if word and f.name == "periodic":
-            continue  # resolved below, once the geometry it depends on is known
-        if meta["derived"] and (value is None or (isinstance(value, str)
-                                                  and value.strip().lower() in DERIVED_WORDS)):
-            clean[f.name] = None
-        elif meta["kind"] == "rows":
-            clean[f.name] = None if value is None else rows_value(f.name, value, meta)
-        elif meta["kind"] == "points":
-            if isinstance(value, str) and value.strip().startswith("["):
-                try:
-                    value = json.loads(value)
-                except ValueError:
-                    raise ParamError(f.name, f"is not a JSON list of [x, y] points "
-                                             f"(got {value[:40]!r})") from None
-            clean[f.name] = (read_outline(value) if isinstance(value, (str, pathlib.Path))
-                             else _outline_value(value))
-        elif meta["kind"] == "list":
-            clean[f.name] = list_value(f.name, value, meta)
-        elif f.name == "slab" or meta["size"]:
-            clean[f.name] = vector_value(f.name, value, meta, meta["size"] or 3)
-        else:
-            clean[f.name] = coerce(f.name, value, meta)
-    if isinstance(values.get("periodic"), str) \
-            and values["periodic"].strip().lower() == NUMBER_WORDS["periodic"]:
+    auto = isinstance(values.get("periodic"), str) \
+        and values["periodic"].strip().lower() == NUMBER_WORDS["periodic"]
+    clean = {f.name: field_value(f.name, values[f.name], f.metadata) for f in fields()
+             if f.name in values and not (auto and f.name == "periodic")}
+    if auto:  # resolved here, once the geometry it depends on is known
         clean["periodic"] = helix.auto_cell_layers(Params(**{**clean, "periodic": 1}))
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers

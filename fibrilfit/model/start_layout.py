@@ -13,6 +13,7 @@ import numpy as np
 
 from ..geom.shape import directions
 from . import helix
+from .chain import chain_radii, joint_lever, rest_lengths
 
 FAN_AXIAL = 0.9       # tan of the largest tilt along the fibril axis (chains at the ends): ~42°
 FAN_SIDE = 0.6        # tan of the sideways tilt, alternating layer by layer: ~31°
@@ -24,7 +25,7 @@ SEED_SALT = 0x1F1A7E  # keeps this stream apart from any other use of the seed
 def rest_positions(p) -> np.ndarray:
     """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
 
-    Protofilament 0's chain (params.ChainLayout, in polar form) turned and raised per chain
+    Protofilament 0's chain (chain.ChainLayout, in polar form) turned and raised per chain
     (helix.chain_transforms); for the tutorial's model the same floats as one chain per layer.
     """
     angle, height = helix.chain_transforms(p)
@@ -41,9 +42,9 @@ def bond_pivots(p) -> np.ndarray:
     """POINT-constraint pivots: where consecutive members touch, shape (chains, linker, 3)."""
     pos = rest_positions(p)
     a, b = pos[:, :-1], pos[:, 1:]
-    ra = np.asarray(p.chain_radii()[:-1])
-    ra[-1] = p.joint_lever  # a real shape's joint: one residue spacing on (Params.joint_lever)
-    frac = ra / np.asarray(p.rest_lengths())
+    ra = np.asarray(chain_radii(p)[:-1])
+    ra[-1] = joint_lever(p)  # a real shape's joint: one residue spacing on (chain.joint_lever)
+    frac = ra / np.asarray(rest_lengths(p))
     return a + (b - a) * np.minimum(frac, 1.0)[None, :, None]
 
 
@@ -116,11 +117,11 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
     direction over two steps, each with a random wobble (`seed`), never turning back towards
     the core (in a periodic cell, no axial tilt: fan_directions). Every bond keeps its rest
     length, and each pivot is the contact point of the new layout: member i's radius along the
-    bond (the last: Params.joint_lever), so the globule's joint sits on its full-size surface,
+    bond (the last: chain.joint_lever), so the globule's joint sits on its full-size surface,
     or at its real joint, whatever scale it starts at.
     """
     rest = np.asarray(rest, dtype=float)
-    lengths = np.asarray(p.rest_lengths(), dtype=float)
+    lengths = np.asarray(rest_lengths(p), dtype=float)
     d = walk_directions(p, rest, seed)
     pos = np.empty_like(rest)
     pos[:, 0] = rest[:, 0]
@@ -131,9 +132,9 @@ def inflate_layout(p, rest: np.ndarray, seed: int) -> tuple[np.ndarray, np.ndarr
 
 def _pivots(p, pos: np.ndarray) -> np.ndarray:
     """Each bond's pivot for positions (n, m, 3): member i's radius along the bond from it (the
-    last bond's: Params.joint_lever, a real shape's joint one residue spacing on)."""
-    lever = np.asarray(p.chain_radii(), dtype=float)[:-1].copy()
-    lever[-1] = p.joint_lever
+    last bond's: chain.joint_lever, a real shape's joint one residue spacing on)."""
+    lever = np.asarray(chain_radii(p), dtype=float)[:-1].copy()
+    lever[-1] = joint_lever(p)
     return pos[:, :-1] + lever[None, :, None] * _unit(pos[:, 1:] - pos[:, :-1])
 
 
@@ -166,8 +167,8 @@ def spread_layout(p, rest: np.ndarray, body, rounds: int = SPREAD_ROUNDS
     Deterministic: no seed (docs/model/domain-shapes.md#spheres-start)."""
     rest = np.asarray(rest, dtype=float)
     n, m, _ = rest.shape
-    lengths = np.asarray(p.rest_lengths(), dtype=float)
-    lever_last = p.joint_lever
+    lengths = np.asarray(rest_lengths(p), dtype=float)
+    lever_last = joint_lever(p)
     u = fan_frames(rest)[0]
     cand = directions(SPREAD_DIRECTIONS)
     # member i >= 2 along d after the first bond (straight out): first + reach[i - 1]·d

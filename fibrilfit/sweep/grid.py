@@ -9,6 +9,9 @@ import math
 from decimal import Decimal, InvalidOperation
 
 from ..model import params as P
+from ..model.param_checks import refuse_beside_periodic
+from ..model.param_spec import ANGLE_UNITS
+from ..model.param_values import split_unit
 
 MAX_POINTS = 1_000_000
 MAX_RANGE = 100_000
@@ -62,10 +65,10 @@ def _unit(name: str, spec: str, parts: list[str]) -> tuple[list[str], str]:
     0.5:2:0.5deg): the numbers without it, and the unit every value is then written with."""
     if not P.is_angle(name):
         return parts, ""
-    split = [P.split_unit(part) for part in parts]
+    split = [split_unit(part) for part in parts]
     units = {part[len(number):].strip() for part, (number, factor) in zip(parts, split)
              if factor is not None}
-    if len({P.ANGLE_UNITS[u.lower()] for u in units}) > 1:
+    if len({ANGLE_UNITS[u.lower()] for u in units}) > 1:
         raise GridError(name, f"range {spec!r} mixes units; give one (e.g. 0.5:2:0.5deg)")
     return [number for number, _ in split], (units.pop() if units else "")
 
@@ -162,5 +165,5 @@ def specs_from(values: dict) -> dict:
             specs[f.name] = [item.strip() for item in str(value).split(",")]
         else:
             specs[f.name] = parse_spec(f.name, value)
-    P.refuse_beside_periodic(specs)
+    refuse_beside_periodic(specs)
     return specs

@@ -2,7 +2,7 @@
 the command line's `--domain FILE ... --domain-linker ...`; the logic is structure/domain_list.py.
 
 Each entry keeps its file, chain, residues, its measurement (JSON) and the linker to the next
-domain. The panel's parameters read the list (model_values: the real-shape rows for the panel's
+domain. The panel's parameters read the list (values_from_list: the real-shape rows for the panel's
 domain shape, and domain_linker); a change of the list (filled) writes the diameters, and the
 linker from the numbering when the fibril's and the first domain's agree, into the panel's own
 fields, where the user may still edit them as the command line's options override what a file
@@ -56,7 +56,7 @@ def domains(settings) -> list:
     return [logic.from_text(e.measured) for e in settings.domains]
 
 
-def model_values(settings, values: dict) -> dict:
+def values_from_list(settings, values: dict) -> dict:
     """The values the list gives over the panel's `values` (properties.values): none when it is
     empty; else the shape's rows for values' domain_shape, and domain_linker."""
     if not len(settings.domains):

@@ -10,6 +10,7 @@ import math
 import bpy
 
 from ..model import helix, params as P
+from ..model.param_checks import NOT_WITH_PERIODIC
 from . import minimal_summary, properties, report_summary, structure_trace
 from ..builders import model_stage
 from ..builders.stored import params_of
@@ -248,7 +249,7 @@ def shown(field, s) -> bool:
         return False  # the list of domains has each linker (draw_domains)
     if name == "image_updates":
         return s.use_periodic
-    if name in P.NOT_WITH_PERIODIC:
+    if name in NOT_WITH_PERIODIC:
         return not s.use_periodic
     switch = name.split("_")[0]  # settle_speed, settle_frames: only with settle on
     if switch != name and isinstance(getattr(s, switch, None), bool):

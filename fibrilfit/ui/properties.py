@@ -14,6 +14,7 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        FloatVectorProperty, IntProperty, PointerProperty, StringProperty)
 
 from ..model import params as P
+from ..model.param_spec import SHOWN_IN
 from ..search.plans import REPORT_SEARCH
 from . import domain_list
 from .plan_properties import plan_property
@@ -63,7 +64,7 @@ def label(field) -> str:
 def _scale(field) -> float:
     """The factor from the definition's unit to the one the panel shows (1: the same)."""
     shown = field.metadata.get("shown_in")
-    return P.SHOWN_IN[shown][1] if shown else 1.0
+    return SHOWN_IN[shown][1] if shown else 1.0
 
 
 JSON_KINDS = ("points", "rows")  # held as JSON text in the panel, read back exactly
@@ -267,7 +268,7 @@ def list_value(text: str, item=float):
 
 def values(settings) -> dict:
     out = {f.name: _value(settings, f) for f in P.fields()}
-    out.update(domain_list.model_values(settings, out))  # several domains: the list's
+    out.update(domain_list.values_from_list(settings, out))  # several domains: the list's
     if not settings.use_periodic:
         out["periodic"] = 0
     else:  # the cell replaces the fibril's length and its ends

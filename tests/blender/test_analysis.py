@@ -5,6 +5,7 @@ import pytest
 from mathutils import Matrix, Quaternion
 
 from fibrilfit.model import params as P
+from fibrilfit.model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 from fibrilfit import pipeline
 from fibrilfit.analysis import StretchLog, bond_stretch, bvh_clashes, check_model, compare_checks, grazing_depth, sphere_clashes
 from fibrilfit.builders import meshes
@@ -12,7 +13,7 @@ from fibrilfit.builders import meshes
 
 @pytest.fixture
 def globule_mesh(scene):
-    return meshes.uv_sphere("test globule", 15.0, P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
+    return meshes.uv_sphere("test globule", 15.0, GLOBULE_SEGMENTS, GLOBULE_RINGS)
 
 
 def at(*xs, y=0.0):

@@ -9,6 +9,7 @@ from mathutils import Euler, Matrix
 from mathutils.bvhtree import BVHTree
 
 from fibrilfit.model import params as P
+from fibrilfit.model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 from fibrilfit.analysis import bvh_clashes
 from fibrilfit.analysis.clashes import candidate_pairs, facing_faces, mesh_arrays
 from fibrilfit.builders import meshes
@@ -32,7 +33,7 @@ def reference(mesh, matrices):
 
 @pytest.fixture
 def globule_mesh(scene):
-    return meshes.uv_sphere("test globule", 15.0, P.GLOBULE_SEGMENTS, P.GLOBULE_RINGS)
+    return meshes.uv_sphere("test globule", 15.0, GLOBULE_SEGMENTS, GLOBULE_RINGS)
 
 
 def placed(centres, rng, scale=1.0):

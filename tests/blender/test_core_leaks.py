@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from fibrilfit.geom import polygons
+from fibrilfit.model.chain import rest_lengths
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
 from fibrilfit.analysis.leaks import members_inside_core
@@ -83,7 +84,7 @@ def test_the_linker_check_covers_every_chain_of_every_protofilament(scene, layer
     mw.translation = mw.translation + type(mw.translation)(out.tolist())
     globule.matrix_world = mw
     result = check_model(model)
-    assert result["max_bond_stretch"] == pytest.approx(2.0 / p.rest_lengths()[-1], rel=1e-3)
+    assert result["max_bond_stretch"] == pytest.approx(2.0 / rest_lengths(p)[-1], rel=1e-3)
     assert not result["linker_intact"]
     assert result["inside_core"] == []
 

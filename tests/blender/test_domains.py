@@ -95,7 +95,7 @@ TDP43 = dict(protofilaments=2, slab=(56.5, 22.0, 4.78), rise=4.78, twist=-0.0309
 def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scene):
     P = ff.model.params
     p = P.make_params(**TDP43)
-    assert p.globule_members() == [51, 75, 100]
+    assert [d.member for d in p.domains] == [51, 75, 100]
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     assert len(model.chain) == 8 and all(len(c) == 101 for c in model.chain)
@@ -113,7 +113,7 @@ def test_a_tdp43_like_chain_of_three_domains_builds_bakes_and_is_judged(ff, scen
     assert r["max_bond_stretch"] == pytest.approx(0.0688, abs=0.002)
     # no two domains overlap deeper than the sphere check's tolerance unless it says so
     centres = np.array(r["globule_centres"])
-    radii = np.tile(p.domain_radii, p.chains)
+    radii = np.tile([d.radius for d in p.domains], p.chains)
     d = np.linalg.norm(centres[:, None] - centres[None], axis=-1)
     depth = radii[:, None] + radii[None] - d
     np.fill_diagonal(depth, -np.inf)
@@ -208,7 +208,7 @@ def _spheres_of_the_cell(p, centres, cells):
     blocks = [centres] + [helix.apply_points(p, np.full(n, float(m)), centres)
                           for m in range(1, cells + 1)]
     pts = np.concatenate(blocks)
-    radii = np.tile(p.domain_radii, len(pts) // len(p.domain_radii))
+    radii = np.tile([d.radius for d in p.domains], len(pts) // len(p.domains))
     d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
     depth = radii[:, None] + radii[None] - d
     return {(int(i), int(j)): float(depth[i, j]) for i, j in zip(*np.nonzero(depth > 0))
@@ -238,9 +238,9 @@ def test_a_tdp43_like_chain_grows_each_domain_to_its_own_size_under_inflate(ff, 
     # at the start scale no two globules (each its own size) overlapped in the start layout
     start = ff.model.start_layout.rest_positions(p)
     start = ff.model.start_layout.inflate_layout(p, start, p.seed)[0]
-    centres = start[:, p.globule_members()].reshape(-1, 3)
+    centres = start[:, [d.member for d in p.domains]].reshape(-1, 3)
     s = r["inflate"]["start_scale"]
-    radii = np.tile(p.domain_radii, len(centres) // 3)
+    radii = np.tile([d.radius for d in p.domains], len(centres) // 3)
     gap = np.linalg.norm(centres[:, None] - centres[None], axis=-1) - s * (radii[:, None]
                                                                           + radii[None])
     np.fill_diagonal(gap, np.inf)
@@ -291,7 +291,7 @@ def _images_follow_with_their_scale(ff, model):
 
 def test_a_tdp43_like_chain_in_a_periodic_cell_images_every_member(ff, scene):
     p = ff.model.params.make_params(**{k: v for k, v in TDP43_CELL.items() if v is not None})
-    assert p.periodic == 13 and p.globule_members() == [8, 13, 18]  # ceil(2 · 31 / 4.78)
+    assert p.periodic == 13 and [d.member for d in p.domains] == [8, 13, 18]  # ceil(2 · 31 / 4.78)
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
     # images of every member kind: beads, each domain, each at its original's scale

@@ -7,6 +7,7 @@ import pytest
 from helpers import run_cli
 
 from fibrilfit.model import params as P
+from fibrilfit.model.chain import chain_x
 from fibrilfit import pipeline
 from fibrilfit.analysis.envelope import envelope
 from fibrilfit.exits import UsageError
@@ -41,7 +42,7 @@ def test_built_model_envelope_is_the_geometry(scene, twist, linker):
     p = P.make_params(layers=10, linker=linker, twist=twist, score_layers=2)
     model = pipeline.build(p, scene)
     env = pipeline.check(model, scene)["envelope"]
-    r = p.chain_x()[-1]  # anchor 21.75 + 3.5 (linker - 1) + 1.75 + R
+    r = chain_x(p)[-1]  # anchor 21.75 + 3.5 (linker - 1) + 1.75 + R
     assert r == 21.75 + 3.5 * (linker - 1) + 1.75 + 15
     assert env["n"] == 6  # the scored layers only
     assert env["r_median"] == pytest.approx(r, abs=1e-3)

@@ -8,7 +8,9 @@ import pytest
 from helpers import ROOT, run_cli
 
 from fibrilfit.geom import polygons
+from fibrilfit.model.chain import chain_radii, chain_x
 from fibrilfit.model import helix, params as P
+from fibrilfit.model.param_checks import estimated_objects
 from fibrilfit import pipeline
 from fibrilfit.builders import build_model, find_model
 from fibrilfit.builders.stored import stored_params
@@ -37,7 +39,7 @@ def test_default_only_gains_keys_and_keeps_the_tutorials_chain():
     assert (p.anchor_xy, p.pf_angle, p.chains) == ((21.75, 0.0), 2 * math.pi, 20)
     assert p.chain_layout.rule == "radial"
     # the rest layout, float for float, is the tutorial's formula
-    angle, height, x = np.arange(20) * 0.034, np.arange(20) * 4.8, np.asarray(p.chain_x())
+    angle, height, x = np.arange(20) * 0.034, np.arange(20) * 4.8, np.asarray(chain_x(p))
     pos = chain_positions(p)
     assert np.array_equal(pos[..., 0], np.cos(angle)[:, None] * x)
     assert np.array_equal(pos[..., 1], np.sin(angle)[:, None] * x)
@@ -76,7 +78,7 @@ def test_two_protofilaments_build_two_chains_per_layer_179_3_deg_and_2_34_A_apar
     assert [[ob.name for ob in c] for c in again.chain] == [[ob.name for ob in c]
                                                             for c in model.chain]
     assert again.params == p
-    assert len(scene.objects) == p.estimated_objects() == 5 * (1 + 2 * 7)
+    assert len(scene.objects) == estimated_objects(p) == 5 * (1 + 2 * 7)
 
 
 def _layer_frame(p, xyz):
@@ -97,7 +99,7 @@ def test_a_concave_core_starts_and_ends_with_every_bead_outside(scene):
     slab = model.slabs[0]
     assert (slab.rigid_body.type, slab.rigid_body.collision_shape) == ("PASSIVE", "COMPOUND")
     assert tuple(slab.dimensions) == pytest.approx((40, 22, 4.8), abs=1e-4)
-    radii = np.array(p.chain_radii())
+    radii = np.array(chain_radii(p))
     start = chain_positions(p)
     for chain in start:
         xy, _ = _layer_frame(p, chain)

@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 
 from helpers import ROOT, run_cli
+from fibrilfit.model.chain import chain_radii
+from fibrilfit.model.param_checks import refuse_beside_periodic
 
 REFERENCE = ROOT / "tests" / "data" / "non_periodic_reference.json"
 
@@ -105,13 +107,13 @@ def test_cli_refuses_a_short_cell(tmp_path):
 def test_sweep_refuses_layers_beside_periodic(ff):
     P = ff.model.params
     with pytest.raises(P.ParamError, match="layers"):
-        P.refuse_beside_periodic({"periodic": ["0", "13"], "layers": ["100"]})
-    P.refuse_beside_periodic({"periodic": ["0"], "layers": ["100"]})  # periodic off: fine
+        refuse_beside_periodic({"periodic": ["0", "13"], "layers": ["100"]})
+    refuse_beside_periodic({"periodic": ["0"], "layers": ["100"]})  # periodic off: fine
 
 
 def test_images_come_from_the_reach_not_a_fixed_cell(ff):
     S, PB = _screw(ff), _periodic(ff)
-    D = importlib.import_module(ff.__name__ + ".model.domains")
+    D = importlib.import_module(ff.__name__ + ".model.chain")
     P = ff.model.params
     short, long_ = P.make_params(periodic=13, linker=6), P.make_params(periodic=13, linker=16)
     cells = lambda p: sorted({m for m, _ in S.image_layers(p, 2 * D.body_reach(p))})  # noqa: E731
@@ -174,7 +176,7 @@ def test_images_sit_at_the_screw_of_their_originals_every_frame(scene, ff):
             used.append(np.array([ob.matrix_world.translation for ob in moving]))
 
     follower = PB.ImageFollower(model)
-    radii = np.asarray(p.chain_radii())
+    radii = np.asarray(chain_radii(p))
     exact = []
     for frame, positions in ff.builders.bake_steps(scene, model, hooks=[Before(), follower]):
         # the follower has moved every image that can touch a cell body to S^m of where this
@@ -341,7 +343,7 @@ def _members_with_images(ff, p, pos, cells=(1, -1)):
     """Linker beads (no anchors, no globules) of the cell and their images: points, radii, chain
     of the infinite fibril (chain + m·n)."""
     S, n = _screw(ff), len(pos)
-    r = np.asarray(p.chain_radii(), dtype=float)[1:-1]
+    r = np.asarray(chain_radii(p), dtype=float)[1:-1]
     pts, chain = pos[:, 1:-1].reshape(-1, 3), np.repeat(np.arange(n), pos.shape[1] - 2)
     all_pts, all_chain = [pts], [chain]
     for m in cells:
@@ -477,7 +479,7 @@ def test_pdb_images_are_the_screw_of_the_cell(scene, ff, tmp_path, extra):
     st = gemmi.read_structure(str(tmp_path / "cell.pdb"))
     chains = [np.array([[a.pos.x, a.pos.y, a.pos.z] for r in ch for a in r]) for ch in st[0]]
     assert len(chains) == 3 * n and info["image_cells"] == [-1, 1]
-    assert {len(c) for c in chains} == {len(p.chain_radii())}
+    assert {len(c) for c in chains} == {len(chain_radii(p))}
     cell = np.array(chains[:n])
     assert np.allclose(np.array(chains[n:2 * n]), S.apply_points(p, -1, cell), atol=2e-3)
     assert np.allclose(np.array(chains[2 * n:]), S.apply_points(p, 1, cell), atol=2e-3)

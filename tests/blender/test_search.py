@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from fibrilfit.model import params as P
+from fibrilfit.model.chain import chain_radii, rest_lengths
 from fibrilfit.model.start_layout import bond_pivots, fan_frames, inflate_layout
 from fibrilfit.model.start_layout import rest_positions as chain_positions
 from fibrilfit.search import restarts
@@ -38,10 +39,10 @@ def test_inflate_layout_keeps_bonds_anchors_and_pivots(chains_per_layer):
     assert pos.shape == (n, p.linker + 1, 3) and piv.shape == (n, p.linker, 3)
     np.testing.assert_allclose(pos[:, 0], rest[:, 0])  # anchors stay on the core
     bonds = np.linalg.norm(np.diff(pos, axis=1), axis=-1)
-    np.testing.assert_allclose(bonds, np.broadcast_to(p.rest_lengths(), bonds.shape), atol=1e-9)
+    np.testing.assert_allclose(bonds, np.broadcast_to(rest_lengths(p), bonds.shape), atol=1e-9)
     # each pivot is the contact point: member i's radius along the bond; the globule's joint
     # is on its full-size surface
-    radii = np.asarray(p.chain_radii())
+    radii = np.asarray(chain_radii(p))
     np.testing.assert_allclose(np.linalg.norm(piv - pos[:, :-1], axis=-1),
                                np.broadcast_to(radii[:-1], piv.shape[:2]), atol=1e-9)
     np.testing.assert_allclose(np.linalg.norm(pos[:, -1] - piv[:, -1], axis=-1),
@@ -141,7 +142,7 @@ def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
     g = pos[:, -1]
     d = np.linalg.norm(g[:, None] - g[None], axis=-1)[np.triu_indices(len(g), 1)]
     assert d.min() >= p.globule_diameter - 0.05
-    stretch = np.linalg.norm(np.diff(pos, axis=1), axis=-1) / np.asarray(p.rest_lengths()) - 1
+    stretch = np.linalg.norm(np.diff(pos, axis=1), axis=-1) / np.asarray(rest_lengths(p)) - 1
     assert stretch.max() <= p.stretch_tolerance
     again = ff.pipeline.check(model, scene)
     assert again["accommodated"] and again["intersecting_faces"] == 0

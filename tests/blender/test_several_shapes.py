@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pytest
 from helpers import ROOT
+from fibrilfit.model.chain import rest_lengths
 
 DATA = ROOT / "tests" / "data"
 INFLATE = dict(protocol="inflate", grow_frames=15, hold_frames=15, regrow_cycles=0,
@@ -45,7 +46,7 @@ def _body(ob, p, shape):
     ("points", its hull points) or ("spheres", [x, y, z, r])."""
     from fibrilfit.geom.shape import hull_points
     m = np.array(ob.matrix_world)
-    rows = p.domain_rows(p.globule_members().index(ob["fibrilfit_index"]))
+    rows = next(d.rows for d in p.domains if d.member == ob["fibrilfit_index"])
     if shape == "hull":
         return "points", _world(m, hull_points(rows))
     return "spheres", np.column_stack([_world(m, rows[:, :3]), rows[:, 3]])
@@ -79,7 +80,7 @@ def _overlaps_at_frame_1(model, p, shape, chains):
     box = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * 0.5 \
         * np.array(p.slab)
     cores = [("points", _world(np.array(s.matrix_world), box)) for s in model.slabs]
-    members, bodies = p.globule_members(), []
+    members, bodies = [d.member for d in p.domains], []
     for c in chains:
         for i, ob in enumerate(model.chain[c]):
             if i in members:
@@ -127,7 +128,7 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
         own = globule_mesh(p, k)
         assert len(ob.data.vertices) == len(own.vertices)
         v = np.array([x.co[:] for x in ob.data.vertices])
-        rows = p.domain_rows(k)
+        rows = p.domains[k].rows
         if shape == "hull":  # the mesh is the hull of this domain's grown atoms
             pts = hull_points(rows)
             assert np.ptp(v, axis=0) == pytest.approx(np.ptp(pts, axis=0), abs=0.2)
@@ -168,8 +169,9 @@ def test_a_built_chain_starts_with_no_body_overlapping_another(scene, ff, shape,
     p = _params(ff, shape, **values)
     model = ff.pipeline.build(p, scene)
     assert _overlaps_at_frame_1(model, p, shape, chains=[0]) == []
-    joints, exits = p.domain_joints(), p.domain_exits
-    g0, g1 = p.globule_members()
+    (first, second) = p.domains
+    joints, exits = [first.joint, second.joint], p.domain_exits
+    g0, g1 = first.member, second.member
     for chain, bonds in zip(model.chain, model.constraints):
         m0, m1 = (np.array(chain[i].matrix_world) for i in (g0, g1))
         bead = lambda i: np.array(chain[i].matrix_world)[:3, 3]  # noqa: E731
@@ -184,7 +186,7 @@ def test_a_built_chain_starts_with_no_body_overlapping_another(scene, ff, shape,
         # the joint's distance plus one spacing from its neighbour bead)
         pos = np.array([np.array(ob.matrix_world)[:3, 3] for ob in chain])
         length = np.linalg.norm(np.diff(pos, axis=0), axis=1)
-        rest = np.array(p.rest_lengths())
+        rest = np.array(rest_lengths(p))
         beads = [i for i in range(len(rest)) if i not in (g0 - 1, g0, g1 - 1)]
         assert np.allclose(length[beads], rest[beads], atol=1e-3)
         assert (length <= rest + 1e-3).all()
@@ -232,7 +234,7 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
     a[:3, :3] = np.eye(3)
     g[0].matrix_world = Matrix(a.tolist())
     turn = np.array([[0.0, 0, 1], [0, 1, 0], [-1, 0, 0]])  # GFP's barrel axis across X
-    ubq, gfp = hull_points(p.domain_rows(0)), hull_points(p.domain_rows(1))
+    ubq, gfp = hull_points(p.domains[0].rows), hull_points(p.domains[1].rows)
     seen = {"apart": 0, "clash": 0}
     for x in np.linspace(55.0, 15.0, 11):
         m = np.eye(4)
@@ -280,7 +282,7 @@ def test_a_cell_of_two_real_domains_images_each_with_its_own_shape(scene, ff, sh
     r = ff.pipeline.check(model, scene)
     assert r["checks_agree"], r["warnings"]
     assert r["periodic"]["cell_layers"] == p.periodic and r["sphere_check"]["shape"] == shape
-    members = p.globule_members()
+    members = [d.member for d in p.domains]
     images = [ob for ob in image_collection(model).objects if ob["fibrilfit_index"] in members]
     seen = set()
     for ob in images:
@@ -289,7 +291,7 @@ def test_a_cell_of_two_real_domains_images_each_with_its_own_shape(scene, ff, sh
         k = members.index(ob["fibrilfit_index"])
         seen.add(k)
         if shape == "spheres":
-            assert len(ob.children) == len(p.domain_rows(k))
+            assert len(ob.children) == len(p.domains[k].rows)
     assert seen == {0, 1}
     # the images stand where the follower last put them: S^m of the originals' whole
     # transforms at the last frame they were moved, i.e. as the check computes them now
@@ -365,9 +367,9 @@ def test_a_domain_turned_about_its_centre_stretches_the_bond_at_its_terminal_ca(
     model = ff.pipeline.build(p, scene)
     assert check_model(model)["max_bond_stretch"] == pytest.approx(0.0, abs=1e-4)
     members = model.chain[1]
-    g = p.globule_members()[0]  # ubiquitin: a joint from the bead before, an exit to the next
+    g = p.domains[0].member  # ubiquitin: a joint from the bead before, an exit to the next
     ob = members[g]
-    points = {"joint": (p.domain_joints()[0], g - 1),
+    points = {"joint": (p.domains[0].joint, g - 1),
               "exit": (np.asarray(p.domain_exits[0], float), g + 1)}
 
     def pulled(m, name):  # a terminal CA's bond: its distance to its bead over 3.5 Å, minus 1
@@ -395,5 +397,5 @@ def test_a_domain_turned_about_its_centre_stretches_the_bond_at_its_terminal_ca(
     assert not r["linker_intact"] and not r["accommodated"]
     centres = np.array([np.array(o.matrix_world)[:3, 3] for o in members])
     centre_stretch = (np.linalg.norm(np.diff(centres, axis=0), axis=1)
-                      / np.asarray(p.rest_lengths()) - 1.0).max()
+                      / np.asarray(rest_lengths(p)) - 1.0).max()
     assert centre_stretch < 0.05  # the centres alone would have said: intact

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from fibrilfit.ui import properties
+from fibrilfit.model.chain import chain_x
 from fibrilfit.ui import structure_trace
 from fibrilfit.builders.scene import TAG
 from fibrilfit.ui import panels
@@ -59,7 +60,7 @@ def test_import_domain_sets_the_globule(ui, scene):
     co = np.array([v.co for v in ob.data.vertices])
     assert len(co) == 230  # GFP chain A's CA, residues 2-231
     assert np.linalg.norm(co.mean(axis=0)) < 3.0  # about the heavy atoms' centroid
-    globule = np.array([max(p.chain_x()) + p.globule_radius, 0.0, 0.0])
+    globule = np.array([max(chain_x(p)) + p.globule_radius, 0.0, 0.0])
     assert (np.linalg.norm(co + np.array(ob.location) - globule, axis=1) > p.globule_radius).all()
     assert ob.location.x == pytest.approx(globule[0])
     assert any("Rg 17.02" in ln for ln in panels.structure_lines(
@@ -93,8 +94,8 @@ def test_an_imported_domain_builds_as_its_hull(ui, scene, ff):
     assert bpy.ops.fibrilfit.import_domain(filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
     sphere = properties.read_params(ui)
     assert sphere.domain_shape == "sphere" and sphere.domain_atoms is None
-    assert sphere.chain_x() == ff.model.params.make_params(
-        globule_diameter=sphere.globule_diameter).chain_x()  # the sphere's model as before
+    assert chain_x(sphere) == chain_x(ff.model.params.make_params(
+        globule_diameter=sphere.globule_diameter))  # the sphere's model as before
     ui.domain_shape = "hull"
     ui.layers = 2
     p = properties.read_params(ui)

@@ -15,6 +15,7 @@ from helpers import ROOT, snapshot_user
 from mathutils.bvhtree import BVHTree
 
 from fibrilfit.model import params as P
+from fibrilfit.model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS, SHOWN_IN
 from fibrilfit import pipeline
 from fibrilfit.ui import properties, registration
 from fibrilfit.analysis import bvh_clashes, clash_kinds
@@ -72,7 +73,7 @@ def test_one_property_per_parameter_with_its_metadata(ui):
             continue
         assert prop.type == ("INT" if meta["kind"] is int else "FLOAT"), f.name
         # shown in another unit (the stretch tolerance in %): range and default scaled
-        k = P.SHOWN_IN[meta["shown_in"]][1] if meta.get("shown_in") else 1
+        k = SHOWN_IN[meta["shown_in"]][1] if meta.get("shown_in") else 1
         assert (prop.hard_min, prop.hard_max) == pytest.approx((meta["min"] * k,
                                                                 meta["max"] * k)), f.name
         default = tuple(prop.default_array) if prop.is_array else prop.default
@@ -375,7 +376,7 @@ def test_join_globules_adds_a_mesh_and_leaves_the_simulation_intact(ui, scene):
     joined = [ob for ob in scene.objects if ob.get("fibrilfit") == "joined"]
     assert len(joined) == 1
     mesh = joined[0].data
-    assert len(mesh.polygons) == SMALL["layers"] * P.GLOBULE_SEGMENTS * P.GLOBULE_RINGS
+    assert len(mesh.polygons) == SMALL["layers"] * GLOBULE_SEGMENTS * GLOBULE_RINGS
     assert joined[0].name not in scene.rigidbody_world.collection.objects
     for a, b in zip(before, positions()):
         np.testing.assert_array_equal(a, b)

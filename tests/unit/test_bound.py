@@ -13,6 +13,7 @@ import pytest
 from hypothesis import HealthCheck, assume, event, given, settings, strategies as st
 
 from fibrilfit.geom import shape as geom_shape
+from fibrilfit.model.chain import chain_x
 from fibrilfit.model import bound as B
 from fibrilfit.model import params as P
 
@@ -51,7 +52,7 @@ def test_reach_grows_by_one_stretched_spacing_per_residue():
     terms = B.reach_terms(p)
     r6, r7 = B.reach(p, terms, 6)[0], B.reach(p, terms, 7)[0]
     assert r7 - r6 == pytest.approx(3.5 * 1.05)
-    x = p.chain_x()  # at the model's own linker: the centre's rest distance, stretched, + body
+    x = chain_x(p)  # at the model's own linker: the centre's rest distance, stretched, + body
     assert r6 == pytest.approx((x[6] - x[0]) * 1.05 + 15.0 * B.uv_fraction())
 
 

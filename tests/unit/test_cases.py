@@ -67,4 +67,4 @@ def test_a_case_of_several_domains_in_a_cell_under_inflate_loads(tmp_path):
                     'domain_linker = [4, 4]\nrise = 4.78\nperiodic = "auto"\n'
                     'protocol = "inflate"\n')
     p = cases.load(path).make_params()
-    assert p.protocol == "inflate" and p.periodic == 13 and p.globule_members() == [8, 13, 18]
+    assert p.protocol == "inflate" and p.periodic == 13 and [d.member for d in p.domains] == [8, 13, 18]

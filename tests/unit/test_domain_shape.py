@@ -4,6 +4,7 @@ tests/blender/test_domain_shapes.py."""
 import numpy as np
 import pytest
 from fibrilfit.model import params as P
+from fibrilfit.model.chain import body_radii, chain_radii, chain_x, globule_offset, rest_lengths
 from fibrilfit.geom import shape
 from fibrilfit.structure import body_frame, measure_domain, model_values, reading
 from helpers import ROOT
@@ -56,7 +57,7 @@ def test_the_joint_is_the_terminal_ca_and_its_depth_at_least_its_radius():
 
 def test_params_take_a_shape_only_with_its_geometry():
     assert P.DEFAULTS.domain_shape == "sphere"
-    assert P.DEFAULTS.chain_x()[-1] == P.DEFAULTS.chain_x()[-2] + 1.75 + 15.0  # unchanged
+    assert chain_x(P.DEFAULTS)[-1] == chain_x(P.DEFAULTS)[-2] + 1.75 + 15.0  # unchanged
     with pytest.raises(P.ParamError, match="^domain_shape: must be one of sphere, hull, spheres"):
         P.make_params(domain_shape="cube")
     with pytest.raises(P.ParamError, match="^domain_shape: hull needs a domain structure"):
@@ -64,7 +65,7 @@ def test_params_take_a_shape_only_with_its_geometry():
     dom = measure_domain(DATA / "1ubq.pdb.gz")
     assert "domain_atoms" not in model_values(None, dom)  # the sphere's model: as before
     p = P.make_params(domain_shape="hull", **model_values(None, dom, shape="hull"))
-    assert p.globule_offset == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
+    assert globule_offset(p) == pytest.approx(np.linalg.norm(dom.geometry["domain_joint"]))
     assert P.make_params(**p.to_dict()) == p  # the case file / sweep round trip
     assert p.replace(periodic=20).periodic == 20  # a cell's images carry the whole turn
     spheres = P.make_params(domain_shape="spheres", **model_values(None, dom, shape="spheres"))
@@ -75,14 +76,13 @@ def test_params_take_a_shape_only_with_its_geometry():
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])
 def test_a_real_shapes_reach_holds_its_body(shape):
-    """A cell's images are built and moved by the shape's reach (domains.globule_reach): it holds
+    """A cell's images are built and moved by the shape's reach (Domain.reach): it holds
     the hull's points plus Bullet's margin (the spheres), and exceeds GFP's Rg sphere
     (docs/model/domain-shapes.md#periodic)."""
-    from fibrilfit.model import domains
     from fibrilfit.geom import shape as sh
     dom = measure_domain(DATA / "1gfl.pdb.gz")
     p = P.make_params(domain_shape=shape, **model_values(None, dom, shape=shape))
-    reach = domains.globule_reach(p)
+    reach = p.domains[0].reach
     if shape == "hull":
         far = np.linalg.norm(sh.hull_points(p.domain_atoms), axis=1).max() + 0.1  # HULL_MARGIN
         assert far <= reach < far + 0.2
@@ -90,8 +90,8 @@ def test_a_real_shapes_reach_holds_its_body(shape):
         s = np.asarray(p.domain_spheres)
         assert reach == pytest.approx((np.linalg.norm(s[:, :3], axis=1) + s[:, 3]).max())
     assert reach > p.globule_radius + 5.0
-    assert domains.body_radii(p)[p.linker] == reach
-    assert list(domains.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()  # the sphere's: as before
+    assert body_radii(p)[p.linker] == reach
+    assert list(body_radii(P.DEFAULTS)) == chain_radii(P.DEFAULTS)  # the sphere's: as before
 
 
 def test_several_real_domains_carry_each_domains_shape_joint_and_exit():
@@ -104,12 +104,12 @@ def test_several_real_domains_carry_each_domains_shape_joint_and_exit():
     assert not {"further_atoms", "domain_exits"} & set(model_values(None, ubq, more_domains=[gfp]))
     values = model_values(None, ubq, more_domains=[gfp], shape="hull")
     p = P.make_params(domain_shape="hull", linker=4, domain_linker=[5], **values)
-    assert p.several_shapes and p.globule_members() == [4, 10]
-    assert np.allclose(p.domain_rows(0), ubq.geometry["domain_atoms"])
-    assert np.allclose(p.domain_rows(1), gfp.geometry["domain_atoms"])
-    assert np.allclose(p.domain_joints()[1], gfp.geometry["domain_joint"])
+    assert p.several_shapes and [d.member for d in p.domains] == [4, 10]
+    assert np.allclose(p.domains[0].rows, ubq.geometry["domain_atoms"])
+    assert np.allclose(p.domains[1].rows, gfp.geometry["domain_atoms"])
+    assert np.allclose(p.domains[1].joint, gfp.geometry["domain_joint"])
     assert np.allclose(p.domain_exits[0], ubq.geometry["exit"])
-    rest = p.rest_lengths()
+    rest = rest_lengths(p)
     spacing = p.residue_spacing
     assert rest[3] == pytest.approx(spacing + np.linalg.norm(ubq.geometry["domain_joint"]))
     assert rest[4] == pytest.approx(np.linalg.norm(ubq.geometry["exit"]) + spacing)
@@ -118,7 +118,7 @@ def test_several_real_domains_carry_each_domains_shape_joint_and_exit():
     # spheres: each domain its own covering spheres
     q = P.make_params(domain_shape="spheres", linker=4, domain_linker=[5],
                       **model_values(None, ubq, more_domains=[gfp], shape="spheres"))
-    assert np.allclose(q.domain_rows(1), gfp.geometry["domain_spheres"])
+    assert np.allclose(q.domains[1].rows, gfp.geometry["domain_spheres"])
     # what is missing is refused in one line, naming the parameter
     with pytest.raises(P.ParamError, match="^domain_shape: hull with 2 domains per chain needs "
                                            "every domain's structure"):

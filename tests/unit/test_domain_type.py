@@ -3,6 +3,7 @@ shape table's reach, equal to the values the code gave before the domains had a 
 import numpy as np
 import pytest
 from fibrilfit.model import domains, params as P
+from fibrilfit.model.chain import body_radii, chain_radii
 from fibrilfit.structure import measure_domain, model_values
 from helpers import ROOT
 
@@ -31,16 +32,16 @@ def test_one_sphere_domain_is_a_list_of_one():
     assert d.shape is domains.SHAPES["sphere"] and not d.shape.real
     assert d.rows is None and d.joint is None and d.exit is None and d.linker is None
     assert d.reach == 15.0
-    assert list(domains.body_radii(P.DEFAULTS)) == P.DEFAULTS.chain_radii()
+    assert list(body_radii(P.DEFAULTS)) == chain_radii(P.DEFAULTS)
 
 
 def test_several_sphere_domains_each_have_their_size_member_and_linker():
     p = P.make_params(linker=5, domain_diameters=[20, 12], domain_linker=[3, 4])
     ds = p.domains
-    assert [d.member for d in ds] == p.globule_members() == [5, 9, 14]
+    assert [d.member for d in ds] == domains.member_indices(p) == [5, 9, 14]
     assert [d.diameter for d in ds] == [30.0, 20.0, 12.0]
     assert [d.linker for d in ds] == [3, 4, None]
-    assert [d.reach for d in ds] == [15.0, 10.0, 6.0] == p.domain_radii
+    assert [d.reach for d in ds] == [15.0, 10.0, 6.0] == [d.radius for d in ds]
     assert all(d.rows is None and d.joint is None and d.exit is None for d in ds)
 
 
@@ -51,13 +52,12 @@ def test_a_real_domains_reach_is_the_old_code_s(measured, name, shape):
     (d,) = p.domains
     assert d.shape is domains.SHAPES[shape] and d.shape.real
     assert d.reach == OLD_REACH[name, shape]
-    assert domains.globule_reach(p) == domains.domain_reaches(p)[0] == OLD_REACH[name, shape]
     assert np.array_equal(d.rows, np.asarray(getattr(p, d.shape.rows)))
     assert np.array_equal(d.joint, np.asarray(p.domain_joint[0]))
     assert d.exit is None and d.linker is None
-    radii = domains.body_radii(p)
+    radii = body_radii(p)
     assert radii[p.linker] == OLD_REACH[name, shape] > p.globule_radius
-    assert list(np.delete(radii, p.linker)) == list(np.delete(p.chain_radii(), p.linker))
+    assert list(np.delete(radii, p.linker)) == list(np.delete(chain_radii(p), p.linker))
 
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])

@@ -8,8 +8,10 @@ from helpers import ROOT, synthetic_full_length
 
 gemmi = pytest.importorskip("gemmi")
 from fibrilfit import structure as S  # noqa: E402
+from fibrilfit.model.chain import chain_radii, chain_x, rest_lengths  # noqa: E402
 from fibrilfit.exports import mmcif  # noqa: E402
 from fibrilfit.model import params as P  # noqa: E402
+from fibrilfit.model.param_checks import estimated_objects  # noqa: E402
 from fibrilfit.structure import atoms as A, mapping  # noqa: E402
 
 DATA = ROOT / "tests" / "data"
@@ -132,17 +134,18 @@ def test_a_full_length_model_must_cover_the_core_and_carry_plddt(six, tmp_path):
 
 def test_several_domains_in_the_one_parameter_definition():
     one = P.DEFAULTS
-    assert one.globule_members() == [one.linker] and one.domain_radii == [one.globule_radius]
-    assert one.chain_x() == [21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0]  # the tutorial's
+    (d,) = one.domains
+    assert d.member == one.linker and d.radius == one.globule_radius
+    assert chain_x(one) == [21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0]  # the tutorial's
     p = P.make_params(linker=4, globule_diameter=25, domain_diameters="30, 20",
                       domain_linker="3,2")
     assert p.domain_diameters == (30.0, 20.0) and p.domain_linker == (3, 2)
-    assert p.globule_members() == [4, 8, 11] and len(p.chain_radii()) == 12
-    assert p.chain_radii()[4] == 12.5 and p.chain_radii()[8] == 15.0 and p.chain_radii()[11] == 10
+    assert [d.member for d in p.domains] == [4, 8, 11] and len(chain_radii(p)) == 12
+    assert chain_radii(p)[4] == 12.5 and chain_radii(p)[8] == 15.0 and chain_radii(p)[11] == 10
     # beads 3.5 Å apart, a globule touching its neighbours
-    assert np.allclose(p.rest_lengths(), [3.5, 3.5, 3.5, 14.25, 14.25, 3.5, 3.5, 16.75, 16.75,
+    assert np.allclose(rest_lengths(p), [3.5, 3.5, 3.5, 14.25, 14.25, 3.5, 3.5, 16.75, 16.75,
                                           3.5, 11.75])
-    assert p.estimated_objects() == 20 * (1 + 2 * 12 - 1)
+    assert estimated_objects(p) == 20 * (1 + 2 * 12 - 1)
     assert P.make_params(**p.to_dict()) == p and p.to_dict()["domain_linker"] == [3, 2]
     assert P.make_params(domain_diameters="none").domain_diameters is None
     # under every protocol and in a periodic cell (docs/guide/atoms-and-domains.md#several-domains)

@@ -135,7 +135,7 @@ def test_5oqv_gfp_spends_the_exit_and_is_no_exit_below_it(oqv):
         way = terminus.chain_exit(p)
         assert (way.residues, way.left, p.free_linker) == (5, free, free)
         assert way.start == tuple(p.anchor) and not way.no_exit
-        assert p.globule_members() == [free]
+        assert [d.member for d in p.domains] == [free]
     for linker in (1, 5):  # the linker ends inside the core: a verdict, not a refusal
         values, block = from_files.merged(fib, [dom], None, {"linker": linker, "layers": 6})
         p = P.make_params(**values)

@@ -4,6 +4,8 @@ import math
 import pytest
 
 from fibrilfit.model import params as P
+from fibrilfit.model.param_checks import estimated_objects
+from fibrilfit.model.chain import chain_x, rest_lengths
 
 
 def test_defaults_are_the_tutorials():
@@ -17,9 +19,9 @@ def test_defaults_are_the_tutorials():
 def test_chain_geometry_matches_the_tutorial():
     p = P.DEFAULTS
     assert p.anchor_x == pytest.approx(21.75)
-    assert p.chain_x() == pytest.approx([21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0])
-    assert p.rest_lengths() == pytest.approx([3.5] * 5 + [16.75])
-    assert p.estimated_objects() == 280
+    assert chain_x(p) == pytest.approx([21.75, 25.25, 28.75, 32.25, 35.75, 39.25, 56.0])
+    assert rest_lengths(p) == pytest.approx([3.5] * 5 + [16.75])
+    assert estimated_objects(p) == 280
 
 
 BAD = [

@@ -12,6 +12,7 @@ from helpers import ROOT
 
 from fibrilfit.exits import UsageError
 from fibrilfit.model import cases, params as P
+from fibrilfit.model.param_spec import MAX_TWIST
 
 DATA = ROOT / "tests" / "data"
 
@@ -46,7 +47,7 @@ def test_force_builds_a_large_twist_and_its_copies_stay_forced():
 
 
 def test_twist_at_the_limit_is_accepted():
-    assert P.make_params(twist=P.MAX_TWIST).twist == P.MAX_TWIST
+    assert P.make_params(twist=MAX_TWIST).twist == MAX_TWIST
     assert P.make_params(twist="-11.4deg").twist == pytest.approx(math.radians(-11.4))
 
 

@@ -6,6 +6,7 @@ import pathlib
 import bpy
 
 from ...model import cases, params as P
+from ...model.param_checks import refuse_beside_periodic
 from ... import files
 from ...structure import from_files
 from ...structure.request import from_case
@@ -38,7 +39,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
     def _do(self, context):
         case = cases.load(bpy.path.abspath(self.filepath))
         # Every file read and measured, and the values checked, before the panel changes
-        P.refuse_beside_periodic(case.params)
+        refuse_beside_periodic(case.params)
         request = from_case(case.structure)
         m = from_files.measure_files(request, every_exit=True) if request.any else None
         values, block = (from_files.merged(m.fibril, m.domains, m.segmentation,

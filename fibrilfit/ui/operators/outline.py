@@ -3,7 +3,7 @@ import json
 
 import bpy
 
-from ...model import params as P
+from ...model.param_values import read_outline
 from . import common
 
 
@@ -25,7 +25,7 @@ class FIBRILFIT_OT_load_outline(bpy.types.Operator):
         return common.guarded(self, self._load, context)
 
     def _load(self, context):
-        points = P.read_outline(bpy.path.abspath(self.filepath))
+        points = read_outline(bpy.path.abspath(self.filepath))
         s = common.settings(context)
         s.core_outline = json.dumps([list(xy) for xy in points])
         s.core_outline_file = self.filepath

@@ -5,6 +5,7 @@ import bpy
 import numpy as np
 
 from ...model import params as P
+from ...model.chain import chain_x
 from .. import domain_list, properties, structure_trace
 from ...structure import domain_list as domain_list_logic, from_files, measure_fibril, trace
 from . import common
@@ -28,7 +29,7 @@ def _beside_globule(p: P.Params, chains) -> tuple:
     """Where the domain's CA trace goes: beside layer 0's globule (at its rest place, the
     chain's end, -Y of it), clear of it, at the same scale (1 unit = 1 Å)."""
     reach = max(float(np.linalg.norm(xyz, axis=1).max()) for _, _, xyz in chains)
-    return (max(p.chain_x()) + p.globule_radius, -(p.globule_radius + reach + 5.0), 0.0)
+    return (max(chain_x(p)) + p.globule_radius, -(p.globule_radius + reach + 5.0), 0.0)
 
 
 def _on_model(p: P.Params, path, fib) -> list:

@@ -110,11 +110,14 @@ def test_a_chain_of_ubiquitin_and_gfp_builds_bakes_and_is_judged(scene, ff, shap
     by both checks on those meshes, and the JSON names domains as for spheres."""
     from fibrilfit.builders.layers import globule_mesh
     from fibrilfit.geom.shape import hull_points
-    p = _params(ff, shape)
+    # the hulls get 80 frames: at 20 they are still relaxing, and whether the worst stretch is
+    # under the 5 % tolerance depended on the machine (4.8 % where this was first measured, 6.2 %
+    # on an AVX-512 Xeon, bpy 5.0.1; 3.5 % at 40 frames, 0.2 % at 80 there)
+    p = _params(ff, shape, frames=80 if shape == "hull" else 20)
     r = ff.pipeline.run_model(p, scene)
     model = ff.pipeline.current_model(scene)
-    # measured on bpy 4.2, 5.0 and 5.2: both shapes fit at linkers 6, 6 on 3 layers (no clash;
-    # worst stretch 4.8 % for the hulls, 0.003 % for the spheres)
+    # both shapes fit at linkers 6, 6 on 3 layers (no clash; worst stretch 0.2 % for the hulls
+    # at 80 frames, 0.003 % for the spheres at 20)
     assert r["verdict"] == "successful" and r["accommodated"], r["clashing_pairs"]
     assert r["checks_agree"], r["warnings"]
     assert r["sphere_check"]["shape"] == shape and "clashing_domains" in r

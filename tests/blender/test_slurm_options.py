@@ -176,5 +176,5 @@ def test_every_batch_command_shows_the_same_job_script(ff, capsys, tmp_path, com
 def restarts_out():
     """Where `run --restarts` puts its SLURM job logs: it has no --out."""
     import pathlib
-    from fibrilfit.batch.options import RESTARTS_OUT
+    from fibrilfit.batch.plans import RESTARTS_OUT
     return pathlib.Path(RESTARTS_OUT)

@@ -82,7 +82,7 @@ class RunPlan(_CommandPlan):
     quiet: bool = option(False, "print only the verdict line", group=RUN)
     progress: bool = option(False, "print the bake's frame to stderr at its start and every 25 "
                                    "frames", group=RUN)
-    force: bool = option(False, FORCE_HELP, group=RUN)
+    force: bool = option(False, FORCE_HELP)
 
     @classmethod
     def refuse(cls, nests: dict) -> None:
@@ -112,7 +112,7 @@ class MinimalLinkerPlan(_CommandPlan):
     search: SearchPlan = _nested(SearchPlan())
     output: BatchOutput = _nested(MINIMAL_OUTPUT)
     executor: ExecutorPlan = _nested(ExecutorPlan())
-    force: bool = option(False, FORCE_HELP, group=RUN)
+    force: bool = option(False, FORCE_HELP)
 
     def check(self) -> None:
         if self.search.interval_width is not None:
@@ -130,7 +130,7 @@ class ReportPlan(_CommandPlan):
     output: BatchOutput = _nested(REPORT_OUTPUT)
     look: RenderLook = _nested(RenderLook())
     executor: ExecutorPlan = _nested(ExecutorPlan())
-    force: bool = option(False, FORCE_HELP, group=RUN)
+    force: bool = option(False, FORCE_HELP)
 
     def check(self) -> None:
         if self.search.known_fit is not None:
@@ -145,7 +145,7 @@ class SweepPlan(_CommandPlan):
     structure: StructureRequest = _nested(StructureRequest())
     sweep: SweepOptions = _nested(SweepOptions())
     executor: ExecutorPlan = _nested(ExecutorPlan())
-    force: bool = option(False, FORCE_HELP, group=RUN)
+    force: bool = option(False, FORCE_HELP)
 
     @property
     def seed(self):

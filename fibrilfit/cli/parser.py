@@ -122,9 +122,10 @@ def add_plan_options(parser: argparse.ArgumentParser, plan, only=None,
         meta = f.metadata
         if not meta["cli"] or (only is not None and f.name not in only):
             continue
-        title = meta["group"] or "options"
+        title = meta["group"]  # none: argparse's own "options" group
         if title not in made:
-            made[title] = parser.add_argument_group(title, (groups or {}).get(title))
+            made[title] = (parser.add_argument_group(title, (groups or {}).get(title)) if title
+                           else parser)
         help_ = plans.help_text(plan, f.name).replace("%", "%%")
         kwargs = {"help": help_, "default": argparse.SUPPRESS}
         if meta["kind"] is bool:

@@ -30,9 +30,8 @@ def minimal_linker(plan) -> MinimalLinkerResult | JobScript:
     script = plan.executor.job_script(out)
     if script is not None:
         return JobScript({"job_script": script}, text=script)
-    doc = linker_map.minimal_map(*planned, plan)
+    doc = linker_map.minimal_map(*planned, plan, out)
     table, paths = doc.pop("table"), doc.pop("paths")
-    doc.pop("errors")
     return MinimalLinkerResult(doc, table=table, paths=paths)
 
 

@@ -20,7 +20,7 @@ import dataclasses
 import typing
 
 from ..batch.plans import ExecutorPlan
-from ..batch.slurm import OPTIONS as SLURM_FIELDS
+from ..batch.slurm import given as slurm_given
 from ..exports.plans import OutputPlan, RenderLook
 from ..model import cases, params as P
 from ..model.param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST
@@ -93,7 +93,7 @@ class RunPlan(_CommandPlan):
         given = nests["executor"]
         if given.get("executor") == "slurm":
             raise PlanError("executor", "only with --restarts")
-        slurm = [name for name in SLURM_FIELDS if given.get(name) not in (None, (), [], False)]
+        slurm = slurm_given(given)
         if slurm:
             raise PlanError(slurm[0], "only with --restarts")
 

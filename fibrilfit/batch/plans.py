@@ -117,7 +117,3 @@ class ExecutorPlan(Plan):
             return None
         self.need()
         return slurm.job_script(self, pathlib.Path(out).resolve())
-
-    def given_slurm(self) -> list[str]:
-        """The SLURM fields set (slurm.given)."""
-        return slurm.given(self)

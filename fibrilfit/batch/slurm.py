@@ -45,9 +45,11 @@ def ctrl_c_kept():
             signal.signal(signal.SIGINT, previous)
 
 
-def given(plan) -> list[str]:
-    """The SLURM fields set in an executor plan (batch/plans.py), in OPTIONS order."""
-    return [name for name in OPTIONS if getattr(plan, name) not in (None, [], (), False)]
+def given(values) -> list[str]:
+    """The SLURM fields set, in OPTIONS order: of an executor plan (batch/plans.py), or of a
+    mapping of the values given for one (api/plans.py's RunPlan.refuse, before it is made)."""
+    get = values.get if isinstance(values, dict) else lambda name: getattr(values, name)
+    return [name for name in OPTIONS if get(name) not in (None, [], (), False)]
 
 
 def check(plan) -> None:

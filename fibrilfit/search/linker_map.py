@@ -82,12 +82,12 @@ def kind_of(values: dict) -> str:
     return ", ".join(shown) if shown else f"{P.DEFAULTS.layers} layers"
 
 
-def minimal_map(values: dict, seeds: range, walks: list, plan) -> dict:
+def minimal_map(values: dict, seeds: range, walks: list, plan, out) -> dict:
     """The minimal-linker map (`values`, `seeds`, `walks`: walks_for's): every walk run on the
-    executor, minimal_linker.json, .csv and .png written into plan.output.out. Returns the JSON
-    document, with `table` (the printed map), `paths` and `errors` beside it. Interrupted, the
-    finished runs stay in DIR/results.jsonl (KeyboardInterrupt propagates)."""
-    out = outdir.out_dir(plan.output.out, plan.output.resume)
+    executor, minimal_linker.json, .csv and .png written into `out` (outdir.out_dir's check of
+    plan.output). Returns the JSON document, with `table` (the printed map) and `paths` beside
+    it. Interrupted, the finished runs stay in DIR/results.jsonl (KeyboardInterrupt
+    propagates)."""
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
     results = out / RESULTS
@@ -251,8 +251,8 @@ def _fit_recorded(records: list) -> bool:
 
 
 def _write_minimal(plan, values: dict, seeds: range, rows: list, out) -> dict:
-    """minimal_linker.json, .csv and .png; the document, with the printed table, the paths
-    written and the rows' errors beside it."""
+    """minimal_linker.json, .csv and .png; the document, with the printed table and the paths
+    written beside it."""
     import bpy
     search = plan.search
     document = {
@@ -280,8 +280,7 @@ def _write_minimal(plan, values: dict, seeds: range, rows: list, out) -> dict:
         plot.write(out / PNG, rows)
         paths["png"] = out / PNG
     return {**document, "table": table(rows, values["protocol"], search.restarts, seeds),
-            "paths": {k: str(v) for k, v in paths.items()},
-            "errors": [r for r in rows if r.get("error")]}
+            "paths": {k: str(v) for k, v in paths.items()}}
 
 
 def need_packages(plan) -> None:

@@ -242,7 +242,7 @@ def test_minimal_linker_from_files_searches_the_linker_the_fibril_file_fills(ff,
         seen.update(values)
         return values, range(1), []
     monkeypatch.setattr(linker_map, "walks_for", walks_for)
-    monkeypatch.setattr(linker_map, "minimal_map", lambda values, seeds, walks, plan: {
+    monkeypatch.setattr(linker_map, "minimal_map", lambda values, seeds, walks, plan, out: {
         "rows": [], "table": "", "errors": [],
         "paths": {"csv": "m.csv", "json": "m.json", "results": "results.jsonl"}})
     data = ROOT / "tests" / "data"

@@ -59,14 +59,24 @@ run: $(VENV)/.installed
 	$(VENV)/bin/python headless.py run --json out/result.json --render out/final.png
 
 # The three bpy passes run two at a time (-j2, a target's output printed whole when it ends): each
-# is one process at a time of mostly single-threaded physics, and CI has 2 cores; one after another
-# they took 3.3 of the 90 min CI allows by 2026-11-26 (test-latest 1903 s on CI). The extension's
-# wheels are fetched first: test_extension on two bpy at once would otherwise download them into
-# fibrilfit/wheels/ side by side.
+# is one process at a time of mostly single-threaded physics, and CI has 2 cores. Every part runs
+# whatever an earlier one did (-k, and the unit tests' failure does not stop the bpy passes); each
+# prints its own `make test: PASS|FAIL ..., N s` line, and `make test` fails if any part failed.
+# The extension's wheels are fetched first: test_extension on two bpy at once would otherwise
+# download them into fibrilfit/wheels/ side by side. CI's time: CONTRIBUTING.md#ci.
 test: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
-	$(MAKE) --no-print-directory test-unit
-	$(VENV)/bin/python tools/fetch_wheels.py
-	$(MAKE) --no-print-directory -j2 --output-sync=target test-latest test-lts test-52
+	@failed=; \
+	$(call timed,test-unit,$(MAKE) --no-print-directory test-unit) || failed="$$failed test-unit"; \
+	$(VENV)/bin/python tools/fetch_wheels.py || failed="$$failed fetch_wheels"; \
+	$(MAKE) --no-print-directory -k -j2 --output-sync=target test-latest test-lts test-52 \
+	  || failed="$$failed (bpy passes: see their lines)"; \
+	[ -z "$$failed" ] || { echo "make test: failed:$$failed"; exit 1; }
+
+# $(call timed,NAME,COMMAND): run COMMAND, then print `make test: PASS|FAIL (exit N), S s: NAME`;
+# keeps COMMAND's exit code. pytest's 5 (no test selected) counts as a pass.
+timed = ( t=$$(date +%s); $(2); rc=$$?; [ $$rc -eq 5 ] && rc=0; \
+  if [ $$rc -eq 0 ]; then v=PASS; else v="FAIL (exit $$rc)"; fi; \
+  echo "make test: $$v, $$(( $$(date +%s) - t )) s: $(1)"; exit $$rc )
 
 # The pure logic (tests/unit: parameters, case files, structures, geometry, sweep statistics, the
 # linker walk): no bpy is imported (a guard fails any test that does), so it runs in seconds, once.
@@ -75,17 +85,17 @@ test-unit: $(VENV)/.installed
 
 # tests/blender on each bpy.
 test-latest: $(VENV)/.installed
-	$(VENV)/bin/python $(PYTEST) $(BLENDER_TESTS) -m "$(TEST_MARK)" $(PYTEST_ARGS)
+	@$(call timed,$@ (bpy $(BPY)),$(VENV)/bin/python $(PYTEST) $(BLENDER_TESTS) -m "$(TEST_MARK)" $(PYTEST_ARGS))
 
 # On bpy 4.2 LTS each file runs alone (test-alone's loop over tests/blender): the check that
 # every test passes without another having run first costs only the start of one Python per file
 # (about 4 s each), not a second pass of the suite.
 test-lts: $(VENV_LTS)/.installed
-	$(MAKE) --no-print-directory test-alone ALONE_VENV=$(VENV_LTS) \
-	  ALONE_FILES="$(sort $(wildcard $(BLENDER_TESTS)/test_*.py))"
+	@$(call timed,$@ (bpy $(BPY_LTS) each file alone),$(MAKE) --no-print-directory test-alone \
+	  ALONE_VENV=$(VENV_LTS) ALONE_FILES="$(sort $(wildcard $(BLENDER_TESTS)/test_*.py))")
 
 test-52: $(VENV_52)/.installed
-	$(VENV_52)/bin/python $(PYTEST) $(BLENDER_TESTS) -m "$(TEST_MARK)" $(PYTEST_ARGS)
+	@$(call timed,$@ (bpy $(BPY_52)),$(VENV_52)/bin/python $(PYTEST) $(BLENDER_TESTS) -m "$(TEST_MARK)" $(PYTEST_ARGS))
 
 # Every test file alone, its tests in reverse order (tests/conftest.py's --reverse), on bpy 4.2
 # LTS (where the real-shape thresholds, minutes of physics run on 5.0 only, skip): a test that

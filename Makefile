@@ -98,7 +98,7 @@ test-52: $(VENV_52)/.installed
 	@$(call timed,$@ (bpy $(BPY_52)),$(VENV_52)/bin/python $(PYTEST) $(BLENDER_TESTS) -m "$(TEST_MARK)" $(PYTEST_ARGS))
 
 # Every test file alone, its tests in reverse order (tests/conftest.py's --reverse), on bpy 4.2
-# LTS (where the real-shape thresholds, minutes of physics run on 5.0 only, skip): a test that
+# LTS (where the one_bpy tests, tests/blender/conftest.py, are deselected): a test that
 # passes only because another ran first (imported a module, left state) fails here. One line per
 # file; a failing file's output in out/alone/<file>.log. Exit 5 (none selected) passes.
 ALONE_FILES ?= $(sort $(wildcard $(UNIT_TESTS)/test_*.py) $(wildcard $(BLENDER_TESTS)/test_*.py))

@@ -1,9 +1,20 @@
 """Shared test helpers (conftest holds the fixtures)."""
 import pathlib
+import re
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def makefile_bpy() -> dict[str, str]:
+    """The bpy versions `make` installs, {"BPY": "5.0.1", "BPY_LTS": ..., "BPY_52": ...}, read from
+    the Makefile (the one place they are set): a test pinned to one bpy names one of these
+    (tests/unit/test_no_silent_skip.py), so bumping a version cannot turn it into a skip."""
+    text = (ROOT / "Makefile").read_text(encoding="utf-8")
+    found = dict(re.findall(r"^(BPY|BPY_LTS|BPY_52) \?= (\S+)\s*$", text, re.M))
+    assert set(found) == {"BPY", "BPY_LTS", "BPY_52"}, f"the Makefile's bpy versions: {found}"
+    return found
 
 
 def snapshot_user(objects) -> dict:

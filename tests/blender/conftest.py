@@ -4,6 +4,7 @@ import os
 
 import bpy  # first: it makes mathutils and bmesh importable
 import pytest
+from helpers import makefile_bpy
 
 import fibrilfit
 
@@ -12,6 +13,28 @@ import fibrilfit
 # on stdout. Subprocesses started by the tests get the environment a user's shell would give.
 if bpy.app.version >= (5, 2, 0) and "OCIO" not in os.environ:
     os.unsetenv("OCIO")
+
+# `@pytest.mark.one_bpy`: a test whose answer does not depend on the bpy version (plumbing: the
+# Python API against the command line, a page's code, a process that is killed) or that repeats
+# numbers measured the same on every bpy at minutes each: it runs on the Makefile's BPY only, and
+# on the other bpy it is deselected (pytest's summary counts it: "N deselected"), never skipped.
+# make test always runs BPY, so it always runs once; bumping BPY in the Makefile moves it along.
+ONE_BPY = makefile_bpy()["BPY"]
+THIS_BPY = ".".join(map(str, bpy.app.version))
+
+
+def pytest_report_header(config):
+    where = "here" if THIS_BPY == ONE_BPY else f"on bpy {ONE_BPY} only (deselected here)"
+    return f"bpy {THIS_BPY}; one_bpy tests run {where} (the Makefile's BPY)"
+
+
+def pytest_collection_modifyitems(config, items):
+    if THIS_BPY == ONE_BPY:
+        return
+    other = [item for item in items if item.get_closest_marker("one_bpy")]
+    if other:
+        config.hook.pytest_deselected(items=other)
+        items[:] = [item for item in items if not item.get_closest_marker("one_bpy")]
 
 
 

@@ -14,6 +14,10 @@ DATA = ROOT / "tests" / "data"
 FIBRIL, DOMAIN = str(DATA / "6cu7.pdb.gz"), str(DATA / "1ubq.pdb.gz")
 FILES = ["--fibril", FIBRIL, "--domain", DOMAIN]
 
+# The API and the command line are the same code on every bpy (what the physics gives on each bpy
+# is other files' question): on the Makefile's BPY only (tests/blender/conftest.py). About 105 s.
+pytestmark = pytest.mark.one_bpy
+
 
 def test_restarts_from_python_match_run_restarts(scene, ff, tmp_path, capsys):
     from fibrilfit import api

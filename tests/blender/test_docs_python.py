@@ -4,9 +4,9 @@ A ```python block of the page is run when the line before it is `<!-- check-pyth
 ```text block after it marked `<!-- check-python: output -->` is what the block must print
 (standard output, line for line, with tests/docs_commands.py's elisions: a line `...` for any
 lines, a line ending in ` ...` for any line that starts with what comes before it);
-`<!-- check-python: output bpy=5.0.1 -->` compares only on that bpy (a run's numbers differ
-between bpy; the code still runs on every one). A python block that is not run says why on the
-line before it: `<!-- not checked: REASON -->`. (Not `<!-- check: python -->`: that marker is
+`<!-- check-python: output bpy=5.0.1 -->` says whose numbers the page shows (a run's numbers
+differ between bpy): the Makefile's BPY, the one bpy this test runs on (one_bpy). A python
+block that is not run says why on the line before it: `<!-- not checked: REASON -->`. (Not `<!-- check: python -->`: that marker is
 tests/docs_commands.py's, for console blocks.)
 
 The blocks run in order in one namespace, in a temporary folder holding `tests/data/` (the
@@ -60,6 +60,10 @@ def blocks(text: str) -> list[dict]:
     return found
 
 
+# The page's code is the Python API, the same on every bpy, and its printed numbers are BPY's:
+# on the Makefile's BPY only (tests/blender/conftest.py), where the output pins
+# (`bpy=`, which must name BPY: tests/unit/test_no_silent_skip.py) are compared.
+@pytest.mark.one_bpy
 def test_the_python_page_runs_and_prints_what_it_shows(tmp_path, monkeypatch, scene):
     found = blocks(PAGE.read_text(encoding="utf-8"))
     assert len(found) >= 6
@@ -72,8 +76,10 @@ def test_the_python_page_runs_and_prints_what_it_shows(tmp_path, monkeypatch, sc
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             exec(compile(block["code"], f"python.md:{block['line']}", "exec"), namespace)
-        if block["expected"] is None or block["only"] not in ("", bpy_version):
+        if block["expected"] is None:
             continue
+        assert block["only"] in ("", bpy_version), (  # one_bpy: this is the Makefile's BPY
+            f"python.md:{block['line']}: shows bpy {block['only']}'s output, run on {bpy_version}")
         problem = mismatch(block["expected"], printed.getvalue().splitlines())
         assert problem is None, f"python.md:{block['line']}: {problem}"
     assert (tmp_path / "out" / "6cu7-ubq-report" / "report.html").is_file()

@@ -14,7 +14,6 @@ on 10 layers ubiquitin's hull fits at 5 too (measured, seed 0, 40 s a run).
 """
 import json
 
-import bpy
 import pytest
 from helpers import ROOT
 
@@ -45,15 +44,13 @@ ONE_SEED = {"ubiquitin": 0, "gfp": 0, "tdp43": 0}
 
 
 # A run that does not fit goes through the whole schedule (5 cycles, 805 frames of 20 layers of
-# hulls): minutes each. The fast cases run on one bpy, 5.0: the eight runs compared on 4.2, 5.0
-# and 5.2 for issue #32 (hulls, spheres, TDP-43-like chains, a periodic cell) gave the same
-# numbers to the digit, so the other two would repeat them at three times the cost;
-# `make test-slow` runs the full ones on all three.
-ONE_BPY = pytest.mark.skipif(bpy.app.version[:2] != (5, 0),
-                             reason="the real-shape thresholds' fast cases run on bpy 5.0 only")
+# hulls): minutes each. The fast cases run on one bpy, the Makefile's BPY (one_bpy,
+# tests/blender/conftest.py): the eight runs compared on 4.2, 5.0 and 5.2 for issue #32 (hulls,
+# spheres, TDP-43-like chains, a periodic cell) gave the same numbers to the digit, so the other
+# two would repeat them at three times the cost; `make test-slow` runs the full ones on all three.
 
 
-@ONE_BPY
+@pytest.mark.one_bpy
 @pytest.mark.timeout(1800)  # past the 300 s default: 352 s and 811 s measured (see below)
 @pytest.mark.parametrize("name", list(ONE_SEED))
 def test_one_seed_fits_at_the_threshold_and_not_one_below(scene, ff, tmp_path, name):

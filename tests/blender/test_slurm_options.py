@@ -5,7 +5,13 @@ runs the jobs on local workers). (Through a real SLURM: test_cluster.py, `make t
 import json
 import sys
 
+import dask_jobqueue  # noqa: F401 (requirements-dev installs it: a broken wheel fails, never skips)
+import distributed  # noqa: F401
 import pytest
+
+
+# In this process, no physics: the same on every bpy (tests/blender/conftest.py's one_bpy).
+pytestmark = pytest.mark.one_bpy
 
 
 def sweep(ff, capsys, *args):
@@ -16,7 +22,6 @@ def sweep(ff, capsys, *args):
 
 
 def test_the_job_script_carries_the_options(ff, capsys, tmp_path):
-    pytest.importorskip("dask_jobqueue")
     out = tmp_path / "sweep"
     code, stdout, stderr = sweep(ff, capsys, "--linker", "2,6", "--executor", "slurm", "--partition", "short",
                  "--account", "lab42", "--memory", "3GB", "--walltime", "1-02:00:00",
@@ -39,7 +44,6 @@ def test_the_job_script_carries_the_options(ff, capsys, tmp_path):
 
 
 def test_default_job_script(ff, capsys, tmp_path):
-    pytest.importorskip("dask_jobqueue")
     code, stdout, stderr = sweep(ff, capsys, "--linker", "2", "--executor", "slurm", "--out",
                                  str(tmp_path / "s"), "--show-job-script")
     assert code == 0, stderr
@@ -110,7 +114,6 @@ def recorded(monkeypatch):
 
 
 def test_run_restarts_goes_through_the_dask_scheduler_it_names(ff, capsys, tmp_path, recorded):
-    pytest.importorskip("distributed")
     out = tmp_path / "best.json"
     code = ff.cli.main(["run", *TINY, "--protocol", "inflate", "--linker", "3", "--executor",
                         "dask", "--scheduler", "tcp://nowhere:8786", "--workers", "2",
@@ -121,7 +124,6 @@ def test_run_restarts_goes_through_the_dask_scheduler_it_names(ff, capsys, tmp_p
 
 
 def test_minimal_linker_goes_through_the_slurm_jobs_it_names(ff, capsys, tmp_path, recorded):
-    pytest.importorskip("dask_jobqueue")
     out = tmp_path / "map"
     code = ff.cli.main(["minimal-linker", *TINY, "--max-linker", "2", "--no-plot", "--executor",
                         "slurm", "--partition", "short", "--walltime", "10", "--out", str(out)])
@@ -143,7 +145,6 @@ def test_minimal_linker_goes_through_the_slurm_jobs_it_names(ff, capsys, tmp_pat
 
 
 def test_report_goes_through_the_executor_it_names(ff, capsys, tmp_path, recorded):
-    pytest.importorskip("dask_jobqueue")
     out = tmp_path / "rep"
     code = ff.cli.main(["report", *TINY, "--linker", "3", "--max-linker", "4", "--executor",
                         "slurm", "--workers", "2", "--account", "lab42", "--render-engine",
@@ -157,7 +158,6 @@ def test_report_goes_through_the_executor_it_names(ff, capsys, tmp_path, recorde
 @pytest.mark.parametrize("command, argv", [
     ("run", ["--restarts", "2"]), ("minimal-linker", []), ("report", []), ("sweep", ["--linker", "2"])])
 def test_every_batch_command_shows_the_same_job_script(ff, capsys, tmp_path, command, argv):
-    pytest.importorskip("dask_jobqueue")
     out = tmp_path / "o"
     extra = [] if command == "run" else ["--out", str(out)]
     code = ff.cli.main([command, *argv, "--executor", "slurm", "--partition", "short",

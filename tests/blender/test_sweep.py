@@ -16,6 +16,10 @@ from fibrilfit import pipeline
 from fibrilfit.model.version import MODEL_VERSION
 from fibrilfit.sweep import grid, summary
 
+# The sweep's machinery (workers, resume, locks, killed processes, Dask) is the same on every bpy:
+# on the Makefile's BPY only (tests/blender/conftest.py). About 50 s.
+pytestmark = pytest.mark.one_bpy
+
 # The done-when sweep.
 DONE_WHEN = ("--linker", "1,12", "--layers", "8", "--seeds", "3", "--workers", "2")
 
@@ -120,7 +124,7 @@ def test_existing_results_need_resume(done_when):
 
 
 def test_one_sweep_at_a_time_per_folder(done_when, tmp_path):
-    fcntl = pytest.importorskip("fcntl")
+    import fcntl  # POSIX, as every platform the tests run on
     out = tmp_path / "s"
     shutil.copytree(done_when[0], out)
     with open(out / ".lock", "w") as held:

@@ -2,11 +2,11 @@
 numbering, the body frame, and the atoms of a decorated fibril (placed rigidly, read back)."""
 import math
 
+import gemmi  # requirements-dev installs it: missing, this fails (never skips)
 import numpy as np
 import pytest
 from helpers import ROOT, synthetic_full_length
 
-gemmi = pytest.importorskip("gemmi")
 from fibrilfit import structure as S  # noqa: E402
 from fibrilfit.model.chain import chain_radii, chain_x, rest_lengths  # noqa: E402
 from fibrilfit.exports import mmcif  # noqa: E402

@@ -72,8 +72,6 @@ def test_every_batch_command_declares_the_same_executor_options():
                          ids=["slurm", "dask", "processes"])
 def test_the_same_options_give_the_same_executor_in_every_command(tmp_path, given):
     from fibrilfit.batch.executors import executor_spec
-    if given is SLURM:
-        pytest.importorskip("dask")
     specs = {}
     for command, argv in MANY.items():
         plan = _planned([*argv, *given])  # accepted by every one (checked when made)
@@ -97,7 +95,6 @@ def test_the_same_options_give_the_same_executor_in_every_command(tmp_path, give
 
 
 def test_slurm_jobs_default_to_one_per_run_at_most_sixteen(tmp_path):
-    pytest.importorskip("dask")
     from fibrilfit.batch.executors import executor_spec
     plan = _planned(["minimal-linker", "--executor", "slurm"]).executor
     assert [executor_spec(plan, out=tmp_path, runs=n)["workers"] for n in (1, 5, 40)] == [1, 5, 16]

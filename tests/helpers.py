@@ -28,6 +28,22 @@ def run_cli(*args, timeout=600):
                           text=True, timeout=timeout, cwd=ROOT)
 
 
+def cli_in_process(*args):
+    """`headless.py ARGS` run in this process, as headless.py calls it (fibrilfit.cli.entry.main,
+    from the repository's root), for a refusal: it stops before any model is built, so the
+    seconds of a fresh process's bpy import buy nothing. Returns what run_cli returns
+    (returncode, stdout, stderr: what Python printed; C code's output is not captured). Each
+    command keeps one refusal through run_cli, for the real process's stderr and exit code."""
+    import contextlib
+    import io
+
+    from fibrilfit.cli import entry
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.chdir(ROOT), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = entry.main(list(args), prog="headless.py")
+    return subprocess.CompletedProcess(["headless.py", *args], code, out.getvalue(), err.getvalue())
+
+
 def synthetic_full_length(tmp_path, *, shift: int = 0, flat: bool = False, name="fl.pdb"):
     """A predicted full-length chain in 6CU7's numbering: a low-pLDDT N-terminal tail 1-37,
     the fibril core 38-97 (6CU7 chain A, confident: it must not count as a domain), a

@@ -2,7 +2,7 @@
 import json
 
 import pytest
-from helpers import ROOT, run_cli
+from helpers import ROOT, cli_in_process, run_cli
 
 from fibrilfit.model import cases, params as P
 from fibrilfit import pipeline
@@ -75,7 +75,7 @@ def test_a_run_without_a_case_embeds_none(tmp_path):
 def test_bad_cases_exit_2_with_one_line_naming_the_key(tmp_path, text, says):
     case = write(tmp_path / "c.toml", text)
     out = tmp_path / "r.json"
-    cp = run_cli("run", "--case", str(case), "--json", str(out))
+    cp = cli_in_process("run", "--case", str(case), "--json", str(out))
     assert cp.returncode == 2, cp.stdout
     assert cp.stderr.count("\n") == 1 and says in cp.stderr, cp.stderr
     assert "Traceback" not in cp.stderr and not out.exists()
@@ -84,7 +84,7 @@ def test_bad_cases_exit_2_with_one_line_naming_the_key(tmp_path, text, says):
 def test_a_missing_or_misnamed_case_is_refused(tmp_path):
     for path, says in ((tmp_path / "none.toml", "--case: cannot read"),
                        (write(tmp_path / "c.json", "{}"), "--case: must be a .toml file")):
-        cp = run_cli("run", "--case", str(path))
+        cp = cli_in_process("run", "--case", str(path))
         assert cp.returncode == 2 and says in cp.stderr and cp.stderr.count("\n") == 1
 
 
@@ -174,7 +174,7 @@ def test_structure_files_from_a_case(tmp_path):
 ])
 def test_bad_structure_tables(tmp_path, text, says):
     case = write(tmp_path / "c.toml", text)
-    cp = run_cli("run", "--case", str(case))
+    cp = cli_in_process("run", "--case", str(case))
     assert cp.returncode == 2 and says in cp.stderr and cp.stderr.count("\n") == 1, cp.stderr
 
 

@@ -7,7 +7,7 @@ import bpy
 import numpy as np
 import pytest
 
-from helpers import ROOT, run_cli
+from helpers import ROOT, cli_in_process
 from fibrilfit.model.chain import chain_radii
 from fibrilfit.model.param_checks import refuse_beside_periodic
 
@@ -91,7 +91,7 @@ def test_too_short_a_cell_is_refused_with_the_minimum(ff):
                                          (["--score-layers", "20"], "score_layers")])
 def test_cli_refuses_layers_and_score_layers_beside_periodic(extra, name, tmp_path):
     out = tmp_path / "r.json"
-    res = run_cli("run", "--periodic", "auto", *extra, "--json", str(out))
+    res = cli_in_process("run", "--periodic", "auto", *extra, "--json", str(out))
     assert res.returncode == 2 and not out.exists()
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"fibrilfit: error: {name}: cannot be given "
@@ -99,7 +99,7 @@ def test_cli_refuses_layers_and_score_layers_beside_periodic(extra, name, tmp_pa
 
 
 def test_cli_refuses_a_short_cell(tmp_path):
-    res = run_cli("run", "--periodic", "4")
+    res = cli_in_process("run", "--periodic", "4")
     assert res.returncode == 2 and "at least 7 layers" in res.stderr
     assert len(res.stderr.strip().splitlines()) == 1
 

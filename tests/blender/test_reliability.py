@@ -1,6 +1,5 @@
-"""Bad input refused cleanly, runs that are killed or interrupted leave no result, and the same
-seed gives the same result across processes."""
-import json
+"""Bad input refused cleanly, and runs that are killed or interrupted leave no result. (The same
+seed across processes: test_determinism.py.)"""
 import signal
 import subprocess
 import sys
@@ -8,21 +7,32 @@ import sys
 import bpy
 import pytest
 from bad_inputs import BAD_INPUTS
-from helpers import ROOT, run_cli, snapshot_user
+from helpers import ROOT, cli_in_process, run_cli, snapshot_user
 
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
 
 
-@pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
-def test_cli_refuses_bad_input(cli_args, api_kwargs, name, tmp_path):
-    out = run_cli("run", *cli_args, "--json", str(tmp_path / "r.json"),
-                  "--blend", str(tmp_path / "m.blend"))
+def _refuse(cli, cli_args, name, tmp_path):
+    out = cli("run", *cli_args, "--json", str(tmp_path / "r.json"),
+              "--blend", str(tmp_path / "m.blend"))
     assert out.returncode == 2
     err = out.stderr.strip()
     assert "\n" not in err and f"{name}:" in err
     assert "Traceback" not in out.stderr + out.stdout
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
+def test_cli_refuses_bad_input(cli_args, api_kwargs, name, tmp_path):
+    """In this process (tests/helpers.py's cli_in_process): the refusal comes before any work."""
+    _refuse(cli_in_process, cli_args, name, tmp_path)
+
+
+def test_cli_refuses_bad_input_in_a_fresh_process(tmp_path):
+    """One row as a user's shell sees it: the process's own stderr and exit code."""
+    cli_args, _, name = BAD_INPUTS[0]
+    _refuse(run_cli, cli_args, name, tmp_path)
 
 
 @pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])
@@ -42,8 +52,9 @@ def test_force_lifts_the_layer_limit():
 
 
 def test_unknown_option_and_command():
-    for args in (["run", "--linkr", "4"], ["bake"], []):
-        out = run_cli(*args)
+    for cli, args in ((run_cli, ["run", "--linkr", "4"]), (cli_in_process, ["bake"]),
+                      (cli_in_process, [])):
+        out = cli(*args)
         assert out.returncode == 2 and out.stderr.count("\n") == 1, args
         assert "Traceback" not in out.stderr
 
@@ -99,19 +110,6 @@ def test_killed_run_leaves_no_file_that_looks_complete(tmp_path):
     proc.kill()
     proc.wait(timeout=60)
     assert not (tmp_path / "r.json").exists() and not (tmp_path / "m.blend").exists()
-
-
-def test_same_seed_same_json_across_processes(tmp_path):
-    results = []
-    for i in range(2):
-        out = run_cli("run", "--layers", "10", "--linker", "4", "--seed", "11", "--frames", "150",
-                      "--json", str(tmp_path / f"{i}.json"))
-        assert out.returncode == 0, out.stderr
-        r = json.loads((tmp_path / f"{i}.json").read_text())
-        r.pop("timings_s")
-        results.append(r)
-    assert results[0] == results[1]
-    assert results[0]["blender_version"] == bpy.app.version_string
 
 
 @pytest.mark.parametrize("cli_args,api_kwargs,name", BAD_INPUTS, ids=lambda v: str(v)[:40])

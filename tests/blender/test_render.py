@@ -6,7 +6,7 @@ import gemmi
 import numpy as np
 import pytest
 from bpy_extras.object_utils import world_to_camera_view
-from helpers import run_cli
+from helpers import cli_in_process, run_cli
 
 from fibrilfit import exits as ff_exits, pipeline
 from fibrilfit.cli import commands as cli
@@ -207,7 +207,7 @@ def test_a_failed_render_keeps_the_other_outputs(tmp_path, monkeypatch, capsys):
 ])
 def test_bad_output_options_exit_2_before_any_work(args, needle, tmp_path):
     args = [str(tmp_path / a) if a.startswith("x.") else a for a in args]
-    out = run_cli("run", *args, "--json", str(tmp_path / "r.json"))
+    out = cli_in_process("run", *args, "--json", str(tmp_path / "r.json"))
     assert out.returncode == 2, out.stderr
     assert out.stderr.strip().count("\n") == 0 and needle in out.stderr
     assert "Traceback" not in out.stderr and not list(tmp_path.iterdir())

@@ -7,7 +7,7 @@ import jsonschema
 import numpy as np
 from mathutils import Vector
 import pytest
-from helpers import ROOT, run_cli
+from helpers import ROOT, cli_in_process, run_cli
 
 from fibrilfit import pipeline, structure
 from fibrilfit.analysis import clash_kinds, clashing_layers
@@ -168,13 +168,14 @@ def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
 ])
 def test_report_refuses_what_run_refuses_and_writes_nothing(tmp_path, bad, needle):
     out = tmp_path / "rep"
-    proc = run_cli("report", *FAST, *bad, "--out", str(out))
+    cli = run_cli if bad[0] == "--linker" else cli_in_process  # one in a fresh process
+    proc = cli("report", *FAST, *bad, "--out", str(out))
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.strip().count("\n") == 0 and needle in proc.stderr
     assert "Traceback" not in proc.stderr and not out.exists()
     if bad[0] not in ("--restarts", "--render-size", "--workers", "--max-linker"):
-        ran = run_cli("run", *bad, "--layers", "3", "--stop-after", "build") if \
-            bad[0] != "--layers" else run_cli("run", *bad, "--stop-after", "build")
+        ran = cli_in_process("run", *bad, "--layers", "3", "--stop-after", "build") if \
+            bad[0] != "--layers" else cli_in_process("run", *bad, "--stop-after", "build")
         assert ran.returncode == 2  # run refuses it too
 
 

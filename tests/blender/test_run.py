@@ -4,7 +4,7 @@ import json
 import bpy
 import numpy as np
 import pytest
-from helpers import run_cli
+from helpers import cli_in_process, run_cli
 
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
@@ -120,6 +120,6 @@ def test_cli_names_the_first_bad_output_path_in_the_check_order(tmp_path):
     --save-case, whatever order the writers run in."""
     for given, named in ((["--pdb", "p.txt", "--blend", "b.txt"], "--blend"),
                          (["--save-case", "c.txt", "--movie", "m.avi"], "--movie")):
-        out = run_cli("run", *given, "--json", str(tmp_path / "r.json"))
+        out = cli_in_process("run", *given, "--json", str(tmp_path / "r.json"))
         assert out.returncode == 2 and out.stderr.startswith(f"fibrilfit: error: {named}: ")
         assert not (tmp_path / "r.json").exists()

@@ -9,7 +9,7 @@ import sys
 import time
 
 import pytest
-from helpers import ROOT, run_cli
+from helpers import ROOT, cli_in_process, run_cli
 
 from fibrilfit.model import params as P
 from fibrilfit import pipeline
@@ -152,7 +152,7 @@ def test_gate_exit_codes(done_when, tmp_path):
     assert "linker=1,globule_diameter=30:accommodated>1: linker=1, globule_diameter=30: " \
            "accommodated" in failed[0]
     for bad in ("linker=7:accommodated>=0.9", "linker=12:accommodated=>0.9"):
-        cp = run_cli("sweep", *common, "--require", bad)
+        cp = cli_in_process("sweep", *common, "--require", bad)
         assert cp.returncode == 2 and len(cp.stderr.strip().splitlines()) == 1, cp.stderr
 
 
@@ -163,7 +163,7 @@ def test_gate_exit_codes(done_when, tmp_path):
     (("--seeds", "0"), "seeds: must be at least 1"),
 ])
 def test_bad_sweeps_exit_2_with_one_line_and_write_nothing(tmp_path, args, says):
-    cp = run_cli("sweep", *args, "--out", str(tmp_path / "s"))
+    cp = cli_in_process("sweep", *args, "--out", str(tmp_path / "s"))
     assert cp.returncode == 2 and says in cp.stderr
     assert len(cp.stderr.strip().splitlines()) == 1 and not (tmp_path / "s").exists()
 

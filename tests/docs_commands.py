@@ -1,5 +1,5 @@
 """Run the commands a docs page shows and compare what they print with what the page shows
-(tests/unit/test_docs_commands.py, tests/blender/test_docs_commands.py). A page marks a block
+(tests/unit/test_docs_commands_no_bpy.py, tests/blender/test_docs_commands.py). A page marks a block
 for checking with an HTML comment on the line before it (which the site does not show):
 
     <!-- check -->                    needs no bpy: tests/unit runs it

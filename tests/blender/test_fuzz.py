@@ -1,5 +1,5 @@
 """Property-based fuzzing of the build: any parameter set the validation accepts builds a valid
-model, and a refused one builds nothing (the validation's own fuzzing: tests/unit/test_fuzz.py)."""
+model, and a refused one builds nothing (the validation's own fuzzing: tests/unit/test_fuzz_validation.py)."""
 import math
 
 import numpy as np

@@ -31,8 +31,8 @@ def names(ui) -> list:
 
 
 def main_panel(log):
-    """The main panel's draw() into a strict stand-in layout (test_ui.FakeLayout)."""
-    from test_ui import FakeLayout
+    """The main panel's draw() into a strict stand-in layout (ui_fakes.FakeLayout)."""
+    from ui_fakes import FakeLayout
     panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=FakeLayout(log)), bpy.context)
     return log
 
@@ -76,7 +76,7 @@ def test_two_imported_domains_give_the_command_lines_params(registered, scene, u
                                                                      if k == "operator"}
     rows = []  # each row: its name, and the linker to the next (the last has none)
     for i, item in enumerate(ui.domains):
-        from test_ui import FakeLayout
+        from ui_fakes import FakeLayout
         domain_list.FIBRILFIT_UL_domains.draw_item(None, bpy.context, FakeLayout(rows), ui,
                                                    item, 0, ui, "domain_index", i)
     assert rows == [("label", ui.domains[0].name), ("prop", "linker"),

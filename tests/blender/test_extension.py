@@ -13,7 +13,7 @@ import pytest
 from helpers import ROOT
 
 SCENARIO = pathlib.Path(__file__).with_name("installed_scenario.py")
-VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as test_ui.SMALL: it has clashes
+VALUES = dict(layers=8, linker=3, frames=80, seed=5)  # as ui_fakes.SMALL: it has clashes
 PACKAGE = ROOT / "fibrilfit"  # the extension: its manifest inside, the zip built from it
 
 
@@ -118,7 +118,7 @@ def test_the_installed_steps_give_a_verdict(installed):
     assert [stage for _, _, stage in steps.values()] == [
         "slab", "anchor", "linker", "globule", "layers", "baked", "checked"]
     props = installed["props"]
-    # VALUES are test_ui.SMALL, which clashes (test_ui asserts it; measured: 30 faces, 3 pairs
+    # VALUES are ui_fakes.SMALL, which clashes (test_ui asserts it; measured: 30 faces, 3 pairs
     # on bpy 4.2, 5.0 and 5.2)
     assert props["verdict"] == "intersection" and props["clash_count"] > 0
     assert props["verdict"] == installed["steps_result"]["verdict"]

@@ -191,7 +191,7 @@ def test_the_sidebars_modal_run_all_inflates_like_the_api(scene, ff):
     from fibrilfit import pipeline
     from fibrilfit.ui import properties
     from fibrilfit.ui.operators import simulate
-    from test_ui import detached, event, stored_result
+    from ui_fakes import detached, event, stored_result
     small = dict(layers=4, linker=6, seed=1, **FAST)
     ff.register()
     try:

@@ -77,7 +77,7 @@ def test_a_bad_file_is_reported_and_changes_nothing(ui, scene):
 
 def test_the_panel_draws_with_imports(ui, scene):
     import types
-    from test_ui import FakeLayout
+    from ui_fakes import FakeLayout
     bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "2n0a.pdb.gz"))
     log = []
     panels.FIBRILFIT_PT_main.draw(types.SimpleNamespace(layout=FakeLayout(log)), bpy.context)

@@ -50,7 +50,7 @@ def test_save_case_refuses_a_bad_path(ui, tmp_path):
 
 
 class Labels:
-    """Records labels; everything else is a no-op (test_ui.FakeLayout checks the RNA)."""
+    """Records labels; everything else is a no-op (ui_fakes.FakeLayout checks the RNA)."""
 
     def __init__(self, log):
         self.log = log

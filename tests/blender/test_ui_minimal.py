@@ -18,7 +18,7 @@ from fibrilfit import cli
 from fibrilfit.model import params as P
 from fibrilfit.ui import minimal_summary, panels, properties
 from fibrilfit.ui.operators import background, minimal
-from test_ui import _Progress, _text_px, _Workspace, FIELD_PX, detached, event
+from ui_fakes import _Progress, _text_px, _Workspace, FIELD_PX, detached, event
 
 TINY = dict(protocol="tutorial", layers=3, frames=60, seed=4)
 CLI_TINY = ["--protocol", "tutorial", "--layers", "3", "--frames", "60", "--seed", "4"]

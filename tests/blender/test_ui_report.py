@@ -22,7 +22,7 @@ from fibrilfit.search import report
 from fibrilfit.ui import minimal_summary, panels, properties, report_summary
 from fibrilfit.ui.operators import background, report as report_op
 from helpers import ROOT
-from test_ui import _Progress, _Workspace, detached, event
+from ui_fakes import _Progress, _Workspace, detached, event
 from test_ui_cases import Labels  # the panel's labels, recorded
 
 FAST = dict(layers=3, linker=3, globule_diameter=12, protocol="inflate", grow_frames=20,

@@ -63,7 +63,7 @@ run: $(VENV)/.installed
 # whatever an earlier one did (-k, and the unit tests' failure does not stop the bpy passes); each
 # prints its own `make test: PASS|FAIL ..., N s` line, and `make test` fails if any part failed.
 # The extension's wheels are fetched first: test_extension on two bpy at once would otherwise
-# download them into fibrilfit/wheels/ side by side. CI's time: CONTRIBUTING.md#ci.
+# download them into fibrilfit/wheels/ side by side. CI's time: CONTRIBUTING.md#what-ci-costs.
 test: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
 	@failed=; \
 	$(call timed,test-unit,$(MAKE) --no-print-directory test-unit) || failed="$$failed test-unit"; \

@@ -73,8 +73,8 @@ test: $(VENV)/.installed $(VENV_LTS)/.installed $(VENV_52)/.installed
 	[ -z "$$failed" ] || { echo "make test: failed:$$failed"; exit 1; }
 
 # $(call timed,NAME,COMMAND): run COMMAND, then print `make test: PASS|FAIL (exit N), S s: NAME`;
-# keeps COMMAND's exit code. pytest's 5 (no test selected) counts as a pass.
-timed = ( t=$$(date +%s); $(2); rc=$$?; [ $$rc -eq 5 ] && rc=0; \
+# keeps COMMAND's exit code.
+timed = ( t=$$(date +%s); $(2); rc=$$?; \
   if [ $$rc -eq 0 ]; then v=PASS; else v="FAIL (exit $$rc)"; fi; \
   echo "make test: $$v, $$(( $$(date +%s) - t )) s: $(1)"; exit $$rc )
 

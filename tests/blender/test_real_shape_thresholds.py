@@ -51,7 +51,7 @@ ONE_SEED = {"ubiquitin": 0, "gfp": 0, "tdp43": 0}
 
 
 @pytest.mark.one_bpy
-@pytest.mark.timeout(1800)  # past the 300 s default: 352 s and 811 s measured (see below)
+@pytest.mark.timeout(1800)  # past the 300 s default: 194 s the longest under MODEL_VERSION 6 (below)
 @pytest.mark.parametrize("name", list(ONE_SEED))
 def test_one_seed_fits_at_the_threshold_and_not_one_below(scene, ff, tmp_path, name):
     """Measured 2026-11-25 on bpy 5.0.1, a shared 2-core machine: ubiquitin's hull, seed 0,
@@ -63,7 +63,10 @@ def test_one_seed_fits_at_the_threshold_and_not_one_below(scene, ff, tmp_path, n
     at 6 (3 clashing pairs, 46 % stretch, 805 frames, 62 s), at a load of 3.
     TDP-43's three hulls, seed 0: fit at 5 in the 2nd cycle (322 frames, worst stretch 1.3 %,
     bake 254 s), not at 4 (3 clashing pairs, 64 % stretch, 805 frames, bake 539 s), as the docs
-    (3, 2, 2 pairs; 64-74 %); the test took 811 s at a load of 10 (6 min of CPU)."""
+    (3, 2, 2 pairs; 64-74 %); the test took 811 s at a load of 10 (6 min of CPU).
+    Re-timed under MODEL_VERSION 6 (issue #46; `make test`'s junit, bpy 5.0.1, commit 5513144,
+    2026-11-27 02:28 UTC, the other two bpy passes beside it on 2 cores): ubiquitin 194 s, GFP
+    104 s, TDP-43 42 s, 340 s in all, the longest part of the bpy 5.0 pass (1165 s)."""
     (case, threshold, _), seed = CLAIMS[name], ONE_SEED[name]
     assert accommodated(ff, tmp_path, case, threshold, seed)
     assert not accommodated(ff, tmp_path, case, threshold - 1, seed)

@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pytest
 from helpers import ROOT
+from hull_distance import hull_distance_qhull
 from fibrilfit.model.chain import rest_lengths
 
 DATA = ROOT / "tests" / "data"
@@ -54,13 +55,13 @@ def _body(ob, p, shape):
 
 def _gap(a, b) -> float:
     """Distance (Å) between two bodies, ("points", convex hull points) or ("spheres", rows):
-    GJK between hulls; zero or less: they meet."""
-    from fibrilfit.analysis.exact import hull_distance
+    qhull's Minkowski difference (tests/hull_distance.py, not the checker's GJK); zero or
+    less: they meet."""
     (ka, a), (kb, b) = sorted([a, b], key=lambda x: x[0])
     if ka == kb == "points":
-        return hull_distance(a, b)
+        return hull_distance_qhull(a, b)
     if ka == "points":  # a hull (or the core's box) and balls
-        return min(hull_distance(a, s[None, :3]) - s[3] for s in b)
+        return min(hull_distance_qhull(a, s[None, :3]) - s[3] for s in b)
     d = np.linalg.norm(a[:, None, :3] - b[None, :, :3], axis=-1)
     return float((d - a[:, None, 3] - b[None, :, 3]).min())
 
@@ -217,14 +218,13 @@ def test_a_built_chain_starts_with_no_body_overlapping_another(scene, ff, shape,
 
 def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene, ff):
     """GFP (domain 1) of chain 2 pushed into ubiquitin (domain 0) of chain 0 in steps: both
-    checks name the pair exactly when an independent GJK on the two domains' own hull points
-    says they overlap, and the JSON names which domain of which chain. With one mesh for both
-    (the sphere's way of several domains) the checks would test ubiquitin's hull at GFP's
-    place."""
+    checks name the pair exactly when the distance of the two domains' own hull points (qhull's
+    Minkowski difference, tests/hull_distance.py, not the checker's GJK) says they overlap, and
+    the JSON names which domain of which chain. With one mesh for both (the sphere's way of
+    several domains) the checks would test ubiquitin's hull at GFP's place."""
     import bpy
     from mathutils import Matrix
     from mathutils.bvhtree import BVHTree
-    from fibrilfit.analysis.exact import hull_distance
     from fibrilfit.analysis.verdict import check_model
     from fibrilfit.geom.shape import hull_points
     p = _params(ff, "hull", layers=3)
@@ -245,7 +245,7 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
         g[5].matrix_world = Matrix(m.tolist())
         bpy.context.view_layer.update()
         r = check_model(model)
-        truth = hull_distance(_world(a, ubq), _world(m, gfp))
+        truth = hull_distance_qhull(_world(a, ubq), _world(m, gfp))
         # the BVH on each globule's own whole mesh, every pair, one tree each (no pruning)
         trees = []
         for ob in g:

@@ -1,6 +1,8 @@
-"""The inflate search in a periodic cell reaches the independent optimizer's threshold
-(docs/model/periodic-cell.md#cell-search): at 30 Å, linker 7 accommodated in at least 4 of
-seeds 0-4 and linker 5 in none, on the auto cell and on one twice as long.
+"""The inflate search in a periodic cell (docs/model/periodic-cell.md#cell-search): at 30 Å,
+linker 7 accommodated in at least 4 of seeds 0-4 and linker 5 in none, on the 13-layer cell and
+on one twice as long (the target's numbers came from an optimizer whose data the repository does
+not keep: they are the target, not evidence; the fast case is tests/blender/test_auto_cell.py's
+cell of 18 layers, seed 0 at linker 7 and 6).
 
 Measured 2026-11-25 on the auto cell: 2 of 5 at linker 7 with 4 regrows; with near_cycles (5
 more regrows for a near miss) 4 of 5 (seed 2 does not fit; seeds 5-9: 5 of 5), and 4 of 5 on the

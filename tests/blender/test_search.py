@@ -178,7 +178,7 @@ TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow
 @pytest.mark.parametrize("linker, least, most", [(5, 3, 5), (4, 0, 0)])
 def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
     """30 Å globules on 20 layers with inflate: linker 5 fits in at least 3 of 5 seeds, linker 4
-    never (the independent optimizer finds no layout there in 256 restarts)."""
+    in none (docs/model/search.md#evidence)."""
     fits = 0
     for seed in range(5):
         r = ff.pipeline.run_model(P.make_params(protocol="inflate", linker=linker, seed=seed),

@@ -14,6 +14,10 @@ def test_the_result_records_the_cell_and_its_lattice(scene, ff):
     assert cell["cell_layers"] == cell["auto_cell_layers"] == 18  # 30 Å: 3 rows a side
     assert cell["lattice_rows"] == 3 and len(r["globule_centres"]) == 18
     assert not any("measured margin" in w for w in r["warnings"])
+    # 4 frames of growth, no regrow: judged at once, a clear miss (measured 2026-11-27: 19
+    # clashing pairs, 101 % stretch, 21 frames); the full search is the fast case below
+    assert r["frames_simulated"] == 21 and r["accommodated"] is False
+    assert r["verdict"] == "intersection" and len(r["clashing_pairs"]) == 19
     r = ff.pipeline.run_model(p.replace(periodic=13, layers=13), scene)
     assert r["periodic"]["lattice_rows"] == 0 and r["periodic"]["auto_cell_layers"] == 18
 

@@ -158,14 +158,6 @@ def test_inflate_is_reproducible(scene, ff):
     assert a == b
 
 
-# ---- restarts and the minimal-linker walk (pure) ----------------------------------------------
-
-def _record(seed, fits, pairs=0, stretch=0.0):
-    return {"params": {"seed": seed}, "status": "ok", "accommodated": fits, "verdict":
-            "successful" if not pairs else "intersection", "clashing_pairs": [[0, 1, 1.0]] * pairs,
-            "max_overlap": float(pairs), "max_bond_stretch": stretch, "frames_simulated": 100}
-
-
 # ---- the commands, end to end on tiny models ----------------------------------------------------
 
 TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow-cycles", "0",

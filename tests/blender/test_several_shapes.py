@@ -2,7 +2,6 @@
 with its own hull (spheres), its joint at its incoming terminal CA and the next linker leaving
 from its other terminal CA (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
 import functools
-import json
 
 import numpy as np
 import pytest
@@ -30,12 +29,6 @@ def _params(ff, shape, gfp_first=False, **values):
     given = {k: v for k, v in given.items() if v is not None}
     return ff.model.params.make_params(domain_shape=shape, **{
         **model_values(None, ubq, more_domains=[gfp], shape=shape), **given})
-
-
-def _atoms(name):
-    from fibrilfit.structure import body_frame, reading
-    c = reading.load(DATA / f"{name}.pdb.gz", "--domain").chains[0]
-    return body_frame(c.heavy)[1], c.heavy_radius
 
 
 def _world(m, local):

@@ -1,7 +1,7 @@
 """The infinite fibril's minimal-linker map as the docs publish it
 (docs/notebook/search.md#map-v5: globule diameter, cell layers, proven bound, minimal linker),
 read from the page so that what checks it (bench/targets.py --quick, the fast cases in
-tests/blender/test_infinite_map.py) compares with the published number, not with a copy.
+tests/blender/test_auto_cell.py) compares with the published number, not with a copy.
 Standard library only: bench/targets.py imports it as a script's neighbour, tests load it by
 path."""
 import pathlib

@@ -16,7 +16,7 @@ runs each from another checkout too (alternating order), for a side-by-side tabl
 restart); its times mean nothing. The map's answer is checked either way: each diameter's
 minimal linker in its minimal_linker.csv must be the one docs/notebook/search.md#map-v5
 publishes (bench/docs_map.py), else the target fails (quick: 20 Å, 4, which seed 0 shows:
-tests/blender/test_infinite_map.py).
+tests/blender/test_auto_cell.py).
 """
 import csv
 import argparse

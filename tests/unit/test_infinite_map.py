@@ -1,6 +1,6 @@
 """The infinite fibril's map as published (docs/notebook/search.md#map-v5, read by
 bench/docs_map.py): each diameter's cell and proven bound are what the code gives today, with no
-bake (the minima themselves: tests/blender/test_infinite_map.py at 20 and 30 Å; make bench
+bake (the minima themselves: tests/blender/test_auto_cell.py at 20 and 30 Å; make bench
 QUICK=1 compares its walk's minimum at 20 Å)."""
 import importlib.util
 

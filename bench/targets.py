@@ -13,8 +13,12 @@ runs each from another checkout too (alternating order), for a side-by-side tabl
 
 `--quick` (make bench QUICK=1, CI) checks that each still runs and answers on a small case
 (report on 6 layers, 2 restarts; the map at 20 Å, 2 restarts; validate on the tutorial case, 1
-restart); its times mean nothing.
+restart); its times mean nothing. The map's answer is checked either way: each diameter's
+minimal linker in its minimal_linker.csv must be the one docs/notebook/search.md#map-v5
+publishes (bench/docs_map.py), else the target fails (quick: 20 Å, 4, which seed 0 shows:
+tests/blender/test_auto_cell.py).
 """
+import csv
 import argparse
 import json
 import os
@@ -24,6 +28,7 @@ import statistics
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+import docs_map  # bench/docs_map.py, the same way
 import report as report_bench  # bench/report.py: run as a script, this file's folder is sys.path[0]
 
 TARGETS_S = {"report": 60, "map": 600, "validate": 600}
@@ -42,6 +47,25 @@ def commands(code: pathlib.Path, name: str, out: pathlib.Path, quick: bool) -> l
         cmd = [py, str(code / "tools" / "validate.py"), "--no-docs", "--out", str(out)]
         return cmd + (["--restarts", "1", str(code / "examples" / "tutorial.toml")] if quick else [])
     raise ValueError(name)
+
+
+def map_answer(out: pathlib.Path) -> tuple[list[str], bool]:
+    """The map's minima (its minimal_linker.csv) against the docs' table: one line per diameter,
+    "D Å: minimal linker M (docs: N)", and whether every one is the published number (False
+    too for a missing or empty file, or a diameter the docs do not publish)."""
+    published = docs_map.published_map()
+    path = out / "minimal_linker.csv"
+    if not path.exists():
+        return [f"{path}: not written"], False
+    lines, same = [], True
+    for row in csv.DictReader(path.open(encoding="utf-8")):
+        d = float(row["globule_diameter"])
+        want = published.get(int(d), {}).get("minimal_linker") if d == int(d) else None
+        got = row["minimal_linker"] or "none found"
+        lines.append(f"{d:g} Å: minimal linker {got} (docs: "
+                     f"{want if want is not None else 'not published'})")
+        same &= got == str(want)
+    return (lines, same) if lines else ([f"{path}: no rows"], False)
 
 
 def main() -> None:
@@ -73,6 +97,12 @@ def main() -> None:
                       f"{m['peak_rss_mib']} MiB, load {m['load_before'][0]} -> "
                       f"{m['load_after'][0]}" + ("" if ok else f"; FAILED: {m['stderr_tail']}"),
                       flush=True)
+                if name == "map" and side == "this" and ok:  # the answer, not only the exit code
+                    m["minima"], same = map_answer(out)
+                    failed |= not same
+                    print("  map's answer: " + "; ".join(m["minima"])
+                          + ("" if same else "; FAILED: not docs/notebook/search.md#map-v5's"),
+                          flush=True)
     print(f"\n| target | side | median wall | rounds | peak memory | load (1 min) before-after "
           f"| target |{' (quick: times mean nothing)' if args.quick else ''}")
     print("|---|---|---|---|---|---|---|")

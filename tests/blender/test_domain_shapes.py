@@ -3,6 +3,8 @@ find hulls pushed into each other, and an accommodated hull model keeps the atom
 import numpy as np
 import pytest
 from helpers import ROOT
+from hull_distance import hull_distance_qhull
+
 from fibrilfit.model.chain import chain_x, rest_lengths
 
 DATA = ROOT / "tests" / "data"
@@ -72,6 +74,15 @@ def test_gjk_distance_of_two_boxes(ff):
     assert hull_distance(cube, cube + [3.0, 0, 0]) == pytest.approx(2.0, abs=1e-5)
     assert hull_distance(cube, cube + [2.0, 2.0, 0]) == pytest.approx(np.sqrt(2.0), abs=1e-5)
     assert hull_distance(cube, cube + [0.5, 0.5, 0.5]) == 0.0
+    rng = np.random.default_rng(46)  # against qhull's Minkowski difference (tests/hull_distance.py)
+    met = 0
+    for _ in range(200):
+        a = rng.normal(size=(rng.integers(4, 60), 3)) * rng.uniform(1, 10, 3)
+        b = rng.normal(size=(rng.integers(4, 60), 3)) * rng.uniform(1, 10, 3) + rng.uniform(-25, 25, 3)
+        truth = hull_distance_qhull(a, b)
+        met += truth == 0.0
+        assert hull_distance(a, b) == pytest.approx(truth, abs=1e-4)
+    assert 20 <= met <= 180, met  # both meeting and apart pairs were tested
 
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])
@@ -194,12 +205,12 @@ def test_spheres_grow_under_inflate_to_their_covering_geometry(scene, ff):
 
 def _overlap(p, mesh, a, b) -> float:
     """How deep two globules with world matrices a, b overlap (Å; negative: apart): the hulls'
-    distance, or the deepest overlap of two covering spheres."""
+    distance (qhull's Minkowski difference, not the checker's GJK), or the deepest overlap of two
+    covering spheres."""
     from fibrilfit.analysis.clashes import mesh_arrays
-    from fibrilfit.analysis.exact import hull_distance
     if p.domain_shape == "hull":
         v = mesh_arrays(mesh)[0]
-        gap = hull_distance(v @ a[:3, :3].T + a[:3, 3], v @ b[:3, :3].T + b[:3, 3])
+        gap = hull_distance_qhull(v @ a[:3, :3].T + a[:3, 3], v @ b[:3, :3].T + b[:3, 3])
         return -gap if gap > 0 else 1.0  # (meeting: deeper than any tolerance, tested apart)
     s = np.asarray(p.domain_spheres, float)
     ca, cb = s[:, :3] @ a[:3, :3].T + a[:3, 3], s[:, :3] @ b[:3, :3].T + b[:3, 3]
@@ -220,7 +231,6 @@ def test_a_cells_images_carry_the_whole_turn(scene, ff, shape):
     (docs/model/domain-shapes.md#periodic)."""
     import bpy
     from fibrilfit.analysis.clashes import mesh_arrays
-    from fibrilfit.analysis.exact import hull_distance
     from fibrilfit.analysis.verdict import chain_positions
     from fibrilfit.model.domains import HULL_MARGIN
     from fibrilfit.builders.periodic import CELL, ImageFollower, image_collection
@@ -238,7 +248,7 @@ def test_a_cells_images_carry_the_whole_turn(scene, ff, shape):
 
     def gap(point, m):  # from a point to a globule's body at world matrix m (Å)
         if shape == "hull":
-            return hull_distance(verts @ m[:3, :3].T + m[:3, 3], point[None]) - HULL_MARGIN
+            return hull_distance_qhull(verts @ m[:3, :3].T + m[:3, 3], point[None]) - HULL_MARGIN
         c = spheres[:, :3] @ m[:3, :3].T + m[:3, 3]
         return float((np.linalg.norm(c - point, axis=1) - spheres[:, 3]).min())
 

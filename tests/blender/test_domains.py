@@ -191,7 +191,10 @@ def test_the_two_domain_full_length_model_runs(ff, scene, tmp_path):
     assert r["params"]["domain_diameters"] == pytest.approx([43.94], abs=0.02)  # the next
     assert [(d["first"], d["last"]) for d in r["structure"]["full_length"]["domains"]] == \
         [(118, 193), (209, 438)]
-    assert r["frames_simulated"] == 10 and isinstance(r["accommodated"], bool)
+    # 10 frames judge it (measured 2026-11-27): clash-free, a linker still stretched 8.5 %
+    assert r["frames_simulated"] == 10 and r["accommodated"] is False
+    assert r["verdict"] == "successful" and r["clashing_pairs"] == [] and not r["linker_intact"]
+    assert r["max_bond_stretch"] == pytest.approx(0.0851, abs=0.002)
 
 # ---- several domains under inflate and in a periodic cell -----------------------------------
 INFLATE = dict(protocol="inflate", grow_frames=15, hold_frames=15, regrow_cycles=1,

@@ -30,8 +30,12 @@ def test_cli_score_layers(tmp_path):
     r = json.loads((tmp_path / "r.json").read_text())
     assert r["params"]["score_layers"] == 2 and r["scored_layers"] == [2, 5]
     assert "in layers 2-5" in out.stdout
-    out = run_cli("run", "--layers", "8", "--frames", "2", "--score-layers", "all", "--quiet")
+    out = run_cli("run", "--layers", "8", "--frames", "2", "--score-layers", "all", "--quiet",
+                  "--json", str(tmp_path / "all.json"))
     assert out.returncode == 0, out.stderr
+    r = json.loads((tmp_path / "all.json").read_text())  # "all": every layer scored
+    assert r["params"]["score_layers"] == 0 and r["scored_layers"] == [0, 7]
+    assert None not in r["layer_clashes"] and len(r["layer_clashes"]) == 8
     out = run_cli("run", "--layers", "8", "--score-layers", "4", "--json", str(tmp_path / "x.json"))
     assert out.returncode == 2 and "score_layers" in out.stderr and "from 0 to 3" in out.stderr
     assert not (tmp_path / "x.json").exists()

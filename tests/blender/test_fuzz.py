@@ -1,5 +1,6 @@
 """Property-based fuzzing of the build: any parameter set the validation accepts builds a valid
 model, and a refused one builds nothing (the validation's own fuzzing: tests/unit/test_fuzz_validation.py)."""
+import collections
 import math
 
 import numpy as np
@@ -28,29 +29,43 @@ small_models = st.fixed_dictionaries({}, optional={
     "protocol": st.sampled_from(P.PROTOCOLS)})
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
-@given(small_models)
-# found by this test: the triangle with a fourth corner on an edge is one convex piece, not two
-@example({"core_outline": [(0.0, -1.0), (1.0, 0.0), (0.0, 1.0), (0.0, 0.0)]})
-def test_any_accepted_set_builds_a_valid_model(scene, values):
-    try:
-        p = P.make_params(**values)
-    except P.ParamError:
-        assert not scene.objects  # refused before anything was built
-        event("refused")
-        return
-    event("built")
-    from fibrilfit.builders import clear_model
-    try:
-        model = build_model(p, scene)
-        if p.core_outline is None:
-            assert len(scene.objects) == estimated_objects(p)
-        else:  # its convex pieces may merge below the n - 2 triangles the estimate counts
-            assert estimated_objects(p) - p.layers * (len(p.core_outline) - 2) \
-                < len(scene.objects) <= estimated_objects(p)
-        centres = np.array([ob.matrix_world.translation for c in model.chain for ob in c])
-        assert np.isfinite(centres).all()
-        assert len(model.chain) == p.chains and all(len(c) == p.linker + 1 for c in model.chain)
-        assert len(model.slabs) == p.layers
-    finally:  # a failing example must not leave a model behind for the next one
-        clear_model(scene)
+def test_any_accepted_set_builds_a_valid_model(scene):
+    """Both branches in a measured share: derandomized, the 150 examples (and the explicit one)
+    are the same every run of one hypothesis version; measured 2026-11-27 on bpy 4.2, 5.0.1 and
+    5.2.3: 26 built, 125 refused. The band (10-75 built of 151) leaves room for another
+    hypothesis version's draws; a strategy that drifted to all refused (nothing built: the
+    build's checks never run) or to all accepted (no refusal tested) fails."""
+    seen = collections.Counter()
+
+    @settings(max_examples=150, deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @given(small_models)
+    # found by this test: the triangle with a fourth corner on an edge is one convex piece
+    @example({"core_outline": [(0.0, -1.0), (1.0, 0.0), (0.0, 1.0), (0.0, 0.0)]})
+    def one(values):
+        try:
+            p = P.make_params(**values)
+        except P.ParamError:
+            assert not scene.objects  # refused before anything was built
+            event("refused")
+            seen["refused"] += 1
+            return
+        event("built")
+        seen["built"] += 1
+        from fibrilfit.builders import clear_model
+        try:
+            model = build_model(p, scene)
+            if p.core_outline is None:
+                assert len(scene.objects) == estimated_objects(p)
+            else:  # its convex pieces may merge below the n - 2 triangles the estimate counts
+                assert estimated_objects(p) - p.layers * (len(p.core_outline) - 2) \
+                    < len(scene.objects) <= estimated_objects(p)
+            centres = np.array([ob.matrix_world.translation for c in model.chain for ob in c])
+            assert np.isfinite(centres).all()
+            assert len(model.chain) == p.chains and all(len(c) == p.linker + 1 for c in model.chain)
+            assert len(model.slabs) == p.layers
+        finally:  # a failing example must not leave a model behind for the next one
+            clear_model(scene)
+
+    one()
+    assert sum(seen.values()) == 151 and 10 <= seen["built"] <= 75, seen

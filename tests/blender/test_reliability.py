@@ -121,19 +121,23 @@ def test_operators_refuse_bad_input_and_keep_the_scene(cli_args, api_kwargs, nam
     settings.layers, settings.frames = 2, 5
     assert bpy.ops.fibrilfit.run_all() == {"FINISHED"}
     before, before_user = sorted(ob.name for ob in scene.objects), snapshot_user(user_objects)
-    for key, value in api_kwargs.items():
-        rna = settings.bl_rna.properties[key]
-        if isinstance(value, str) or (rna.type == "INT" and value != int(value)):
-            with pytest.raises(TypeError):  # not a number of the field's type: refused on entry
-                setattr(settings, key, value)
-            return
+    (key, value), = api_kwargs.items()  # one bad value per input
+    rna = settings.bl_rna.properties[key]
+    if isinstance(value, str) or (rna.type == "INT" and value != int(value)):
+        # not a number of the field's type (layers "twenty", twist "2turns" and "-0.961",
+        # linker 2.5): refused on entry, the property keeps the value it had
+        kept = getattr(settings, key)
+        with pytest.raises(TypeError):
+            setattr(settings, key, value)
+        assert getattr(settings, key) == kept
+    else:
         # stored raw, of the property's own type (RNA ignores a raw value of another type)
         settings[key] = tuple(map(float, value)) if rna.type == "FLOAT" and rna.is_array else (
             float(value) if rna.type == "FLOAT" else int(value))
-    for op in ("run_all", "build_slab", "replicate_layers"):
-        with pytest.raises(RuntimeError, match=f"{name}: ") as err:
-            getattr(bpy.ops.fibrilfit, op)()
-        assert "\n" not in str(err.value).strip()
+        for op in ("run_all", "build_slab", "replicate_layers"):
+            with pytest.raises(RuntimeError, match=f"{name}: ") as err:
+                getattr(bpy.ops.fibrilfit, op)()
+            assert "\n" not in str(err.value).strip()
     assert sorted(ob.name for ob in scene.objects) == before
     assert snapshot_user(user_objects) == before_user
 

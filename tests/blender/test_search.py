@@ -149,12 +149,6 @@ def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
     assert again["globule_centres"] == r["globule_centres"]
 
 
-# ---- restarts and the minimal-linker walk (pure) ----------------------------------------------
-
-def _record(seed, fits, pairs=0, stretch=0.0):
-    return {"params": {"seed": seed}, "status": "ok", "accommodated": fits, "verdict":
-            "successful" if not pairs else "intersection", "clashing_pairs": [[0, 1, 1.0]] * pairs,
-            "max_overlap": float(pairs), "max_bond_stretch": stretch, "frames_simulated": 100}
 
 
 # ---- the commands, end to end on tiny models ----------------------------------------------------
@@ -169,7 +163,7 @@ TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow
 @pytest.mark.parametrize("linker, least, most", [(5, 3, 5), (4, 0, 0)])
 def test_thirty_angstrom_twenty_layers_target(scene, ff, linker, least, most):
     """30 Å globules on 20 layers with inflate: linker 5 fits in at least 3 of 5 seeds, linker 4
-    never (the independent optimizer finds no layout there in 256 restarts)."""
+    in none (docs/model/search.md#evidence)."""
     fits = 0
     for seed in range(5):
         r = ff.pipeline.run_model(P.make_params(protocol="inflate", linker=linker, seed=seed),

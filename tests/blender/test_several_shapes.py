@@ -2,11 +2,11 @@
 with its own hull (spheres), its joint at its incoming terminal CA and the next linker leaving
 from its other terminal CA (docs/guide/atoms-and-domains.md#shapes-of-several-domains)."""
 import functools
-import json
 
 import numpy as np
 import pytest
 from helpers import ROOT
+from hull_distance import hull_distance_qhull
 from fibrilfit.model.chain import rest_lengths
 
 DATA = ROOT / "tests" / "data"
@@ -31,12 +31,6 @@ def _params(ff, shape, gfp_first=False, **values):
         **model_values(None, ubq, more_domains=[gfp], shape=shape), **given})
 
 
-def _atoms(name):
-    from fibrilfit.structure import body_frame, reading
-    c = reading.load(DATA / f"{name}.pdb.gz", "--domain").chains[0]
-    return body_frame(c.heavy)[1], c.heavy_radius
-
-
 def _world(m, local):
     return local @ m[:3, :3].T + m[:3, 3]
 
@@ -54,13 +48,13 @@ def _body(ob, p, shape):
 
 def _gap(a, b) -> float:
     """Distance (Å) between two bodies, ("points", convex hull points) or ("spheres", rows):
-    GJK between hulls; zero or less: they meet."""
-    from fibrilfit.analysis.exact import hull_distance
+    qhull's Minkowski difference (tests/hull_distance.py, not the checker's GJK); zero or
+    less: they meet."""
     (ka, a), (kb, b) = sorted([a, b], key=lambda x: x[0])
     if ka == kb == "points":
-        return hull_distance(a, b)
+        return hull_distance_qhull(a, b)
     if ka == "points":  # a hull (or the core's box) and balls
-        return min(hull_distance(a, s[None, :3]) - s[3] for s in b)
+        return min(hull_distance_qhull(a, s[None, :3]) - s[3] for s in b)
     d = np.linalg.norm(a[:, None, :3] - b[None, :, :3], axis=-1)
     return float((d - a[:, None, 3] - b[None, :, 3]).min())
 
@@ -217,14 +211,13 @@ def test_a_built_chain_starts_with_no_body_overlapping_another(scene, ff, shape,
 
 def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene, ff):
     """GFP (domain 1) of chain 2 pushed into ubiquitin (domain 0) of chain 0 in steps: both
-    checks name the pair exactly when an independent GJK on the two domains' own hull points
-    says they overlap, and the JSON names which domain of which chain. With one mesh for both
-    (the sphere's way of several domains) the checks would test ubiquitin's hull at GFP's
-    place."""
+    checks name the pair exactly when the distance of the two domains' own hull points (qhull's
+    Minkowski difference, tests/hull_distance.py, not the checker's GJK) says they overlap, and
+    the JSON names which domain of which chain. With one mesh for both (the sphere's way of
+    several domains) the checks would test ubiquitin's hull at GFP's place."""
     import bpy
     from mathutils import Matrix
     from mathutils.bvhtree import BVHTree
-    from fibrilfit.analysis.exact import hull_distance
     from fibrilfit.analysis.verdict import check_model
     from fibrilfit.geom.shape import hull_points
     p = _params(ff, "hull", layers=3)
@@ -245,7 +238,7 @@ def test_a_forced_overlap_of_two_domains_is_found_by_both_checks_and_named(scene
         g[5].matrix_world = Matrix(m.tolist())
         bpy.context.view_layer.update()
         r = check_model(model)
-        truth = hull_distance(_world(a, ubq), _world(m, gfp))
+        truth = hull_distance_qhull(_world(a, ubq), _world(m, gfp))
         # the BVH on each globule's own whole mesh, every pair, one tree each (no pruning)
         trees = []
         for ob in g:
@@ -306,7 +299,12 @@ def test_a_cell_of_two_real_domains_images_each_with_its_own_shape(scene, ff, sh
         if np.allclose(got[:3, 3], want[:3, 3], atol=0.05):
             assert np.allclose(got[:3, :3], want[:3, :3], atol=1e-3)
             moved += 1
-    assert moved >= len(images) // 2
+    # measured 2026-11-27: of the 182 images, 158 (hull) and 153 (spheres) were moved at the last
+    # frame on bpy 4.2.0 and 5.0.1, 156 (hull) and 153 on 5.2.3 (its Bullet bakes this cell a
+    # little differently); the rest stand where an earlier frame left them
+    import bpy
+    want = {"hull": 156 if bpy.app.version >= (5, 2) else 158, "spheres": 153}[shape]
+    assert len(images) == 182 and moved == want
 
 
 @pytest.mark.parametrize("shape", ["hull", "spheres"])

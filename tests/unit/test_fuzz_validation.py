@@ -1,5 +1,6 @@
 """Property-based fuzzing of the parameter validation: any input either builds a valid model or
 is refused with ParamError, never anything else."""
+import collections
 import dataclasses
 import math
 from hypothesis import event, given, settings, strategies as st
@@ -66,16 +67,21 @@ param_sets = st.one_of(known_sets, known_sets, known_sets,
                        st.builds(lambda a, b: {**a, **b}, known_sets, unknown_sets))
 
 
-@settings(max_examples=1500, deadline=None)
+SEEN = collections.Counter()
+
+
+@settings(max_examples=1500, deadline=None, derandomize=True, database=None)
 @given(param_sets)
-def test_validation_accepts_or_refuses_with_paramerror_only(values):
+def _accepted_or_refused_with_paramerror_only(values):
     try:
         p = P.make_params(**values)
     except P.ParamError as exc:
         assert exc.param and "\n" not in str(exc)
         event("refused")
+        SEEN["refused"] += 1
         return
     event("accepted")
+    SEEN["accepted"] += 1
     for f in dataclasses.fields(P.Params):
         v = getattr(p, f.name)
         if v is None:  # a derived default, or an empty list (kind "list": e.g. one domain)
@@ -95,3 +101,16 @@ def test_validation_accepts_or_refuses_with_paramerror_only(values):
             if f.metadata["kind"] is not bool:
                 assert f.metadata["min"] <= x <= f.metadata["max"]
     assert P.validate(p) == p
+
+
+def test_validation_accepts_or_refuses_with_paramerror_only():
+    """Both branches are exercised, in a measured share: with derandomize the 1500 examples are
+    the same every run of one hypothesis version; measured 2026-11-27 with the hypothesis of
+    .venv and of .venv52: 44 accepted, 1456 refused (2.9 %; most sets hold some bad value). The
+    band (20-200 accepted) leaves room for another hypothesis version's draws; a strategy that
+    drifted to all refused (the accepted branch's checks never run) or to mostly accepted (the
+    refusals untested) fails."""
+    SEEN.clear()
+    _accepted_or_refused_with_paramerror_only()
+    assert sum(SEEN.values()) == 1500
+    assert 20 <= SEEN["accepted"] <= 200, SEEN

@@ -410,7 +410,9 @@ def test_a_length_whose_model_cannot_start_is_a_miss_without_runs():
     row = w.row()
     assert w.minimal == 8 and row["linker_below"] == 7
     assert row["below_unstarted"] == "anchor: no straight direction"
-    assert row["p_fit_below"] is None or row["p_fit_below"] == 0.0
+    # nothing ran one below: no P(fit) there (not 0/0 read as 0), no restarts, no interval
+    assert row["p_fit_below"] is None and row["p_fit_below_interval"] is None
+    assert row["restarts_below"] == 0 and row["unstarted"] == {"7": "anchor: no straight direction"}
     assert 7 not in w.tried  # nothing ran there
 
 

@@ -149,8 +149,6 @@ def test_inflate_accommodated_layout_passes_the_independent_check(scene, ff):
     assert again["globule_centres"] == r["globule_centres"]
 
 
-
-
 # ---- the commands, end to end on tiny models ----------------------------------------------------
 
 TINY = ["--layers", "3", "--grow-frames", "20", "--hold-frames", "20", "--regrow-cycles", "0",

@@ -51,6 +51,7 @@ def test_fraction_one_is_exactly_the_linker_bound(diameter):
     f = [F.fraction_bound(p, L, budget=BUDGET) for L in range(1, b + 4)]
     assert all(x < 1.0 for x in f[:b - 1]) and all(x == 1.0 for x in f[b - 1:])
     assert all(0.0 < x <= y for x, y in zip(f, f[1:]))  # non-decreasing in the linker
+    assert F.fraction_bound(p, 60, budget=BUDGET) == 1.0  # past the room's measured reach
     assert F.impossible_below_at(p, 1.0, budget=BUDGET) == b
     at = [F.impossible_below_at(p, x, budget=BUDGET) for x in (0.05, 0.3, 0.6, 0.8, 0.95, 1.0)]
     assert at == sorted(at)  # a higher fraction never needs a shorter linker
@@ -68,7 +69,7 @@ def test_no_path_out_of_the_core_excludes_every_fraction():
 # ---- a room known in closed form --------------------------------------------------------------
 def test_the_fraction_bound_is_the_closed_form_room_over_the_domain():
     # one protofilament, no twist, a 400 Å core: per layer the room is the half-ball slab of
-    # the closed form (tests/bound_oracle.half_space_room), so f_B = room / volume, the voxel
+    # the closed form (half_space_room in tests/bound_oracle.py), so f_B = room / volume, the voxel
     # room above it by less than the room two voxels (2h) wider and deeper into the core. A bound
     # made lower than the room (a wrong reach, a packing density below 1, a count rounded on
     # a density) fails here.

@@ -104,12 +104,11 @@ def fraction_limit(p, linker: int | None = None, budget: float = bound.GRID_BUDG
     K, S = p.protofilaments, s.chains_per_pf
     cap = caps(s, L)
     best, groups = combine({pfs: c for pfs, (c, _) in cap.items()}, K)
+    n = p.layers * K  # the model's subunits: a periodic cell's M × K, a fibril's layers × K
     if s.periodic:
         f = min(1.0, best / K)
-        n = p.layers * K  # the cell's subunits
         count = min(n, math.floor(f * n + TOLERANCE))
     else:
-        n = p.layers * K
         count = min(n, int(best) + K * (p.layers - S))  # the unscored layers are free
         f = count / n
     binding = [{"protofilaments": sorted(g), "cap": round(float(cap[tuple(sorted(g))][0]), 4),

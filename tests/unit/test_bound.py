@@ -70,21 +70,85 @@ def _half_space_volume(rho: float, rise: float, c: float) -> float:
     return float(trapezoid(area, z))
 
 
-def test_one_protofilament_on_a_wide_core_matches_its_closed_form():
-    # twist 0 and a 400 Å core: the anchors are a straight line beside a plane (1.75 Å from
-    # the face, so 1.75 + CORE_ENTRY from the eroded one)
-    p = P.make_params(slab=(400.0, 400.0, 4.8), twist=0.0, periodic=9, protocol="inflate",
-                      globule_diameter=30.0, linker=10)
+# Twist 0 and a 400 Å core: the anchors are a straight line beside a plane (1.75 Å from the
+# face, so 1.75 + CORE_ENTRY from the eroded one). Several protofilaments on one line (pf_rotation
+# 0, pf_rise 4.8 Å, each layer K × 4.8 Å high): at every height the anchors' disks are concentric,
+# so their union is the nearest anchor's disk and the room of all K per layer is K times the one
+# protofilament's closed form at 4.8 Å, for K domains; only the inequality over all K binds (a
+# subset has more room per domain). Two protofilaments on opposite faces: disjoint rooms, the one
+# protofilament's threshold. The bound must lie within one residue below the closed form's
+# threshold (the voxels over-count the room), never above it: a bound too high, or too low by
+# more than a residue, fails here (docs/model/bound.md#tests).
+@pytest.mark.parametrize("K, rotation, pf_rise", [(1, 0.0, 0.0), (2, 0.0, 4.8), (3, 0.0, 4.8),
+                                                   (2, math.pi, 0.0)],
+                         ids=["1 pf", "2 pf on a line", "3 pf on a line", "2 pf opposite"])
+@pytest.mark.parametrize("diameter", [30.0, 60.0])
+def test_several_protofilaments_on_a_wide_core_match_the_closed_form(K, rotation, pf_rise,
+                                                                      diameter):
+    rise = 4.8 * K if pf_rise else 4.8
+    p = P.make_params(slab=(400.0, 400.0, rise), rise=rise, twist=0.0, periodic=15,
+                      protocol="inflate", globule_diameter=diameter, linker=10,
+                      protofilaments=K, pf_rotation=rotation, pf_rise=pf_rise)
     terms = B.reach_terms(p)
     need = B.ball_union_volume(B.inner_balls(p, p.domains[0]))
-    closed = next(L for L in range(1, 60)
+    closed = next(L for L in range(1, 80)
                   if need <= _half_space_volume(B.reach(p, terms, L)[0], 4.8,
                                                 1.75 + B.CORE_ENTRY))
     got = B.linker_bound(p)
-    assert got["impossible_below"] in (closed - 1, closed)  # voxels only over-count the room
-    room = B.Room(p, B.reach(p, terms, closed)[0], True, 0, 1)
-    exact = _half_space_volume(B.reach(p, terms, closed)[0], 4.8, 1.75 + B.CORE_ENTRY)
-    assert exact <= room.volume([0], B.reach(p, terms, closed)[0]) <= exact * 1.05
+    assert closed - 1 <= got["impossible_below"] <= closed
+    assert closed >= (4 if diameter == 30.0 else 9)  # far from 1: a shift either way shows
+    if K == 1:  # the voxels' room lies within 5 % above the exact one
+        rho = B.reach(p, terms, closed)[0]
+        exact = _half_space_volume(rho, 4.8, 1.75 + B.CORE_ENTRY)
+        assert exact <= B.Room(p, rho, True, 0, 1).volume([0], rho) <= exact * 1.05
+    if got["impossible_below"] > 1:
+        fails = got["fails_below"]
+        assert fails["linker"] == got["impossible_below"] - 1
+        assert fails["needed_A3"] == pytest.approx(
+            (K if pf_rise else len(fails["protofilaments"])) * need, rel=1e-3)
+        if pf_rise:  # on one line only the inequality over every protofilament binds
+            assert fails["protofilaments"] == list(range(K))
+
+
+# ---- the numbers the docs give -------------------------------------------------------------
+@pytest.mark.parametrize("diameter, bound", [(20, 1), (30, 2), (40, 3), (50, 5)])
+def test_the_infinite_fibrils_bound_table(diameter, bound):
+    # docs/model/bound.md#bracket: the default model's infinite fibril (the auto cell), the
+    # default voxel budget; one below it, the inequality that fails
+    p = P.make_params(globule_diameter=float(diameter), protocol="inflate", periodic="auto")
+    got = B.linker_bound(p)
+    assert got["impossible_below"] == bound
+    if bound > 1:
+        fails = got["fails_below"]
+        assert fails["linker"] == bound - 1 and fails["needed_A3"] > fails["room_A3"]
+    else:
+        assert got["fails_below"] is None
+
+
+@pytest.fixture(scope="module")
+def negative_control():
+    """Aβ42-GFP on 5OQV on the infinite fibril (examples/abeta42_5oqv_gfp_linker12.toml): the
+    model values from the structures, as the case file runs them."""
+    from fibrilfit import structure
+    from fibrilfit.structure import from_files
+    data = ROOT / "tests" / "data"
+    values, _ = from_files.merged(structure.measure_fibril(data / "5oqv_addedH.pdb.gz"),
+                                  [structure.measure_domain(data / "1gfl.pdb.gz")], None,
+                                  {"linker": 13, "periodic": "auto", "protocol": "inflate"})
+    return P.make_params(**values)
+
+
+def test_the_negative_control_is_impossible_below_13(negative_control):
+    # docs/model/bound.md#bracket and docs/validation.md#negative-control: two protofilaments,
+    # a buried exit of 5 residues; at 12, 86,304 Å³ of GFP balls against 85,023 Å³ of room
+    p = negative_control
+    assert (p.protofilaments, p.exit_residues) == (2, 5)
+    got = B.linker_bound(p)
+    assert got["impossible_below"] == 13
+    fails = got["fails_below"]
+    assert fails["linker"] == 12 and fails["protofilaments"] == [0, 1]
+    assert fails["needed_A3"] == pytest.approx(86304.2, abs=0.2)
+    assert fails["room_A3"] == pytest.approx(85022.6, abs=1.0)
 
 
 # ---- a case known by hand ---------------------------------------------------------------------

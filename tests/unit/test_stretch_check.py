@@ -68,6 +68,28 @@ def test_a_real_shape_is_held_at_its_joint_one_spacing_from_the_last_bead():
     assert stretch[:, :2] == pytest.approx(0.0)
 
 
+def test_two_real_domains_are_held_at_their_joints_and_the_first_lets_go_at_its_exit():
+    atoms = [[10, 0, 0, 1.5], [-10, 0, 0, 1.5], [0, 10, 0, 1.5], [0, -10, 0, 1.5],
+             [0, 0, 10, 1.5], [0, 0, -10, 1.5]]
+    p = P.make_params(domain_shape="hull", domain_atoms=atoms, domain_joint=[[10.0, 0, 0]],
+                      further_atoms=[[1, *a] for a in atoms], further_joints=[[10.0, 0, 0]],
+                      domain_exits=[[-10.0, 0, 0]], domain_diameters=[23.0],
+                      domain_linker=[2], linker=3, layers=4)
+    assert [d.member for d in p.domains] == [3, 6]
+    # anchor, 2 beads, domain 1 turned 90° at (20, 0, 0) (joint at (20, 10, 0), exit at
+    # (20, -10, 0)), 2 beads, domain 2 unturned at (40, -20, 0) (joint at (50, -20, 0))
+    pos = np.array([[[0, 0, 0], [3.5, 0, 0], [7.0, 0, 0], [20.0, 0, 0], [20.0, -14.0, 0],
+                     [20.0, -17.5, 0], [40.0, -20.0, 0]]])
+    starts, ends, rest = S.bond_ends(p, _matrices(pos, turns=[0, 0, 0, np.pi / 2, 0, 0, 0]))
+    assert list(rest) == pytest.approx([3.5] * 6)  # every bond one residue spacing
+    assert starts[0, 3] == pytest.approx([20.0, -10.0, 0.0])  # the exit
+    assert ends[0, 2] == pytest.approx([20.0, 10.0, 0.0]) and ends[0, 5] == pytest.approx(
+        [50.0, -20.0, 0.0])
+    stretch = S.ends_stretch(starts, ends, rest)[0]
+    assert stretch == pytest.approx([0.0, 0.0, np.hypot(13.0, 10.0) / 3.5 - 1.0, 4.0 / 3.5 - 1.0,
+                                     0.0, np.hypot(30.0, 2.5) / 3.5 - 1.0])
+
+
 def test_the_log_reads_only_the_scored_chains():
     log = S.StretchLog([1.0], 0.05, slice(1, 2))
     pos = np.array([[[0, 0, 0], [9, 0, 0]], [[0, 0, 0], [1.02, 0, 0]], [[0, 0, 0], [5, 0, 0]]],
@@ -98,9 +120,10 @@ def test_the_summary_of_a_bake_that_never_comes_back_and_one_never_over():
     s = _log([0.0, 3.0, 0.5, 0.2])
     assert s["push_apart_end_frame"] is None and s["max_bond_stretch_after_push"] is None
     assert s["intact_from_frame"] is None and s["frames_over_tolerance"] == 3
-    calm = _log([0.0, 0.01, 0.04])
+    calm = _log([0.0, 0.043217, 0.01])  # never over: pushed apart by frame 2
     assert calm["intact_from_frame"] == 1 and calm["frames_over_tolerance"] == 0
-    assert calm["push_apart_end_frame"] == 2 and calm["max_bond_stretch_after_push"] == (
-        pytest.approx(0.04))
-    assert calm["max_bond_stretch_bake_frame"] == 3
+    assert calm["push_apart_end_frame"] == 2
+    assert calm["max_bond_stretch_after_push"] == pytest.approx(0.043217, abs=1e-9)
+    assert calm["max_bond_stretch_bake"] == pytest.approx(0.043217, abs=1e-9)  # 6 decimals
+    assert calm["max_bond_stretch_bake_frame"] == 2
     assert S.StretchLog([1.0], 0.05).summary() == {}

@@ -173,6 +173,15 @@ def test_a_linker_beyond_the_longest_is_reported_above_it(monkeypatch):
     assert got["impossible_below"] == 11 and got["fails_below"] is None
 
 
+@pytest.mark.parametrize("spent", [400, 1000])
+def test_an_exit_past_the_longest_linker_is_above_it(spent):
+    # an anchor whose exit spends 400 residues or more (1000: sealed, docs/model/buried-
+    # terminus.md) leaves no linker up to LONGEST = 400 a way out: impossible below 401
+    p = P.make_params(exit_residues=spent, linker=10, periodic="auto", protocol="inflate")
+    got = B.linker_bound(p)
+    assert got["impossible_below"] == 401 and got["fails_below"] is None
+
+
 # ---- the numbers the docs give -------------------------------------------------------------
 @pytest.mark.parametrize("diameter, bound", [(20, 1), (30, 2), (40, 3), (50, 5)])
 def test_the_infinite_fibrils_bound_table(diameter, bound):

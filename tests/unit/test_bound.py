@@ -31,6 +31,26 @@ def test_uv_sphere_inradius_is_the_measured_mesh_sag():
     assert geom_shape.uv_sphere_inradius(64, 32) > f  # a finer mesh sags less
 
 
+def test_inner_balls_of_each_shape():
+    # the sphere: its mesh's inradius; covering spheres: each one's, about its own centre; a
+    # hull: every atom's ball and a central ball (docs/model/bound.md#inner-bodies)
+    f = B.uv_fraction()
+    p = P.make_params(globule_diameter=30.0)
+    assert B.inner_balls(p, p.domains[0]) == pytest.approx(np.array([[0, 0, 0, 15.0 * f]]))
+    p = P.make_params(domain_shape="spheres", domain_spheres=[[5, 0, 0, 8], [-5, 0, 0, 8]],
+                      domain_joint=[[13.0, 0, 0]], linker=3, layers=4)
+    assert B.inner_balls(p, p.domains[0]) == pytest.approx(
+        np.array([[5, 0, 0, 8 * f], [-5, 0, 0, 8 * f]]))
+    atoms = [[10, 0, 0, 1.5], [-10, 0, 0, 1.5], [0, 10, 0, 1.5], [0, -10, 0, 1.5],
+             [0, 0, 10, 1.5], [0, 0, -10, 1.5]]
+    p = P.make_params(domain_shape="hull", domain_atoms=atoms, domain_joint=[[10.0, 0, 0]],
+                      linker=3, layers=4)
+    balls = B.inner_balls(p, p.domains[0])
+    assert balls[:6] == pytest.approx(np.array(atoms, dtype=float))
+    assert balls[6, :3] == pytest.approx([0, 0, 0]) and balls[6, 3] == pytest.approx(
+        B.central_ball(atoms))
+
+
 def test_ball_union_volume_is_a_lower_bound():
     one = 4 / 3 * math.pi * 5 ** 3
     assert B.ball_union_volume([[0, 0, 0, 5]]) == pytest.approx(one)

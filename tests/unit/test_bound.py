@@ -195,8 +195,9 @@ def test_a_linker_beyond_the_longest_is_reported_above_it(monkeypatch):
 
 @pytest.mark.parametrize("spent", [400, 1000])
 def test_an_exit_past_the_longest_linker_is_above_it(spent):
-    # an anchor whose exit spends 400 residues or more (1000: sealed, docs/model/buried-
-    # terminus.md) leaves no linker up to LONGEST = 400 a way out: impossible below 401
+    # an anchor whose exit spends 400 residues or more (1000: sealed,
+    # docs/model/buried-terminus.md#model) leaves no linker up to LONGEST = 400 a way out:
+    # impossible below 401
     p = P.make_params(exit_residues=spent, linker=10, periodic="auto", protocol="inflate")
     got = B.linker_bound(p)
     assert got["impossible_below"] == 401 and got["fails_below"] is None

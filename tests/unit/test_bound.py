@@ -153,20 +153,24 @@ def test_several_protofilaments_on_a_wide_core_match_the_closed_form(K, rotation
 
 
 # A finite fibril on the same wide core: the room is the union of the judged chains' anchor balls,
-# cut by the face only along the stack (beyond its ends the domains may spread). Its voxels are
-# coarser (4.8 Å for these spans), still within one residue of the closed form here (at 40
-# layers they over-count by two: the stated margin holds for these two).
-@pytest.mark.parametrize("layers, score_layers, closed_form", [(24, 0, 4), (30, 3, 5)])
-def test_a_finite_fibril_on_a_wide_core_matches_its_closed_form(layers, score_layers,
+# cut by the face only along the stack (beyond its ends the domains may spread); two
+# protofilaments on one line as above. Its voxels are coarser (4.8 Å for these spans), still
+# within one residue of the closed form here (at 40 layers they over-count by two: the stated
+# margin holds for these cases). The room must not lose the stack's top or bottom cap: the
+# voxels' room is an upper bound of the exact one.
+@pytest.mark.parametrize("layers, score_layers, K, closed_form",
+                         [(24, 0, 1, 4), (30, 3, 1, 5), (12, 0, 2, 4), (16, 2, 2, 5)])
+def test_a_finite_fibril_on_a_wide_core_matches_its_closed_form(layers, score_layers, K,
                                                                 closed_form):
-    p = P.make_params(slab=(400.0, 400.0, 4.8), twist=0.0, layers=layers,
+    rise = 4.8 * K
+    p = P.make_params(slab=(400.0, 400.0, rise), rise=rise, twist=0.0, layers=layers,
                       score_layers=score_layers, protocol="inflate", globule_diameter=60.0,
-                      linker=10)
+                      linker=10, protofilaments=K, pf_rotation=0.0, pf_rise=4.8 if K > 1 else 0.0)
     terms = B.reach_terms(p)
     judged = range(score_layers, layers - score_layers)
-    need = len(judged) * B.ball_union_volume(B.inner_balls(p, p.domains[0]))
-    heights = [k * 4.8 for k in judged]
-    core = (-2.4 + B.CORE_ENTRY, (layers - 1) * 4.8 + 2.4 - B.CORE_ENTRY)
+    need = K * len(judged) * B.ball_union_volume(B.inner_balls(p, p.domains[0]))
+    heights = [k * rise + j * 4.8 for k in judged for j in range(K)]
+    core = (-rise / 2 + B.CORE_ENTRY, (layers - 1) * rise + rise / 2 - B.CORE_ENTRY)
 
     def room(L):
         return _finite_line_volume(B.reach(p, terms, L)[0], heights, core, 1.75 + B.CORE_ENTRY)
@@ -177,8 +181,9 @@ def test_a_finite_fibril_on_a_wide_core_matches_its_closed_form(layers, score_la
     assert closed - 1 <= got["impossible_below"] <= closed
     fails = got["fails_below"]
     assert fails["needed_A3"] == pytest.approx(need, rel=1e-3)
+    assert fails["protofilaments"] == list(range(K))
     # the voxels' room is an upper bound of the exact one, and not far above it (4.8 Å voxels:
-    # 21 % above at 24 layers, measured 2026-11-27)
+    # 21 % above, measured 2026-11-27)
     assert room(fails["linker"]) <= fails["room_A3"] <= 1.25 * room(fails["linker"])
 
 

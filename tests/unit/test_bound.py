@@ -268,6 +268,28 @@ def test_an_anchor_deep_in_a_narrow_slot_needs_the_slot_depth():
     assert B.linker_bound(p)["impossible_below"] > by_hand
 
 
+def test_core_entry_is_the_inner_balls_depth_past_the_core_face():
+    # the bound's third assumption as measured on a layout (docs/model/bound.md#assumptions):
+    # the default box core (x face at 20 Å), the 30 Å sphere's inner ball (r 15 × 0.99043)
+    p = P.make_params(layers=6, linker=3)
+    r = 15.0 * B.uv_fraction()
+    g = p.domains[0].member
+    m = np.tile(np.eye(4), (1, len(chain_x(p)), 1, 1))
+
+    def entry(x, z=0.0):
+        m[0, g, :3, 3] = [x, 0.0, z]
+        return B.core_entry(p, m)
+
+    assert entry(25.0) == pytest.approx(r - 5.0, abs=1e-4)  # 5 Å outside the face
+    assert entry(20.0) == pytest.approx(r, abs=1e-4)
+    assert entry(10.0) == pytest.approx(r + 10.0, abs=1e-4)  # 10 Å inside (11 to the y faces)
+    assert entry(40.0) == 0.0  # clear of it
+    # in layer 3 the core is turned by 3 twists: the point lies x·cos − 20 outside its face
+    assert entry(25.0, 3 * p.rise) == pytest.approx(r - (25.0 * math.cos(3 * p.twist) - 20.0),
+                                                    abs=1e-4)
+    assert entry(25.0, 7 * p.rise) == 0.0  # above the 6-layer stack: no core there
+
+
 # ---- monotone, and its own inequality --------------------------------------------------------
 def test_the_bound_is_where_the_inequalities_start_to_hold():
     p = P.make_params(globule_diameter=50.0, periodic=21, protocol="inflate")

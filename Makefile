@@ -28,7 +28,7 @@ PYTEST = -m pytest --durations=25 --junitxml=out/junit/$@.xml
 TEST_MARK ?= not slow
 
 .PHONY: run test test-unit test-latest test-lts test-52 test-alone test-slow test-cluster \
-	test-blender test-pip old-blender extension bench validate validate-shapes docs clean
+	test-blender test-pip old-blender extension bench validate validate-shapes docs mutate clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -225,6 +225,35 @@ $(VENV)/.docs-installed: $(VENV)/.installed requirements-docs.txt
 # anchor fails the build; the command-line reference is generated from the parser at build time.
 docs: $(VENV)/.docs-installed
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
+
+# Mutation testing (docs/contributing/mutation.md): cosmic-ray, in its own venv, mutates each module
+# whose wrong number is a wrong science answer (tools/mutate/<module>.toml: the module and the
+# tests/unit files that must kill its mutants) in a copy of the tracked files (out/mutate/tree:
+# the checkout is never touched); each module's kill rate and survivors in out/mutate/<module>.txt.
+# Not part of make test: all of bound.py's 2321 mutants take hours. MUTATE_SAMPLE=N runs a
+# seeded sample of N mutants per module (MUTATE_SEED), MUTATE_MODULES a subset.
+MUTATE_VENV ?= .venv-mutate
+MUTATE_MODULES ?= bound answer stretch minimal
+MUTATE_SAMPLE ?=
+MUTATE_SEED ?= 0
+$(MUTATE_VENV)/.installed: requirements-mutate.txt
+	$(PYTHON) -m venv $(MUTATE_VENV)
+	$(MUTATE_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(MUTATE_VENV)/bin/python -m pip install --quiet -r requirements-mutate.txt
+	touch $@
+
+mutate: $(VENV)/.installed $(MUTATE_VENV)/.installed
+	rm -rf out/mutate && mkdir -p out/mutate/tree
+	git ls-files -z | xargs -0 tar -cf - | tar -C out/mutate/tree -xf -
+	cd out/mutate/tree && for m in $(MUTATE_MODULES); do \
+	  $(abspath $(MUTATE_VENV))/bin/cosmic-ray init tools/mutate/$$m.toml ../$$m.sqlite || exit 1; \
+	  if [ -n "$(MUTATE_SAMPLE)" ]; then $(abspath $(MUTATE_VENV))/bin/python \
+	    tools/mutate/sample.py ../$$m.sqlite $(MUTATE_SAMPLE) $(MUTATE_SEED) || exit 1; fi; \
+	  PATH=$(abspath $(VENV))/bin:$$PATH $(abspath $(MUTATE_VENV))/bin/cosmic-ray exec \
+	    tools/mutate/$$m.toml ../$$m.sqlite || exit 1; \
+	  $(abspath $(MUTATE_VENV))/bin/python tools/mutate/report.py ../$$m.sqlite \
+	    | tee ../$$m.txt || exit 1; \
+	done
 
 clean:
 	rm -rf out dist .pytest_cache

@@ -15,17 +15,24 @@ from fibrilfit.model import helix
 from fibrilfit.model.chain import chain_x
 
 
+def cut_disk(s: np.ndarray, c: float) -> np.ndarray:
+    """The area of disks of radii s less their segment past a line c from their centre."""
+    seg = np.where(s > c, s ** 2 * np.arccos(np.minimum(c / np.maximum(s, 1e-12), 1.0))
+                   - c * np.sqrt(np.maximum(s ** 2 - c ** 2, 0.0)), 0.0)
+    return np.pi * s ** 2 - seg
+
+
+def trapezoid(y, x) -> float:
+    """∫ y dx by the trapezoid rule (numpy 2 renamed np.trapz)."""
+    return float((getattr(np, "trapezoid", None) or np.trapz)(y, x))
+
+
 def half_space_room(rho: float, rise: float, c: float) -> float:
     """Per layer, the room around a straight line of anchors `rise` apart, beside a plane c Å
     away (the eroded face of a wide core): ∫ over one rise of (disk − the segment past the
     plane), the disk of the nearest anchor's ball at that height."""
     z = np.linspace(-rise / 2, rise / 2, 20001)
-    s = np.sqrt(np.maximum(rho ** 2 - z ** 2, 0.0))
-    seg = np.where(s > c, s ** 2 * np.arccos(np.minimum(c / np.maximum(s, 1e-12), 1.0))
-                   - c * np.sqrt(np.maximum(s ** 2 - c ** 2, 0.0)), 0.0)
-    area = np.pi * s ** 2 - seg
-    trapezoid = getattr(np, "trapezoid", None) or np.trapz  # numpy 2 renamed it
-    return float(trapezoid(area, z))
+    return trapezoid(cut_disk(np.sqrt(np.maximum(rho ** 2 - z ** 2, 0.0)), c), z)
 
 
 def anchors(p) -> np.ndarray:

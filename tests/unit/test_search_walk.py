@@ -96,6 +96,23 @@ def test_walk_finds_the_minimum_with_a_miss_just_below_it(start):
     assert {4, 5} <= set(w.tried) and len(w.tried) <= 2 * abs(start - 5).bit_length() + 3
 
 
+@pytest.mark.parametrize("start, minimum, path", [
+    (7, 3, [7, 6, 4, 2, 3]),           # down in steps 1, 2; a step past the floor bisects
+    (9, 2, [9, 8, 6, 2, 1]),
+    (9, 5, [9, 8, 6, 2, 4, 5]),        # bracketed by 6 and 2: bisection
+    (1, 12, [1, 2, 4, 8, 16, 12, 10, 11]),  # up in steps 1, 2, 4, 8
+])
+def test_the_walk_gallops_from_the_guess_then_bisects(start, minimum, path):
+    # the method of fibrilfit/search/minimal.py (docs/model/search.md): the path, not only the
+    # answer (a walk that finds the same minimum by more runs costs more)
+    w = minimal.Walk(30.0, start, max_linker=40)
+    asked = []
+    while (L := w.next_linker()) is not None:
+        asked.append(L)
+        w.record(L, 1 if L >= minimum else 0, 1)
+    assert asked == path and w.minimal == minimum
+
+
 def _screened(w, minimum, p_fit=lambda L, seed: True):
     """Drive a walk with restarts as minimal-linker does: a fit needs L >= minimum and the
     seed's own luck (p_fit), seeds run in order; returns the (length, restarts) asked."""

@@ -116,6 +116,30 @@ def test_answer(clashing, grazing, stretch, want):
                     tolerance=0.05) == want
 
 
+def test_a_stretch_one_point_past_the_tolerance_is_still_borderline():
+    # the band's edge is in it: tolerance 0, so |stretch − tolerance| is exactly
+    # BORDERLINE_STRETCH in floating point (at 5 % the sum rounds either way)
+    from fibrilfit.model import answer as A
+    edge = A.BORDERLINE_STRETCH
+    assert A.answer(clashing=0, grazing=0, max_stretch=edge, tolerance=0.0) == "borderline"
+    assert A.answer(clashing=2, grazing=2, max_stretch=edge, tolerance=0.0) == "borderline"
+    assert A.answer(clashing=0, grazing=0, max_stretch=2 * edge, tolerance=0.0) == (
+        "no layout found")
+
+
+def test_an_old_result_gets_its_answer_from_its_pairs():
+    # a result from before the answer existed (no "answer"): counted from its pair lists, 300
+    # grazing pairs of 300 clashing on a long fibril are borderline; no verdict, no answer
+    from fibrilfit.model import answer as A
+    pairs = [[0, k, 0.1] for k in range(300)]
+    old = {"verdict": "failed", "clashing_pairs": pairs, "grazing_pairs": list(pairs),
+           "max_bond_stretch": 0.01, "params": {"stretch_tolerance": 0.05}}
+    assert A.of_result(old) == "borderline"
+    assert A.of_result(old | {"grazing_pairs": pairs[:299]}) == "no layout found"
+    assert A.of_result(old | {"answer": "no exit"}) == "no exit"
+    assert A.of_result({"answer": "fits"}) is None
+
+
 def result(**changes):
     r = {"fibrilfit_version": "0", "blender_version": "5.0.1", "seed": 0, "stage": "check",
          "gravity": [0.1, 0.2, 0.3], "frames_simulated": 91, "settled_at": 91,

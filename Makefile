@@ -233,7 +233,7 @@ docs: $(VENV)/.docs-installed
 # Not part of make test: all of bound.py's 2321 mutants take hours. MUTATE_SAMPLE=N runs a
 # seeded sample of N mutants per module (MUTATE_SEED), MUTATE_MODULES a subset.
 MUTATE_VENV ?= .venv-mutate
-MUTATE_MODULES ?= bound answer stretch minimal
+MUTATE_MODULES ?= bound answer judgement stretch minimal
 MUTATE_SAMPLE ?=
 MUTATE_SEED ?= 0
 $(MUTATE_VENV)/.installed: requirements-mutate.txt

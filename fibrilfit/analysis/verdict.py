@@ -12,6 +12,7 @@ import numpy as np
 
 from ..model import bound, gravity, helix, start_layout
 from ..model.answer import answer
+from ..model.judgement import TOUCH_SLACK, accommodated, compare_checks
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, reach_from_axis
 from .exact import EXACT_CHECKS
@@ -19,9 +20,6 @@ from .envelope import envelope
 from .leaks import members_inside_core
 from .stretch import bond_ends, ends_stretch
 
-# A BVH pair whose spheres are apart by less than this still counts as touching (float32 mesh
-# coordinates, BVH epsilon 1e-5).
-TOUCH_SLACK = 1e-4
 
 
 def _chain_reader(model) -> MatrixReader:
@@ -52,25 +50,6 @@ def scored_chains(p) -> tuple[int, int]:
     """Chains [lo, hi) of the scored layers (chains are layer-major: every protofilament)."""
     lo, hi = scored_range(p)
     return lo * p.protofilaments, hi * p.protofilaments
-
-
-def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,
-                   slack: float = TOUCH_SLACK) -> tuple[list, list]:
-    """Match the BVH's pairs against the sphere check's (pairs deeper than `band`).
-
-    `depth(i, j)` is the spheres' overlap in Å. A pair only the BVH names is a grazing contact
-    when its depth lies in (0, band]: the faceted meshes may or may not cross there. Any other
-    difference contradicts geometry and is a disagreement. Returns (grazing, disagreements),
-    each a sorted list of (i, j, depth).
-    """
-    grazing, disagree = [], []
-    for i, j in sorted(set(bvh_pairs) ^ set(sphere_pairs)):
-        d = float(depth(i, j))
-        if (i, j) in bvh_pairs and -slack < d <= band:
-            grazing.append((i, j, d))
-        else:
-            disagree.append((i, j, d))
-    return grazing, disagree
 
 
 def matrices_with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
@@ -146,7 +125,7 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "core_entry": entry,
         "linker_intact": bool(intact),
-        "accommodated": bool(verdict == "successful" and intact),
+        "accommodated": accommodated(verdict, max_stretch, p.stretch_tolerance),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)
         "answer": answer(clashing=len(clashing), grazing=len(clashes["grazing"]),
                          max_stretch=max_stretch, tolerance=p.stretch_tolerance),

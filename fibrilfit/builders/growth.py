@@ -23,17 +23,12 @@ import numpy as np
 from ..geom.rigid import euler_xyz
 from ..model import helix
 from ..model.chain import rest_lengths
+from ..model.judgement import clear_miss, near_fit
 from .readback import collection_matrices
 from .scene import INDEX, TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
 OVERLAP_TOLERANCE = 0.05  # Å: sphere overlap the fallback judge lets pass (resting contacts)
-# With polish_factor > 1 (off by default) a jammed layout is polished (held again with
-# polish_factor times the substeps and solver iterations) when it is this near a fit: the usual
-# miss in a cell is clash-free or grazing with linkers stretched 6-10 %
-# (docs/model/search.md#polish)
-POLISH_STRETCH = 3.0  # at most this many times the stretch tolerance
-POLISH_OVERLAP = 1.0  # Å: the deepest globule overlap at most this
 
 
 def cycle_gravity(p, cycle: int, first) -> np.ndarray:
@@ -207,29 +202,6 @@ def place_compound_children(scene, objects, children, s: float) -> None:
             w = Matrix(world.tolist())  # (not the child's own: that would move its location)
             for dg in graphs:
                 child.evaluated_get(dg).matrix_world = w
-
-
-def near_fit(p, verdict: dict) -> bool:
-    """A jammed layout worth polishing: shallow overlaps only, linkers stretched at most
-    POLISH_STRETCH times the tolerance."""
-    return (not verdict["accommodated"]
-            and float(verdict.get("max_overlap") or 0.0) <= POLISH_OVERLAP
-            and verdict["max_bond_stretch"] <= POLISH_STRETCH * p.stretch_tolerance)
-
-
-def clear_miss(p, verdict: dict) -> bool:
-    """A judgement that ends the run as a miss whatever cycle it is: not accommodated, not a near
-    miss (near_fit), and at least clear_miss_pairs clashing pairs or its worst bond stretched at
-    least clear_miss_stretch times the tolerance (0 turns either off). Measured before it was on:
-    of 173 runs baked to their end, it would have stopped 85, none of which fitted later
-    (docs/benchmarks.md#stopping-rule-gallery)."""
-    if verdict["accommodated"] or near_fit(p, verdict):
-        return False
-    pairs = verdict["clashing_pairs"]
-    pairs = pairs if isinstance(pairs, int) else len(pairs)
-    return ((p.clear_miss_pairs > 0 and pairs >= p.clear_miss_pairs)
-            or (p.clear_miss_stretch > 0
-                and verdict["max_bond_stretch"] >= p.clear_miss_stretch * p.stretch_tolerance))
 
 
 class Inflate:

@@ -7,7 +7,7 @@ from mathutils import Matrix, Quaternion
 from fibrilfit.model import params as P
 from fibrilfit.model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 from fibrilfit import pipeline
-from fibrilfit.analysis import StretchLog, bond_stretch, bvh_clashes, check_model, compare_checks, grazing_depth, sphere_clashes
+from fibrilfit.analysis import StretchLog, bond_stretch, bvh_clashes, check_model, grazing_depth, sphere_clashes
 from fibrilfit.builders import meshes
 
 
@@ -110,17 +110,6 @@ def test_grazing_band_bounds_what_the_mesh_can_miss(globule_mesh):
     assert 0 < sum(hits[band / 2]) < 25  # turned one way they cross, another way they do not
     assert sphere_clashes(np.array([[0, 0, 0], [30 - band - 0.01, 0, 0]]), 15.0, band) != []
     assert sphere_clashes(np.array([[0, 0, 0], [30 - band + 0.01, 0, 0]]), 15.0, band) == []
-
-
-def test_compare_checks_tells_grazing_from_disagreement():
-    depths = {(0, 1): 2.0, (1, 2): 0.1, (2, 3): -0.5, (3, 4): 0.5, (4, 5): -1e-6}
-    depth = lambda i, j: depths[(i, j)]
-    band = 0.287
-    grazing, disagree = compare_checks({(0, 1), (1, 2), (4, 5)}, {(0, 1)}, depth, band)
-    assert [(i, j) for i, j, _ in grazing] == [(1, 2), (4, 5)] and disagree == []
-    # the BVH names spheres that are apart; the spheres name a pair the BVH missed
-    grazing, disagree = compare_checks({(0, 1), (2, 3)}, {(0, 1), (3, 4)}, depth, band)
-    assert grazing == [] and [(i, j) for i, j, _ in disagree] == [(2, 3), (3, 4)]
 
 
 def test_bvh_keep_counts_only_pairs_with_a_kept_globule(globule_mesh):

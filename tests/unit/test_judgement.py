@@ -75,6 +75,13 @@ def test_a_clear_miss_by_pairs_or_by_stretch_each_at_its_threshold():
     assert not clear_miss(p, _v(pairs=50, stretch=0.1, overlap=0.5))  # a near miss goes on
     off = p.replace(clear_miss_pairs=0, clear_miss_stretch=0.0)
     assert not clear_miss(off, _v(pairs=50, stretch=5.0, overlap=deep))
+    # the smallest settings that are on: one pair, or the tolerance itself (a half at 0 is off)
+    one = p.replace(clear_miss_pairs=1, clear_miss_stretch=0.0)
+    assert clear_miss(one, _v(pairs=1, overlap=deep))
+    assert not clear_miss(one, _v(pairs=0, stretch=5.0, overlap=deep))
+    low = p.replace(clear_miss_pairs=0, clear_miss_stretch=1.0)
+    assert clear_miss(low, _v(stretch=3 * TOL + 1e-6))  # past a near miss, at least 1 x tol
+    assert not clear_miss(low, _v(pairs=50, overlap=deep))
 
 
 def test_the_clear_miss_rule_is_the_rule_replayed_on_the_traces():

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from . import chain, domains, helix
+from . import chain, domains, helix, occupancy
 from .bent_layout import chain_clearance, domain_terminals, real_chain_layout
 from .param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST, MEMORY_PER_OBJECT_KIB, ParamError
 from .param_values import split_unit
@@ -40,6 +40,7 @@ def check_combination(p, force: bool) -> None:
     if p.periodic:
         _check_periodic(p)
     domains.check_shapes(p)
+    occupancy.check_pattern(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "

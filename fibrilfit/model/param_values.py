@@ -96,6 +96,10 @@ def coerce(name: str, value: Any, meta: dict):
         if isinstance(value, (int, float)) and value in (0, 1):
             return bool(value)
         raise ParamError(name, f"must be true or false (got {value!r})")
+    if kind is str and "choices" not in meta:  # free text (a pattern's letters)
+        if not isinstance(value, str):
+            raise ParamError(name, f"must be text (got {value!r})")
+        return value.strip()
     if "choices" in meta:
         text = value.strip().lower() if isinstance(value, str) else value
         if text not in meta["choices"]:

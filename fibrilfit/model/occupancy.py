@@ -1,0 +1,128 @@
+"""Which subunits carry the domain (issue #44): the pattern of a mixed fibril, in one place.
+
+Pure numpy (no bpy). A subunit is one chain of the model: (layer, protofilament), numbered
+layer-major like helix.chain_layers (chain c = layer * K + protofilament). The pattern is drawn
+on the model's own subunits: the fibril's `layers` × K, or a periodic cell's M × K, which the
+cell's images then repeat every M layers (docs/model/occupancy.md#what-fits-at-f-means).
+
+- random: a seeded permutation of the N subunits; its first round(f·N) carry the domain. An
+  exact count, and nested: under one seed a lower fraction's subunits are a subset of a higher
+  one's, so a lower fraction never holds a pair of neighbours a higher one lacks.
+- periodic: every k-th subunit from the first, counted along each protofilament (every k-th
+  layer of each) or over the fibril (layer-major).
+- layers: one letter per layer ('A' the domain, '.' none), repeated along the fibril.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .param_spec import ParamError
+
+# Keeps the pattern's random stream apart from the gravity's and the start layouts' under one
+# seed (start_layout.SEED_SALT is another): a seed fixes the pattern and the start together.
+PATTERN_SALT = 0x0CC0
+LETTERS = {"A": True, ".": False}  # a per-layer pattern's letters: the domain, or none
+SECOND_DOMAIN = "B"  # a hetero-amyloid's second domain: not built yet (issue #44, item 1)
+
+
+def decorated(p, n_layers: int | None = None, n_pf: int | None = None,
+              seed: int | None = None) -> np.ndarray:
+    """bool (layers, protofilaments): True where the subunit carries the domain.
+
+    Defaults: the model's layers (a periodic cell's M), protofilaments and seed. Raises
+    ParamError for a pattern that cannot be drawn (a count of none, a bad letter)."""
+    n_layers = p.layers if n_layers is None else int(n_layers)
+    n_pf = p.protofilaments if n_pf is None else int(n_pf)
+    seed = p.seed if seed is None else int(seed)
+    n = n_layers * n_pf
+    if p.pattern == "random":
+        count = decorated_count(p.occupancy, n)
+        flat = np.zeros(n, dtype=bool)
+        flat[draw_order(n, seed)[:count]] = True
+        return flat.reshape(n_layers, n_pf)
+    if p.pattern == "periodic":
+        if p.pattern_across == "fibril":
+            return (np.arange(n) % p.pattern_period == 0).reshape(n_layers, n_pf)
+        rows = np.arange(n_layers) % p.pattern_period == 0
+        return np.repeat(rows[:, None], n_pf, axis=1)
+    rows = layer_letters(p.pattern_layers)
+    return np.repeat(rows[np.arange(n_layers) % len(rows)][:, None], n_pf, axis=1)
+
+
+def draw_order(n: int, seed: int) -> np.ndarray:
+    """The random pattern's order of N subunits under `seed`: a fraction decorates its first
+    round(f·N). The same for every fraction (what makes the draws nested)."""
+    return np.random.default_rng([int(seed), PATTERN_SALT, int(n)]).permutation(n)
+
+
+def decorated_count(fraction: float, n: int) -> int:
+    """round(f·N) subunits of N, at least one: a count of none is refused (ParamError)."""
+    count = int(np.floor(fraction * n + 0.5))  # half up, not numpy's half to even
+    if count < 1:
+        raise ParamError("occupancy", f"{fraction:g} of {n} subunits rounds to none: at least "
+                                      f"{0.5 / n:.3g} ({100 * 0.5 / n:.3g} %) for this model")
+    return min(count, n)
+
+
+def layer_letters(text: str) -> np.ndarray:
+    """A per-layer pattern's letters as bool per layer. Raises ParamError naming what is allowed."""
+    text = "".join(str(text).split())
+    if not text:
+        raise ParamError("pattern_layers", "needs at least one letter: A (the domain) or . (none)")
+    if SECOND_DOMAIN in text.upper():
+        raise ParamError("pattern_layers", f"{SECOND_DOMAIN} (a second domain) is not built yet: "
+                                           f"use A (the domain) and . (none)")
+    bad = sorted({ch for ch in text.upper() if ch not in LETTERS})
+    if bad:
+        raise ParamError("pattern_layers", f"has {''.join(bad)!r}: only A (the domain) and . "
+                                           f"(none) (got {text!r})")
+    rows = np.array([LETTERS[ch] for ch in text.upper()])
+    if not rows.any():
+        raise ParamError("pattern_layers", f"carries no domain: give at least one A (got {text!r})")
+    return rows
+
+
+def repeat_layers(p) -> int:
+    """Layers after which the pattern repeats along the fibril (a periodic cell must hold a
+    whole number of them); 0 for a random draw, which has no repeat of its own."""
+    if p.pattern == "layers":
+        return len(layer_letters(p.pattern_layers))
+    if p.pattern == "periodic":
+        if p.pattern_across == "fibril":
+            k = p.pattern_period
+            return k // int(np.gcd(k, p.protofilaments))  # k·K/gcd subunits: whole layers
+        return p.pattern_period
+    return 0
+
+
+def is_mixed(p) -> bool:
+    """Whether some subunit lacks the domain (False: every subunit carries it, as before #44)."""
+    if p.pattern == "random":
+        return p.occupancy < 1.0 and decorated_count(p.occupancy, p.chains) < p.chains
+    return not bool(decorated(p).all())
+
+
+def decorated_chains(p) -> np.ndarray:
+    """The chains (layer-major indices) that carry the domain, ascending."""
+    return np.flatnonzero(decorated(p).ravel())
+
+
+def fraction(p) -> float:
+    """The fraction of the model's subunits that carry the domain, as drawn."""
+    return float(decorated(p).mean())
+
+
+def check_pattern(p) -> None:
+    """The pattern's combinations (make_params calls this): one line each, naming the parameter."""
+    if p.pattern != "random" and p.occupancy != 1.0:
+        raise ParamError("occupancy", f"is set by the {p.pattern} pattern (its fraction is "
+                                      f"fixed by it); give occupancy only with pattern random")
+    if p.pattern == "random":
+        decorated_count(p.occupancy, p.chains)
+    if p.pattern == "layers":
+        layer_letters(p.pattern_layers)
+    repeat = repeat_layers(p)
+    if p.periodic and repeat and p.periodic % repeat:
+        raise ParamError("pattern", f"a {p.pattern} pattern repeating every {repeat} layers does "
+                                    f"not fit a cell of {p.periodic} layers: give a cell that is "
+                                    f"a multiple of {repeat} (or 'auto', which rounds up to one)")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import bound, gravity, helix, start_layout
+from ..model import bound, gravity, helix, occupancy, start_layout
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
 from .clashes import bounding_radius, bvh_clashes, reach_from_axis
@@ -48,10 +48,12 @@ def scored_range(p) -> tuple[int, int]:
     return p.score_layers, p.layers - p.score_layers
 
 
-def scored_chains(p) -> tuple[int, int]:
-    """Chains [lo, hi) of the scored layers (chains are layer-major: every protofilament)."""
+def scored_chains(p) -> np.ndarray:
+    """bool per chain of the model (a mixed fibril: its decorated subunits') whether its layer
+    is scored."""
     lo, hi = scored_range(p)
-    return lo * p.protofilaments, hi * p.protofilaments
+    layer, _ = occupancy.model_chain_layers(p)
+    return (layer >= lo) & (layer < hi)
 
 
 def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,
@@ -95,13 +97,13 @@ def check_model(model) -> dict:
     """
     p = model.params
     lo, hi = scored_range(p)
-    c_lo, c_hi = scored_chains(p)
+    kept = scored_chains(p)
     matrices = chain_matrices(model)
     positions = matrices[..., :3, 3]
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = ends_stretch(*bond_ends(p, matrices[c_lo:c_hi]))
+    stretch = ends_stretch(*bond_ends(p, matrices[kept]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
@@ -120,7 +122,7 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     # the bound's third assumption, measured on this layout (docs/model/bound.md#assumptions)
-    entry = bound.core_entry(p, matrices[c_lo:c_hi])
+    entry = bound.core_entry(p, matrices[kept])
     if entry > bound.CORE_ENTRY:
         warnings.append(f"a domain enters the core by {entry:.2f} Å, more than the "
                         f"{bound.CORE_ENTRY} Å the linker bound assumes: this layout is not one "
@@ -164,7 +166,7 @@ def _clash_checks(model) -> dict:
     BVH's intersecting faces and pairs, the shape's exact check's pairs (EXACT_CHECKS), the
     pairs that only graze, and any disagreement beyond the mesh's resolution (warned)."""
     p = model.params
-    c_lo, c_hi = scored_chains(p)
+    kept = scored_chains(p)
     globules = model.globules
     domains = len(p.domains)  # globule g: domain g % D of chain g // D
     exact = EXACT_CHECKS[p.shape.name]
@@ -184,7 +186,7 @@ def _clash_checks(model) -> dict:
     radius = (p.globule_radius if domains == 1 else
               np.tile(np.asarray([d.radius for d in p.domains]), len(everything) // domains))
     scored = np.zeros(len(everything), dtype=bool)
-    scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
+    scored[:n] = True if p.periodic else np.repeat(kept, domains)
 
     def centre_depth(i, j):
         touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
@@ -216,7 +218,7 @@ def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int,
     """Whether each chain's globules clash (None: not scored), and each layer's. `scored`:
     per chain; pair indices are globules (domain g % D of chain g // D)."""
     n = len(scored)
-    layer_of, _ = helix.chain_layers(p)
+    layer_of, _ = occupancy.model_chain_layers(p)
     chain_clash = [False if s else None for s in scored.tolist()]  # None: not scored
     for i, j, _ in clashing:
         for c in (i // domains % n, j // domains % n):  # a periodic cell: an image's globule
@@ -235,7 +237,7 @@ def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
     g // D): each clashing globule's layer and protofilament, and each chain's clash."""
     if p.protofilaments <= 1:
         return {}
-    layer_of, pf_of = helix.chain_layers(p)
+    layer_of, pf_of = occupancy.model_chain_layers(p)
     # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
     name = lambda g: [int(layer_of[g % n // domains]) + g // n * p.layers,  # noqa: E731
                       int(pf_of[g % n // domains])]
@@ -247,7 +249,7 @@ def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
     """Several domains per chain: which domain of which chain clashes (layer, protofilament,
     domain from the core outward, 0 first), and the envelope of each domain and of all."""
     domains = len(p.domains)
-    layer_of, pf_of = helix.chain_layers(p)
+    layer_of, pf_of = occupancy.model_chain_layers(p)
 
     n = len(centres)
 

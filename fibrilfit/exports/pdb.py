@@ -83,7 +83,9 @@ def residue_names(p) -> list[str]:
 
 def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -> str:
     """The PDB file for parameters `p` and [(frame, positions (chains, linker + 1, 3))]."""
-    layers, members = p.chains, chain_members(p)  # "layers": PDB chains, one per chain
+    # "layers": PDB chains, one per chain of the model (a mixed fibril: its decorated ones)
+    layers = len(models[0][1]) if models else p.chains
+    members = chain_members(p)
     names = residue_names(p)
     radii = chain_radii(p)
     labels = [chain_label(k, layers) for k in range(layers)]
@@ -206,5 +208,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     text = pdb_text(p, models, remarks)
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,
-            "atoms_per_model": p.chains * chain_members(p),
+            "atoms_per_model": len(models[0][1]) * chain_members(p),
             **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}

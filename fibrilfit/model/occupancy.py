@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import helix
 from .param_spec import ParamError
 
 # Keeps the pattern's random stream apart from the gravity's and the start layouts' under one
@@ -107,6 +108,16 @@ def decorated_chains(p) -> np.ndarray:
     return np.flatnonzero(decorated(p).ravel())
 
 
+def model_chain_layers(p) -> tuple[np.ndarray, np.ndarray]:
+    """(layer, protofilament) of each of the model's chains: the decorated subunits', in the
+    order model.chain holds them (every subunit's, helix.chain_layers, when all are decorated)."""
+    layer, pf = helix.chain_layers(p)
+    if not is_mixed(p):
+        return layer, pf
+    ids = decorated_chains(p)
+    return layer[ids], pf[ids]
+
+
 def fraction(p) -> float:
     """The fraction of the model's subunits that carry the domain, as drawn."""
     return float(decorated(p).mean())
@@ -121,8 +132,39 @@ def check_pattern(p) -> None:
         decorated_count(p.occupancy, p.chains)
     if p.pattern == "layers":
         layer_letters(p.pattern_layers)
+    if p.periodic and p.bare_tail and is_mixed(p):
+        raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
+                                      "made): use a fibril with ends (periodic 0), or bare_tail 0")
     repeat = repeat_layers(p)
     if p.periodic and repeat and p.periodic % repeat:
         raise ParamError("pattern", f"a {p.pattern} pattern repeating every {repeat} layers does "
                                     f"not fit a cell of {p.periodic} layers: give a cell that is "
                                     f"a multiple of {repeat} (or 'auto', which rounds up to one)")
+
+
+def occupancy_block(p) -> dict:
+    """The result's "occupancy" (a mixed fibril only): what the answer speaks of, the pattern as
+    drawn and where it came from (docs/model/occupancy.md#what-fits-at-f-means)."""
+    mask = decorated(p)
+    layer, pf = np.nonzero(mask)
+    n = int(mask.size)
+    block = {
+        "pattern": p.pattern,
+        "fraction": round(float(mask.mean()), 6),
+        "decorated": int(mask.sum()),
+        "subunits": n,
+        "on": (f"a periodic cell of {p.layers} layers, its pattern repeated every {p.layers} "
+               f"layers of the infinite fibril" if p.periodic else
+               f"a fibril of {p.layers} layers with two ends"),
+        "decorated_subunits": [[int(k), int(j)] for k, j in zip(layer, pf)],
+        "bare_tail": p.bare_tail,
+    }
+    if p.pattern == "random":
+        block.update(occupancy=p.occupancy, drawn_with="seed", seed=p.seed,
+                     draw=f"the first round(f·N) of a permutation of the N subunits "
+                          f"(numpy default_rng([seed, {PATTERN_SALT:#x}, N])): nested in f")
+    elif p.pattern == "periodic":
+        block.update(pattern_period=p.pattern_period, pattern_across=p.pattern_across)
+    else:
+        block.update(pattern_layers=p.pattern_layers)
+    return block

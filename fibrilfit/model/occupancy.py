@@ -96,6 +96,14 @@ def repeat_layers(p) -> int:
     return 0
 
 
+def lattice_period(p) -> int:
+    """Layers of one period of inflate's lattice start in a cell (helix.auto_cell_layers holds
+    whole ones); 1 when there is none."""
+    if getattr(p, "protocol", "tutorial") != "inflate" or not helix.lattice_rows(p):
+        return 1
+    return 2 * helix.lattice_rows(p)
+
+
 def is_mixed(p) -> bool:
     """Whether some subunit lacks the domain (False: every subunit carries it, as before #44)."""
     if p.pattern == "random":
@@ -135,6 +143,9 @@ def check_pattern(p) -> None:
     if p.periodic and p.bare_tail and is_mixed(p):
         raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
                                       "made): use a fibril with ends (periodic 0), or bare_tail 0")
+    if p.bare_tail and p.shape.real and is_mixed(p):
+        raise ParamError("bare_tail", f"is judged against sphere domains only (not yet "
+                                      f"{p.shape.name}): use domain_shape sphere, or bare_tail 0")
     repeat = repeat_layers(p)
     if p.periodic and repeat and p.periodic % repeat:
         raise ParamError("pattern", f"a {p.pattern} pattern repeating every {repeat} layers does "

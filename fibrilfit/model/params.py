@@ -385,9 +385,12 @@ def make_params(*, force: bool = False, **values) -> Params:
     if auto:  # resolved here, once the geometry it depends on is known
         cell = Params(**{**clean, "periodic": 1})
         clean["periodic"] = helix.auto_cell_layers(cell)
-        repeat = occupancy.repeat_layers(cell)  # a whole number of the pattern's repeats
+        # also a whole number of the pattern's repeats (and of inflate's lattice periods, which
+        # auto_cell_layers' cell already holds): the least common multiple
+        repeat = occupancy.repeat_layers(cell)
         if repeat and clean["periodic"] % repeat:
-            clean["periodic"] += repeat - clean["periodic"] % repeat
+            step = math.lcm(repeat, occupancy.lattice_period(cell))
+            clean["periodic"] = -(-clean["periodic"] // step) * step
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)

@@ -240,7 +240,7 @@ class Params:
     occupancy: float = spec(1.0, 1e-6, 1.0, "fraction",
                             "random: the fraction of subunits that carry the domain, an exact "
                             "count round(f·N) of the fibril's (or the cell's) N subunits, drawn "
-                            "with the seed", section="Globule", shown_in="%", question=True)
+                            "with the seed", section="Globule", shown_in="%")
     pattern: str = spec("random", None, None, "",
                         "Which subunits carry the domain: random (a seeded draw of occupancy's "
                         "count), periodic (every pattern_period-th subunit) or layers (the "

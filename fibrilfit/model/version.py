@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7f0f2d791c410aecd3d2937e6c9284bf1cf41af6b78f30bc7ee6b9b04a4c18fd"
+MODEL_SOURCES_SHA256 = "6caa56774ac39568705e5c483d87b0b9cc5747dffbc74f23a628207f56738127"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -179,3 +179,27 @@ def test_a_domain_on_a_bare_tail_does_not_fit(scene, ff):
     assert all(bead == [3, 0, 2] for _, bead, _ in pairs)  # (as built, the globules overlap
     # one another, 9.6 Å apart: the bead sits in its neighbours' too)
     assert not r["accommodated"]
+
+
+def test_the_panel_sets_a_fraction_and_a_pattern(registered):
+    """The domain's section of the sidebar holds the fraction (in %) and the pattern, read into
+    the model's parameters and written back."""
+    from fibrilfit.ui import properties
+    names = [f.name for f in properties.fields_in("Globule")]
+    assert {"occupancy", "pattern", "pattern_period", "pattern_across", "pattern_layers",
+            "bare_tail"} <= set(names)
+    ui = registered
+    assert ui.occupancy == pytest.approx(100.0)
+    ui.occupancy, ui.layers = 25.0, 20
+    p = properties.read_params(ui)
+    assert p.occupancy == 0.25 and occupancy.decorated(p).sum() == 5
+    ui.pattern, ui.pattern_layers, ui.occupancy = "layers", "A..", 100.0
+    assert occupancy.decorated(properties.read_params(ui))[:, 0].tolist()[:6] == \
+        [True, False, False] * 2
+    properties.write_params(ui, ff_params(occupancy=0.1))
+    assert ui.occupancy == pytest.approx(10.0) and ui.pattern == "random"
+
+
+def ff_params(**values):
+    from fibrilfit.model import params
+    return params.make_params(**values)

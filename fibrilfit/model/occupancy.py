@@ -179,3 +179,31 @@ def occupancy_block(p) -> dict:
     else:
         block.update(pattern_layers=p.pattern_layers)
     return block
+
+
+def pattern_words(p) -> str:
+    """The pattern in a few words, for the printed result and the report."""
+    if p.pattern == "random":
+        return f"a random draw of {decorated_count(p.occupancy, p.chains)} of {p.chains}, seed {p.seed}"
+    if p.pattern == "periodic":
+        return (f"every {p.pattern_period}th subunit "
+                f"{'along each protofilament' if p.pattern_across == 'protofilament' else 'over the fibril'}")
+    return f"the layers pattern {p.pattern_layers!r}, repeated"
+
+
+def speaks_of(p) -> str:
+    """What a run's answer at this fraction is about (docs/model/occupancy.md#what-fits-at-f-means)."""
+    where = (f"the infinite fibril that repeats a cell of {p.layers} layers, pattern and all"
+             if p.periodic else f"a fibril of {p.layers} layers with two ends")
+    drawn = " drawn with the run's seed" if p.pattern == "random" else ""
+    return f"this pattern{drawn} on {where}"
+
+
+def report_block(p, restarts: int) -> dict:
+    """report.json's "occupancy": the fraction, the pattern, and what P(fit) counts."""
+    return {"fraction": round(fraction(p), 6), "pattern": p.pattern,
+            "pattern_words": pattern_words(p), "speaks_of": speaks_of(p),
+            "p_fit_counts": ("restarts that each draw their own pattern and start from their seed"
+                             if p.pattern == "random" else
+                             "restarts of one fixed pattern, each its own start"),
+            "restarts": int(restarts)}

@@ -207,3 +207,15 @@ def report_block(p, restarts: int) -> dict:
                              if p.pattern == "random" else
                              "restarts of one fixed pattern, each its own start"),
             "restarts": int(restarts)}
+
+
+def exit_bound(p) -> dict:
+    """The linker bound a mixed fibril keeps: only the buried exit's (no linker up to its
+    residues leaves the core). The excluded-volume inequalities of model/bound.py count every
+    subunit decorated, so below their bound a mixed fibril may still fit: they are not applied
+    (docs/model/occupancy.md#bound)."""
+    return {"impossible_below": int(p.exit_residues) + 1,
+            "method": "the buried exit alone (the excluded-volume bound counts every subunit "
+                      "decorated: not applied to a mixed fibril, docs/model/occupancy.md#bound)",
+            "over": "a mixed fibril: the exit only", "fails_below": None,
+            "exit_residues": int(p.exit_residues)}

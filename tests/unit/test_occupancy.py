@@ -171,3 +171,16 @@ def test_a_case_file_carries_the_fraction_and_the_pattern(tmp_path):
     case.write_text('[params]\noccupancy = "many"\n', encoding="utf-8")
     with pytest.raises(cases.CaseError, match="params.occupancy"):
         cases.load(case)
+
+
+def test_a_mixed_fibril_keeps_only_the_exit_bound():
+    """The excluded-volume bound counts every subunit: it is not a proof for a mixed fibril,
+    which keeps only the exit's bound; at f = 1 the bound is the excluded volume's as before."""
+    from fibrilfit.model import bound
+    base = dict(globule_diameter=50.0, periodic=21, protocol="inflate")
+    full = bound.linker_bound(P.make_params(**base))
+    assert full["impossible_below"] > 1 and "excluded volume" in full["method"]
+    mixed = bound.linker_bound(P.make_params(**base, pattern="periodic", pattern_period=3))
+    assert mixed["impossible_below"] == 1 and mixed["fails_below"] is None
+    assert bound.bound_block(P.make_params(**base, occupancy=0.25, linker=1))["below"] is False
+    assert bound.bound_block(P.make_params(**base, linker=1))["below"] is True

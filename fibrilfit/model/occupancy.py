@@ -184,15 +184,18 @@ def occupancy_block(p) -> dict:
 def pattern_words(p) -> str:
     """The pattern in a few words, for the printed result and the report."""
     if p.pattern == "random":
-        return f"a random draw of {decorated_count(p.occupancy, p.chains)} of {p.chains}, seed {p.seed}"
+        count = decorated_count(p.occupancy, p.chains)
+        return f"a random draw of {count} of {p.chains}, seed {p.seed}"
     if p.pattern == "periodic":
-        return (f"every {p.pattern_period}th subunit "
-                f"{'along each protofilament' if p.pattern_across == 'protofilament' else 'over the fibril'}")
+        how = ("along each protofilament" if p.pattern_across == "protofilament"
+               else "over the fibril")
+        return f"every {p.pattern_period}th subunit {how}"
     return f"the layers pattern {p.pattern_layers!r}, repeated"
 
 
 def speaks_of(p) -> str:
-    """What a run's answer at this fraction is about (docs/model/occupancy.md#what-fits-at-f-means)."""
+    """What a run's answer at this fraction is about
+    (docs/model/occupancy.md#what-fits-at-f-means)."""
     where = (f"the infinite fibril that repeats a cell of {p.layers} layers, pattern and all"
              if p.periodic else f"a fibril of {p.layers} layers with two ends")
     drawn = " drawn with the run's seed" if p.pattern == "random" else ""

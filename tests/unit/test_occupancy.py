@@ -184,3 +184,14 @@ def test_a_mixed_fibril_keeps_only_the_exit_bound():
     assert mixed["impossible_below"] == 1 and mixed["fails_below"] is None
     assert bound.bound_block(P.make_params(**base, occupancy=0.25, linker=1))["below"] is False
     assert bound.bound_block(P.make_params(**base, linker=1))["below"] is True
+
+
+def test_the_restarts_line_says_what_p_fit_counts():
+    from fibrilfit.search import linker_map
+    s = {"accommodated": 6, "restarts": 8, "p_fit": 0.75, "p_fit_interval": [0.41, 0.93],
+         "failed": 0, "best_seed": 5}
+    assert "over" not in linker_map.restarts_line(s)
+    p = P.make_params(layers=16, occupancy=0.5)
+    line = linker_map.restarts_line({**s, "p_fit_counts": O.report_block(p, 8)["p_fit_counts"]})
+    assert "P(fit) 0.75 (95 % Wilson 0.41-0.93) over restarts that each draw their own " \
+           "pattern and start from their seed; best layout: seed 5" in line

@@ -140,6 +140,14 @@ def check_pattern(p) -> None:
         decorated_count(p.occupancy, p.chains)
     if p.pattern == "layers":
         layer_letters(p.pattern_layers)
+    if p.score_layers and is_mixed(p):
+        rows = decorated(p).any(axis=1)[p.score_layers:p.layers - p.score_layers]
+        if not rows.any():
+            raise ParamError("score_layers", f"leaves no decorated subunit to judge: the "
+                                             f"{p.pattern} pattern decorates none of layers "
+                                             f"{p.score_layers}-{p.layers - p.score_layers - 1}; "
+                                             f"score fewer end layers, or change the pattern "
+                                             f"or seed")
     if p.periodic and p.bare_tail and is_mixed(p):
         raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
                                       "made): use a fibril with ends (periodic 0), or bare_tail 0")

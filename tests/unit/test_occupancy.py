@@ -111,6 +111,9 @@ def test_auto_cell_rounds_up_to_the_patterns_repeat():
     (dict(pattern="zigzag"), "pattern", "one of random, periodic, layers"),
     (dict(pattern_period=0), "pattern_period", "from 1"),
     (dict(bare_tail=-1), "bare_tail", "from 0"),
+    (dict(layers=20, score_layers=5, occupancy=0.05, seed=1), "score_layers",
+     "no decorated subunit"),
+    (dict(periodic=14, occupancy=0.5, bare_tail=4), "bare_tail", "periodic cell"),
 ])
 def test_bad_values_get_one_line_naming_the_parameter(values, param, words):
     with pytest.raises(ParamError) as exc:

@@ -221,3 +221,27 @@ def test_the_pdb_of_a_mixed_fibril_names_its_decorated_subunits(scene, ff, tmp_p
     assert sum(line.startswith("ATOM") for line in text.splitlines()) == 2 * members
     assert "(0, 0), (4, 0)" in " ".join(line[11:].strip() for line in text.splitlines()
                                         if line.startswith("REMARK"))
+
+
+def test_the_atoms_of_a_mixed_fibril_keep_every_core_and_only_decorated_domains(ff, scene,
+                                                                                 tmp_path):
+    """`--pdb-atoms` of 6CU7 + ubiquitin decorated every other layer: every subunit's core chain
+    is written (as deposited), linker beads and a domain only on the decorated ones."""
+    gemmi = pytest.importorskip("gemmi")
+    data = ROOT / "tests" / "data"
+    out = tmp_path / "fibril.cif"
+    assert ff.cli.main(["run", "--fibril", str(data / "6cu7.pdb.gz"), "--domain",
+                        str(data / "1ubq.pdb.gz"), "--layers", "4", "--frames", "20",
+                        "--pattern", "layers", "--pattern-layers", "A.", "--pdb-atoms",
+                        str(out), "--json", str(tmp_path / "r.json")]) == 0
+    r = json.loads((tmp_path / "r.json").read_text())
+    pfs = r["params"]["protofilaments"]
+    model = gemmi.read_structure(str(out))[0]
+    names = {ch.name for ch in model}
+    cores = {n for n in names if len(n) == 2}
+    domains = {n for n in names if len(n) == 3}
+    assert len(cores) == 4 * pfs and len(domains) == 2 * pfs
+    assert {n[0] for n in domains} == {"0", "2"}
+    for name in cores:
+        beads = [res for res in model[name] if res.name == "UNK"]
+        assert bool(beads) == (name[0] in "02"), name  # linkers on decorated subunits only

@@ -91,7 +91,18 @@ def test_the_check_judges_only_decorated_domains(scene, ff):
     assert pair["occupancy"]["decorated_subunits"] == [[0, 0], [1, 0], [5, 0], [6, 0]]
     assert pair["max_bond_stretch"] > pair["params"]["stretch_tolerance"]
     assert all(0 <= i < j < 4 for i, j, *_ in pair["clashing_pairs"])
-    assert {k for k, c in enumerate(pair["layer_clashes"]) if c} <= {0, 1, 5, 6}
+
+
+def test_clashes_are_named_in_the_decorated_subunits_layers(scene, ff):
+    """Checked as built (the tutorial's start: neighbouring globules overlap), decorated layers
+    0, 1, 5 and 6 of 10 clash: the check names chains 0-3 and flags exactly those layers."""
+    p = ff.model.params.make_params(layers=10, linker=1, pattern="layers", pattern_layers="AA...")
+    model = ff.builders.build_model(p, scene)
+    r = ff.analysis.check_model(model)
+    assert r["verdict"] == "intersection"
+    assert {tuple(q[:2]) for q in r["clashing_pairs"]} >= {(0, 1), (2, 3)}
+    assert all(0 <= i < j < 4 for i, j, *_ in r["clashing_pairs"])
+    assert [k for k, c in enumerate(r["layer_clashes"]) if c] == [0, 1, 5, 6]
 
 
 def test_a_lower_nested_fraction_never_needs_a_longer_linker(scene, ff):
@@ -166,24 +177,24 @@ def test_cli_runs_a_mixed_fibril_and_its_json_meets_the_schema(tmp_path):
 
 
 def test_a_domain_on_a_bare_tail_does_not_fit(scene, ff):
-    """The check judges decorated domains against undecorated subunits' bare tails too: a tail
-    bead moved into a globule is named, with its depth, and the run is not accommodated; the
-    tails as built (straight out from their anchors) touch no domain."""
+    """The check judges decorated domains against undecorated subunits' bare tails too. Built
+    with its domains 7 layers (33.6 Å) apart, the model is clean; a tail bead moved into a
+    globule is named with its depth, and that alone makes the run not accommodated."""
     from mathutils import Matrix
-    p = ff.model.params.make_params(layers=6, linker=8, pattern="layers", pattern_layers="A.",
-                                    bare_tail=3, frames=1)
+    p = ff.model.params.make_params(layers=15, linker=8, pattern="layers",
+                                    pattern_layers="A......", bare_tail=3, frames=1)
     model = ff.builders.build_model(p, scene)
     clean = ff.analysis.check_model(model)
-    assert clean["tail_clashes"]["pairs"] == [] and clean["tail_clashes"]["beads"] == 9
-    bead = model.tails[1][2]  # layer 3's last bead, into layer 2's globule
-    centre = model.chain[1][-1].matrix_world.translation
-    bead.matrix_world = Matrix.Translation(centre)
+    assert clean["tail_clashes"]["pairs"] == [] and clean["tail_clashes"]["beads"] == 12 * 3
+    assert clean["verdict"] == "successful" and clean["accommodated"]
+    bead = model.tails[3][2]  # layer 4's last bead, into layer 7's globule
+    assert (bead["fibrilfit_layer"], len(model.chain)) == (4, 3)
+    bead.matrix_world = Matrix.Translation(model.chain[1][-1].matrix_world.translation)
     r = ff.analysis.check_model(model)
-    pairs = r["tail_clashes"]["pairs"]
-    assert [1, [3, 0, 2], pytest.approx(p.globule_radius + p.residue_radius, abs=1e-3)] in pairs
-    assert all(bead == [3, 0, 2] for _, bead, _ in pairs)  # (as built, the globules overlap
-    # one another, 9.6 Å apart: the bead sits in its neighbours' too)
-    assert not r["accommodated"]
+    assert r["tail_clashes"]["pairs"] == [[1, [4, 0, 2], pytest.approx(
+        p.globule_radius + p.residue_radius, abs=1e-3)]]
+    assert r["verdict"] == "successful" and r["linker_intact"] and not r["accommodated"]
+    assert r["answer"] != "fits"
 
 
 def test_the_panel_sets_a_fraction_and_a_pattern(registered):

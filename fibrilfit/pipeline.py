@@ -10,7 +10,7 @@ from typing import Callable
 
 import bpy
 
-from .model import bound, params as P
+from .model import bound, occupancy, params as P
 from .model import terminus, version as model_version
 from .model.chain import rest_lengths
 from .analysis import StretchLog, check_model, scored_chains
@@ -41,7 +41,7 @@ class Baking:
     def __init__(self, model, scene=None):
         self.model, self.scene = model, scene or bpy.context.scene
         p = model.params
-        self.stretch = StretchLog(rest_lengths(p), p.stretch_tolerance, slice(*scored_chains(p)))
+        self.stretch = StretchLog(rest_lengths(p), p.stretch_tolerance, scored_chains(p))
         self.stats = BakeStats()
         # Hooks that judge a layout mid-bake (inflate) use the same check as the verdict.
         self.hooks = frame_hooks(model, self.scene, judge=check_model)
@@ -116,6 +116,8 @@ def describe(p: P.Params) -> dict:
         "params": p.to_dict(),
         "seed": p.seed,
         "gravity": list(draw_gravity(p)),
+        # a mixed fibril: which subunits carry the domain, drawn with the seed (none at f = 1)
+        **({"occupancy": occupancy.occupancy_block(p)} if occupancy.is_mixed(p) else {}),
     }
 
 

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import bound, gravity, helix, start_layout
+from ..model import bound, gravity, helix, occupancy, start_layout
 from ..model.answer import answer
 from ..model.judgement import TOUCH_SLACK, accommodated, compare_checks
 from ..builders.readback import MatrixReader
-from .clashes import bounding_radius, bvh_clashes, reach_from_axis
+from ..builders.scene import LAYER, PROTOFILAMENT
+from .clashes import bounding_radius, bvh_clashes, reach_from_axis, sphere_band
 from .exact import EXACT_CHECKS
 from .envelope import envelope
 from .leaks import members_inside_core
@@ -46,10 +47,12 @@ def scored_range(p) -> tuple[int, int]:
     return p.score_layers, p.layers - p.score_layers
 
 
-def scored_chains(p) -> tuple[int, int]:
-    """Chains [lo, hi) of the scored layers (chains are layer-major: every protofilament)."""
+def scored_chains(p) -> np.ndarray:
+    """bool per chain of the model (a mixed fibril: its decorated subunits') whether its layer
+    is scored."""
     lo, hi = scored_range(p)
-    return lo * p.protofilaments, hi * p.protofilaments
+    layer, _ = occupancy.model_chain_layers(p)
+    return (layer >= lo) & (layer < hi)
 
 
 def matrices_with_images(p, matrices: np.ndarray, mesh_radius: float) -> tuple[np.ndarray, int]:
@@ -74,19 +77,21 @@ def check_model(model) -> dict:
     """
     p = model.params
     lo, hi = scored_range(p)
-    c_lo, c_hi = scored_chains(p)
+    kept = scored_chains(p)
     matrices = chain_matrices(model)
     positions = matrices[..., :3, 3]
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = ends_stretch(*bond_ends(p, matrices[c_lo:c_hi]))
+    stretch = ends_stretch(*bond_ends(p, matrices[kept]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
                                                            hi, domains)
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
+    tails = (tail_clashes(model, clashes["centres"], np.repeat(kept, domains)) if model.tails
+             else None)  # a mixed fibril's bare tails against the decorated domains
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
     chains = _chain_blocks(p, clashing, chain_clash, n, domains)
     if domains > 1:
@@ -99,7 +104,7 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     # the bound's third assumption, measured on this layout (docs/model/bound.md#assumptions)
-    entry = bound.core_entry(p, matrices[c_lo:c_hi])
+    entry = bound.core_entry(p, matrices[kept])
     if entry > bound.CORE_ENTRY:
         warnings.append(f"a domain enters the core by {entry:.2f} Å, more than the "
                         f"{bound.CORE_ENTRY} Å the linker bound assumes: this layout is not one "
@@ -125,9 +130,11 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "core_entry": entry,
         "linker_intact": bool(intact),
-        "accommodated": accommodated(verdict, max_stretch, p.stretch_tolerance),
+        "accommodated": accommodated(verdict, max_stretch, p.stretch_tolerance,
+                                     tail_pairs=len((tails or {}).get("pairs", ()))),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)
-        "answer": answer(clashing=len(clashing), grazing=len(clashes["grazing"]),
+        "answer": answer(clashing=len(clashing) + len((tails or {}).get("pairs", ())),
+                         grazing=len(clashes["grazing"]),
                          max_stretch=max_stretch, tolerance=p.stretch_tolerance),
         "scored_layers": [lo, hi - 1],
         "layer_clashes": layer_clash,
@@ -135,7 +142,29 @@ def check_model(model) -> dict:
         "globule_centres": np.round(centres, 4).tolist(),
         "envelope": overall,
         **periodic,
+        **({"tail_clashes": tails} if tails is not None else {}),
     }
+
+
+def tail_clashes(model, centres: np.ndarray, scored: np.ndarray) -> dict:
+    """A mixed fibril's bare tails against the scored domains (spheres: param_checks refuses
+    bare tails beside real shapes): every (globule, tail bead) overlapping by more than the
+    sphere check's tolerance, as [globule, [layer, protofilament, bead], depth]. A domain that
+    sits on an undecorated subunit's tail does not fit, as one on another domain does not
+    (docs/model/occupancy.md#the-model)."""
+    p = model.params
+    beads = MatrixReader([ob for t in model.tails for ob in t], model.root.children).positions()
+    where = [(t[0][LAYER], t[0].get(PROTOFILAMENT, 0), i)
+             for t in model.tails for i in range(len(t))]
+    radius = np.array([d.radius for d in p.domains])[np.arange(len(centres)) % len(p.domains)]
+    tol = sphere_band(p.globule_radius)
+    depth = (radius[:, None] + p.residue_radius
+             - np.linalg.norm(centres[:, None] - beads[None], axis=-1))
+    hits = np.argwhere((depth > tol) & scored[:, None])
+    return {"tolerance": round(tol, 4), "beads": len(beads),
+            "pairs": [[int(g), [int(x) for x in where[b]], round(float(depth[g, b]), 4)]
+                      for g, b in hits.tolist()],
+            "max_depth": round(float(depth.max()), 4) if depth.size else 0.0}
 
 
 def _clash_checks(model) -> dict:
@@ -143,7 +172,7 @@ def _clash_checks(model) -> dict:
     BVH's intersecting faces and pairs, the shape's exact check's pairs (EXACT_CHECKS), the
     pairs that only graze, and any disagreement beyond the mesh's resolution (warned)."""
     p = model.params
-    c_lo, c_hi = scored_chains(p)
+    kept = scored_chains(p)
     globules = model.globules
     domains = len(p.domains)  # globule g: domain g % D of chain g // D
     exact = EXACT_CHECKS[p.shape.name]
@@ -163,7 +192,7 @@ def _clash_checks(model) -> dict:
     radius = (p.globule_radius if domains == 1 else
               np.tile(np.asarray([d.radius for d in p.domains]), len(everything) // domains))
     scored = np.zeros(len(everything), dtype=bool)
-    scored[slice(0, n) if p.periodic else slice(c_lo * domains, c_hi * domains)] = True
+    scored[:n] = True if p.periodic else np.repeat(kept, domains)
 
     def centre_depth(i, j):
         touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
@@ -195,7 +224,7 @@ def _clashes_by_chain_and_layer(p, clashing, scored, lo: int, hi: int,
     """Whether each chain's globules clash (None: not scored), and each layer's. `scored`:
     per chain; pair indices are globules (domain g % D of chain g // D)."""
     n = len(scored)
-    layer_of, _ = helix.chain_layers(p)
+    layer_of, _ = occupancy.model_chain_layers(p)
     chain_clash = [False if s else None for s in scored.tolist()]  # None: not scored
     for i, j, _ in clashing:
         for c in (i // domains % n, j // domains % n):  # a periodic cell: an image's globule
@@ -214,7 +243,7 @@ def _chain_blocks(p, clashing, chain_clash, n: int, domains: int = 1) -> dict:
     g // D): each clashing globule's layer and protofilament, and each chain's clash."""
     if p.protofilaments <= 1:
         return {}
-    layer_of, pf_of = helix.chain_layers(p)
+    layer_of, pf_of = occupancy.model_chain_layers(p)
     # an image's chain c + m·n is layer (its layer + m·M) of the infinite fibril
     name = lambda g: [int(layer_of[g % n // domains]) + g // n * p.layers,  # noqa: E731
                       int(pf_of[g % n // domains])]
@@ -226,7 +255,7 @@ def _domain_blocks(p, clashing, centres, scored, reach=None) -> dict:
     """Several domains per chain: which domain of which chain clashes (layer, protofilament,
     domain from the core outward, 0 first), and the envelope of each domain and of all."""
     domains = len(p.domains)
-    layer_of, pf_of = helix.chain_layers(p)
+    layer_of, pf_of = occupancy.model_chain_layers(p)
 
     n = len(centres)
 

@@ -13,6 +13,9 @@ COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "anchor": (0.25, 0.25, 0.3, 1.0),
     "residue": (0.95, 0.75, 0.2, 1.0),
     "globule": (0.7, 0.72, 0.7, 1.0),
+    # an undecorated subunit's bare tail (a mixed fibril): grey-blue, apart from the decorated
+    # chains' yellow linkers, so the picture shows which subunits carry the domain
+    "tail": (0.42, 0.45, 0.55, 1.0),
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
 # A grazing pair (only the BVH names it, within the mesh's resolution:

@@ -21,7 +21,7 @@ from typing import Callable
 import numpy as np
 
 from ..geom.rigid import euler_xyz
-from ..model import helix
+from ..model import helix, occupancy
 from ..model.chain import rest_lengths
 from ..model.judgement import clear_miss, near_fit
 from .readback import collection_matrices
@@ -128,17 +128,19 @@ def settle_tags(scene) -> None:
             layer.update()
 
 
-def sphere_judge(p, positions: np.ndarray, scored: slice) -> dict:
+def sphere_judge(p, positions: np.ndarray, scored) -> dict:
     """The fallback judgement: no scored globule pair overlapping by more than
-    OVERLAP_TOLERANCE and every scored bond within the stretch tolerance."""
+    OVERLAP_TOLERANCE and every scored bond within the stretch tolerance. `scored`: bool per
+    chain of the model (analysis.scored_chains), or a slice of them."""
     rest = np.asarray(rest_lengths(p), dtype=float)
     stretch = np.linalg.norm(np.diff(positions[scored], axis=1), axis=-1) / rest - 1.0
     worst = float(stretch.max()) if stretch.size else 0.0
     members = [d.member for d in p.domains]
     centres = positions[:, members].reshape(-1, 3)  # one domain: positions[:, -1]
     domains = len(members)
-    keep = np.zeros(len(centres), dtype=bool)
-    keep[scored.start * domains:scored.stop * domains] = True
+    keep = np.zeros(len(positions), dtype=bool)
+    keep[scored] = True
+    keep = np.repeat(keep, domains)
     centres, _ = centres_with_images(p, centres)
     keep = np.concatenate([keep, np.zeros(len(centres) - len(keep), dtype=bool)])
     radii = globule_radii(p, len(centres))
@@ -215,8 +217,9 @@ class Inflate:
         self.globules = next(c for c in model.root.children if c.get(TAG) == "globules")
         self.full = globule_scales(self.p, self.globules.objects)  # None: one domain
         self.compounds = compound_children(self.globules) if self.p.shape.compound else None
-        n, skip = len(model.chain), self.p.score_layers * self.p.protofilaments
-        self.scored = slice(skip, n - skip)  # chains are layer-major: every protofilament
+        # the scored layers' chains (a mixed fibril: of its decorated subunits)
+        layer, _ = occupancy.model_chain_layers(self.p)
+        self.scored = (layer >= self.p.score_layers) & (layer < self.p.layers - self.p.score_layers)
         self.cycle, self.grow_from, self.grow_start = 0, None, 1
         self.holding, self.hold_start, self.quiet, self.prev = False, 0, 0, None
         self.finished, self.gravity, self.scale = False, None, None

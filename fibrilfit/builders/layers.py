@@ -1,14 +1,21 @@
 """The bodies of each layer: one part of one layer at a time (the tutorial's order), sharing
 meshes and the precomputed layer geometry, then every transform and colour set in bulk
-(LayerBuilder.place). How each domain shape is drawn: GLOBULE_MESHES."""
+(LayerBuilder.place). How each domain shape is drawn: GLOBULE_MESHES.
+
+A mixed fibril (model/occupancy.py): only the decorated subunits get a chain (anchor, linker,
+domains); the others get nothing, or their bare tail (role "tail", bonds "tail_bond"), kept
+apart from the chains so that every chain of model.chain is whole
+(docs/model/occupancy.md#the-model)."""
 from __future__ import annotations
+
+import dataclasses
 
 import bpy
 import numpy as np
 
 from ..geom import shape
 from ..geom.rigid import euler_xyz, joint_rotations
-from ..model import helix, params as P
+from ..model import helix, occupancy, params as P
 from ..model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS, RESIDUE_RINGS, RESIDUE_SEGMENTS
 from ..model.bent_layout import domain_terminals, real_chain_layout, spread_chains
 from ..model.start_layout import (bond_pivots, inflate_layout, rest_positions, spread_layout,
@@ -45,6 +52,13 @@ class LayerBuilder:
             # (docs/model/domain-shapes.md#spheres-start)
             self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
         self.domain_at = {d.member: d for d in p.domains}  # each domain by its place
+        # which subunits carry the domain (chain c, layer-major); model.chain holds those only,
+        # in the same order: self.slot[c] is chain c's place in it
+        self.decorated = occupancy.decorated(p).ravel()
+        self.slot = {}
+        self.tail = tail_members(p) if not self.decorated.all() else 0
+        if self.tail:
+            self.tail_pos, self.tail_pivots = tail_layout(p, self.tail)
         self.mesh = {}
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
@@ -118,6 +132,10 @@ class LayerBuilder:
     def _chain_member(self, k, j, i):
         p = self.p
         c = k * self.pfs + j
+        if not self.decorated[c]:  # an undecorated subunit: its bare tail's beads, if any
+            if i < self.tail:
+                self._tail_member(k, j, i)
+            return
         role = "anchor" if i == 0 else ("globule" if i in self.domain_at else "residue")
         # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
         domain = self.domain_at[i].index if role == "globule" and p.shape.real else 0
@@ -132,11 +150,40 @@ class LayerBuilder:
         self.placed[role].append((ob, c, i))
         chain = self.model.chain
         if i == 0:
+            self.slot[c] = len(chain)
             chain.append([])
             self.model.constraints.append([])
-        chain[c].append(ob)
+        chain[self.slot[c]].append(ob)
         if i > 0:
             self._bond(k, j, i - 1)
+
+    def _tail_member(self, k, j, i):
+        """Bead i of an undecorated subunit's bare tail (0: its passive anchor), bonded to the
+        one before; in the tails' own collections (tails_collections)."""
+        if "tail" not in self.parts:
+            self.parts.update(tails_collections(self.model.root))
+            self.placed.update(tail=[], tail_bond=[])
+        c = k * self.pfs + j
+        ob = _body(f"{self._name(k, j)} tail {i}", self._shared_mesh("residue"), "tail", k,
+                   self.parts, self.bodies, "PASSIVE" if i == 0 else "ACTIVE", "SPHERE")
+        ob[INDEX], ob[PROTOFILAMENT] = i, j
+        self.placed["tail"].append((ob, c, i))
+        if i == 0:
+            self.slot[c] = len(self.model.tails)
+            self.model.tails.append([])
+        members = self.model.tails[self.slot[c]]
+        members.append(ob)
+        if i > 0:
+            empty = tag(bpy.data.objects.new(f"{self._name(k, j)} tail bond {i - 1}", None),
+                        "tail_bond")
+            empty[LAYER], empty[INDEX], empty[PROTOFILAMENT] = k, i - 1, j
+            self.placed["tail_bond"].append((empty, c, i - 1))
+            self.parts["tail_bond"].objects.link(empty)
+            self.bonds.objects.link(empty)
+            rbc = empty.rigid_body_constraint
+            rbc.type = "POINT"
+            rbc.object1, rbc.object2 = members[i - 1], members[i]
+            rbc.disable_collisions = True
 
     def _real_globule(self, ob, k, domain=0):
         """A hull keeps Bullet's surface its margin (domains.HULL_MARGIN) outside its mesh (the
@@ -168,7 +215,7 @@ class LayerBuilder:
     def _bond(self, k, j, i):
         """The POINT constraint between members i and i + 1 of protofilament j's chain in layer k."""
         c = k * self.pfs + j
-        members = self.model.chain[c]
+        members = self.model.chain[self.slot[c]]
         empty = tag(bpy.data.objects.new(f"{self._name(k, j)} bond {i}", None), "bond")
         empty[LAYER], empty[INDEX], empty[PROTOFILAMENT] = k, i, j
         self.placed["bond"].append((empty, c, i))
@@ -178,14 +225,16 @@ class LayerBuilder:
         rbc.type = "POINT"
         rbc.object1, rbc.object2 = members[i], members[i + 1]
         rbc.disable_collisions = True
-        self.model.constraints[c].append(empty)
+        self.model.constraints[self.slot[c]].append(empty)
 
     def _anchor(self, k):
         self._member(k, 0)
 
     def _linker(self, k):
         for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
-            for i in range(1, self.p.free_linker):
+            # (an undecorated subunit: its whole bare tail, however long)
+            last = self.p.free_linker if self.decorated[k * self.pfs + j] else self.tail
+            for i in range(1, last):
                 self._chain_member(k, j, i)
 
     def _globule(self, k):
@@ -230,9 +279,11 @@ class LayerBuilder:
             if role == "slab":
                 loc = np.zeros((len(k), 3))
                 loc[:, 2] = self.height[k]
+            elif role.startswith("tail"):
+                loc = (self.tail_pivots if role == "tail_bond" else self.tail_pos)[k, i]
             else:
                 loc = (self.pivots if role == "bond" else self.pos)[k, i]
-            rot_z = (np.zeros(len(k)) if role == "bond" else
+            rot_z = (np.zeros(len(k)) if role in ("bond", "tail_bond") else
                      self.angle[k] if role == "slab" else self.chain_angle[k])
             scale = self._domain_scale(i) if role == "globule" else None
             _place(objects, loc, rot_z, scale=scale)
@@ -241,7 +292,7 @@ class LayerBuilder:
                 self._turn_globules(objects, k, loc, self.turns[k, dom])
             elif role == "globule" and self.p.shape.real:  # one domain a chain
                 self._turn_globules(objects, k, loc)
-            if role == "bond":
+            if role in ("bond", "tail_bond"):
                 objects.foreach_set("empty_display_size",
                                     np.full(len(k), self.p.residue_radius, np.float32))
             else:
@@ -276,6 +327,28 @@ class LayerBuilder:
             coll = _in_order(self.spheres_coll, [child for child, _ in children])
             coll.foreach_set("matrix_world",
                              child_world.transpose(0, 2, 1).astype(np.float32).ravel())
+
+
+def tail_members(p) -> int:
+    """Beads of an undecorated subunit's bare tail the model builds: `bare_tail` from the
+    buried anchor, less the residues its exit spends (as for the linker; 0: none)."""
+    return max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
+
+
+def tail_layout(p, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """A bare tail of n beads at every subunit: rest places (chains, n, 3) and its bonds'
+    pivots (chains, n - 1, 3), straight out from the anchor along the chain's own line (a
+    one-sphere chain as long as the tail, whose first n members are the beads)."""
+    q = dataclasses.replace(p, linker=p.exit_residues + n + 1, domain_shape="sphere",
+                            domain_diameters=None, domain_linker=None)
+    return rest_positions(q)[:, :n], bond_pivots(q)[:, :n - 1]
+
+
+def tails_collections(root) -> dict:
+    """The bare tails' collections under the model's root, made on first use (a model without
+    tails has none): {"tail": beads, "tail_bond": their bonds}."""
+    return {"tail": new_collection("FibrilFit bare tails", "tails", root),
+            "tail_bond": new_collection("FibrilFit bare tail bonds", "tail_bonds", root)}
 
 
 # How each shape of model.domains.SHAPES is drawn: its mesh from its name and rows.

@@ -6,7 +6,7 @@ bodies of each layer: layers.py; the parameters a model root stores: stored.py; 
 colours.py."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import bpy
 
@@ -24,13 +24,16 @@ class Model:
 
     Chains are layer-major: chain c is protofilament c % K of layer c // K (helix.chain_layers);
     with one protofilament, chain c is layer c. `slabs[k]`: layer k's core. `constraints[c]`:
-    chain c's bonds."""
+    chain c's bonds. A mixed fibril (model/occupancy.py): `chain` holds the decorated subunits'
+    chains only, in the same order (occupancy.decorated_chains(params) names them); `tails[t]`
+    is an undecorated subunit's bare tail (when bare_tail asks for one)."""
 
     root: bpy.types.Collection
     params: P.Params
     slabs: list
     chain: list
     constraints: list
+    tails: list = field(default_factory=list)
 
     @property
     def globules(self) -> list:
@@ -50,7 +53,7 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
     if root is None:
         return None
     p = params_of(root)
-    slabs, chain, cons = {}, {}, {}
+    slabs, chain, cons, tails = {}, {}, {}, {}
     # Not root.all_objects: Blender rebuilds that cache in O(n²) after any change (4.5 s for
     # 14,000 objects, measured on 5.0.1); each collection's own objects are a plain list.
     for ob in (ob for coll in (root, *root.children_recursive) for ob in coll.objects):
@@ -62,9 +65,12 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
             chain.setdefault(key, {})[ob[INDEX]] = ob
         elif role == "bond":
             cons.setdefault(key, {})[ob[INDEX]] = ob
+        elif role == "tail":
+            tails.setdefault(key, {})[ob[INDEX]] = ob
     ordered = lambda d: [d[i] for i in sorted(d)]
     return Model(root, p, ordered(slabs), [ordered(chain[k]) for k in sorted(chain)],
-                 [ordered(cons[k]) for k in sorted(cons)])
+                 [ordered(cons[k]) for k in sorted(cons)],
+                 [ordered(tails[k]) for k in sorted(tails)])
 
 
 PARTS = ("slab", "anchor", "linker", "globule")  # one layer's parts, in the tutorial's order

@@ -96,7 +96,8 @@ def add_param_options(parser: argparse.ArgumentParser, *, as_lists: bool = False
                                help=help_ + ("; a JSON list of [x, y]; 'box' for the slab's box"
                                              + ("; several: comma-separated" if as_lists else "")))
         else:
-            group.add_argument(option(f.name), metavar="LIST" if as_lists else "N", help=help_)
+            word = "TEXT" if meta["kind"] is str else "N"  # free text: a pattern's letters
+            group.add_argument(option(f.name), metavar="LIST" if as_lists else word, help=help_)
 
 
 def add_case_option(parser: argparse.ArgumentParser) -> None:

@@ -19,7 +19,7 @@ import string
 import numpy as np
 
 from .. import files
-from ..model import helix
+from ..model import helix, occupancy
 from ..model.chain import chain_radii
 
 ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",
@@ -99,7 +99,9 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
     if len(domain_members) != n_dom:
         raise AtomsError(f"{n_dom} globules per chain but {len(domain_members)} domain places")
     angle, height = helix.chain_transforms(p)
-    layer, pf = helix.chain_layers(p)
+    ids = occupancy.decorated_chains(p)  # the chains' subunits (a mixed fibril: decorated ones)
+    layer, pf = (a[ids] for a in helix.chain_layers(p))
+    angle, height = angle[ids], height[ids]
     radii = np.asarray(_member_radii(p, members))
     table = _Table()
     core = sources.core
@@ -137,6 +139,16 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
                           dname, entity_of_domain[d], hetero=True)
                 number = None
             start = member + 1
+    if core:  # a mixed fibril's undecorated subunits: their core chains alone
+        a, h = helix.chain_transforms(p)
+        for c in np.setdiff1d(np.arange(p.chains), ids).tolist():
+            k, j = c // p.protofilaments, c % p.protofilaments
+            atoms = core[j % len(core)]
+            ca, sa = np.cos(a[c]), np.sin(a[c])
+            x, y, z = atoms.xyz.T
+            xyz = np.stack([ca * x - sa * y, sa * x + ca * y, z + h[c]], axis=1)
+            table.add(xyz, atoms.name, atoms.element, atoms.resname, atoms.resnum, atoms.b,
+                      chain_name(k, j), 1)
     return table.joined()
 
 

@@ -21,10 +21,12 @@ POLISH_STRETCH = 3.0  # at most this many times the stretch tolerance
 POLISH_OVERLAP = 1.0  # Å: the deepest globule overlap at most this
 
 
-def accommodated(verdict: str, max_stretch: float, tolerance: float) -> bool:
+def accommodated(verdict: str, max_stretch: float, tolerance: float, tail_pairs: int = 0) -> bool:
     """The run's yes or no (docs/reference/glossary.md#outcome-words): the mesh test found no
-    crossing ("successful") and the worst scored bond is within the stretch tolerance."""
-    return verdict == "successful" and max_stretch <= tolerance
+    crossing ("successful"), the worst scored bond is within the stretch tolerance, and no
+    undecorated subunit's bare tail is inside a domain (a mixed fibril's `tail_pairs`,
+    docs/model/occupancy.md)."""
+    return verdict == "successful" and max_stretch <= tolerance and tail_pairs == 0
 
 
 def compare_checks(bvh_pairs, sphere_pairs, depth, band: float,

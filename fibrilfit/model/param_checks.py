@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from . import chain, domains, helix
+from . import chain, domains, helix, occupancy
 from .bent_layout import chain_clearance, domain_terminals, real_chain_layout
 from .param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST, MEMORY_PER_OBJECT_KIB, ParamError
 from .param_values import split_unit
@@ -40,6 +40,7 @@ def check_combination(p, force: bool) -> None:
     if p.periodic:
         _check_periodic(p)
     domains.check_shapes(p)
+    occupancy.check_pattern(p)
     if 2 * p.score_layers >= p.layers:
         raise ParamError("score_layers", f"must leave at least one layer: from 0 to "
                                          f"{(p.layers - 1) // 2} for {p.layers} layers "
@@ -63,11 +64,17 @@ def check_combination(p, force: bool) -> None:
 def estimated_objects(p) -> int:
     """Objects a build makes: exact without an outline, at most this with one.
 
-    Per layer a slab; per chain an anchor, (linker-1) residues, a globule and `linker`
-    constraint empties. An outline's core adds its convex pieces per layer: the n - 2
-    triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
+    Per layer a slab; per decorated chain an anchor, (linker-1) residues, a globule and `linker`
+    constraint empties; per undecorated subunit its bare tail's beads and bonds. An outline's
+    core adds its convex pieces per layer: the n - 2 triangles of its n corners, fewer where
+    they merge (builders/meshes.convex_pieces)."""
     pieces = 0 if p.core_outline is None else len(p.core_outline) - 2
-    return p.layers * (1 + pieces + p.protofilaments * (2 * chain.chain_members(p) - 1))
+    if p.pattern == "random" and p.occupancy == 1.0:  # every subunit decorated (as before #44)
+        return p.layers * (1 + pieces + p.protofilaments * (2 * chain.chain_members(p) - 1))
+    decorated = int(occupancy.decorated(p).sum())  # a mixed fibril: the bare tails' beads
+    tail = max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
+    return (p.layers * (1 + pieces) + decorated * (2 * chain.chain_members(p) - 1)
+            + (p.chains - decorated) * max(0, 2 * tail - 1))
 
 
 def check_real_start(p) -> None:

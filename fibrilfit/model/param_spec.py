@@ -84,3 +84,7 @@ SHAPE_ROWS = ("domain_atoms", "domain_spheres", "domain_joint", "further_atoms",
 # exit_residues of an anchor no clear path leaves within geom.exit_path.MAX_LENGTH: more than
 # any linker (docs/model/buried-terminus.md#model)
 SEALED = 1000
+# Mixed fibrils (docs/model/occupancy.md#patterns): how the decorated subunits are chosen, and
+# how a periodic pattern counts subunits (along each protofilament, or layer-major over all)
+PATTERNS = ("random", "periodic", "layers")
+PATTERN_COUNTS = ("protofilament", "fibril")

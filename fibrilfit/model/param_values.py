@@ -96,16 +96,24 @@ def coerce(name: str, value: Any, meta: dict):
         if isinstance(value, (int, float)) and value in (0, 1):
             return bool(value)
         raise ParamError(name, f"must be true or false (got {value!r})")
+    if kind is str and "choices" not in meta:  # free text (a pattern's letters)
+        if not isinstance(value, str):
+            raise ParamError(name, f"must be text (got {value!r})")
+        return value.strip()
     if "choices" in meta:
         text = value.strip().lower() if isinstance(value, str) else value
         if text not in meta["choices"]:
             raise ParamError(name, f"{describe_range(meta)} (got {value!r})")
         return text
+    per = 1.0  # a fraction shown in % (SHOWN_IN) may be typed so too: '30%' is 0.3
+    typed = value
+    if meta.get("shown_in") == "%" and isinstance(value, str) and value.strip().endswith("%"):
+        value, per = value.strip()[:-1], 100.0
     try:
         if isinstance(value, bool):
             raise TypeError
         if isinstance(value, str):
-            number = float(value.strip())
+            number = float(value.strip()) / per
         else:
             number = float(value)
     except (TypeError, ValueError, OverflowError):
@@ -117,7 +125,7 @@ def coerce(name: str, value: Any, meta: dict):
             raise ParamError(name, f"{describe_range(meta)} (got {value!r})")
         number = int(number)
     if not meta["min"] <= number <= meta["max"]:
-        raise ParamError(name, f"{describe_range(meta)} (got {value!r})")
+        raise ParamError(name, f"{describe_range(meta)} (got {typed!r})")
     return number
 
 def list_value(name: str, value, meta: dict) -> tuple | None:
@@ -181,7 +189,8 @@ def describe_range(meta: dict) -> str:
         return (f"must be an angle from {lo:.5g} to {hi:.5g} rad ({math.degrees(lo):g}° to "
                 f"{math.degrees(hi):g}°): a number in rad, or with a unit: 1.95deg, 1.95°, "
                 f"0.034rad")
-    return f"must be {what} from {lo:g} to {hi:g}{suffix}"
+    also = ", or in % (30%)" if meta.get("shown_in") == "%" else ""
+    return f"must be {what} from {lo:g} to {hi:g}{suffix}{also}"
 
 def split_unit(text: str) -> tuple[str, float | None]:
     """'-0.961deg' -> ('-0.961', π/180); '-0.01678rad' -> ('-0.01678', 1.0); '0.5' -> ('0.5',

@@ -1,4 +1,5 @@
 """The model's parameters: one definition of their defaults, units, ranges and validation.
+Over 400 lines because the Params class is one declaration: every field's spec in one place.
 
 Everything else (the CLI, the sidebar's PropertyGroup, sweeps, tests) reads this module.
 1 Blender unit = 1 Å. Plain Python: importable without bpy. Around it, in their own modules:
@@ -17,10 +18,10 @@ from typing import Any
 import numpy as np
 
 from ..geom import polygons
-from . import chain, domains as chain_domains, helix
+from . import chain, domains as chain_domains, helix, occupancy
 from .param_checks import check_combination, check_twist
-from .param_spec import (DOMAIN_SHAPES, MAX_COORDINATE, NUMBER_WORDS, PROTOCOLS, SEALED,
-                         ParamError, rows_spec, spec)
+from .param_spec import (DOMAIN_SHAPES, MAX_COORDINATE, NUMBER_WORDS, PATTERN_COUNTS, PATTERNS,
+                         PROTOCOLS, SEALED, ParamError, rows_spec, spec)
 from .param_values import field_value, plain
 
 
@@ -234,6 +235,34 @@ class Params:
                                            "last, one row [x, y, z] each, in its own body frame",
                                            3, "none: one domain")
 
+    # ---- mixed fibrils (issue #44): which subunits carry the domain ----------------------
+    # (docs/model/occupancy.md#occupancy; the pattern itself: model/occupancy.py)
+    occupancy: float = spec(1.0, 1e-6, 1.0, "fraction",
+                            "random: the fraction of subunits that carry the domain, an exact "
+                            "count round(f·N) of the fibril's (or the cell's) N subunits, drawn "
+                            "with the seed", section="Globule", shown_in="%")
+    pattern: str = spec("random", None, None, "",
+                        "Which subunits carry the domain: random (a seeded draw of occupancy's "
+                        "count), periodic (every pattern_period-th subunit) or layers (the "
+                        "per-layer pattern pattern_layers, repeated along the fibril)",
+                        kind=str, choices=PATTERNS, section="Globule")
+    pattern_period: int = spec(1, 1, 10_000, "subunits",
+                               "periodic: every k-th subunit carries the domain, from the first",
+                               kind=int, section="Globule")
+    pattern_across: str = spec("protofilament", None, None, "",
+                               "periodic: count subunits along each protofilament (every k-th "
+                               "layer of each) or over the fibril (layer-major: a layer's "
+                               "protofilaments, then the next layer's)", kind=str,
+                               choices=PATTERN_COUNTS, section="Globule", label="Period counts")
+    pattern_layers: str = spec("A", None, None, "",
+                               "layers: one letter per layer, repeated along the fibril: A "
+                               "carries the domain, '.' none (e.g. 'A.' every other layer)",
+                               kind=str, section="Globule")
+    bare_tail: int = spec(0, 0, 200, "residues",
+                          "Undecorated subunits' own disordered tail, a bead chain of this many "
+                          "residues from the anchor (0: no tail, nothing is built)", kind=int,
+                          section="Globule")
+
     # ---- derived geometry ---------------------------------------------------------------
     @property
     def globule_radius(self) -> float:
@@ -354,7 +383,14 @@ def make_params(*, force: bool = False, **values) -> Params:
     clean = {f.name: field_value(f.name, values[f.name], f.metadata) for f in fields()
              if f.name in values and not (auto and f.name == "periodic")}
     if auto:  # resolved here, once the geometry it depends on is known
-        clean["periodic"] = helix.auto_cell_layers(Params(**{**clean, "periodic": 1}))
+        cell = Params(**{**clean, "periodic": 1})
+        clean["periodic"] = helix.auto_cell_layers(cell)
+        # also a whole number of the pattern's repeats (and of inflate's lattice periods, which
+        # auto_cell_layers' cell already holds): the least common multiple
+        repeat = occupancy.repeat_layers(cell)
+        if repeat and clean["periodic"] % repeat:
+            step = math.lcm(repeat, occupancy.lattice_period(cell))
+            clean["periodic"] = -(-clean["periodic"] // step) * step
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)

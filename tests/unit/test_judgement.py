@@ -19,6 +19,8 @@ def test_accommodated_needs_no_crossing_and_every_bond_within_the_tolerance():
     assert accommodated("successful", TOL + 1e-9, TOL) is False
     assert accommodated("intersection", 0.0, TOL) is False
     assert accommodated("successful", 0.0, TOL) is True
+    assert accommodated("successful", 0.0, TOL, tail_pairs=1) is False  # a tail in a domain
+    assert accommodated("successful", 0.0, TOL, tail_pairs=0) is True
 
 
 def test_compare_checks_tells_grazing_from_disagreement():

@@ -332,9 +332,11 @@ def changed_fields(settings, p: P.Params, sections=SECTIONS, *,
                 if old != now[f.name]:
                     out.append((f.name, old, now[f.name]))
                 continue
+            # a list (the domain list's domain_linker) and a tuple (Params') are one value
             old = tuple(old) if isinstance(old, list) else old
-            if (None if old is None else _plain(old)) != now[f.name]:
-                out.append((f.name, old, now[f.name]))
+            new = tuple(now[f.name]) if isinstance(now[f.name], list) else now[f.name]
+            if (None if old is None else _plain(old)) != new:
+                out.append((f.name, old, new))
     return out
 
 

@@ -10,14 +10,17 @@ import textwrap
 from ..search.table import bracket_line
 
 WRAP = 36  # characters per line: the sidebar's width (ui/panels.py WRAP)
+NOT_ASKED = ("linker", "seed")  # what the map searches, and its seeds' start (shown)
 KEPT = ("globule_diameter", "minimal_linker", "fits", "restarts", "linker_below",
         "restarts_below", "p_fit_below", "below_settled_by_bound", "below_unstarted", "floor",
         "error")
 
 
-def summary_of(result: dict) -> dict:
-    """The map as the panel keeps it, from search/background.py's result."""
-    return {"state": "done", "protocol": result["protocol"], "restarts": result["restarts"],
+def summary_of(result: dict, model: dict | None = None) -> dict:
+    """The map as the panel keeps it, from search/background.py's result; `model`: the panel's
+    values it was made for (ui/provenance.py)."""
+    return {"state": "done", "model": model,
+            "protocol": result["protocol"], "restarts": result["restarts"],
             "seeds": result["seeds"], "max_linker": result["max_linker"],
             "rows": [{**{k: r.get(k) for k in KEPT},
                       "bracket": bracket_line(r) if r["minimal_linker"] is not None else None}
@@ -74,6 +77,8 @@ def _wrapped(text: str, icon: str) -> list:
 
 
 def draw(layout, summary: dict) -> None:
-    """The lines as labels of `layout` (a box of the panel)."""
+    """The lines as labels of `layout` (a box of the panel); no ticks on a map marked stale
+    (panels.draw_kept)."""
     for text, icon in summary_lines(summary):
-        layout.label(text=text, icon=icon)
+        stale = summary.get("stale") and icon == "CHECKMARK"
+        layout.label(text=text, icon="BLANK1" if stale else icon)

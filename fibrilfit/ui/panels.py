@@ -11,7 +11,7 @@ import bpy
 
 from ..model import helix, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import minimal_summary, properties, report_summary, structure_trace
+from . import minimal_summary, properties, provenance, report_summary, structure_trace
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -217,23 +217,46 @@ def draw_result(box, s):
 
 
 def draw_report(box, s):
-    """The last report's answer, P(fit), minimal linker and bound, and Open report."""
+    """The last report's answer, P(fit), minimal linker and bound, and Open report; greyed,
+    without its ticks, when the panel's values are no longer those it answers (draw_kept)."""
     try:
         summary = json.loads(s.report_summary)
     except ValueError:
         return
-    for text, icon in report_summary.summary_lines(summary):
-        box.label(text=text, icon=icon)
+    draw_kept(box, s, summary, report_summary.summary_lines(summary), ignore=("seed",))
     box.operator("fibrilfit.open_report", icon="URL")
 
 
 def draw_minimal(box, s):
-    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled"."""
+    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled";
+    greyed, without its ticks, when the panel's values are no longer its own (draw_kept)."""
     try:
         summary = json.loads(s.minimal_map)
     except ValueError:
         return
+    draw_kept(box, s, summary, [], ignore=minimal_summary.NOT_ASKED)
     minimal_summary.draw(box, summary)
+
+
+def stale_names(s, summary: dict, ignore=()) -> list:
+    """The panel's labels of the values that changed since a kept result was made (its
+    "model"; none for a result that kept none)."""
+    then = summary.get("model") or {}
+    names = provenance.changed_names(then, properties.compared_values(s), ignore)
+    return [properties.label(P.Params.__dataclass_fields__[n]) for n in names]
+
+
+def draw_kept(box, s, summary: dict, lines, ignore=()) -> None:
+    """A kept result (the last report or minimal-linker map): it belongs to the model on screen
+    only while the panel holds the values it was made for; otherwise it says so first, and its
+    lines lose their ticks and grey out (issue #45)."""
+    changed = stale_names(s, summary, ignore)
+    if changed:
+        box.active = False
+        wrapped(box, f"Earlier values: {', '.join(changed)} changed since", "ERROR")
+        summary["stale"] = True
+    for text, icon in lines:
+        box.label(text=text, icon="BLANK1" if changed and icon == "CHECKMARK" else icon)
 
 
 # ---- the collapsed sub-panels ----------------------------------------------------------------

@@ -19,6 +19,7 @@ def summary_of(doc: dict, folder: str) -> dict:
         "linker_below": m.get("linker_below"),
         "p_fit_below": m.get("p_fit_below"),
         "impossible_below": bound.get("impossible_below"),
+        "model": doc.get("model"),  # the values it answers for (ui/provenance.py)
     }
 
 

@@ -76,3 +76,22 @@ def remove_all(scene) -> None:
     bpy.data.batch_remove([ob for ob in coll.objects if is_ours(ob)])
     bpy.data.batch_remove([m for m in meshes if m.users == 0])
     bpy.data.collections.remove(coll)
+
+
+def request(scene, settings):
+    """The structure files the panel's values were measured from, as the command line names
+    them (a StructureRequest: --fibril with its terminus and anchor residue, each --domain with
+    its chain and residues, or --full-length): the imported fibril and the domain list. Empty
+    (request.any False) when nothing was imported."""
+    from ..structure.request import StructureRequest
+    fib = (measured(scene).get("fibril") or {}).get("asked") or {}
+    entries = list(settings.domains)
+    whole = [e.filepath for e in entries if e.option == "--full-length"]
+    parts = [e for e in entries if e.option != "--full-length"]
+    return StructureRequest(
+        fibril=fib.get("path"), terminus=fib.get("terminus") or "C",
+        anchor_residue=fib.get("anchor_residue"),
+        domain=tuple(e.filepath for e in parts) if not whole else (),
+        domain_chain=tuple(e.chain for e in parts) if not whole else (),
+        domain_residues=tuple(e.residues for e in parts) if not whole else (),
+        full_length=whole[0] if whole else None)

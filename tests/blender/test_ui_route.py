@@ -51,3 +51,93 @@ def test_two_domains_run_all_then_bake_step_by_step(ui, scene):
     assert run("bake") == {"FINISHED"}
     assert model_stage(scene) == "baked"
     assert run("check_intersections") == {"FINISHED"} and ui.verdict
+
+
+# ---- 2 and 3. a report from the panel is a record, and belongs to its values -------------------
+
+# test_ui_report.py's FAST (inflate without regrowth, 2 restarts, lengths up to 4) on a model
+# measured from 6CU7 and ubiquitin: small globule, 3 layers
+FAST = dict(layers=3, linker=3, protocol="inflate", grow_frames=20, hold_frames=20,
+            regrow_cycles=0)
+
+
+def _report(out, context):
+    from fibrilfit.ui.operators import report as report_op
+    from test_ui import detached
+    from test_ui_report import _ticks
+    op = detached(report_op.FIBRILFIT_OT_report)
+    op.directory, op.restarts, op.max_linker = str(out), 2, 4
+    op.start(context)
+    assert _ticks(op, context) == {"FINISHED"}
+    return op
+
+
+@pytest.fixture
+def idle(ui):
+    from fibrilfit.ui.operators import background
+    yield ui
+    background.RUNNING.clear()
+
+
+def _context(scene):
+    from test_ui import _Workspace
+    return types.SimpleNamespace(scene=scene, workspace=_Workspace(), screen=None,
+                                 window_manager=bpy.context.window_manager)
+
+
+def test_a_panel_report_names_its_structures_sources_and_a_runnable_command(idle, scene,
+                                                                          tmp_path):
+    """Issue #45 items 2 and 3: the report from the panel names 6cu7 and ubiquitin with their
+    sha256, says which values the files gave, which the sidebar and which the defaults, and
+    its command (pip's `fibrilfit report --case ...` here, bpy as a module) makes the same
+    report; its box is marked once the panel's values change and Run all rebuilds, and Clear
+    takes it away."""
+    import hashlib
+    from fibrilfit import cli
+    ui = idle
+    assert run("import_fibril", filepath=str(DATA / "6cu7.pdb.gz")) == {"FINISHED"}
+    assert run("import_domain", filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
+    for k, v in FAST.items():
+        setattr(ui, k, v)
+    ui.globule_diameter = 12.0  # by hand: a small globule, fast to bake
+    out = tmp_path / "page"
+    _report(out, _context(scene))
+    doc = json.loads((out / "report.json").read_text())
+    block = doc["structure"]
+    assert block["fibril"]["file"] == "6cu7.pdb.gz" and block["domain"]["file"] == "1ubq.pdb.gz"
+    for key, name in (("fibril", "6cu7.pdb.gz"), ("domain", "1ubq.pdb.gz")):
+        assert block[key]["sha256"] == hashlib.sha256((DATA / name).read_bytes()).hexdigest()
+    src = doc["sources"]
+    for name in ("rise", "twist", "core_outline", "anchor", "protofilaments"):
+        assert src[name].startswith("6cu7.pdb.gz: measured"), (name, src[name])
+    assert src["layers"] == src["linker"] == src["globule_diameter"] == "sidebar"
+    assert src["frames"] == "sidebar"  # SMALL's 10
+    assert src["slab"] == src["stretch_tolerance"] == "default"
+    # the command: pip's here (bpy as a module); the case beside the page names the files
+    cmd = doc["command"]
+    assert cmd[:4] == ["fibrilfit", "report", "--case", str(out / "case.toml")]
+    assert ["--restarts", "2"] == cmd[cmd.index("--restarts"):cmd.index("--restarts") + 2]
+    case = (out / "case.toml").read_text()
+    assert str(DATA / "6cu7.pdb.gz") in case and str(DATA / "1ubq.pdb.gz") in case
+    page = (out / "report.html").read_text()
+    assert "fibrilfit report --case" in page and "headless.py" not in page
+    # item 2: the box belongs to these values; after Layers 3 -> 4 and Run all it says so
+    assert any(t.startswith("Report: ") for t in main_labels())
+    assert not any(t.startswith("Earlier values") for t in main_labels())
+    ui.layers = 4
+    assert run("run_all") == {"FINISHED"}
+    labels = main_labels()
+    assert any(t.startswith("Earlier values: Layers") for t in labels), labels
+    assert run("clear") == {"FINISHED"}
+    assert not any(t.startswith(("Report", "Earlier values")) for t in main_labels())
+    assert ui.report_summary == ""
+    # and the command makes the same report (the command line's own fresh scene: last)
+    again = tmp_path / "again"
+    words = cmd[1:]
+    words[words.index("--out") + 1] = str(again)
+    assert cli.main([*words, "--quiet", "--render-engine", "workbench",
+                     "--render-size", "320x180"]) == 0
+    theirs = json.loads((again / "report.json").read_text())
+    for key in ("answer", "model", "p_fit", "minimal_linker", "bound"):
+        assert doc[key] == theirs[key], key
+    assert theirs["structure"]["fibril"]["sha256"] == block["fibril"]["sha256"]

@@ -50,7 +50,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         s.domains.clear()  # the case's values are the domains now
         properties.write_params(s, p)
         if m is not None:
-            structures.show_measured(context, m, p)
+            structures.show_measured(context, m, p, request.terminus, request.anchor_residue)
         s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
         name = case.meta.get("name", case.path.name)
         measured = (f", those measured from {' and '.join(_files(m))}" if m is not None

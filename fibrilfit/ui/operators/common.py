@@ -122,6 +122,13 @@ def clear_results(context) -> None:
     properties.clear_result(settings(context))
 
 
+def clear_kept_results(context) -> None:
+    """The last report's and minimal-linker map's boxes gone (Clear): a result shows only beside
+    the model it belongs to (a rebuild with other values marks them: panels.draw_kept)."""
+    s = settings(context)
+    s.report_summary = s.minimal_map = ""
+
+
 def record_bake(context, model, bake: dict) -> None:
     """After a bake: the old verdict and colours no longer apply."""
     clear_results(context)

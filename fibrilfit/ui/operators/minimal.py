@@ -36,6 +36,7 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
         description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
                     "empty: the panel's")
     what, job_name = "minimal linker", "minimal-linker walk"
+    _values = None  # the panel's values the map answers for
 
     @classmethod
     def poll(cls, context):
@@ -47,6 +48,9 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
     def make_job(self, context) -> BackgroundWalk:
         """The panel's model and the walk's options, checked; the walk started on its thread."""
         values = common.panel_params(context).to_dict()
+        self._values = {k: v for k, v in values.items()  # what the map answers for
+                        if k not in minimal_summary.NOT_ASKED
+                        and not (k == "globule_diameter" and self.diameters.strip())}
         values.pop("linker")  # the walk's to search
         if self.diameters.strip():
             values["globule_diameter"] = self.diameters.strip()
@@ -75,7 +79,7 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
         if walk.error is not None:
             s.minimal_map = ""
             raise walk.error
-        s.minimal_map = json.dumps(minimal_summary.summary_of(walk.result))
+        s.minimal_map = json.dumps(minimal_summary.summary_of(walk.result, self._values))
         found = [f"{r['globule_diameter']:g} Å: {r['minimal_linker'] or 'none'}"
                  for r in walk.result["rows"]]
         self.report({"INFO"}, "Minimal linker: " + ", ".join(found))

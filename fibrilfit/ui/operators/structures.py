@@ -41,11 +41,16 @@ def _on_model(p: P.Params, path, fib) -> list:
     return moved
 
 
-def _show_fibril(context, path, fib, p: P.Params) -> None:
-    """The fibril's CA trace on the model `p`, and its measurement kept (the outline counted)."""
+def _show_fibril(context, path, fib, p: P.Params, terminus: str = "C",
+                 anchor_residue: int | None = None) -> None:
+    """The fibril's CA trace on the model `p`, and its measurement kept (the outline counted),
+    with the file's path, terminus and anchor residue as asked: what a report made from the panel
+    names and measures again (structure_trace.request)."""
     structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
     summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
     summary["outline_points"] = len(fib.core_outline)
+    summary["asked"] = {"path": str(path), "terminus": terminus,
+                        "anchor_residue": anchor_residue}
     structure_trace.store(context.scene, "fibril", summary)
 
 
@@ -57,7 +62,8 @@ def _show_domain(context, path, chain, residues, dom, p: P.Params) -> None:
     structure_trace.store(context.scene, "domain", dom.to_dict())
 
 
-def show_measured(context, m, p: P.Params) -> None:
+def show_measured(context, m, p: P.Params, terminus: str = "C",
+                  anchor_residue: int | None = None) -> None:
     """A case's [structure] as Import fibril…, Import domain… and Import full-length model…
     leave the panel (Load case; `m`: structure.from_files.Measured, `p` the case's Params,
     already in the panel): the chain's domains in the list with their linkers to the next
@@ -67,7 +73,7 @@ def show_measured(context, m, p: P.Params) -> None:
     domain_list.replace(s, [(f, d) for (f, _, _), d in zip(m.specs, m.domains)], m.option,
                         p.domain_linker)
     if m.fibril is not None:
-        _show_fibril(context, m.fibril_path, m.fibril, p)
+        _show_fibril(context, m.fibril_path, m.fibril, p, terminus, anchor_residue)
     if m.segmentation is not None:
         structure_trace.store(context.scene, "full_length", m.segmentation.to_dict())
     elif m.specs:  # the last domain's trace, as importing them one by one leaves it
@@ -108,7 +114,8 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         s = common.settings(context)
         if len(s.domains) and "linker" in domain_list.filled(s, fib.to_dict(), first_changed=True):
             names = sorted({*names, "linker"})  # from the fibril's and the domain's numbering
-        _show_fibril(context, path, fib, common.panel_params(context))
+        _show_fibril(context, path, fib, common.panel_params(context), self.terminus,
+                     self.anchor_residue or None)
         for w in fib.warnings:
             self.report({"WARNING"}, w)
         self.report({"INFO"}, f"{fib.file}: set {', '.join(names)}"

@@ -141,3 +141,81 @@ def test_a_panel_report_names_its_structures_sources_and_a_runnable_command(idle
     for key in ("answer", "model", "p_fit", "minimal_linker", "bound"):
         assert doc[key] == theirs[key], key
     assert theirs["structure"]["fibril"]["sha256"] == block["fibril"]["sha256"]
+
+
+# ---- 4. the traces follow the model; import frames them where a 3D View exists ----------------
+
+def _traces(scene, kind):
+    """The scene's `kind` CA traces, found by their tags (as the code of a2caed5 tags them)."""
+    from fibrilfit.builders.scene import TAG
+    return [o for o in scene.objects if o.get(TAG) == structure_trace.TRACE
+            and o.get(structure_trace.KIND, "fibril") == kind]
+
+
+def _world_points(ob):
+    import numpy as np
+    co = np.array([v.co for v in ob.data.vertices])
+    m = np.array(ob.matrix_basis)
+    return co @ m[:3, :3].T + m[:3, 3]
+
+
+def test_the_fibril_trace_follows_a_rebuild(ui, scene):
+    """Issue #45 item 4: 6CU7's trace is centred in the model's layers after Layers 20 -> 6 and
+    a rebuild (it floated 32-58 Å above the model), same axis, each CA layer on a model layer."""
+    import numpy as np
+    ui.layers = 20
+    assert run("import_fibril", filepath=str(DATA / "6cu7.pdb.gz")) == {"FINISHED"}
+    assert run("run_all") == {"FINISHED"}
+    p20 = find_model(scene).params
+    (ob,) = _traces(scene, "fibril")
+    z20 = _world_points(ob)[:, 2]
+    r20 = np.sort(np.hypot(*_world_points(ob)[:, :2].T))
+    assert 0 < z20.min() and z20.max() < (p20.layers - 1) * p20.rise + 5
+    ui.layers = 6
+    assert run("run_all") == {"FINISHED"}
+    p = find_model(scene).params
+    assert p.layers == 6
+    (ob,) = _traces(scene, "fibril")
+    pts = _world_points(ob)
+    top = (p.layers - 1) * p.rise
+    assert -5 < pts[:, 2].min() and pts[:, 2].max() < top + 5, (pts[:, 2].min(), top)
+    # centred: the trace's mid-height near the stack's
+    assert abs((pts[:, 2].min() + pts[:, 2].max()) / 2 - top / 2) < p.rise
+    # the turn follows the twist: radii about the axis unchanged
+    assert np.allclose(r20, np.sort(np.hypot(*pts[:, :2].T)), atol=1e-3)
+    # and the same as importing onto the 6-layer model directly
+    direct = _world_points(ob)
+    assert run("import_fibril", filepath=str(DATA / "6cu7.pdb.gz")) == {"FINISHED"}
+    (ob,) = _traces(scene, "fibril")
+    assert np.allclose(_world_points(ob), direct, atol=1e-3)
+
+
+def test_a_second_domain_keeps_the_firsts_trace(ui, scene):
+    """Issue #45 item 4: importing GFP after ubiquitin keeps ubiquitin's trace (both beside the
+    globule, clear of each other); removing one from the list removes its trace only."""
+    import_two_domains()
+    obs = sorted(_traces(scene, "domain"), key=lambda o: o.name)
+    assert [o.name.split()[0] for o in obs] == ["1gfl.pdb.gz", "1ubq.pdb.gz"]
+    b, a = (_world_points(o) for o in obs)
+    assert a[:, 1].min() > b[:, 1].max()  # GFP further along -Y, no overlap
+    ui.domain_index = 0
+    assert run("domain_remove") == {"FINISHED"}
+    assert [o.name.split()[0] for o in _traces(scene, "domain")] == \
+        ["1gfl.pdb.gz"]
+
+
+def test_import_frames_the_structures_where_a_3d_view_exists(ui, scene, monkeypatch):
+    """Issue #45 item 4: each import frames what it imported (and the model, if any) through
+    view.frame_points, which frames nothing without a 3D View (headless: here) and needs none."""
+    import numpy as np
+    from fibrilfit.ui import view
+    from fibrilfit.ui.operators import structures
+    framed = []
+    monkeypatch.setattr(view, "frame_points", lambda context, pts: framed.append(len(pts)) or 0,
+                        raising=False)
+    monkeypatch.setattr(structures, "frame_points", view.frame_points, raising=False)
+    import_two_domains()
+    a, b = (_world_points(o) for o in _traces(scene, "domain"))
+    assert framed == [len(a), len(a) + len(b)]
+    monkeypatch.undo()
+    assert view.frame_points(bpy.context, np.vstack([a, b])) == 0  # headless: no 3D View

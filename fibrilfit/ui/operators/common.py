@@ -7,7 +7,7 @@ import traceback
 
 from ...model import params as P
 from ... import pipeline
-from .. import properties
+from .. import properties, structure_trace
 from ...analysis import clash_kinds
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
@@ -113,8 +113,11 @@ def model_for(context, kept_sections, doing: str):
 
 
 def show_model(context, model) -> None:
-    """After a build: the model's colours in Solid mode, and the model framed in the 3D Views."""
+    """After a build: the model's colours in Solid mode, the imported structures' traces moved
+    with it (the fibril's on its core, the domains' beside its layer-0 globule), and the model
+    framed in the 3D Views."""
     show_colours(model)
+    structure_trace.follow(context.scene, model.params)
     frame_model(context, model)
 
 

@@ -11,11 +11,11 @@ import bpy
 
 from ..model import helix, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import minimal_summary, properties, provenance, report_summary, structure_trace
+from . import (minimal_summary, properties, provenance, report_summary, result_words,
+               structure_trace)
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
-from ..exports.run_text import percent
 from .operators.common import reached
 
 STATUS = {
@@ -164,7 +164,7 @@ def draw_run(col, context):
     if reached(stage, "layers"):
         _draw_changes(col, s, find_root(scene), stage)
     if stage == "checked" and s.verdict:
-        draw_result(col.box(), s)
+        draw_result(col.box(), s, params_of(find_root(scene)))
     if s.report_summary:
         draw_report(col.box(), s)
     if s.minimal_map:
@@ -198,20 +198,15 @@ def _draw_changes(col, s, root, stage):
         wrapped(col, "Physics changed: Bake again to apply", "ERROR")
 
 
-def draw_result(box, s):
-    ok = s.verdict == "successful"
-    box.label(text=f"Verdict: {s.verdict}", icon="CHECKMARK" if ok else "ERROR")
-    box.label(text=f"Clashing globule pairs: {s.clash_count}")
-    box.label(text=f"Worst bond stretch: {percent(s.max_bond_stretch)} "
-                   f"({'intact' if s.linker_intact else 'stretched'})")
-    box.label(text=f"Accommodated: {'yes' if s.accommodated else 'no'}",
-              icon="CHECKMARK" if s.accommodated else "CANCEL")
-    if s.answer:  # the honest word: one failed run is "no layout found", not "does not fit"
-        box.label(text=f"Answer: {s.answer}")
-    if s.bound > 1:  # the bracket's proven side (docs/model/bound.md#derivation)
-        box.label(text=f"Impossible below {s.bound} residues (the bound)")
-    elif s.bound == 1:
-        box.label(text="The geometry alone rules out no linker")
+def draw_result(box, s, p: P.Params | None = None):
+    """The last check of the model `p` (the scene's): the answer first, then its evidence, in
+    the glossary's words (ui/result_words.py; one failed run is "no layout found", never "does
+    not fit")."""
+    p = p or properties.read_params(s)
+    for text, icon in result_words.run_lines(
+            answer=s.answer, clashes=s.clash_count, stretch=s.max_bond_stretch,
+            tolerance=p.stretch_tolerance, linker=p.linker, bound=s.bound):
+        box.label(text=text, icon=icon)
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")
 
@@ -254,7 +249,6 @@ def draw_kept(box, s, summary: dict, lines, ignore=()) -> None:
     if changed:
         box.active = False
         wrapped(box, f"Earlier values: {', '.join(changed)} changed since", "ERROR")
-        summary["stale"] = True
     for text, icon in lines:
         box.label(text=text, icon="BLANK1" if changed and icon == "CHECKMARK" else icon)
 

@@ -219,3 +219,73 @@ def test_import_frames_the_structures_where_a_3d_view_exists(ui, scene, monkeypa
     assert framed == [len(a), len(a) + len(b)]
     monkeypatch.undo()
     assert view.frame_points(bpy.context, np.vstack([a, b])) == 0  # headless: no 3D View
+
+
+# ---- 5 and 6. the minimal-linker box is a small table; one vocabulary, the answer first -------
+
+def _minimal_map():
+    """A map as Minimal linker… keeps it: 20 Å found at 4 over a bound of 3 (open bracket),
+    27.5 Å at 1 with the bound 1 (closed), 40 Å none up to 30."""
+    from fibrilfit.search.minimal import Walk
+    from fibrilfit.ui import minimal_summary
+    found = Walk(20.0, 4, 30, restarts=2, stop_at_fit=True, floor=3)
+    found.record(3, 0, 2)
+    found.record(4, 1, 1)
+    closed = Walk(27.5, 1, 30, restarts=2, stop_at_fit=True, floor=1)
+    closed.record(1, 2, 2)
+    none = Walk(40.0, 29, 30, restarts=2, floor=5)
+    for L in range(5, 31):
+        none.record(L, 0, 2)
+    rows = [{"kind": "", **w.row(), "protocol": "tutorial"} for w in (found, closed, none)]
+    return minimal_summary.summary_of({"rows": rows, "protocol": "tutorial", "restarts": 2,
+                                       "seeds": [4, 5], "max_linker": 30, "table": ""})
+
+
+def test_the_minimal_linker_box_is_a_small_table_that_fits(ui):
+    """Issue #45 item 5: a row per diameter (diameter, minimal linker, P(fit), bracket), every
+    label within the default sidebar (a cell within a quarter of it); no repository path, no
+    "open from 1 to 1"."""
+    from test_ui import FIELD_PX, _text_px
+    ui.minimal_map = json.dumps(_minimal_map())
+    labels = main_labels()
+    start = labels.index("Minimal linker (tutorial)")
+    assert labels[-1].startswith("Lengths in Å")  # the panel's last line, after the box
+    box = labels[start:-1]
+    assert not any("docs/" in t or "open from" in t or ".md" in t for t in box), box
+    assert all(_text_px(t) <= FIELD_PX for t in box), box
+    for diameter, linker, p_fit, bracket in (("20", "4", "1/1", "3–4"),
+                                              ("27.5", "1", "2/2", "1"),
+                                              ("40", "> 30", "–", "5–?")):
+        i = box.index(diameter)
+        assert box[i:i + 4] == [diameter, linker, p_fit, bracket]
+        assert all(_text_px(c) <= FIELD_PX / 4 for c in box[i:i + 4])
+    assert len(box) <= 2 + 4 * 4 + 2  # title, restarts; header and 3 rows; the legend
+
+
+def test_the_panel_says_the_answer_first_in_the_glossarys_words(ui, scene):
+    """Issue #45 item 6: after Run all the box starts with the answer (fits / borderline / no
+    layout found / impossible below B), then the globules, the stretch with its limit and the
+    bound; none of "Verdict", "Accommodated", "successful", "intersection", a bare "95 %", a
+    negative stretch or a double negative."""
+    import re
+    ui.linker = 3
+    assert run("run_all") == {"FINISHED"}
+    labels = main_labels()
+    i = next(i for i, t in enumerate(labels) if t.startswith("Run: "))
+    assert labels[i].removeprefix("Run: ") in ("fits", "borderline", "no layout found") or \
+        labels[i].startswith("Run: impossible below ")
+    assert labels[i + 1].startswith("Globules: ")
+    assert re.fullmatch(r"Worst stretch: (\d+\.\d %|none) \(limit 5\.0 %\)", labels[i + 2])
+    text = " ".join(labels)
+    for word in ("Verdict", "Accommodated", "successful", "intersection", "rules out no",
+                 "Answer:", "−", "-0.", "95 %:"):
+        assert word not in text, word
+    # the same words in the report's box (ui/report_summary.py)
+    from fibrilfit.ui import report_summary
+    doc = {"answer": "no layout found", "model": None,
+           "p_fit": {"fits": 0, "runs": 8, "low": 0.0, "high": 0.32, "linker": 3},
+           "minimal_linker": {"linker": None, "max_linker": 12}, "bound": {"impossible_below": 1}}
+    lines = [t for t, _ in report_summary.summary_lines(report_summary.summary_of(doc, "/r"))]
+    assert lines[0] == "Report: no layout found"
+    assert "P(fit) 95 % interval: 0.00–0.32" in lines
+    assert "Bound: geometry allows every length" in lines

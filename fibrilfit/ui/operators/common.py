@@ -7,7 +7,7 @@ import traceback
 
 from ...model import params as P
 from ... import pipeline
-from .. import properties, structure_trace
+from .. import properties, result_words, structure_trace
 from ...analysis import clash_kinds
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
@@ -18,7 +18,6 @@ from ...structure.errors import StructureError
 from ...exports.render import RenderError
 from ...files import OutputError
 from ...exports.dressing import show_colours
-from ...exports.run_text import percent
 from ..view import frame_model
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
@@ -153,6 +152,12 @@ def record_check(context, model, result: dict) -> None:
 
 
 def verdict_line(result: dict) -> str:
-    return (f"{result['verdict']}: {len(result['clashing_pairs'])} clashing globule pairs, worst "
-            f"bond stretch {percent(result['max_bond_stretch'])}, "
-            f"{'accommodated' if result['accommodated'] else 'not accommodated'}")
+    """The check's result in one line, as the panel's box says it (ui/result_words.py): the
+    answer, then its evidence."""
+    p = result.get("params") or {}
+    lines = result_words.run_lines(
+        answer=result.get("answer") or "", clashes=len(result["clashing_pairs"]),
+        stretch=result["max_bond_stretch"],
+        tolerance=p.get("stretch_tolerance", P.DEFAULTS.stretch_tolerance),
+        linker=p.get("linker"), bound=(result.get("bound") or {}).get("impossible_below", 0))
+    return "; ".join(text.replace("Run: ", "", 1) for text, _ in lines)

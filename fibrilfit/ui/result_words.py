@@ -1,0 +1,63 @@
+"""The words the panel says a result in (issue #45): one vocabulary, the glossary's
+(docs/reference/glossary.md#outcome-words) and the report's: the answer first (fits, borderline,
+no layout found, no exit, impossible below B), then its evidence, each with its unit, and no
+double negative. Plain Python: tests/unit/test_result_words.py reads it without bpy.
+
+Each line is short enough for the default sidebar width (WRAP characters)."""
+from __future__ import annotations
+
+from ..exports.run_text import percent
+
+WRAP = 36  # characters per line (ui/panels.py WRAP)
+# The answer's words as the panel shows them, with their icon (docs/model/verdict.md#answer)
+ANSWERS = {"fits": "CHECKMARK", "borderline": "INFO", "no layout found": "ERROR",
+           "no exit": "ERROR"}
+
+
+def residues(n: int) -> str:
+    return f"{n} residue{'' if n == 1 else 's'}"
+
+
+def answer_line(answer: str, *, linker: int | None = None, bound: int = 0,
+                what: str = "") -> tuple[str, str]:
+    """(text, icon) of the answer: "Impossible below B residues" when the linker is under the
+    proven bound B (the answer then rests on a proof, not on the run); else the answer's word,
+    `what` before it ("Report: fits"; without it the word is capitalised)."""
+    if linker is not None and bound > 1 and linker < bound:
+        word, icon = f"impossible below {residues(bound)}", "CANCEL"
+        if len(what + word) > WRAP:  # a bound of three digits after "Report: "
+            word = f"impossible below {bound} res."
+    else:
+        word, icon = answer or "no answer", ANSWERS.get(answer, "INFO")
+    return (f"{what}{word}" if what else word[:1].upper() + word[1:]), icon
+
+
+def stretch_line(stretch: float, tolerance: float) -> str:
+    """The worst linker bond's stretch, with the limit it is judged by; a bond no longer than
+    at rest is "none" (never a negative stretch)."""
+    shown = percent(stretch) if stretch > 0 and percent(stretch) != "0.0 %" else "none"
+    return f"Worst stretch: {shown} (limit {percent(tolerance)})"
+
+
+def bound_line(bound: int | None) -> str | None:
+    """The proven lower bound (docs/model/bound.md#derivation), said positively; None when not
+    computed (0)."""
+    if not bound:
+        return None
+    if bound > 1:
+        return f"Bound: impossible below {residues(bound)}"
+    return "Bound: geometry allows every length"
+
+
+def run_lines(*, answer: str, clashes: int, stretch: float, tolerance: float,
+              linker: int | None, bound: int) -> list[tuple[str, str]]:
+    """(text, icon) lines of one run's result: the answer, then the globules, the linker and
+    the bound."""
+    lines = [answer_line(answer, linker=linker, bound=bound, what="Run: ")]
+    lines.append((f"Globules: {clashes} clashing pair{'' if clashes == 1 else 's'}"
+                  if clashes else "Globules: clear of each other", "BLANK1"))
+    lines.append((stretch_line(stretch, tolerance), "BLANK1"))
+    said = bound_line(bound)
+    if said and not (linker is not None and bound > 1 and linker < bound):
+        lines.append((said, "BLANK1"))
+    return lines

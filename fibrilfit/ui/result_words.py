@@ -36,7 +36,7 @@ def stretch_line(stretch: float, tolerance: float) -> str:
     """The worst linker bond's stretch, with the limit it is judged by; a bond no longer than
     at rest is "none" (never a negative stretch)."""
     shown = percent(stretch) if stretch > 0 and percent(stretch) != "0.0 %" else "none"
-    return f"Worst stretch: {shown} (limit {percent(tolerance)})"
+    return f"Worst stretch: {shown} (limit {100 * tolerance:.3g} %)"
 
 
 def bound_line(bound: int | None) -> str | None:

@@ -11,8 +11,8 @@ import bpy
 
 from ..model import helix, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import (minimal_summary, properties, provenance, report_summary, result_words,
-               structure_trace)
+from . import (minimal_summary, panel_words, properties, provenance, report_summary,
+               result_words, structure_trace)
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -190,7 +190,7 @@ def _draw_changes(col, s, root, stage):
     built, now = params_of(root), properties.compared_values(s)
     changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS, now=now)
     if changed:
-        names = ", ".join(name for name, _, _ in changed)
+        names = panel_words.labels(name for name, _, _ in changed)
         wrapped(col, f"Changed since the build: {names}", "ERROR")
         wrapped(col, "Build again (Run all, or the steps) to apply", "BLANK1")
     elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",),
@@ -238,7 +238,7 @@ def stale_names(s, summary: dict, ignore=()) -> list:
     "model"; none for a result that kept none)."""
     then = summary.get("model") or {}
     names = provenance.changed_names(then, properties.compared_values(s), ignore)
-    return [properties.label(P.Params.__dataclass_fields__[n]) for n in names]
+    return [panel_words.field_label(n) for n in names]
 
 
 def draw_kept(box, s, summary: dict, lines, ignore=()) -> None:

@@ -135,7 +135,7 @@ def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_pa
     for op, kw, words in (
             (bpy.ops.fibrilfit.import_full_length, {"filepath": str(tmp_path / "x.pdb")},
              "import the fibril first"),
-            (bpy.ops.fibrilfit.import_domain, {"filepath": FIBRIL}, "--domain: 6cu7.pdb.gz"),
+            (bpy.ops.fibrilfit.import_domain, {"filepath": FIBRIL}, "Domain file: 6cu7.pdb.gz"),
             (bpy.ops.fibrilfit.domain_move, {"direction": "UP"}, "already the first")):
         with pytest.raises(RuntimeError, match=words) as caught:  # an ERROR report raises
             op(**kw)

@@ -289,3 +289,31 @@ def test_the_panel_says_the_answer_first_in_the_glossarys_words(ui, scene):
     assert lines[0] == "Report: no layout found"
     assert "P(fit) 95 % interval: 0.00–0.32" in lines
     assert "Bound: geometry allows every length" in lines
+
+
+# ---- 7. the panel's messages speak the panel's labels ------------------------------------------
+
+def test_messages_name_fields_by_their_labels(ui, scene, tmp_path, capfd):
+    """Issue #45 item 7: errors and notes say "Fibril file", "Core outline", "Protofilament
+    rise", never "--fibril:", "core_outline" or "pf_rise"."""
+    import re
+    with pytest.raises(RuntimeError) as bad:
+        run("import_fibril", filepath=str(DATA / "1ubq.pdb.gz"))
+    assert str(bad.value).startswith("Error: Fibril file: 1ubq.pdb.gz: "), str(bad.value)
+    assert "--" not in str(bad.value)
+    outline = tmp_path / "bad.json"
+    outline.write_text("[[0, 0], [1, 1]]")
+    with pytest.raises(RuntimeError, match=r"Core outline: .*at least 3 points") as bad:
+        run("load_outline", filepath=str(outline))
+    capfd.readouterr()
+    assert run("import_fibril", filepath=str(DATA / "6cu7.pdb.gz")) == {"FINISHED"}
+    said = capfd.readouterr().out
+    assert "6cu7.pdb.gz: set" in said and "Protofilament rise" in said and "Core outline" in said
+    assert not re.search(r"\b[a-z]+_[a-z_]+\b", said.split("6cu7.pdb.gz: set")[1].split("\n")[0])
+    assert run("run_all") == {"FINISHED"}
+    ui.use_pf_rise, ui.pf_rise = True, ui.pf_rise + 1.0
+    with pytest.raises(RuntimeError, match=r"Protofilament rise changed from .* since the model "
+                                           r"was built"):
+        run("bake")
+    labels = main_labels()
+    assert "Changed since the build: Protofilament rise" in " ".join(labels), labels

@@ -10,7 +10,7 @@ from ...model.param_checks import refuse_beside_periodic
 from ... import files
 from ...structure import from_files
 from ...structure.request import from_case
-from .. import properties
+from .. import panel_words, properties
 from . import common, structures
 
 
@@ -56,7 +56,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         measured = (f", those measured from {' and '.join(_files(m))}" if m is not None
                     else "")
         for warning in block.get("warnings", []):  # as `run --case` prints them
-            self.report({"WARNING"}, warning)
+            self.report({"WARNING"}, panel_words.in_panel_words(warning))
         self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
                               f"file{measured}, the rest at their defaults")
         return {"FINISHED"}

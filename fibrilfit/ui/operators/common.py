@@ -7,7 +7,7 @@ import traceback
 
 from ...model import params as P
 from ... import pipeline
-from .. import properties, result_words, structure_trace
+from .. import panel_words, properties, result_words, structure_trace
 from ...analysis import clash_kinds
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
@@ -56,8 +56,8 @@ def guarded(op, fn, *args) -> set:
     """Run an operator's body: every error becomes one report and CANCELLED, never a traceback."""
     try:
         return fn(*args)
-    except EXPECTED_ERRORS as exc:
-        op.report({"ERROR"}, str(exc))
+    except EXPECTED_ERRORS as exc:  # said in the panel's words: labels, not options or names
+        op.report({"ERROR"}, panel_words.error_words(exc))
     except Exception as exc:  # a bug: one line for the user, the details for a bug report
         traceback.print_exc()
         op.report({"ERROR"}, unexpected(exc))
@@ -104,7 +104,8 @@ def model_for(context, kept_sections, doing: str):
         built = any(properties.section_of(P.Params.__dataclass_fields__[n])
                     in properties.BUILD_SECTIONS for n, _, _ in changed)
         redo = "build the model again (Run all, or the steps)" if built else "Bake again"
-        raise StaleModel(f"{name} changed from {_show(old)} to {_show(new)}{more} since the model "
+        raise StaleModel(f"{panel_words.field_label(name)} changed from {_show(old)} to "
+                         f"{_show(new)}{more} since the model "
                          f"was {'built' if built else 'baked'}; {redo} before you {doing}, or put "
                          f"it back")
     update_params(model, p)

@@ -3,7 +3,7 @@ down, and Import full-length model… (its folded domains and linkers, segmented
 `--full-length` does). Thin over ui/domain_list.py and structure/domain_list.py."""
 import bpy
 
-from .. import domain_list, structure_trace
+from .. import domain_list, panel_words, structure_trace
 from ...structure import domain_list as logic
 from . import common
 from .structures import _ImportBase
@@ -94,7 +94,7 @@ class FIBRILFIT_OT_import_full_length(_ImportBase, bpy.types.Operator):
 def _said(doms, gaps, names) -> str:
     ranges = ", ".join(f"{d.residues[0]}-{d.residues[1]}" for d in doms)
     between = f", linkers between {', '.join(map(str, gaps))}" if gaps else ""
-    return f" ({ranges}){between}; set {', '.join(names)}"
+    return f" ({ranges}){between}; set {panel_words.labels(names)}"
 
 
 CLASSES = (FIBRILFIT_OT_domain_remove, FIBRILFIT_OT_domain_move,

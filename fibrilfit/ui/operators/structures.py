@@ -7,7 +7,7 @@ import numpy as np
 from ...model import params as P
 from ...builders.model import find_model
 from ...exports.dressing import model_points
-from .. import domain_list, properties, structure_trace
+from .. import domain_list, panel_words, properties, structure_trace
 from ...structure import domain_list as domain_list_logic, from_files, measure_fibril, trace
 from ..view import frame_points
 from . import common
@@ -131,8 +131,8 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         structure_trace.place_domains(context.scene, common.panel_params(context))
         frame_structures(context)
         for w in fib.warnings:
-            self.report({"WARNING"}, w)
-        self.report({"INFO"}, f"{fib.file}: set {', '.join(names)}"
+            self.report({"WARNING"}, panel_words.in_panel_words(w))
+        self.report({"INFO"}, f"{fib.file}: set {panel_words.labels(names)}"
                     + (f"; not in this model: {', '.join(missing)}" if missing else ""))
         return {"FINISHED"}
 
@@ -161,7 +161,8 @@ class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
         frame_structures(context)
         more = (f"; domain {len(s.domains)} of the chain, {s.domains[-2].linker} residues after "
                 f"the one before (set it in the list)" if len(s.domains) > 1 else "")
-        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}{more}")
+        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {panel_words.labels(names)}"
+                              f"{more}")
         return {"FINISHED"}
 
 

@@ -64,15 +64,22 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         layout.use_property_decorate = False
         draw_structures(layout.column(), context)
         layout.separator()
-        draw_question(layout.column(), context.scene.fibrilfit)
+        draw_question(layout.column(), context.scene.fibrilfit,
+                      structure_trace.measured(context.scene))
         layout.separator()
         draw_run(layout.column(), context)
 
 
 # ---- the structures --------------------------------------------------------------------------
 
+START = ("Start here: import a fibril and a domain, or Run all for the tutorial's model "
+         "(docs: Tutorial)")
+
+
 def draw_structures(col, context):
     s = context.scene.fibrilfit
+    if is_empty(context.scene):
+        wrapped(col, START, "HAND")
     row = col.row(align=True)
     row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
     row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
@@ -86,6 +93,13 @@ def draw_structures(col, context):
         col.label(text=f"Case: {name}", icon="BOOKMARKS")
     for line in structure_lines(structure_trace.measured(context.scene)):
         col.label(text=line)
+
+
+def is_empty(scene) -> bool:
+    """Nothing yet (issue #45): no model, no structure imported, no domain, no case loaded."""
+    s = scene.fibrilfit
+    return (find_root(scene) is None and not structure_trace.measured(scene)
+            and not len(s.domains) and not s.case_metadata)
 
 
 def draw_domains(col, s):
@@ -102,6 +116,13 @@ def draw_domains(col, s):
     side.operator("fibrilfit.domain_move", icon="TRIA_UP", text="").direction = "UP"
     side.operator("fibrilfit.domain_move", icon="TRIA_DOWN", text="").direction = "DOWN"
     side.operator("fibrilfit.domain_remove", icon="X", text="")
+    if 0 <= s.domain_index < len(s.domains):  # the selected one, in full, and its linker
+        i, e = s.domain_index, s.domains[s.domain_index]
+        col.label(text=f"{i + 1}: {bpy.path.basename(e.filepath)} chain {e.chain}")
+        if i < len(s.domains) - 1:
+            col.prop(e, "linker", text="Linker to next (residues)")
+        else:
+            col.label(text="the outermost: no linker after it")
 
 
 def _case_name(s) -> str:
@@ -134,17 +155,31 @@ def structure_lines(measured: dict) -> list:
 
 # ---- the question ----------------------------------------------------------------------------
 
-def draw_question(col, s):
-    """Linker, domain, protocol, then the fibril: layers, or a periodic cell of M layers."""
+def draw_question(col, s, measured: dict | None = None):
+    """Linker, domain, protocol, then the fibril: layers, or a periodic cell of M layers. Under
+    the linker, after an import that did not give it, a note until it is set (`measured`:
+    structure_trace.measured)."""
     for field in properties.question_fields():
         if field.name in ("layers", "periodic"):
             continue
         col.prop(s, field.name)
+        if field.name == "linker":
+            for line in linker_note(s.linker, (measured or {}).get("linker")):
+                col.label(text=line, icon="INFO" if line.startswith("Not") else "BLANK1")
         if field.name == "globule_diameter":
             for name in BESIDE_DOMAIN:  # "Domain shape" would be cut beside its drop-down
                 col.prop(s, name, text="Shape")
     col.prop(s, "use_periodic")
     col.prop(s, "periodic" if s.use_periodic else "layers")
+
+
+def linker_note(linker: int, kept: dict | None) -> list:
+    """The note under the linker (issue #45 item 8): after an import whose files did not give
+    it (`kept`: what the import left, structure_trace's "linker"), while it still holds the
+    value the import left."""
+    if not kept or kept.get("from_files") or linker != kept.get("value"):
+        return []
+    return ["Not in the files: set the residues", "from the core's anchor to the domain"]
 
 
 # ---- Run all and the verdict -----------------------------------------------------------------

@@ -589,7 +589,7 @@ def test_panels_draw_in_every_state(ui, scene):
     assert not any(t.startswith("Run: ") for t in main["baked"])
     ui.layers = 9  # the panel now says the model is out of date
     labels = [t for kind, t in draw_all(bpy.context)["FIBRILFIT_PT_main"] if kind == "label"]
-    assert any("Changed since the build: layers" in t for t in labels)
+    assert any("Changed since the build: Layers" in t for t in labels)
 
 
 def test_a_setting_shows_only_where_it_applies(ui):

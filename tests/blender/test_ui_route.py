@@ -317,3 +317,92 @@ def test_messages_name_fields_by_their_labels(ui, scene, tmp_path, capfd):
         run("bake")
     labels = main_labels()
     assert "Changed since the build: Protofilament rise" in " ".join(labels), labels
+
+
+# ---- 8. the linker explained where it is set; a "start here" line -------------------------------
+
+def test_the_linker_says_its_unit_and_its_anchor_and_an_import_that_leaves_it_says_so(ui, scene):
+    """Issue #45 item 8: "Linker (residues)", a tooltip that says "residues" once and what the
+    passive anchor is; after importing ubiquitin alone (no numbering to give the linker) the
+    panel and the import's report say it was left as it was, until the user sets it."""
+    from test_ui import FakeLayout  # noqa: F401 (main_labels draws with it)
+    rna = ui.bl_rna.properties["linker"]
+    assert rna.name == "Linker (residues)"
+    assert rna.description.count("(residues)") <= 1
+    assert "passive" in rna.description and "does not move" in rna.description
+    assert "counts as the linker's first residue" in rna.description
+    assert any(t.startswith("Start here") for t in main_labels())  # the empty panel
+    assert run("import_domain", filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
+    labels = main_labels()
+    assert not any(t.startswith("Start here") for t in labels)
+    assert "Not in the files: set the residues" in labels
+    ui.linker = 12
+    assert "Not in the files: set the residues" not in main_labels()
+
+
+# ---- 9. the domain list is not cramped --------------------------------------------------------
+
+def test_the_domain_list_rows_fit_and_the_selected_linker_is_set_under_it(ui, scene):
+    """Issue #45 item 9: each row of the list (about 190 px beside its buttons at the default
+    sidebar width) shows its name and diameter uncut, with no field squeezed beside it; the
+    selected domain's linker to the next is a full-width field under the list."""
+    from fibrilfit.ui import domain_list
+    from test_ui import FIELD_PX, _text_px
+    import_two_domains()
+    list_px = FIELD_PX - 40  # the move and remove buttons beside the list
+    for i, e in enumerate(ui.domains):
+        log = []
+        layout = types.SimpleNamespace(
+            label=lambda text="", **kw: log.append(("label", text)),
+            prop=lambda data, name, text="", **kw: log.append(("prop", text)),
+            row=lambda **kw: layout)
+        domain_list.FIBRILFIT_UL_domains.draw_item(None, bpy.context, layout, ui, e, 0, ui,
+                                                   "domain_index", i)
+        assert [k for k, _ in log] == ["label"], log
+        assert _text_px(log[0][1]) + 20 <= list_px, log  # the icon's 20 px
+        assert f"{json.loads(e.measured)['globule_diameter']:.0f} Å" in log[0][1]
+    ui.domain_index = 0
+    from test_ui import draw_all
+    props = [n for kind, n in draw_all(bpy.context)["FIBRILFIT_PT_main"] if kind == "prop"]
+    assert "linker" in props  # the entry's, under the list (FakeLayout records its name)
+
+
+# ---- 10. frictions: the last folder, one set of restarts, a report never replaced unasked ------
+
+def test_file_browsers_start_in_the_last_folder_and_failed_imports_push_no_undo(ui, scene):
+    """Issue #45 item 10: after a file is read from a folder the next file browser starts
+    there; operators that open a file browser push their own undo step on success only (with
+    the UNDO option Blender 4.3 pushes one whatever they return)."""
+    from fibrilfit.ui.operators import cases, common, export, outline, structures
+    for cls in (structures.FIBRILFIT_OT_import_fibril, structures.FIBRILFIT_OT_import_domain,
+                cases.FIBRILFIT_OT_load_case, outline.FIBRILFIT_OT_load_outline):
+        assert "UNDO" not in cls.bl_options, cls.__name__
+    with pytest.raises(RuntimeError):
+        run("import_fibril", filepath=str(DATA / "1ubq.pdb.gz"))
+    assert ui.last_folder == ""
+    assert run("import_domain", filepath=str(DATA / "1ubq.pdb.gz")) == {"FINISHED"}
+    assert ui.last_folder == str(DATA)
+    op = types.SimpleNamespace(filepath="")
+    common.browse_from_last_folder(op, bpy.context, "case.toml")
+    assert op.filepath == str(DATA / "case.toml")
+
+
+def test_report_and_minimal_linker_offer_the_same_restarts(ui):
+    for name in ("restarts", "max_linker"):
+        mine = bpy.ops.fibrilfit.minimal_linker.get_rna_type().properties[name].default
+        theirs = bpy.ops.fibrilfit.report.get_rna_type().properties[name].default
+        assert mine == theirs == ui.bl_rna.properties[f"report_{name}"].default, name
+
+
+def test_report_never_replaces_a_report_unasked(ui, tmp_path):
+    """Report… into a folder that holds a report is refused (tick Replace to write over it),
+    and the next Report… offers a new folder beside the last one."""
+    from fibrilfit.ui.operators import report as report_op
+    out = tmp_path / "page"
+    out.mkdir()
+    (out / "report.html").write_text("<p>an earlier report</p>")
+    with pytest.raises(RuntimeError, match="already holds a report"):
+        run("report", directory=str(out), restarts=1, max_linker=1)
+    assert (out / "report.html").read_text() == "<p>an earlier report</p>"
+    assert report_op.free_folder(str(out) + "/") == str(tmp_path / "page-2") + "/"
+    assert report_op.free_folder(str(tmp_path / "new")) == str(tmp_path / "new") + "/"

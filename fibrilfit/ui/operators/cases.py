@@ -19,13 +19,13 @@ class _CaseFile:
     filter_glob: bpy.props.StringProperty(default="*.toml", options={"HIDDEN"})
 
     def invoke(self, context, event):
-        if not self.filepath:
-            self.filepath = "case.toml"
+        common.browse_from_last_folder(self, context, "case.toml")
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._do, context)
+        return common.after_file(self, context, common.guarded(self, self._do, context),
+                                 undo=self.bl_idname == "fibrilfit.load_case")
 
 
 class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
@@ -34,7 +34,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
     bl_description = ("Set every parameter from a case file (.toml), its structure files "
                       "measured as `run --case` measures them; parameters it leaves out take "
                       "their defaults. The model is not rebuilt: Run all to use them")
-    bl_options = {"REGISTER", "UNDO"}
+    bl_options = {"REGISTER"}  # its undo step pushed on success only (common.after_file)
 
     def _do(self, context):
         case = cases.load(bpy.path.abspath(self.filepath))

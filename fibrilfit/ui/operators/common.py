@@ -3,7 +3,10 @@ raised, poll messages, and recording results in the scene."""
 from __future__ import annotations
 
 import json
+import os
 import traceback
+
+import bpy
 
 from ...model import params as P
 from ... import pipeline
@@ -69,6 +72,26 @@ def unexpected(exc: BaseException) -> str:
     what = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
     return (f"FibrilFit failed unexpectedly ({type(exc).__name__}{': ' + what if what else ''}); "
             f"please report it with the traceback from the system console")
+
+
+def browse_from_last_folder(op, context, name: str = "") -> None:
+    """A file browser's start (issue #45 item 10): the folder a file was last read from or
+    written to, `name` in it; the operator's own path when it has one."""
+    folder = settings(context).last_folder
+    if not op.filepath:
+        op.filepath = os.path.join(folder, name) if folder else name
+
+
+def after_file(op, context, done: set, *, undo: bool = True) -> set:
+    """After a file browser's operator: on success, the file's folder kept for the next browser
+    and, for one that changes the scene (`undo`), one undo step. Such an operator has no UNDO
+    option: Blender (4.3) pushes a file browser's UNDO step whatever the operator returned, so a
+    failed import added one; headless there is no undo stack to push to."""
+    if done == {"FINISHED"}:
+        settings(context).last_folder = os.path.dirname(bpy.path.abspath(op.filepath))
+        if undo and not bpy.app.background:
+            bpy.ops.ed.undo_push(message=op.bl_label)
+    return done
 
 
 def panel_params(context) -> P.Params:

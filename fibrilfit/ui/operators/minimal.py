@@ -13,7 +13,7 @@ import bpy
 from ...api.plans import MinimalLinkerPlan
 from ...batch.executors import make_executor
 from ...search.background import BackgroundWalk
-from ...search.plans import BatchOutput, SearchPlan
+from ...search.plans import REPORT_SEARCH, BatchOutput, SearchPlan
 from .. import minimal_summary
 from ..plan_properties import plan_property
 from . import common
@@ -29,8 +29,10 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
                       "(the same walk as `minimal-linker`: restarts at each length tried, from "
                       "the proven bound); runs on worker processes, Esc cancels")
     bl_options = {"REGISTER", "UNDO"}  # it keeps the map in the scene's settings
-    restarts: plan_property(SEARCH, "restarts")
-    max_linker: plan_property(SEARCH, "max_linker")
+    # The same defaults as Report…'s (REPORT_SEARCH), and the last ones either used: the report's
+    # own walk is this walk with these restarts, so the panel's two boxes agree for one model
+    restarts: plan_property(REPORT_SEARCH, "restarts")
+    max_linker: plan_property(REPORT_SEARCH, "max_linker")
     diameters: bpy.props.StringProperty(
         name="Diameters", default="",
         description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
@@ -43,6 +45,11 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
         return context.scene is not None and not cls.running(context)
 
     def invoke(self, context, event):
+        s = common.settings(context)
+        if not self.properties.is_property_set("restarts"):
+            self.restarts = s.report_restarts
+        if not self.properties.is_property_set("max_linker"):
+            self.max_linker = s.report_max_linker
         return context.window_manager.invoke_props_dialog(self)
 
     def make_job(self, context) -> BackgroundWalk:
@@ -80,6 +87,7 @@ class FIBRILFIT_OT_minimal_linker(BackgroundOperator, bpy.types.Operator):
             s.minimal_map = ""
             raise walk.error
         s.minimal_map = json.dumps(minimal_summary.summary_of(walk.result, self._values))
+        s.report_restarts, s.report_max_linker = self.restarts, self.max_linker
         found = [f"{r['globule_diameter']:g} Å: {r['minimal_linker'] or 'none'}"
                  for r in walk.result["rows"]]
         self.report({"INFO"}, "Minimal linker: " + ", ".join(found))

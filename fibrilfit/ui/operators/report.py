@@ -7,12 +7,14 @@ it (the workers killed, nothing written: the report is made in a folder beside i
 into place whole); the best layout, its pictures and the page are then made here (the modal
 part is background.py's)."""
 import json
+import os
 import pathlib
 import webbrowser
 
 import bpy
 
 from ... import files, pipeline
+from ...exits import UsageError
 from ...api import reproduce_line as api_reproduce_line
 from ...api.plans import ReportPlan
 from ...batch.executors import make_executor
@@ -41,6 +43,10 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})
     restarts: plan_property(REPORT_SEARCH, "restarts")
     max_linker: plan_property(REPORT_SEARCH, "max_linker")
+    replace: bpy.props.BoolProperty(
+        name="Replace a report there", default=False, options={"SKIP_SAVE"},
+        description="Write over the report already in the chosen folder (off: a folder that "
+                    "holds one is refused, and Report… offers a new folder)")
 
     what, job_name = "report", "report"
     _out = None  # the folder the user picked
@@ -53,10 +59,14 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         return context.scene is not None and not cls.running(context)
 
     def invoke(self, context, event):
-        """The folder chooser, offering the last report's folder and settings."""
+        """The folder chooser, offering a new folder beside the last report's (never one that
+        holds a report: free_folder), and the last restarts and longest linker of Report… or
+        Minimal linker… (the same defaults, REPORT_SEARCH's)."""
         s = common.settings(context)
-        if not self.directory and s.report_dir:
-            self.directory = s.report_dir
+        if not self.directory:
+            last = s.report_dir or (os.path.join(s.last_folder, "fibrilfit_report")
+                                    if s.last_folder else "")
+            self.directory = free_folder(last) if last else ""
         if not self.properties.is_property_set("restarts"):
             self.restarts = s.report_restarts
         if not self.properties.is_property_set("max_linker"):
@@ -70,6 +80,9 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         the sidebar or the default; ui/provenance.py), the folder it is made in beside the
         chosen one, and its restarts and walk started on their thread."""
         out = pathlib.Path(bpy.path.abspath(self.directory or "//fibrilfit_report"))
+        if (out / report.HTML).exists() and not self.replace:  # asked, not replaced unseen
+            raise UsageError(f"{out} already holds a report: pick another folder, or tick "
+                             f"Replace a report there")
         s = common.settings(context)
         p, request, block, self._sources = panel_model(context.scene, s)
         self._out, self._request, self._block = out, request, block
@@ -141,6 +154,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
             # Check and the exports refuse it as stale)
             s.seed = best["seed"]
         s.report_dir = str(out)
+        s.last_folder = str(out.parent)
         s.report_restarts, s.report_max_linker = self.restarts, self.max_linker
         s.report_summary = json.dumps(report_summary.summary_of(doc, str(out)))
         self.report({"INFO"}, f"{doc['answer']}: wrote {out / report.HTML}")
@@ -150,6 +164,17 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         if self._job is not None:
             self._job.join(10)  # its workers are killed: it ends within seconds
             self._job.discard()
+
+
+def free_folder(path: str) -> str:
+    """`path`, or when it holds a report the first of path-2, path-3, ... that does not (a
+    folder path, ending in its separator as Blender's folder browser gives it)."""
+    base = path.rstrip("/\\") or path
+    candidate, n = base, 1
+    while (pathlib.Path(bpy.path.abspath(candidate)) / report.HTML).exists():
+        n += 1
+        candidate = f"{base}-{n}"
+    return os.path.join(candidate, "")
 
 
 def panel_model(scene, s) -> tuple:

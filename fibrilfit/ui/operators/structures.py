@@ -93,17 +93,31 @@ def show_measured(context, m, p: P.Params, terminus: str = "C",
     frame_structures(context)
 
 
+def linker_said(context, set_now: bool) -> str:
+    """After an import: whether the files gave the linker (a modelled tail, the shared
+    numbering), kept for the panel's note (panels.linker_note); the note's words for the
+    import's report when they did not."""
+    s = common.settings(context)
+    kept = structure_trace.measured(context.scene).get("linker") or {}
+    given = set_now or (kept.get("from_files") and kept.get("value") == s.linker)
+    structure_trace.store(context.scene, "linker", {"from_files": bool(given),
+                                                    "value": s.linker})
+    return "" if given else (f"; Linker stays {s.linker} residues: the files do not give it, "
+                             f"set it (the anchor counts as one)")
+
+
 class _ImportBase:
-    bl_options = {"REGISTER", "UNDO"}
+    bl_options = {"REGISTER"}  # its undo step pushed on success only (common.after_file)
     filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
     filter_glob: bpy.props.StringProperty(default=GLOB, options={"HIDDEN"})
 
     def invoke(self, context, event):
+        common.browse_from_last_folder(self, context)
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._import, context)
+        return common.after_file(self, context, common.guarded(self, self._import, context))
 
 
 class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
@@ -133,7 +147,8 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         for w in fib.warnings:
             self.report({"WARNING"}, panel_words.in_panel_words(w))
         self.report({"INFO"}, f"{fib.file}: set {panel_words.labels(names)}"
-                    + (f"; not in this model: {', '.join(missing)}" if missing else ""))
+                    + (f"; not in this model: {', '.join(missing)}" if missing else "")
+                    + linker_said(context, "linker" in names))
         return {"FINISHED"}
 
 
@@ -162,7 +177,7 @@ class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
         more = (f"; domain {len(s.domains)} of the chain, {s.domains[-2].linker} residues after "
                 f"the one before (set it in the list)" if len(s.domains) > 1 else "")
         self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {panel_words.labels(names)}"
-                              f"{more}")
+                              f"{more}" + linker_said(context, "linker" in names))
         return {"FINISHED"}
 
 

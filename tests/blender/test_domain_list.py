@@ -74,13 +74,13 @@ def test_two_imported_domains_give_the_command_lines_params(registered, scene, u
     assert ("template_list", "domains") in log
     assert {"fibrilfit.domain_move", "fibrilfit.domain_remove"} <= {n for k, n in log
                                                                      if k == "operator"}
-    rows = []  # each row: its name, and the linker to the next (the last has none)
+    rows = []  # each row: its short name (issue #45: the linker is set under the list)
     for i, item in enumerate(ui.domains):
         from test_ui import FakeLayout
         domain_list.FIBRILFIT_UL_domains.draw_item(None, bpy.context, FakeLayout(rows), ui,
                                                    item, 0, ui, "domain_index", i)
-    assert rows == [("label", ui.domains[0].name), ("prop", "linker"),
-                    ("label", ui.domains[1].name), ("label", "last")]
+    assert rows == [("label", "ubq127 A 128-203, 30 Å"), ("label", "ubq229 A 230-305, 30 Å")]
+    assert ("prop", "linker") in log  # the selected domain's linker to the next, under it
     assert snapshot_user(user_objects) == before
     assert len(scene.objects) == len(user_objects) + 1  # and the domain's CA trace
 

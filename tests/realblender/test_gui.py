@@ -36,12 +36,22 @@ def session(installed):
     return log
 
 
+DATA = ROOT / "tests" / "data"
+
+
+def _domains(where) -> list:
+    """The two domains the session imported, as the command line names them."""
+    return ["--domain", where(DATA / "1ubq.pdb.gz"), "--domain", where(DATA / "1gfl.pdb.gz"),
+            "--domain-chain", "A"]
+
+
 def test_run_all_shows_the_headless_verdict(session):
     shown = session["state_after"]
     real, ref = OUT / "gui-headless-blender.json", OUT / "gui-headless-module.json"
-    cp = chroot(f"blender -b -c fibrilfit run --json {inside(real)}")  # the panel's defaults
-    assert cp.returncode == 0, cp.stderr[-2000:]
-    assert module(["run", "--json", str(ref)]).returncode == 0
+    args = " ".join(_domains(inside))
+    cp = chroot(f"blender -b -c fibrilfit run {args} --json {inside(real)}")  # the panel's
+    assert cp.returncode == 0, cp.stderr[-2000:]  # defaults with the two domains
+    assert module(["run", *_domains(str), "--json", str(ref)]).returncode == 0
     for result in (read_json(real), read_json(ref)):
         assert shown["verdict"] == result["verdict"]
         assert shown["clash_count"] == len(result["clashing_pairs"])
@@ -63,6 +73,20 @@ def test_the_model_is_framed_and_coloured_and_the_users_scene_kept(session):
     for name, where in FACTORY_OBJECTS.items():
         assert after["user_objects"][name] == where
     assert set(after["user_objects"]) == set(before["user_objects"])
+
+
+def test_two_domains_bake_step_by_step_and_clear_takes_the_results(session):
+    """Issue #45 items 1 and 2 in the window: after Run all with ubiquitin and GFP, Step by
+    step › Bake bakes (it refused: "changed from 10 to [10]"), and Clear leaves no verdict, no
+    report and no minimal-linker box."""
+    assert session["state_before"]["domains"][0].startswith("1ubq.pdb.gz A")
+    bake = session["state_bake"]
+    assert bake["stage"] == "baked" and not bake.get("refused"), bake.get("refused")
+    cleared = session["state_cleared"]
+    assert not cleared.get("refused")
+    assert cleared["stage"] == "" and cleared["verdict"] == ""
+    assert cleared["report_summary"] is None and not cleared["minimal_map"]
+    assert {"panel-domains.png", "panel-cleared.png"} <= set(session["screenshots"])
 
 
 def png_size(path) -> tuple:

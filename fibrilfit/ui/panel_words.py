@@ -60,7 +60,7 @@ def in_panel_words(text: str, name: str | None = None) -> str:
     """`text` with its options and internal names as the panel says them; `name` (an error's
     parameter or field: ParamError.param, PlanError.field) said by its label where the text
     starts with it ("linker: must be ..." -> "Linker: must be ...")."""
-    if name and text.startswith(f"{name}:"):
+    if name and known(name) and text.startswith(f"{name}:"):
         text = field_label(name) + text[len(name):]
     return _NAMES.sub(_said, text)
 

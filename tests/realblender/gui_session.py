@@ -120,9 +120,9 @@ class Session:
         seq = self.state()["seq"]
         return wait_for("the probe", lambda: (s := self.state())["seq"] >= seq + n and s, 30)
 
-    def command(self, cmd, theme):
+    def command(self, cmd, theme, timeout=30):
         (self.probe / "command").write_text(cmd)
-        wait_for(f"the probe's '{cmd}'", lambda: self.state()["theme"] == theme, 30)
+        wait_for(f"the probe's '{cmd}'", lambda: self.state()["theme"] == theme, timeout)
         return self.fresh_state()
 
     def view(self):
@@ -213,7 +213,7 @@ class Session:
         before = self.screenshot(self.out / "before.png")
         self.crop(before, self.panel_rect(marked, ui), "panel-before.png")  # "Start here"
         # Two domains, as Import domain… twice leaves them (issue #45 item 1's route)
-        state = self.command(f"domains {self.data}", "domains")
+        state = self.command(f"domains {self.data}", "domains", timeout=300)  # two imports
         if state.get("refused") or len(state["domains"]) != 2:
             raise SessionError(f"the two domains were not imported: {state.get('refused')} "
                                f"{state['domains']}")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import textwrap
 
-WRAP = 36  # characters per line: the sidebar's width (ui/panels.py WRAP)
+from .result_words import WRAP  # characters per line: the sidebar's width
 NOT_ASKED = ("linker", "seed")  # what the map searches, and its seeds' start (shown)
 KEPT = ("globule_diameter", "minimal_linker", "fits", "restarts", "linker_below",
         "restarts_below", "p_fit_below", "below_settled_by_bound", "below_unstarted", "floor",

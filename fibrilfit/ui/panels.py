@@ -11,8 +11,9 @@ import bpy
 
 from ..model import helix, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import (minimal_summary, panel_words, properties, provenance, report_summary,
-               result_words, structure_trace)
+from . import (minimal_summary, panel_words, properties, report_summary, result_words,
+               structure_trace)
+from .result_words import wrapped
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
@@ -45,7 +46,6 @@ STEPS = (
 # Settings of the question's domain drawn beside it (after the globule's diameter) rather than in
 # the Globule step: the domain's shape is chosen next to the domain (issue #33).
 BESIDE_DOMAIN = ("domain_shape",)
-WRAP = 36  # characters per line of a long message (about 230 px of Blender's 11 pt UI font)
 
 
 class _Sidebar:
@@ -207,19 +207,6 @@ def draw_run(col, context):
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
-def wrapped(col, text: str, icon: str = "NONE") -> None:
-    """`text` as labels of at most WRAP characters, the icon on the first."""
-    line = ""
-    for word in text.split():
-        if line and len(line) + 1 + len(word) > WRAP:
-            col.label(text=line, icon=icon)
-            line, icon = word, "BLANK1"
-        else:
-            line = f"{line} {word}" if line else word
-    if line:
-        col.label(text=line, icon=icon)
-
-
 def _draw_changes(col, s, root, stage):
     """Warn when the panel no longer matches the model a bake or check would use."""
     built, now = params_of(root), properties.compared_values(s)
@@ -248,44 +235,27 @@ def draw_result(box, s, p: P.Params | None = None):
 
 def draw_report(box, s):
     """The last report's answer, P(fit), minimal linker and bound, and Open report; greyed,
-    without its ticks, when the panel's values are no longer those it answers (draw_kept)."""
+    without its ticks, when the panel's values are no longer those it answers
+    (result_words.draw_kept)."""
     try:
         summary = json.loads(s.report_summary)
     except ValueError:
         return
-    draw_kept(box, s, summary, report_summary.summary_lines(summary), ignore=("seed",))
+    result_words.draw_kept(box, summary, report_summary.summary_lines(summary),
+                           properties.compared_values(s), ignore=("seed",))
     box.operator("fibrilfit.open_report", icon="URL")
 
 
 def draw_minimal(box, s):
     """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled";
-    greyed, without its ticks, when the panel's values are no longer its own (draw_kept)."""
+    greyed when the panel's values are no longer its own (result_words.draw_kept)."""
     try:
         summary = json.loads(s.minimal_map)
     except ValueError:
         return
-    draw_kept(box, s, summary, [], ignore=minimal_summary.NOT_ASKED)
+    result_words.draw_kept(box, summary, [], properties.compared_values(s),
+                           ignore=minimal_summary.NOT_ASKED)
     minimal_summary.draw(box, summary)
-
-
-def stale_names(s, summary: dict, ignore=()) -> list:
-    """The panel's labels of the values that changed since a kept result was made (its
-    "model"; none for a result that kept none)."""
-    then = summary.get("model") or {}
-    names = provenance.changed_names(then, properties.compared_values(s), ignore)
-    return [panel_words.field_label(n) for n in names]
-
-
-def draw_kept(box, s, summary: dict, lines, ignore=()) -> None:
-    """A kept result (the last report or minimal-linker map): it belongs to the model on screen
-    only while the panel holds the values it was made for; otherwise it says so first, and its
-    lines lose their ticks and grey out (issue #45)."""
-    changed = stale_names(s, summary, ignore)
-    if changed:
-        box.active = False
-        wrapped(box, f"Earlier values: {', '.join(changed)} changed since", "ERROR")
-    for text, icon in lines:
-        box.label(text=text, icon="BLANK1" if changed and icon == "CHECKMARK" else icon)
 
 
 # ---- the collapsed sub-panels ----------------------------------------------------------------

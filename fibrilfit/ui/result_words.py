@@ -3,12 +3,15 @@
 no layout found, no exit, impossible below B), then its evidence, each with its unit, and no
 double negative. Plain Python: tests/unit/test_result_words.py reads it without bpy.
 
-Each line is short enough for the default sidebar width (WRAP characters)."""
+Each line is short enough for the default sidebar width (WRAP characters); `wrapped` breaks a
+longer one, and `draw_kept` draws a kept result's box (greyed once the panel's values are no
+longer its own)."""
 from __future__ import annotations
 
 from ..exports.run_text import percent
+from . import panel_words, provenance
 
-WRAP = 36  # characters per line (ui/panels.py WRAP)
+WRAP = 36  # characters per line of the panel (about 230 px of Blender's 11 pt UI font)
 # The answer's words as the panel shows them, with their icon (docs/model/verdict.md#answer)
 ANSWERS = {"fits": "CHECKMARK", "borderline": "INFO", "no layout found": "ERROR",
            "no exit": "ERROR"}
@@ -61,3 +64,37 @@ def run_lines(*, answer: str, clashes: int, stretch: float, tolerance: float,
     if said and not (linker is not None and bound > 1 and linker < bound):
         lines.append((said, "BLANK1"))
     return lines
+
+
+def wrapped(col, text: str, icon: str = "NONE") -> None:
+    """`text` as labels of `col` (a panel's layout) of at most WRAP characters, the icon on the
+    first."""
+    line = ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > WRAP:
+            col.label(text=line, icon=icon)
+            line, icon = word, "BLANK1"
+        else:
+            line = f"{line} {word}" if line else word
+    if line:
+        col.label(text=line, icon=icon)
+
+
+def stale_labels(summary: dict, now: dict, ignore=()) -> list:
+    """The panel's labels of the values that changed since a kept result was made (its
+    "model"; none for a result that kept none); `now`: the panel's values
+    (properties.compared_values)."""
+    names = provenance.changed_names(summary.get("model") or {}, now, ignore)
+    return [panel_words.field_label(n) for n in names]
+
+
+def draw_kept(box, summary: dict, lines, now: dict, ignore=()) -> None:
+    """A kept result (the last report or minimal-linker map) in `box`: it belongs to the model
+    on screen only while the panel holds the values it was made for (`now`); otherwise it says
+    so first, and its lines lose their ticks and grey out (issue #45)."""
+    changed = stale_labels(summary, now, ignore)
+    if changed:
+        box.active = False
+        wrapped(box, f"Earlier values: {', '.join(changed)} changed since", "ERROR")
+    for text, icon in lines:
+        box.label(text=text, icon="BLANK1" if changed and icon == "CHECKMARK" else icon)

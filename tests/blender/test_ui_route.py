@@ -11,7 +11,7 @@ from helpers import ROOT
 
 from fibrilfit.builders import find_model, model_stage
 from fibrilfit.model import params as P
-from fibrilfit.ui import panels, properties, structure_trace
+from fibrilfit.ui import properties, structure_trace
 
 DATA = ROOT / "tests" / "data"
 SMALL = dict(layers=6, frames=10, seed=5)
@@ -325,7 +325,6 @@ def test_the_linker_says_its_unit_and_its_anchor_and_an_import_that_leaves_it_sa
     """Issue #45 item 8: "Linker (residues)", a tooltip that says "residues" once and what the
     passive anchor is; after importing ubiquitin alone (no numbering to give the linker) the
     panel and the import's report say it was left as it was, until the user sets it."""
-    from test_ui import FakeLayout  # noqa: F401 (main_labels draws with it)
     rna = ui.bl_rna.properties["linker"]
     assert rna.name == "Linker (residues)"
     assert rna.description.count("(residues)") <= 1
@@ -373,7 +372,7 @@ def test_file_browsers_start_in_the_last_folder_and_failed_imports_push_no_undo(
     """Issue #45 item 10: after a file is read from a folder the next file browser starts
     there; operators that open a file browser push their own undo step on success only (with
     the UNDO option Blender 4.3 pushes one whatever they return)."""
-    from fibrilfit.ui.operators import cases, common, export, outline, structures
+    from fibrilfit.ui.operators import cases, common, outline, structures
     for cls in (structures.FIBRILFIT_OT_import_fibril, structures.FIBRILFIT_OT_import_domain,
                 cases.FIBRILFIT_OT_load_case, outline.FIBRILFIT_OT_load_outline):
         assert "UNDO" not in cls.bl_options, cls.__name__

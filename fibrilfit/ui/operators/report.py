@@ -1,4 +1,4 @@
-"""Report… in the sidebar: the panel's model through the same report as `headless.py report`
+"""Report… in the sidebar: the panel's model through the same report as the command line's `report`
 (search/report.py), into a folder the user picks; then the panel shows its numbers
 (ui/report_summary.py) and Open report shows the page in the user's browser. Its restarts and
 minimal-linker walk (minutes) run on worker processes, waited for on a thread
@@ -37,7 +37,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     bl_label = "Report…"
     bl_description = ("Write report.html and report.json for the panel's model: P(fit) over "
                       "restarts, the minimal linker, the best layout rendered and the envelope "
-                      "(the same report as `headless.py report`; takes minutes on worker "
+                      "(the same report as the command line's `report`; takes minutes on worker "
                       "processes, Esc cancels)")
     bl_options = {"REGISTER", "UNDO"}  # it builds the best layout in the scene
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})

@@ -82,7 +82,7 @@ def test_two_imported_domains_give_the_command_lines_params(registered, scene, u
     assert rows == [("label", "ubq127 A 128-203, 30 Å"), ("label", "ubq229 A 230-305, 30 Å")]
     assert ("prop", "linker") in log  # the selected domain's linker to the next, under it
     assert snapshot_user(user_objects) == before
-    assert len(scene.objects) == len(user_objects) + 1  # and the domain's CA trace
+    assert len(scene.objects) == len(user_objects) + 2  # and each domain's CA trace (#45)
 
 
 def test_a_full_length_model_gives_the_command_lines_params(registered, scene, tmp_path):
@@ -159,7 +159,8 @@ def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_pa
     said = capsys.readouterr().err.strip()
     assert said == "fibrilfit: error: --full-length: no folded domain (pLDDT >= 70 over at " \
                    "least 40 residues) on the linker's side of the core in fl.pdb"
-    assert str(caught.value).strip() == "Error: " + said.removeprefix("fibrilfit: error: ")
+    assert str(caught.value).strip() == "Error: " + said.removeprefix(  # in the panel's words
+        "fibrilfit: error: ").replace("--full-length", "Full-length model")
 
 
 def test_load_case_replaces_the_list(registered, scene, tmp_path):

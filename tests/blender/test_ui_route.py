@@ -405,3 +405,26 @@ def test_report_never_replaces_a_report_unasked(ui, tmp_path):
     assert (out / "report.html").read_text() == "<p>an earlier report</p>"
     assert report_op.free_folder(str(out) + "/") == str(tmp_path / "page-2") + "/"
     assert report_op.free_folder(str(tmp_path / "new")) == str(tmp_path / "new") + "/"
+
+
+def test_kept_results_are_marked_after_a_rebuild_with_other_values_and_cleared(ui, scene):
+    """Issue #45 item 2, without a report's minutes: the report's box as Report… leaves it (its
+    summary of report.json, the model it answered for), then Run all with Layers 6 -> 7: the box
+    says the values changed, without its tick; Clear removes it and the minimal-linker map's."""
+    from fibrilfit.ui import report_summary
+    doc = {"answer": "fits", "model": properties.read_params(ui).to_dict(),
+           "p_fit": {"fits": 2, "runs": 2, "low": 0.34, "high": 1.0, "linker": 6},
+           "minimal_linker": {"linker": 3, "max_linker": 30}, "bound": {"impossible_below": 1}}
+    ui.report_summary = json.dumps(report_summary.summary_of(doc, "/tmp/r"))
+    ui.minimal_map = json.dumps(_minimal_map())
+    assert run("run_all") == {"FINISHED"}
+    labels = main_labels()
+    assert "Report: fits" in labels and not any(t.startswith("Earlier") for t in labels)
+    ui.layers = 7
+    assert run("run_all") == {"FINISHED"}
+    labels = main_labels()
+    i = labels.index("Report: fits")
+    assert labels[i - 1].startswith("Earlier values: Layers"), labels
+    assert run("clear") == {"FINISHED"}
+    assert ui.report_summary == ui.minimal_map == ""
+    assert not any(t.startswith(("Report", "Minimal linker (", "Earlier")) for t in main_labels())

@@ -12,6 +12,7 @@ from ..exports.run_text import percent
 from . import panel_words, provenance
 
 WRAP = 36  # characters per line of the panel (about 230 px of Blender's 11 pt UI font)
+BOX_WRAP = 32  # in a result's box, beside its icon column (Blender 4.3.2's window: 36 were cut)
 # The answer's words as the panel shows them, with their icon (docs/model/verdict.md#answer)
 ANSWERS = {"fits": "CHECKMARK", "borderline": "INFO", "no layout found": "ERROR",
            "no exit": "ERROR"}
@@ -28,8 +29,9 @@ def answer_line(answer: str, *, linker: int | None = None, bound: int = 0,
     `what` before it ("Report: fits"; without it the word is capitalised)."""
     if linker is not None and bound > 1 and linker < bound:
         word, icon = f"impossible below {residues(bound)}", "CANCEL"
-        if len(what + word) > WRAP:  # a bound of three digits after "Report: "
-            word = f"impossible below {bound} res."
+        for shorter in (f"impossible below {bound} res.", f"impossible below {bound}"):
+            if len(what + word) > BOX_WRAP:  # e.g. a bound of two digits after "Report: "
+                word = shorter
     else:
         word, icon = answer or "no answer", ANSWERS.get(answer, "INFO")
     return (f"{what}{word}" if what else word[:1].upper() + word[1:]), icon
@@ -48,8 +50,8 @@ def bound_line(bound: int | None) -> str | None:
     if not bound:
         return None
     if bound > 1:
-        return f"Bound: impossible below {residues(bound)}"
-    return "Bound: geometry allows every length"
+        return f"Impossible below {residues(bound)}"
+    return "Bound: every length allowed"
 
 
 def run_lines(*, answer: str, clashes: int, stretch: float, tolerance: float,

@@ -288,7 +288,7 @@ def test_the_panel_says_the_answer_first_in_the_glossarys_words(ui, scene):
     lines = [t for t, _ in report_summary.summary_lines(report_summary.summary_of(doc, "/r"))]
     assert lines[0] == "Report: no layout found"
     assert "P(fit) 95 % interval: 0.00–0.32" in lines
-    assert "Bound: geometry allows every length" in lines
+    assert "Bound: every length allowed" in lines
 
 
 # ---- 7. the panel's messages speak the panel's labels ------------------------------------------

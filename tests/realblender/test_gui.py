@@ -41,9 +41,10 @@ DATA = ROOT / "tests" / "data"
 
 def _domains(where) -> list:
     """The two domains the session imported and the values it typed (gui_probe.py's ROUTE), as
-    the command line names them."""
+    the command line names them (the linker between them: the list's default, their files'
+    numberings do not run outward)."""
     return ["--domain", where(DATA / "1ubq.pdb.gz"), "--domain", where(DATA / "1gfl.pdb.gz"),
-            "--domain-chain", "A", "--layers", "8", "--frames", "80"]
+            "--domain-chain", "A", "--domain-linker", "10", "--layers", "8", "--frames", "80"]
 
 
 def test_run_all_shows_the_headless_verdict(session):

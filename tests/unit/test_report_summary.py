@@ -19,7 +19,7 @@ def test_the_bound_shows_when_the_report_has_one():
     doc = {**DOC, "bound": {"impossible_below": 3, "method": "..."}}
     summary = summary_of(doc, "/tmp/r")
     assert summary["impossible_below"] == 3
-    assert summary_lines(summary)[-1] == ("Bound: impossible below 3 residues", "BLANK1")
+    assert summary_lines(summary)[-1] == ("Impossible below 3 residues", "BLANK1")
 
 
 def test_no_minimal_linker_found_says_up_to_where():
@@ -41,4 +41,4 @@ def test_a_bound_of_one_says_that_the_geometry_allows_every_length():
     summary = {"answer": "fits", "minimal_linker": 3, "max_linker": 30, "linker_below": 2,
                "p_fit_below": 0.0, "impossible_below": 1,
                "p_fit": {"fits": 2, "runs": 2, "low": 0.34, "high": 1.0, "linker": 8}}
-    assert summary_lines(summary)[-1] == ("Bound: geometry allows every length", "BLANK1")
+    assert summary_lines(summary)[-1] == ("Bound: every length allowed", "BLANK1")

@@ -38,10 +38,10 @@ def answer_line(answer: str, *, linker: int | None = None, bound: int = 0,
 
 
 def stretch_line(stretch: float, tolerance: float) -> str:
-    """The worst linker bond's stretch, with the limit it is judged by; a bond no longer than
-    at rest is "none" (never a negative stretch)."""
-    shown = percent(stretch) if stretch > 0 and percent(stretch) != "0.0 %" else "none"
-    return f"Worst stretch: {shown} (limit {100 * tolerance:.3g} %)"
+    """The worst linker bond's stretch ("max"), with the limit it is judged by; a bond no
+    longer than at rest is 0 % (never a negative stretch)."""
+    shown = percent(stretch) if stretch > 0 and percent(stretch) != "0.0 %" else "0 %"
+    return f"Max stretch {shown}, limit {100 * tolerance:.3g} %"
 
 
 def bound_line(bound: int | None) -> str | None:

@@ -275,7 +275,7 @@ def test_the_panel_says_the_answer_first_in_the_glossarys_words(ui, scene):
     assert labels[i].removeprefix("Run: ") in ("fits", "borderline", "no layout found") or \
         labels[i].startswith("Run: impossible below ")
     assert labels[i + 1].startswith("Globules: ")
-    assert re.fullmatch(r"Worst stretch: (\d+\.\d %|none) \(limit 5 %\)", labels[i + 2])
+    assert re.fullmatch(r"Max stretch (\d+\.\d %|0 %), limit 5 %", labels[i + 2])
     text = " ".join(labels)
     for word in ("Verdict", "Accommodated", "successful", "intersection", "rules out no",
                  "Answer:", "−", "-0.", "95 %:"):

@@ -8,7 +8,7 @@ def test_the_answer_comes_first_then_its_evidence():
     lines = run_lines(answer="no layout found", clashes=2, stretch=1.16, tolerance=0.05,
                       linker=6, bound=1)
     assert [t for t, _ in lines] == ["Run: no layout found", "Globules: 2 clashing pairs",
-                                     "Worst stretch: 116.0 % (limit 5 %)",
+                                     "Max stretch 116.0 %, limit 5 %",
                                      "Bound: every length allowed"]
     assert lines[0][1] == "ERROR"
 
@@ -21,10 +21,10 @@ def test_a_linker_under_the_proven_bound_is_the_answer():
     assert answer_line("fits", linker=12, bound=12) == ("Fits", "CHECKMARK")
 
 
-def test_a_bond_at_rest_or_shorter_is_no_stretch():
-    assert stretch_line(-0.005, 0.05) == "Worst stretch: none (limit 5 %)"
-    assert stretch_line(0.0004, 0.05) == "Worst stretch: none (limit 5 %)"
-    assert stretch_line(0.032, 0.05) == "Worst stretch: 3.2 % (limit 5 %)"
+def test_a_bond_at_rest_or_shorter_is_a_stretch_of_0():
+    assert stretch_line(-0.005, 0.05) == "Max stretch 0 %, limit 5 %"
+    assert stretch_line(0.0004, 0.05) == "Max stretch 0 %, limit 5 %"
+    assert stretch_line(0.032, 0.05) == "Max stretch 3.2 %, limit 5 %"
 
 
 def test_the_bound_is_said_positively_and_lines_fit():

@@ -36,16 +36,27 @@ class FIBRILFIT_PG_domain(bpy.types.PropertyGroup):
 
 
 class FIBRILFIT_UL_domains(bpy.types.UIList):
-    """A row per domain: its file, chain, residues and diameter, and the linker to the next."""
+    """A row per domain, short enough for the default sidebar (issue #45 item 9): its file's
+    name, chain, residues and diameter; the selected domain's linker to the next is set under
+    the list (panels.draw_domains)."""
 
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname,
                   index=0, flt_flag=0):
-        row = layout.row(align=True)
-        row.label(text=item.name, icon="MESH_UVSPHERE")
-        if index < len(data.domains) - 1:
-            row.prop(item, "linker", text="→")
-        else:
-            row.label(text="last")
+        layout.label(text=row_text(item), icon="MESH_UVSPHERE")
+
+
+def file_stem(path: str) -> str:
+    """A structure file's name without its folder and extensions: 1gfl for /x/1gfl.pdb.gz."""
+    name = path.replace("\\", "/").rsplit("/", 1)[-1]
+    for ext in (".gz", ".pdb", ".ent", ".cif", ".mmcif", ".mcif"):
+        name = name[:-len(ext)] if name.lower().endswith(ext) else name
+    return name
+
+
+def row_text(e) -> str:
+    """A list entry as its row shows it: "1gfl A 2-231, 44 Å"."""
+    d = logic.from_text(e.measured).globule_diameter if e.measured else 0.0
+    return f"{file_stem(e.filepath)} {e.chain} {e.residues}, {d:.0f} Å"
 
 
 CLASSES = (FIBRILFIT_PG_domain, FIBRILFIT_UL_domains)

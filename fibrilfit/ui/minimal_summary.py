@@ -1,27 +1,27 @@
 """What the panel shows of the last Minimal linker… (ui/operators/minimal.py): the map's rows,
-kept in the scene as JSON (scene.fibrilfit.minimal_map), and the panel's lines for them, per
-diameter: the minimal linker, P(fit) there and one below, the bound and the bracket line as
-`minimal-linker` prints it (search/table.py). Plain Python: tests/unit/test_minimal_summary.py
+kept in the scene as JSON (scene.fibrilfit.minimal_map), and the panel's small table of them
+(issue #45): per diameter, the minimal linker, P(fit) there and the bracket from the proven bound
+to the first fit; the longer text (P(fit) one below, the bracket's sentence) is the report's and
+`minimal-linker`'s table's (search/table.py). Plain Python: tests/unit/test_minimal_summary.py
 reads it without bpy."""
 from __future__ import annotations
 
 import textwrap
 
-from ..search.table import bracket_line
-
-WRAP = 36  # characters per line: the sidebar's width (ui/panels.py WRAP)
+from .result_words import WRAP  # characters per line: the sidebar's width
+NOT_ASKED = ("linker", "seed")  # what the map searches, and its seeds' start (shown)
 KEPT = ("globule_diameter", "minimal_linker", "fits", "restarts", "linker_below",
         "restarts_below", "p_fit_below", "below_settled_by_bound", "below_unstarted", "floor",
         "error")
 
 
-def summary_of(result: dict) -> dict:
-    """The map as the panel keeps it, from search/background.py's result."""
-    return {"state": "done", "protocol": result["protocol"], "restarts": result["restarts"],
+def summary_of(result: dict, model: dict | None = None) -> dict:
+    """The map as the panel keeps it, from search/background.py's result; `model`: the panel's
+    values it was made for (ui/provenance.py)."""
+    return {"state": "done", "model": model,
+            "protocol": result["protocol"], "restarts": result["restarts"],
             "seeds": result["seeds"], "max_linker": result["max_linker"],
-            "rows": [{**{k: r.get(k) for k in KEPT},
-                      "bracket": bracket_line(r) if r["minimal_linker"] is not None else None}
-                     for r in result["rows"]],
+            "rows": [{k: r.get(k) for k in KEPT} for r in result["rows"]],
             "table": result["table"]}
 
 
@@ -33,39 +33,45 @@ def runs(n: int) -> str:
     return f"{n} run{'' if n == 1 else 's'}"
 
 
+# The table's columns (issue #45): each cell at most CELL characters, four to the default
+# sidebar's width (a row of the panel shares its width evenly); what they mean is in LEGEND
+HEADER = ("Ø Å", "Minimal", "P(fit)", "Bracket")
+CELL = 8
+LEGEND = "Bracket: from the proven bound to the first fit"
+
+
 def summary_lines(summary: dict) -> list[tuple[str, str]]:
-    """(text, icon) lines, each at most WRAP characters."""
+    """(text, icon) lines above the table (the title, restarts and seeds), or the cancelled
+    walk's, each at most WRAP characters."""
     if not summary:
         return []
     if summary["state"] == "cancelled":
         return [("Minimal linker: cancelled", "CANCEL"),
                 (f"after {runs(summary['runs'])}; nothing kept", "BLANK1")]
     first, last = summary["seeds"]
-    lines = [(f"Minimal linker ({summary['protocol']})", "SORTSIZE"),
-             (f"{summary['restarts']} restarts, seeds {first}-{last}", "BLANK1")]
+    return [(f"Minimal linker ({summary['protocol']})", "SORTSIZE"),
+            (f"{summary['restarts']} restarts, seeds {first}-{last}", "BLANK1")]
+
+
+def table_rows(summary: dict) -> list:
+    """The table: HEADER, then per diameter (diameter, minimal linker, P(fit) there, bracket),
+    or (diameter, its error) for a diameter that could not be walked. The bracket is where the
+    true minimum lies (docs/model/bound.md#bracket): from the proven bound B to the minimal
+    linker L ("B–L"; "L" when they meet; "B–?" when no layout was found up to the longest
+    linker tried, shown "> max")."""
+    if not summary or summary["state"] != "done":
+        return []
+    out = [HEADER]
     for r in summary["rows"]:
-        lines.extend(_row_lines(r, summary["max_linker"]))
-    return lines
-
-
-def _row_lines(r: dict, max_linker: int) -> list:
-    d, m = r["globule_diameter"], r["minimal_linker"]
-    if r.get("error"):
-        return _wrapped(f"{d:g} Å: {r['error']}", "ERROR")
-    if m is None:
-        return [(f"{d:g} Å: none up to {max_linker}", "INFO"),
-                (f"bound: impossible below {r['floor']}", "BLANK1")]
-    lines = [(f"{d:g} Å: minimal linker {m}", "CHECKMARK"),
-             (f"P(fit) {r['fits']}/{r['restarts']} at {m}", "BLANK1")]
-    below = r["linker_below"]
-    if r["below_settled_by_bound"]:
-        lines.append((f"at {below}: none (the bound; not run)", "BLANK1"))
-    elif r.get("below_unstarted"):
-        lines.append((f"at {below}: not started", "BLANK1"))
-    elif r["p_fit_below"] is not None:
-        lines.append((f"P(fit) 0/{r['restarts_below']} at {below}", "BLANK1"))
-    lines.append((f"bound: impossible below {r['floor']}", "BLANK1"))
-    return lines + _wrapped(r["bracket"], "BLANK1")
+        d, m, floor = f"{r['globule_diameter']:g}", r["minimal_linker"], r.get("floor") or 1
+        if r.get("error"):
+            out.append((d, r["error"]))
+        elif m is None:
+            out.append((d, f"> {summary['max_linker']}", "–", f"{floor}–?"))
+        else:
+            out.append((d, str(m), f"{r['fits']}/{r['restarts']}",
+                        f"{floor}–{m}" if m > floor else str(m)))
+    return out
 
 
 def _wrapped(text: str, icon: str) -> list:
@@ -74,6 +80,22 @@ def _wrapped(text: str, icon: str) -> list:
 
 
 def draw(layout, summary: dict) -> None:
-    """The lines as labels of `layout` (a box of the panel)."""
+    """The title lines, then the table (a row of four cells per diameter; an error wrapped
+    under it) and its legend, as labels of `layout` (a box of the panel)."""
     for text, icon in summary_lines(summary):
+        layout.label(text=text, icon=icon)
+    rows = table_rows(summary)
+    if not rows:
+        return
+    for cells in rows:
+        if len(cells) == 2:  # an error: its message under the table
+            continue
+        row = layout.row(align=True)
+        for cell in cells:
+            row.label(text=cell)
+    for cells in rows[1:]:
+        if len(cells) == 2:
+            for text, icon in _wrapped(f"{cells[0]} Å: {cells[1]}", "ERROR"):
+                layout.label(text=text, icon=icon)
+    for text, icon in _wrapped(LEGEND, "INFO"):
         layout.label(text=text, icon=icon)

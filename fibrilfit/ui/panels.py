@@ -11,11 +11,12 @@ import bpy
 
 from ..model import helix, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import minimal_summary, properties, report_summary, structure_trace
+from . import (minimal_summary, panel_words, properties, report_summary, result_words,
+               structure_trace)
+from .result_words import wrapped
 from ..builders import model_stage
 from ..builders.stored import params_of
 from ..builders.scene import find_root
-from ..exports.run_text import percent
 from .operators.common import reached
 
 STATUS = {
@@ -45,7 +46,6 @@ STEPS = (
 # Settings of the question's domain drawn beside it (after the globule's diameter) rather than in
 # the Globule step: the domain's shape is chosen next to the domain (issue #33).
 BESIDE_DOMAIN = ("domain_shape",)
-WRAP = 36  # characters per line of a long message (about 230 px of Blender's 11 pt UI font)
 
 
 class _Sidebar:
@@ -64,15 +64,22 @@ class FIBRILFIT_PT_main(_Sidebar, bpy.types.Panel):
         layout.use_property_decorate = False
         draw_structures(layout.column(), context)
         layout.separator()
-        draw_question(layout.column(), context.scene.fibrilfit)
+        draw_question(layout.column(), context.scene.fibrilfit,
+                      structure_trace.measured(context.scene))
         layout.separator()
         draw_run(layout.column(), context)
 
 
 # ---- the structures --------------------------------------------------------------------------
 
+START = ("Start here: import a fibril and a domain, or Run all for the tutorial's model "
+         "(docs: Tutorial)")
+
+
 def draw_structures(col, context):
     s = context.scene.fibrilfit
+    if is_empty(context.scene):
+        wrapped(col, START, "HAND")
     row = col.row(align=True)
     row.operator("fibrilfit.import_fibril", icon="FILEBROWSER")
     row.operator("fibrilfit.import_domain", icon="FILEBROWSER")
@@ -86,6 +93,13 @@ def draw_structures(col, context):
         col.label(text=f"Case: {name}", icon="BOOKMARKS")
     for line in structure_lines(structure_trace.measured(context.scene)):
         col.label(text=line)
+
+
+def is_empty(scene) -> bool:
+    """Nothing yet (issue #45): no model, no structure imported, no domain, no case loaded."""
+    s = scene.fibrilfit
+    return (find_root(scene) is None and not structure_trace.measured(scene)
+            and not len(s.domains) and not s.case_metadata)
 
 
 def draw_domains(col, s):
@@ -102,6 +116,13 @@ def draw_domains(col, s):
     side.operator("fibrilfit.domain_move", icon="TRIA_UP", text="").direction = "UP"
     side.operator("fibrilfit.domain_move", icon="TRIA_DOWN", text="").direction = "DOWN"
     side.operator("fibrilfit.domain_remove", icon="X", text="")
+    if 0 <= s.domain_index < len(s.domains):  # the selected one, in full, and its linker
+        i, e = s.domain_index, s.domains[s.domain_index]
+        col.label(text=f"{i + 1}: {bpy.path.basename(e.filepath)} chain {e.chain}")
+        if i < len(s.domains) - 1:
+            col.prop(e, "linker", text="Linker to next (residues)")
+        else:
+            col.label(text="the outermost: no linker after it")
 
 
 def _case_name(s) -> str:
@@ -134,17 +155,31 @@ def structure_lines(measured: dict) -> list:
 
 # ---- the question ----------------------------------------------------------------------------
 
-def draw_question(col, s):
-    """Linker, domain, protocol, then the fibril: layers, or a periodic cell of M layers."""
+def draw_question(col, s, measured: dict | None = None):
+    """Linker, domain, protocol, then the fibril: layers, or a periodic cell of M layers. Under
+    the linker, after an import that did not give it, a note until it is set (`measured`:
+    structure_trace.measured)."""
     for field in properties.question_fields():
         if field.name in ("layers", "periodic"):
             continue
         col.prop(s, field.name)
+        if field.name == "linker":
+            for line in linker_note(s.linker, (measured or {}).get("linker")):
+                col.label(text=line, icon="INFO" if line.startswith("Not") else "BLANK1")
         if field.name == "globule_diameter":
             for name in BESIDE_DOMAIN:  # "Domain shape" would be cut beside its drop-down
                 col.prop(s, name, text="Shape")
     col.prop(s, "use_periodic")
     col.prop(s, "periodic" if s.use_periodic else "layers")
+
+
+def linker_note(linker: int, kept: dict | None) -> list:
+    """The note under the linker (issue #45 item 8): after an import whose files did not give
+    it (`kept`: what the import left, structure_trace's "linker"), while it still holds the
+    value the import left."""
+    if not kept or kept.get("from_files") or linker != kept.get("value"):
+        return []
+    return ["Not in the files: set the residues", "from the core's anchor to the domain"]
 
 
 # ---- Run all and the verdict -----------------------------------------------------------------
@@ -164,7 +199,7 @@ def draw_run(col, context):
     if reached(stage, "layers"):
         _draw_changes(col, s, find_root(scene), stage)
     if stage == "checked" and s.verdict:
-        draw_result(col.box(), s)
+        draw_result(col.box(), s, params_of(find_root(scene)))
     if s.report_summary:
         draw_report(col.box(), s)
     if s.minimal_map:
@@ -172,25 +207,12 @@ def draw_run(col, context):
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
-def wrapped(col, text: str, icon: str = "NONE") -> None:
-    """`text` as labels of at most WRAP characters, the icon on the first."""
-    line = ""
-    for word in text.split():
-        if line and len(line) + 1 + len(word) > WRAP:
-            col.label(text=line, icon=icon)
-            line, icon = word, "BLANK1"
-        else:
-            line = f"{line} {word}" if line else word
-    if line:
-        col.label(text=line, icon=icon)
-
-
 def _draw_changes(col, s, root, stage):
     """Warn when the panel no longer matches the model a bake or check would use."""
     built, now = params_of(root), properties.compared_values(s)
     changed = properties.changed_fields(s, built, properties.BUILD_SECTIONS, now=now)
     if changed:
-        names = ", ".join(name for name, _, _ in changed)
+        names = panel_words.labels(name for name, _, _ in changed)
         wrapped(col, f"Changed since the build: {names}", "ERROR")
         wrapped(col, "Build again (Run all, or the steps) to apply", "BLANK1")
     elif reached(stage, "baked") and properties.changed_fields(s, built, ("Simulation",),
@@ -198,41 +220,41 @@ def _draw_changes(col, s, root, stage):
         wrapped(col, "Physics changed: Bake again to apply", "ERROR")
 
 
-def draw_result(box, s):
-    ok = s.verdict == "successful"
-    box.label(text=f"Verdict: {s.verdict}", icon="CHECKMARK" if ok else "ERROR")
-    box.label(text=f"Clashing globule pairs: {s.clash_count}")
-    box.label(text=f"Worst bond stretch: {percent(s.max_bond_stretch)} "
-                   f"({'intact' if s.linker_intact else 'stretched'})")
-    box.label(text=f"Accommodated: {'yes' if s.accommodated else 'no'}",
-              icon="CHECKMARK" if s.accommodated else "CANCEL")
-    if s.answer:  # the honest word: one failed run is "no layout found", not "does not fit"
-        box.label(text=f"Answer: {s.answer}")
-    if s.bound > 1:  # the bracket's proven side (docs/model/bound.md#derivation)
-        box.label(text=f"Impossible below {s.bound} residues (the bound)")
-    elif s.bound == 1:
-        box.label(text="The geometry alone rules out no linker")
+def draw_result(box, s, p: P.Params | None = None):
+    """The last check of the model `p` (the scene's): the answer first, then its evidence, in
+    the glossary's words (ui/result_words.py; one failed run is "no layout found", never "does
+    not fit")."""
+    p = p or properties.read_params(s)
+    for text, icon in result_words.run_lines(
+            answer=s.answer, clashes=s.clash_count, stretch=s.max_bond_stretch,
+            tolerance=p.stretch_tolerance, linker=p.linker, bound=s.bound):
+        box.label(text=text, icon=icon)
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")
 
 
 def draw_report(box, s):
-    """The last report's answer, P(fit), minimal linker and bound, and Open report."""
+    """The last report's answer, P(fit), minimal linker and bound, and Open report; greyed,
+    without its ticks, when the panel's values are no longer those it answers
+    (result_words.draw_kept)."""
     try:
         summary = json.loads(s.report_summary)
     except ValueError:
         return
-    for text, icon in report_summary.summary_lines(summary):
-        box.label(text=text, icon=icon)
+    result_words.draw_kept(box, summary, report_summary.summary_lines(summary),
+                           properties.compared_values(s), ignore=("seed",))
     box.operator("fibrilfit.open_report", icon="URL")
 
 
 def draw_minimal(box, s):
-    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled"."""
+    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled";
+    greyed when the panel's values are no longer its own (result_words.draw_kept)."""
     try:
         summary = json.loads(s.minimal_map)
     except ValueError:
         return
+    result_words.draw_kept(box, summary, [], properties.compared_values(s),
+                           ignore=minimal_summary.NOT_ASKED)
     minimal_summary.draw(box, summary)
 
 

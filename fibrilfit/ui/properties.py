@@ -37,6 +37,16 @@ _UNIT_NOTES = {"Å": "Å, 1 Blender unit = 1 Å", "Å/frame": "Å per frame", "�
                     "fraction: 5 % is 0.05"}
 
 
+# What a field's tooltip adds for a panel user (issue #45 item 8): the linker's anchor
+_PANEL_NOTES = {
+    "linker": (". The anchor is the core residue the chain leaves the core from (the fibril's "
+               "terminus, e.g. K97 of 6CU7), a passive bead: fixed on the core, it does not move "
+               "in the simulation. It counts as the linker's first residue: from K97 to a domain "
+               "starting at residue 128 the linker is 31. Import fibril… sets it from a modelled "
+               "tail, Import domain… from the shared numbering; otherwise set it here"),
+}
+
+
 def section_of(field) -> str:
     section = field.metadata.get("section", "Simulation")
     return section if section in SECTIONS else "Simulation"
@@ -58,6 +68,8 @@ def label(field) -> str:
     meta = field.metadata
     name = meta.get("label") or field.name.replace("_", " ").capitalize()
     unit = meta["unit"]
+    if unit == "residues" and "residue" not in name.lower():  # Linker (residues): issue #45
+        return f"{name} ({unit})"
     return f"{name} ({unit})" if unit in _LABEL_UNITS and not meta.get("shown_in") else name
 
 
@@ -78,7 +90,10 @@ def _description(field) -> str:
         return (f"{meta['doc']}. JSON: [[x, y], ...] in Å; empty for {meta['derived']}. "
                 f"Load one from a file with Load outline")
     note = _UNIT_NOTES.get(meta.get("shown_in") or meta["unit"], meta["unit"])
+    if note and note in meta["doc"]:  # "Linker length in residues": said once
+        note = ""
     text = f"{meta['doc']} ({note})" if note and meta["kind"] is not bool else meta["doc"]
+    text += _PANEL_NOTES.get(field.name, "")
     return text + (f". Used when its switch is on; off: {meta['derived']}" if meta.get("derived")
                    else "")
 
@@ -158,8 +173,8 @@ RESULTS = tuple(_RESULT_PROPERTIES)
 _clash = set(RESULTS) & {f.name for f in P.fields()}
 assert not _clash, f"result properties shadow parameters: {_clash}"
 
-# What the next Report… offers: its restarts and longest linker, from the report's own
-# declaration (search/plans.py's REPORT_SEARCH)
+# What the next Report… and Minimal linker… offer: restarts and longest linker, from the
+# report's own declaration (search/plans.py's REPORT_SEARCH)
 _REPORT_OPTIONS = {"report_restarts": plan_property(REPORT_SEARCH, "restarts"),
                    "report_max_linker": plan_property(REPORT_SEARCH, "max_linker")}
 
@@ -185,6 +200,11 @@ _SETTINGS = {
                     "unused)"),
     # The last report (Report…): its folder and the numbers the panel shows (report_summary),
     # kept across checks; the restarts and longest linker the next Report… offers.
+    # The folder a file was last read from or written to: where the next file browser starts
+    "last_folder": StringProperty(
+        name="Last folder", subtype="DIR_PATH", options={"HIDDEN"},
+        description="Where the last file FibrilFit read or wrote is; the next file browser "
+                    "starts there"),
     "report_dir": StringProperty(
         name="Report folder", subtype="DIR_PATH",
         description="Where Report… wrote report.html last; the next Report… offers it"),
@@ -334,9 +354,11 @@ def changed_fields(settings, p: P.Params, sections=SECTIONS, *,
                 if old != now[f.name]:
                     out.append((f.name, old, now[f.name]))
                 continue
+            # a list (the domain list's domain_linker) and a tuple (Params') are one value
             old = tuple(old) if isinstance(old, list) else old
-            if (None if old is None else _plain(old)) != now[f.name]:
-                out.append((f.name, old, now[f.name]))
+            new = tuple(now[f.name]) if isinstance(now[f.name], list) else now[f.name]
+            if (None if old is None else _plain(old)) != new:
+                out.append((f.name, old, new))
     return out
 
 

@@ -4,6 +4,8 @@ tests/unit/test_report_summary.py reads it without bpy. The words are report.jso
 (docs/guide/report.md#json)."""
 from __future__ import annotations
 
+from . import result_words as words
+
 
 def summary_of(doc: dict, folder: str) -> dict:
     """The numbers the panel shows, from report.json's document: the answer, P(fit) at the asked
@@ -19,29 +21,31 @@ def summary_of(doc: dict, folder: str) -> dict:
         "linker_below": m.get("linker_below"),
         "p_fit_below": m.get("p_fit_below"),
         "impossible_below": bound.get("impossible_below"),
+        "model": doc.get("model"),  # the values it answers for (ui/provenance.py)
     }
 
 
 def summary_lines(summary: dict) -> list[tuple[str, str]]:
-    """(text, icon) lines, each short enough for the default sidebar width."""
+    """(text, icon) lines, each short enough for the default sidebar width, in the panel's one
+    vocabulary (ui/result_words.py): the answer first, then P(fit) with its interval, the
+    minimal linker and the bound."""
     if not summary:
         return []
     pf = summary["p_fit"]
-    lines = [(f"Report: {summary['answer']}",
-              "CHECKMARK" if summary["answer"] == "fits" else "INFO"),
+    b = summary.get("impossible_below")
+    lines = [words.answer_line(summary["answer"], linker=pf["linker"], bound=b or 0,
+                               what="Report: "),
              (f"P(fit) {pf['fits']}/{pf['runs']} at linker {pf['linker']}", "BLANK1"),
-             (f"95 %: {pf['low']:.2f}–{pf['high']:.2f}", "BLANK1")]
+             (f"P(fit) 95 % interval: {pf['low']:.2f}–{pf['high']:.2f}", "BLANK1")]
     m = summary["minimal_linker"]
     if m:
-        lines.append((f"Minimal linker: {m} residue{'' if m == 1 else 's'}", "BLANK1"))
+        lines.append((f"Minimal linker: {words.residues(m)}", "BLANK1"))
         if summary.get("p_fit_below") is not None:
-            lines.append((f"at {summary['linker_below']}: P(fit) "
+            lines.append((f"P(fit) at {summary['linker_below']}: "
                           f"{summary['p_fit_below']:.2f}", "BLANK1"))
     else:
-        lines.append((f"Minimal linker: none up to {summary['max_linker']}", "BLANK1"))
-    b = summary.get("impossible_below")
-    if b is not None and b > 1:  # the proven bound (docs/model/bound.md#derivation)
-        lines.append((f"Impossible below {b} residues", "BLANK1"))
-    elif b is not None:
-        lines.append(("The geometry rules out no linker", "BLANK1"))
+        lines.append((f"No layout found up to {summary['max_linker']}", "BLANK1"))
+    said = words.bound_line(b)  # the proven bound (docs/model/bound.md#derivation)
+    if said and not lines[0][0].startswith("Report: impossible"):
+        lines.append((said, "BLANK1"))
     return lines

@@ -29,9 +29,15 @@ def view_distance(radius: float, lens_mm: float, width: int, height: int) -> flo
 
 def frame_model(context, model) -> int:
     """Frame `model` in every 3D View of every window. Returns the number of views framed."""
-    if bpy.app.background or context.window_manager is None:
+    return frame_points(context, model_points(model))
+
+
+def frame_points(context, pts) -> int:
+    """Frame the points `pts` (n, 3; world, Å) in every 3D View of every window: none in the
+    background, without a window manager or 3D View, or with no point. Returns the number of
+    views framed."""
+    if bpy.app.background or getattr(context, "window_manager", None) is None or not len(pts):
         return 0
-    pts = model_points(model)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre, radius = (lo + hi) / 2.0, max(float(np.linalg.norm(hi - lo)) / 2.0, 1.0)
     framed = 0

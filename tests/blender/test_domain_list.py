@@ -74,15 +74,15 @@ def test_two_imported_domains_give_the_command_lines_params(registered, scene, u
     assert ("template_list", "domains") in log
     assert {"fibrilfit.domain_move", "fibrilfit.domain_remove"} <= {n for k, n in log
                                                                      if k == "operator"}
-    rows = []  # each row: its name, and the linker to the next (the last has none)
+    rows = []  # each row: its short name (issue #45: the linker is set under the list)
     for i, item in enumerate(ui.domains):
         from ui_fakes import FakeLayout
         domain_list.FIBRILFIT_UL_domains.draw_item(None, bpy.context, FakeLayout(rows), ui,
                                                    item, 0, ui, "domain_index", i)
-    assert rows == [("label", ui.domains[0].name), ("prop", "linker"),
-                    ("label", ui.domains[1].name), ("label", "last")]
+    assert rows == [("label", "ubq127 A 128-203, 30 Å"), ("label", "ubq229 A 230-305, 30 Å")]
+    assert ("prop", "linker") in log  # the selected domain's linker to the next, under it
     assert snapshot_user(user_objects) == before
-    assert len(scene.objects) == len(user_objects) + 1  # and the domain's CA trace
+    assert len(scene.objects) == len(user_objects) + 2  # and each domain's CA trace (#45)
 
 
 def test_a_full_length_model_gives_the_command_lines_params(registered, scene, tmp_path):
@@ -135,7 +135,7 @@ def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_pa
     for op, kw, words in (
             (bpy.ops.fibrilfit.import_full_length, {"filepath": str(tmp_path / "x.pdb")},
              "import the fibril first"),
-            (bpy.ops.fibrilfit.import_domain, {"filepath": FIBRIL}, "--domain: 6cu7.pdb.gz"),
+            (bpy.ops.fibrilfit.import_domain, {"filepath": FIBRIL}, "Domain file: 6cu7.pdb.gz"),
             (bpy.ops.fibrilfit.domain_move, {"direction": "UP"}, "already the first")):
         with pytest.raises(RuntimeError, match=words) as caught:  # an ERROR report raises
             op(**kw)
@@ -159,7 +159,8 @@ def test_bad_input_is_one_sentence_and_changes_nothing(registered, scene, tmp_pa
     said = capsys.readouterr().err.strip()
     assert said == "fibrilfit: error: --full-length: no folded domain (pLDDT >= 70 over at " \
                    "least 40 residues) on the linker's side of the core in fl.pdb"
-    assert str(caught.value).strip() == "Error: " + said.removeprefix("fibrilfit: error: ")
+    assert str(caught.value).strip() == "Error: " + said.removeprefix(  # in the panel's words
+        "fibrilfit: error: ").replace("--full-length", "Full-length model")
 
 
 def test_load_case_replaces_the_list(registered, scene, tmp_path):

@@ -69,7 +69,7 @@ def test_import_domain_sets_the_globule(ui, scene):
 
 def test_a_bad_file_is_reported_and_changes_nothing(ui, scene):
     before = properties.values(ui)
-    with pytest.raises(RuntimeError, match="--fibril"):  # bpy.ops raises on an ERROR report
+    with pytest.raises(RuntimeError, match="Fibril file: "):  # bpy.ops raises on an ERROR report
         bpy.ops.fibrilfit.import_fibril(filepath=str(DATA / "1ubq.pdb.gz"))
     assert properties.values(ui) == before
     assert structure_trace.find_collection(scene) is None

@@ -247,9 +247,9 @@ def test_bad_values_are_reported_and_cancel(ui, scene):
     run_steps(STEPS[:5])
     names = sorted(o.name for o in scene.objects)
     ui.residue_spacing = 1.0  # below the residue radius 1.75
-    with pytest.raises(RuntimeError, match=r"residue_spacing: must be at least"):
+    with pytest.raises(RuntimeError, match=r"Residue spacing: must be at least"):
         run("build_slab")
-    with pytest.raises(RuntimeError, match=r"residue_spacing: must be at least"):
+    with pytest.raises(RuntimeError, match=r"Residue spacing: must be at least"):
         run("run_all")
     assert sorted(o.name for o in scene.objects) == names
 
@@ -286,13 +286,13 @@ def test_an_unexpected_error_is_one_line_and_cancels(ui, scene, monkeypatch, cap
 def test_a_changed_build_value_must_be_rebuilt_before_baking(ui, scene):
     run_steps(STEPS[:5])
     ui.linker = 4
-    with pytest.raises(RuntimeError, match="linker changed from 3 to 4 .*build the model again"):
+    with pytest.raises(RuntimeError, match="Linker changed from 3 to 4 .*build the model again"):
         run("bake")
     assert model_stage(scene) == "layers"
     ui.linker = 3
     run("bake")
     ui.gravity = 0.2
-    with pytest.raises(RuntimeError, match="gravity changed .* Bake again"):
+    with pytest.raises(RuntimeError, match="Gravity changed .* Bake again"):
         run("check_intersections")
     ui.gravity = 0.5
     ui.stretch_tolerance = 1000.0  # % (10 as a fraction); a check setting: no new bake needed
@@ -465,11 +465,11 @@ def test_panels_draw_in_every_state(ui, scene):
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])
     assert any("Baked" in t for t in main["baked"])
-    assert f"Verdict: {ui.verdict}" in main["checked"]
-    assert not any(t.startswith("Verdict") for t in main["baked"])
+    assert any(t.startswith("Run: ") for t in main["checked"])  # the answer first (#45)
+    assert not any(t.startswith("Run: ") for t in main["baked"])
     ui.layers = 9  # the panel now says the model is out of date
     labels = [t for kind, t in draw_all(bpy.context)["FIBRILFIT_PT_main"] if kind == "label"]
-    assert any("Changed since the build: layers" in t for t in labels)
+    assert any("Changed since the build: Layers" in t for t in labels)
 
 
 def test_a_setting_shows_only_where_it_applies(ui):
@@ -541,7 +541,7 @@ def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, s
     # the outline's file picker (run directly: a script gives the path)
     bad = tmp_path / "bad.json"
     bad.write_text("[[0, 0], [1, 1]]")
-    with pytest.raises(RuntimeError, match="core_outline: .*at least 3 points"):
+    with pytest.raises(RuntimeError, match="Core outline: .*at least 3 points"):
         run("load_outline", filepath=str(bad))
     assert ui.core_outline == ""
     good = tmp_path / "wide.json"
@@ -549,11 +549,11 @@ def test_panel_builds_two_protofilaments_step_by_step_and_loads_an_outline(ui, s
     assert run("load_outline", filepath=str(good)) == {"FINISHED"}
     assert json.loads(ui.core_outline) == [[-30, -11], [30, -11], [30, 11], [-30, 11]]
     # the default anchor (21.75, 0) is now inside the wider core: the build says so, naming it
-    with pytest.raises(RuntimeError, match="anchor: .*inside the core"):
+    with pytest.raises(RuntimeError, match="Anchor: .*inside the core"):
         run("run_all")
     # with the anchor moved out, a bake of the old model refuses: the outline changed
     ui.use_anchor, ui.anchor = True, (31.75, 0.0)
-    with pytest.raises(RuntimeError, match="core_outline changed from its default to an outline "
+    with pytest.raises(RuntimeError, match="Core outline changed from its default to an outline "
                                            r"of 4 points \(and 1 more\)"):
         run("bake")
     assert run("run_all") == {"FINISHED"}

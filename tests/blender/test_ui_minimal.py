@@ -87,13 +87,16 @@ def test_the_panels_walk_gives_the_commands_map(ui, tmp_path, capsys):
     assert rows[1]["tried"]["1"] == {"accommodated": 0, "restarts": 2}
     assert mine["table"] in printed  # the same table, bracket lines and all
 
-    # the panel's lines, each within the default sidebar's width
+    # the panel's lines and table (issue #45), each within the default sidebar's width
     texts = [t for t, _ in minimal_summary.summary_lines(summary)]
-    assert "20 Å: minimal linker 2" in texts and "P(fit) 0/2 at 1" in texts
+    table = minimal_summary.table_rows(summary)
+    assert [r[:2] for r in table[1:]] == [("8", "1"), ("20", "2")]
     assert all(_text_px(t) <= FIELD_PX for t in texts), texts
+    assert all(_text_px(c) <= FIELD_PX / 4 for r in table for c in r), table
     drawn = _Box()
     panels.draw_minimal(drawn, ui)
-    assert drawn.labels == texts
+    assert drawn.labels[:len(texts)] == texts
+    assert drawn.labels[len(texts):len(texts) + 4 * len(table)] == [c for r in table for c in r]
 
 
 def test_esc_stops_the_workers_and_keeps_nothing(ui):
@@ -129,7 +132,7 @@ def test_from_a_script_it_waits_for_the_walk(ui):
     assert bpy.ops.fibrilfit.minimal_linker(restarts=1, max_linker=2) == {"FINISHED"}
     summary = json.loads(ui.minimal_map)
     assert [(r["globule_diameter"], r["minimal_linker"]) for r in summary["rows"]] == [(8.0, 1)]
-    with pytest.raises(RuntimeError, match="diameters|globule_diameter"):
+    with pytest.raises(RuntimeError, match="[Dd]iameters|Globule diameter"):
         bpy.ops.fibrilfit.minimal_linker(restarts=1, max_linker=2, diameters="big")
 
 
@@ -139,3 +142,6 @@ class _Box:
 
     def label(self, text, icon="NONE"):
         self.labels.append(text)
+
+    def row(self, **kw):  # a table's row: its cells are labels of the box, in order
+        return self

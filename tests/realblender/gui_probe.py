@@ -4,9 +4,13 @@ rectangles, the sidebar's tab, the panel's verdict, the model and the 3D Views) 
 $FIBRILFIT_PROBE/state.json, and it obeys commands from $FIBRILFIT_PROBE/command:
 "mark" paints operator buttons and inactive tabs one flat colour and the panels another (theme
 colours), so the test can find the buttons and the panels' extent in a screenshot; "unmark"
-restores the theme; "small DIR" types a small model's values into the panel and sets the
-report's folder and settings (what Report…'s chooser then offers), standing in for typing them.
-The clicks and keys come from xdotool.
+restores the theme; "small DIR" types a small model's values into the panel (the domain list
+emptied, as its remove button does) and sets the report's folder and settings (what Report…'s
+chooser then offers), standing in for typing them; "domains DIR" types ROUTE's layers and
+frames and imports ubiquitin and GFP chain A from DIR with Import domain… (the path its file
+browser gives); "bake" presses Step by step ›
+Bake (the operator as its button calls it, modal, in the window) and "clear" Clear, each noting
+a refusal in the state's "refused". The other clicks and keys come from xdotool.
 """
 import json
 import os
@@ -120,12 +124,52 @@ SMALL = {"layers": 3, "globule_diameter": 12.0, "linker": 3, "protocol": "inflat
 
 def _small(folder):
     s = bpy.context.scene.fibrilfit
+    if len(s.domains):  # a small single globule: the list's domains removed
+        from bl_ext.user_default.fibrilfit.ui import domain_list
+        s.domains.clear()
+        domain_list.filled(s, None, first_changed=True)
     for name, value in SMALL.items():
         setattr(s, name, value)
     s.report_dir, s.report_restarts, s.report_max_linker = folder, 2, 4
     # the file browser in the main window (Preferences > Interface > Temporary Editors), under
     # the pointer, so that Return reaches it without a window manager to focus a new window
     bpy.context.preferences.view.filebrowser_display_type = "SCREEN"
+
+
+def _in_view3d(fn):
+    """`fn()` with the window and its 3D View as a button press gives them; a refusal (an
+    operator's ERROR report raises) kept in the state's "refused"."""
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
+    region = next(r for r in area.regions if r.type == "UI")
+    try:
+        with bpy.context.temp_override(window=window, area=area, region=region):
+            fn()
+    except RuntimeError as exc:
+        _state["refused"] = str(exc)
+
+
+# The two domains' model a little shorter than the defaults' (20 layers, 250 frames): Run all and
+# then Step by step › Bake each bake it, in minutes each on a loaded machine (the question is the
+# route, not the fit); test_gui.py's reference runs the same values
+ROUTE = {"layers": 8, "frames": 80}
+
+
+def _domains(folder):
+    s = bpy.context.scene.fibrilfit
+    for name, value in ROUTE.items():
+        setattr(s, name, value)
+    ops = bpy.ops.fibrilfit
+    _in_view3d(lambda: (ops.import_domain(filepath=f"{folder}/1ubq.pdb.gz"),
+                        ops.import_domain(filepath=f"{folder}/1gfl.pdb.gz", chain="A")))
+
+
+def _stage():
+    try:
+        from bl_ext.user_default.fibrilfit.builders import model_stage
+    except ImportError:
+        return None
+    return model_stage(bpy.context.scene)
 
 
 def _windows(wm):
@@ -148,8 +192,15 @@ def _tick():
                 _unmark()
             elif cmd.startswith("small "):
                 _small(cmd.split(" ", 1)[1])
+            elif cmd.startswith("domains "):
+                _domains(cmd.split(" ", 1)[1])
+            elif cmd == "bake":
+                _in_view3d(lambda: bpy.ops.fibrilfit.bake("INVOKE_DEFAULT"))
+            elif cmd == "clear":
+                _in_view3d(lambda: bpy.ops.fibrilfit.clear())
             _state["theme"] = {"mark": "marked", "unmark": "normal"}.get(
-                cmd, "small" if cmd.startswith("small ") else _state["theme"])
+                cmd, cmd.split(" ", 1)[0] if cmd.split(" ", 1)[0] in (
+                    "small", "domains", "bake", "clear") else _state["theme"])
             for window in bpy.context.window_manager.windows:
                 for area in window.screen.areas:
                     area.tag_redraw()
@@ -172,6 +223,9 @@ def _tick():
             "windows": _windows(wm),
             "report_summary": json.loads(ff.report_summary) if ff and ff.report_summary
             else None,
+            "minimal_map": bool(ff and ff.minimal_map),
+            "domains": [e.name for e in ff.domains] if ff else [],
+            "stage": _stage(),
         })
         tmp = PROBE / "state.json.tmp"
         tmp.write_text(json.dumps(_state))

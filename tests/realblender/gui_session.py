@@ -1,10 +1,12 @@
 """The GUI test's session, run inside the trixie chroot by its python3 (tests/realblender/
 test_gui.py starts it): Xvfb, Blender 4.3.2 with the installed extension, and a user's input
-through xdotool: N opens the sidebar, Ctrl+Wheel over it turns to the FibrilFit tab, a click
-presses Run all. Blender's side is read from gui_probe.py's state file (it presses nothing);
+through xdotool: N opens the sidebar, Ctrl+Wheel over it turns to the FibrilFit tab; ubiquitin
+and GFP imported (the probe's "domains", the paths their file browser gives), a click presses
+Run all, Step by step › Bake (the probe's "bake"), a click on Report…, and Clear (the probe's
+"clear"): issue #45's route. Blender's side is read from gui_probe.py's state file;
 screenshots are the X root (`import -window root`), cropped to the sidebar and the 3D View.
 
-    python3 gui_session.py OUT_DIR SHOTS_DIR
+    python3 gui_session.py OUT_DIR SHOTS_DIR      (the structures: tests/data)
 
 Writes OUT_DIR/session.json (what the test asserts on) and the PNGs; exits non-zero with one
 line on stderr when a step cannot be done (no display, Blender never drew, no button found).
@@ -57,8 +59,8 @@ def runs(indices):
 
 
 class Session:
-    def __init__(self, out: pathlib.Path, shots: pathlib.Path):
-        self.out, self.shots = out, shots
+    def __init__(self, out: pathlib.Path, shots: pathlib.Path, data: pathlib.Path):
+        self.out, self.shots, self.data = out, shots, data
         self.screens = out / "screens"
         self.screens.mkdir(parents=True, exist_ok=True)
         self.probe = out / "probe"
@@ -118,9 +120,9 @@ class Session:
         seq = self.state()["seq"]
         return wait_for("the probe", lambda: (s := self.state())["seq"] >= seq + n and s, 30)
 
-    def command(self, cmd, theme):
+    def command(self, cmd, theme, timeout=30):
         (self.probe / "command").write_text(cmd)
-        wait_for(f"the probe's '{cmd}'", lambda: self.state()["theme"] == theme, 30)
+        wait_for(f"the probe's '{cmd}'", lambda: self.state()["theme"] == theme, timeout)
         return self.fresh_state()
 
     def view(self):
@@ -208,9 +210,21 @@ class Session:
         self.open_tab(ui, window_region)
         marked = self.pixels(self.screenshot(self.out / "marked.png"))
         self.command("unmark", "normal")
-        run_all = self.find_run_all(marked, ui)
         before = self.screenshot(self.out / "before.png")
-        self.crop(before, self.panel_rect(marked, ui), "panel-before.png")
+        self.crop(before, self.panel_rect(marked, ui), "panel-before.png")  # "Start here"
+        # Two domains, as Import domain… twice leaves them (issue #45 item 1's route)
+        state = self.command(f"domains {self.data}", "domains", timeout=300)  # two imports
+        if state.get("refused") or len(state["domains"]) != 2:
+            raise SessionError(f"the two domains were not imported: {state.get('refused')} "
+                               f"{state['domains']}")
+        self.step("imported ubiquitin and GFP chain A (Import domain… twice)")
+        self.hover(window_region)
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-domains.png"))
+        self.command("unmark", "normal")
+        run_all = self.find_run_all(marked, ui)
+        domains = self.screenshot(self.out / "domains.png")
+        self.crop(domains, self.panel_rect(marked, ui), "panel-domains.png")
         self.log["state_before"] = self.state()
         # Press Run all: a real click.
         t0 = time.monotonic()
@@ -232,7 +246,36 @@ class Session:
         self.log["after_pixels"] = self.colour_counts(self.pixels(after),
                                                       self.screen_rect(after_state["views"][0]
                                                                        ["regions"]["WINDOW"]))
+        self.bake_step_by_step()
         self.report(window_region)
+        self.clear(window_region)
+
+    def bake_step_by_step(self):
+        """Step by step › Bake on the two domains' model Run all built: it must bake (issue #45
+        item 1: it refused, "changed from 10 to [10]")."""
+        self.command("bake", "bake")
+        state = wait_for("the step-by-step bake", lambda: (s := self.state()).get("refused")
+                         or s["stage"] == "baked" and s, RUN_TIMEOUT, every=1.0)
+        if isinstance(state, str):
+            raise SessionError(f"Step by step › Bake refused: {state}")
+        self.step("Step by step › Bake baked the two domains' model")
+        self.log["state_bake"] = self.fresh_state()
+
+    def clear(self, away):
+        """Clear: the model gone, and the results with it (issue #45 item 2)."""
+        state = self.command("clear", "clear")
+        if state.get("refused"):
+            raise SessionError(f"Clear refused: {state['refused']}")
+        self.step("Clear")
+        state = self.fresh_state(5)
+        self.log["state_cleared"] = state
+        ui = self.screen_rect(state["views"][0]["regions"]["UI"])
+        self.hover(away)
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-cleared.png"))
+        self.command("unmark", "normal")
+        shot = self.screenshot(self.out / "cleared.png")
+        self.crop(shot, self.panel_rect(marked, ui), "panel-cleared.png")
 
     def report(self, away):
         """Report… on a small model (test_report.py's): the values typed by the probe, then a
@@ -374,7 +417,7 @@ class Session:
 def main():
     out, shots = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
     out.mkdir(parents=True, exist_ok=True)
-    session = Session(out, shots)
+    session = Session(out, shots, HERE.parent / "data")
     try:
         session.run()
         session.log["ok"] = True

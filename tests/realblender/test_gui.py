@@ -36,12 +36,24 @@ def session(installed):
     return log
 
 
+DATA = ROOT / "tests" / "data"
+
+
+def _domains(where) -> list:
+    """The two domains the session imported and the values it typed (gui_probe.py's ROUTE), as
+    the command line names them (the linker between them: the list's default, their files'
+    numberings do not run outward)."""
+    return ["--domain", where(DATA / "1ubq.pdb.gz"), "--domain", where(DATA / "1gfl.pdb.gz"),
+            "--domain-chain", "A", "--domain-linker", "10", "--layers", "8", "--frames", "80"]
+
+
 def test_run_all_shows_the_headless_verdict(session):
     shown = session["state_after"]
     real, ref = OUT / "gui-headless-blender.json", OUT / "gui-headless-module.json"
-    cp = chroot(f"blender -b -c fibrilfit run --json {inside(real)}")  # the panel's defaults
-    assert cp.returncode == 0, cp.stderr[-2000:]
-    assert module(["run", "--json", str(ref)]).returncode == 0
+    args = " ".join(_domains(inside))
+    cp = chroot(f"blender -b -c fibrilfit run {args} --json {inside(real)}")  # the panel's
+    assert cp.returncode == 0, cp.stderr[-2000:]  # values with the two domains
+    assert module(["run", *_domains(str), "--json", str(ref)]).returncode == 0
     for result in (read_json(real), read_json(ref)):
         assert shown["verdict"] == result["verdict"]
         assert shown["clash_count"] == len(result["clashing_pairs"])
@@ -52,7 +64,7 @@ def test_run_all_shows_the_headless_verdict(session):
 def test_the_model_is_framed_and_coloured_and_the_users_scene_kept(session):
     before, after = session["state_before"], session["state_after"]
     view = after["views"][0]
-    assert after["model_objects"] > 200  # 20 layers: slabs, beads, globules, bonds
+    assert after["model_objects"] > 80  # 8 layers: slabs, beads, two globules each, bonds
     assert view["model_in_view"] >= 0.95, view  # every body's centre inside the 3D View
     assert view["shading"] == before["views"][0]["shading"] == ["SOLID", "MATERIAL"]
     colours = after["colours"]
@@ -63,6 +75,20 @@ def test_the_model_is_framed_and_coloured_and_the_users_scene_kept(session):
     for name, where in FACTORY_OBJECTS.items():
         assert after["user_objects"][name] == where
     assert set(after["user_objects"]) == set(before["user_objects"])
+
+
+def test_two_domains_bake_step_by_step_and_clear_takes_the_results(session):
+    """Issue #45 items 1 and 2 in the window: after Run all with ubiquitin and GFP, Step by
+    step › Bake bakes (it refused: "changed from 10 to [10]"), and Clear leaves no verdict, no
+    report and no minimal-linker box."""
+    assert session["state_before"]["domains"][0].startswith("1ubq.pdb.gz A")
+    bake = session["state_bake"]
+    assert bake["stage"] == "baked" and not bake.get("refused"), bake.get("refused")
+    cleared = session["state_cleared"]
+    assert not cleared.get("refused")
+    assert cleared["stage"] == "" and cleared["verdict"] == ""
+    assert cleared["report_summary"] is None and not cleared["minimal_map"]
+    assert {"panel-domains.png", "panel-cleared.png"} <= set(session["screenshots"])
 
 
 def png_size(path) -> tuple:

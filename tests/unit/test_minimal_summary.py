@@ -1,8 +1,9 @@
-"""The panel's lines for the last Minimal linker… (fibrilfit/ui/minimal_summary.py), from the
-walk's rows (search/minimal.py Walk.row) and the bracket line as `minimal-linker` prints it."""
+"""The panel's lines and small table for the last Minimal linker…
+(fibrilfit/ui/minimal_summary.py), from the walk's rows (search/minimal.py Walk.row)."""
 from fibrilfit.search.minimal import Walk
 from fibrilfit.search.table import table
-from fibrilfit.ui.minimal_summary import WRAP, cancelled, summary_lines, summary_of
+from fibrilfit.ui.minimal_summary import (CELL, HEADER, WRAP, cancelled, summary_lines,
+                                          summary_of, table_rows)
 
 
 def _result():
@@ -17,29 +18,28 @@ def _result():
             "max_linker": 8, "table": table(rows, "tutorial", 2, range(4, 6))}
 
 
-def test_each_diameter_shows_its_minimum_p_fit_the_bound_and_the_bracket():
+def test_each_diameter_is_a_row_of_the_table():
+    """Issue #45 item 5: per diameter one row (diameter, minimal linker, P(fit) there, bracket),
+    each cell short enough for a quarter of the default sidebar; no repository path, no "open
+    from 1 to 1"."""
     result = _result()
-    lines = summary_lines(summary_of(result))
-    texts = [t for t, _ in lines]
-    assert texts[:2] == ["Minimal linker (tutorial)", "2 restarts, seeds 4-5"]
-    assert texts[2:6] == ["20 Å: minimal linker 4", "P(fit) 1/1 at 4", "P(fit) 0/2 at 3",
-                          "bound: impossible below 3"]
-    bracket = " ".join(texts[6:-2])  # the bracket line, wrapped, as the command prints it
-    assert bracket == ("20 Å: impossible below 3 (the proven bound), fits at 4 (a layout "
-                       "found), open from 3 to 3 (docs/model/bound.md#bracket)")
-    assert bracket in result["table"]
-    assert texts[-2:] == ["40 Å: none up to 8", "bound: impossible below 5"]
+    summary = summary_of(result)
+    texts = [t for t, _ in summary_lines(summary)]
+    assert texts == ["Minimal linker (tutorial)", "2 restarts, seeds 4-5"]
+    rows = table_rows(summary)
+    assert rows == [HEADER, ("20", "4", "1/1", "3–4"), ("40", "> 8", "–", "5–?")]
+    assert all(len(c) <= CELL for r in rows for c in r)
     assert all(len(t) <= WRAP for t in texts)
+    assert "docs/" not in repr(summary_lines(summary) + rows)
 
 
-def test_a_bound_that_settles_the_length_below_says_so():
+def test_a_closed_bracket_is_its_one_length():
     w = Walk(20.0, 4, 30, restarts=2, stop_at_fit=True, floor=4)
     w.record(4, 2, 2)
     rows = [{"kind": "", **w.row(), "protocol": "tutorial"}]
     result = {"rows": rows, "protocol": "tutorial", "restarts": 2, "seeds": [0, 1],
               "max_linker": 30, "table": ""}
-    texts = [t for t, _ in summary_lines(summary_of(result))]
-    assert "at 3: none (the bound; not run)" in texts
+    assert table_rows(summary_of(result))[1] == ("20", "4", "2/2", "4")
 
 
 def test_a_cancelled_walk_says_so_and_keeps_nothing():

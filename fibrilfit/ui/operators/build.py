@@ -89,7 +89,9 @@ class FIBRILFIT_OT_clear(bpy.types.Operator):
     def _clear(self, context):
         removed = clear_model(context.scene)
         common.clear_results(context)
-        self.report({"INFO"}, f"Removed the FibrilFit model ({removed} objects)")
+        common.clear_kept_results(context)  # the report and map went with their model
+        self.report({"INFO"}, f"Removed the FibrilFit model ({removed} objects) and its "
+                              f"results")
         return {"FINISHED"}
 
 

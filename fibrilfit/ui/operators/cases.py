@@ -10,7 +10,7 @@ from ...model.param_checks import refuse_beside_periodic
 from ... import files
 from ...structure import from_files
 from ...structure.request import from_case
-from .. import properties
+from .. import panel_words, properties
 from . import common, structures
 
 
@@ -19,13 +19,13 @@ class _CaseFile:
     filter_glob: bpy.props.StringProperty(default="*.toml", options={"HIDDEN"})
 
     def invoke(self, context, event):
-        if not self.filepath:
-            self.filepath = "case.toml"
+        common.browse_from_last_folder(self, context, "case.toml")
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._do, context)
+        return common.after_file(self, context, common.guarded(self, self._do, context),
+                                 undo=self.bl_idname == "fibrilfit.load_case")
 
 
 class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
@@ -34,7 +34,7 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
     bl_description = ("Set every parameter from a case file (.toml), its structure files "
                       "measured as `run --case` measures them; parameters it leaves out take "
                       "their defaults. The model is not rebuilt: Run all to use them")
-    bl_options = {"REGISTER", "UNDO"}
+    bl_options = {"REGISTER"}  # its undo step pushed on success only (common.after_file)
 
     def _do(self, context):
         case = cases.load(bpy.path.abspath(self.filepath))
@@ -50,13 +50,13 @@ class FIBRILFIT_OT_load_case(_CaseFile, bpy.types.Operator):
         s.domains.clear()  # the case's values are the domains now
         properties.write_params(s, p)
         if m is not None:
-            structures.show_measured(context, m, p)
+            structures.show_measured(context, m, p, request.terminus, request.anchor_residue)
         s.case_metadata = json.dumps(cases.metadata_of(case.resolved(p)))
         name = case.meta.get("name", case.path.name)
         measured = (f", those measured from {' and '.join(_files(m))}" if m is not None
                     else "")
         for warning in block.get("warnings", []):  # as `run --case` prints them
-            self.report({"WARNING"}, warning)
+            self.report({"WARNING"}, panel_words.in_panel_words(warning))
         self.report({"INFO"}, f"Loaded case '{name}': {len(case.params)} parameters from the "
                               f"file{measured}, the rest at their defaults")
         return {"FINISHED"}

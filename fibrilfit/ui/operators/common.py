@@ -3,11 +3,14 @@ raised, poll messages, and recording results in the scene."""
 from __future__ import annotations
 
 import json
+import os
 import traceback
+
+import bpy
 
 from ...model import params as P
 from ... import pipeline
-from .. import properties
+from .. import panel_words, properties, result_words, structure_trace
 from ...analysis import clash_kinds
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
@@ -18,7 +21,6 @@ from ...structure.errors import StructureError
 from ...exports.render import RenderError
 from ...files import OutputError
 from ...exports.dressing import show_colours
-from ...exports.run_text import percent
 from ..view import frame_model
 
 RESULT = "fibrilfit_result"  # on the root collection: the last bake and check, as JSON
@@ -57,8 +59,8 @@ def guarded(op, fn, *args) -> set:
     """Run an operator's body: every error becomes one report and CANCELLED, never a traceback."""
     try:
         return fn(*args)
-    except EXPECTED_ERRORS as exc:
-        op.report({"ERROR"}, str(exc))
+    except EXPECTED_ERRORS as exc:  # said in the panel's words: labels, not options or names
+        op.report({"ERROR"}, panel_words.error_words(exc))
     except Exception as exc:  # a bug: one line for the user, the details for a bug report
         traceback.print_exc()
         op.report({"ERROR"}, unexpected(exc))
@@ -70,6 +72,26 @@ def unexpected(exc: BaseException) -> str:
     what = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
     return (f"FibrilFit failed unexpectedly ({type(exc).__name__}{': ' + what if what else ''}); "
             f"please report it with the traceback from the system console")
+
+
+def browse_from_last_folder(op, context, name: str = "") -> None:
+    """A file browser's start (issue #45 item 10): the folder a file was last read from or
+    written to, `name` in it; the operator's own path when it has one."""
+    folder = settings(context).last_folder
+    if not op.filepath:
+        op.filepath = os.path.join(folder, name) if folder else name
+
+
+def after_file(op, context, done: set, *, undo: bool = True) -> set:
+    """After a file browser's operator: on success, the file's folder kept for the next browser
+    and, for one that changes the scene (`undo`), one undo step. Such an operator has no UNDO
+    option: Blender (4.3) pushes a file browser's UNDO step whatever the operator returned, so a
+    failed import added one; headless there is no undo stack to push to."""
+    if done == {"FINISHED"}:
+        settings(context).last_folder = os.path.dirname(bpy.path.abspath(op.filepath))
+        if undo and not bpy.app.background:
+            bpy.ops.ed.undo_push(message=op.bl_label)
+    return done
 
 
 def panel_params(context) -> P.Params:
@@ -105,7 +127,8 @@ def model_for(context, kept_sections, doing: str):
         built = any(properties.section_of(P.Params.__dataclass_fields__[n])
                     in properties.BUILD_SECTIONS for n, _, _ in changed)
         redo = "build the model again (Run all, or the steps)" if built else "Bake again"
-        raise StaleModel(f"{name} changed from {_show(old)} to {_show(new)}{more} since the model "
+        raise StaleModel(f"{panel_words.field_label(name)} changed from {_show(old)} to "
+                         f"{_show(new)}{more} since the model "
                          f"was {'built' if built else 'baked'}; {redo} before you {doing}, or put "
                          f"it back")
     update_params(model, p)
@@ -113,13 +136,23 @@ def model_for(context, kept_sections, doing: str):
 
 
 def show_model(context, model) -> None:
-    """After a build: the model's colours in Solid mode, and the model framed in the 3D Views."""
+    """After a build: the model's colours in Solid mode, the imported structures' traces moved
+    with it (the fibril's on its core, the domains' beside its layer-0 globule), and the model
+    framed in the 3D Views."""
     show_colours(model)
+    structure_trace.follow(context.scene, model.params)
     frame_model(context, model)
 
 
 def clear_results(context) -> None:
     properties.clear_result(settings(context))
+
+
+def clear_kept_results(context) -> None:
+    """The last report's and minimal-linker map's boxes gone (Clear): a result shows only beside
+    the model it belongs to (a rebuild with other values marks them: panels.draw_kept)."""
+    s = settings(context)
+    s.report_summary = s.minimal_map = ""
 
 
 def record_bake(context, model, bake: dict) -> None:
@@ -143,6 +176,12 @@ def record_check(context, model, result: dict) -> None:
 
 
 def verdict_line(result: dict) -> str:
-    return (f"{result['verdict']}: {len(result['clashing_pairs'])} clashing globule pairs, worst "
-            f"bond stretch {percent(result['max_bond_stretch'])}, "
-            f"{'accommodated' if result['accommodated'] else 'not accommodated'}")
+    """The check's result in one line, as the panel's box says it (ui/result_words.py): the
+    answer, then its evidence."""
+    p = result.get("params") or {}
+    lines = result_words.run_lines(
+        answer=result.get("answer") or "", clashes=len(result["clashing_pairs"]),
+        stretch=result["max_bond_stretch"],
+        tolerance=p.get("stretch_tolerance", P.DEFAULTS.stretch_tolerance),
+        linker=p.get("linker"), bound=(result.get("bound") or {}).get("impossible_below", 0))
+    return "; ".join(text.replace("Run: ", "", 1) for text, _ in lines)

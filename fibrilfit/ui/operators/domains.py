@@ -3,7 +3,7 @@ down, and Import full-length model… (its folded domains and linkers, segmented
 `--full-length` does). Thin over ui/domain_list.py and structure/domain_list.py."""
 import bpy
 
-from .. import domain_list, structure_trace
+from .. import domain_list, panel_words, structure_trace
 from ...structure import domain_list as logic
 from . import common
 from .structures import _ImportBase
@@ -32,6 +32,9 @@ class FIBRILFIT_OT_domain_remove(bpy.types.Operator):
         if _refuse_index(self, s):
             return {"CANCELLED"}
         first = s.domain_index == 0
+        e = s.domains[s.domain_index]
+        structure_trace.remove_traces(context.scene, "domain",
+                                      structure_trace.entry_key(e.filepath, e.chain, e.residues))
         s.domains.remove(s.domain_index)
         s.domain_index = min(s.domain_index, max(len(s.domains) - 1, 0))
         domain_list.filled(s, _fibril(context), first_changed=first)
@@ -76,6 +79,7 @@ class FIBRILFIT_OT_import_full_length(_ImportBase, bpy.types.Operator):
         seg, doms = logic.full_length_domains(path, fibril)  # refused before the list changes
         s = common.settings(context)
         s.domains.clear()
+        structure_trace.remove_traces(context.scene, "domain")  # the list's domains replaced
         for dom in doms:
             domain_list.add(s, path, dom, option="--full-length")
         s.domain_index = 0
@@ -90,7 +94,7 @@ class FIBRILFIT_OT_import_full_length(_ImportBase, bpy.types.Operator):
 def _said(doms, gaps, names) -> str:
     ranges = ", ".join(f"{d.residues[0]}-{d.residues[1]}" for d in doms)
     between = f", linkers between {', '.join(map(str, gaps))}" if gaps else ""
-    return f" ({ranges}){between}; set {', '.join(names)}"
+    return f" ({ranges}){between}; set {panel_words.labels(names)}"
 
 
 CLASSES = (FIBRILFIT_OT_domain_remove, FIBRILFIT_OT_domain_move,

@@ -24,13 +24,16 @@ class _ExportBase:
     def invoke(self, context, event):
         if not self.filepath:
             stem = bpy.path.display_name_from_filepath(bpy.data.filepath) or "fibrilfit"
-            self.filepath = bpy.path.abspath(f"//{stem}{self.suffix}") if bpy.data.filepath \
-                else f"{stem}{self.suffix}"
+            if bpy.data.filepath:
+                self.filepath = bpy.path.abspath(f"//{stem}{self.suffix}")
+            else:  # the folder FibrilFit last read from or wrote to
+                common.browse_from_last_folder(self, context, f"{stem}{self.suffix}")
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._export, context)
+        return common.after_file(self, context, common.guarded(self, self._export, context),
+                                 undo=False)
 
     def _export(self, context):
         path = files.check_writable("filepath", bpy.path.abspath(self.filepath), (self.suffix,))

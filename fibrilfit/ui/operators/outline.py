@@ -13,16 +13,17 @@ class FIBRILFIT_OT_load_outline(bpy.types.Operator):
     bl_description = ("Read the core's cross-section from a JSON file (a list of [x, y] points "
                       "in Å, axis at the origin) into the panel; it replaces the slab's box at the "
                       "next build")
-    bl_options = {"REGISTER", "UNDO"}
+    bl_options = {"REGISTER"}  # its undo step pushed on success only (common.after_file)
     filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
     filter_glob: bpy.props.StringProperty(default="*.json", options={"HIDDEN"})
 
     def invoke(self, context, event):
+        common.browse_from_last_folder(self, context)
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._load, context)
+        return common.after_file(self, context, common.guarded(self, self._load, context))
 
     def _load(self, context):
         points = read_outline(bpy.path.abspath(self.filepath))

@@ -9,7 +9,6 @@ from ... import pipeline
 from .. import properties
 from . import common
 from ...exports.run_text import percent
-from ..view import frame_model
 
 # Events a running bake lets through, so the view can still be turned and zoomed.
 NAVIGATION = {"MIDDLEMOUSE", "WHEELUPMOUSE", "WHEELDOWNMOUSE", "TRACKPADPAN", "TRACKPADZOOM",
@@ -173,7 +172,7 @@ class FIBRILFIT_OT_run_all(ModalBake, bpy.types.Operator):
         result = pipeline.run_model(common.panel_params(context), context.scene)
         model = pipeline.current_model(context.scene)
         common.record_check(context, model, result)
-        frame_model(context, model)
+        common.show_model(context, model)
         self.report({"INFO"}, common.verdict_line(result))
         return {"FINISHED"}
 

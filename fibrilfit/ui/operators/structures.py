@@ -5,9 +5,11 @@ import bpy
 import numpy as np
 
 from ...model import params as P
-from ...model.chain import chain_x
-from .. import domain_list, properties, structure_trace
+from ...builders.model import find_model
+from ...exports.dressing import model_points
+from .. import domain_list, panel_words, properties, structure_trace
 from ...structure import domain_list as domain_list_logic, from_files, measure_fibril, trace
+from ..view import frame_points
 from . import common
 
 GLOB = "*.pdb;*.ent;*.cif;*.mmcif;*.mcif;*.gz"
@@ -25,13 +27,6 @@ def _fill(context, fib, dom) -> list:
     return sorted(applied), block["not_in_model"]
 
 
-def _beside_globule(p: P.Params, chains) -> tuple:
-    """Where the domain's CA trace goes: beside layer 0's globule (at its rest place, the
-    chain's end, -Y of it), clear of it, at the same scale (1 unit = 1 Å)."""
-    reach = max(float(np.linalg.norm(xyz, axis=1).max()) for _, _, xyz in chains)
-    return (max(chain_x(p)) + p.globule_radius, -(p.globule_radius + reach + 5.0), 0.0)
-
-
 def _on_model(p: P.Params, path, fib) -> list:
     """The file's CA trace on the panel's model: its layers on the model's layers, centred in
     its stack (or its periodic cell)."""
@@ -41,23 +36,46 @@ def _on_model(p: P.Params, path, fib) -> list:
     return moved
 
 
-def _show_fibril(context, path, fib, p: P.Params) -> None:
-    """The fibril's CA trace on the model `p`, and its measurement kept (the outline counted)."""
-    structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
+def _show_fibril(context, path, fib, p: P.Params, terminus: str = "C",
+                 anchor_residue: int | None = None) -> None:
+    """The fibril's CA trace on the model `p`, and its measurement kept (the outline counted),
+    with the file's path, terminus and anchor residue as asked: what a report made from the panel
+    names and measures again (structure_trace.request)."""
+    ob = structure_trace.add_trace(context.scene, _on_model(p, path, fib), fib.file)
+    structure_trace.place_fibril(ob, trace.relative_layers(fib), p)
     summary = {k: v for k, v in fib.to_dict().items() if k != "core_outline"}
     summary["outline_points"] = len(fib.core_outline)
+    summary["asked"] = {"path": str(path), "terminus": terminus,
+                        "anchor_residue": anchor_residue}
     structure_trace.store(context.scene, "fibril", summary)
 
 
-def _show_domain(context, path, chain, residues, dom, p: P.Params) -> None:
-    """The domain's CA trace beside the globule of the model `p`, and its measurement kept."""
-    chains = trace.domain_ca(path, chain=chain, residues=residues)
-    structure_trace.add_trace(context.scene, chains, dom.file, _beside_globule(p, chains),
-                              "domain")
+def _show_domain(context, entry, dom, p: P.Params) -> None:
+    """The CA trace of the list's domain `entry` beside the globule of the model `p`, after the
+    other domains' (structure_trace.place_domains), and its measurement kept."""
+    residues = entry.residues or None
+    chains = trace.domain_ca(entry.filepath, chain=entry.chain or None, residues=residues,
+                             option=entry.option)
+    key = structure_trace.entry_key(entry.filepath, entry.chain, entry.residues)
+    ob = structure_trace.add_trace(context.scene, chains, dom.file, kind="domain", entry=key)
+    ob[structure_trace.REACH] = max(float(np.linalg.norm(xyz, axis=1).max())
+                                    for _, _, xyz in chains)
+    structure_trace.place_domains(context.scene, p)
     structure_trace.store(context.scene, "domain", dom.to_dict())
 
 
-def show_measured(context, m, p: P.Params) -> None:
+def frame_structures(context) -> None:
+    """The imported structures (and the model, if built) framed in the window's 3D Views; none
+    in the background or without a 3D View (ui/view.py)."""
+    pts = structure_trace.points(context.scene)
+    model = find_model(context.scene)
+    if model is not None:
+        pts = np.concatenate([pts, model_points(model)])
+    frame_points(context, pts)
+
+
+def show_measured(context, m, p: P.Params, terminus: str = "C",
+                  anchor_residue: int | None = None) -> None:
     """A case's [structure] as Import fibril…, Import domain… and Import full-length model…
     leave the panel (Load case; `m`: structure.from_files.Measured, `p` the case's Params,
     already in the panel): the chain's domains in the list with their linkers to the next
@@ -67,25 +85,39 @@ def show_measured(context, m, p: P.Params) -> None:
     domain_list.replace(s, [(f, d) for (f, _, _), d in zip(m.specs, m.domains)], m.option,
                         p.domain_linker)
     if m.fibril is not None:
-        _show_fibril(context, m.fibril_path, m.fibril, p)
+        _show_fibril(context, m.fibril_path, m.fibril, p, terminus, anchor_residue)
     if m.segmentation is not None:
         structure_trace.store(context.scene, "full_length", m.segmentation.to_dict())
-    elif m.specs:  # the last domain's trace, as importing them one by one leaves it
-        f, chain, residues = m.specs[-1]
-        _show_domain(context, f, chain, residues, m.domains[-1], p)
+    for e, dom in zip(s.domains, m.domains if m.segmentation is None else ()):
+        _show_domain(context, e, dom, p)  # each domain's trace, as importing them leaves them
+    frame_structures(context)
+
+
+def linker_said(context, set_now: bool) -> str:
+    """After an import: whether the files gave the linker (a modelled tail, the shared
+    numbering), kept for the panel's note (panels.linker_note); the note's words for the
+    import's report when they did not."""
+    s = common.settings(context)
+    kept = structure_trace.measured(context.scene).get("linker") or {}
+    given = set_now or (kept.get("from_files") and kept.get("value") == s.linker)
+    structure_trace.store(context.scene, "linker", {"from_files": bool(given),
+                                                    "value": s.linker})
+    return "" if given else (f"; Linker stays {s.linker} residues: the files do not give it, "
+                             f"set it (the anchor counts as one)")
 
 
 class _ImportBase:
-    bl_options = {"REGISTER", "UNDO"}
+    bl_options = {"REGISTER"}  # its undo step pushed on success only (common.after_file)
     filepath: bpy.props.StringProperty(subtype="FILE_PATH", options={"SKIP_SAVE"})
     filter_glob: bpy.props.StringProperty(default=GLOB, options={"HIDDEN"})
 
     def invoke(self, context, event):
+        common.browse_from_last_folder(self, context)
         context.window_manager.fileselect_add(self)
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        return common.guarded(self, self._import, context)
+        return common.after_file(self, context, common.guarded(self, self._import, context))
 
 
 class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
@@ -108,11 +140,15 @@ class FIBRILFIT_OT_import_fibril(_ImportBase, bpy.types.Operator):
         s = common.settings(context)
         if len(s.domains) and "linker" in domain_list.filled(s, fib.to_dict(), first_changed=True):
             names = sorted({*names, "linker"})  # from the fibril's and the domain's numbering
-        _show_fibril(context, path, fib, common.panel_params(context))
+        _show_fibril(context, path, fib, common.panel_params(context), self.terminus,
+                     self.anchor_residue or None)
+        structure_trace.place_domains(context.scene, common.panel_params(context))
+        frame_structures(context)
         for w in fib.warnings:
-            self.report({"WARNING"}, w)
-        self.report({"INFO"}, f"{fib.file}: set {', '.join(names)}"
-                    + (f"; not in this model: {', '.join(missing)}" if missing else ""))
+            self.report({"WARNING"}, panel_words.in_panel_words(w))
+        self.report({"INFO"}, f"{fib.file}: set {panel_words.labels(names)}"
+                    + (f"; not in this model: {', '.join(missing)}" if missing else "")
+                    + linker_said(context, "linker" in names))
         return {"FINISHED"}
 
 
@@ -136,11 +172,12 @@ class FIBRILFIT_OT_import_domain(_ImportBase, bpy.types.Operator):
         if len(s.domains) > 1:
             domain_list.set_gaps(s, fibril, len(s.domains) - 2)
         names = domain_list.filled(s, fibril, first_changed=len(s.domains) == 1)
-        _show_domain(context, path, self.chain or None, self.residues or None, dom,
-                     common.panel_params(context))
+        _show_domain(context, s.domains[-1], dom, common.panel_params(context))
+        frame_structures(context)
         more = (f"; domain {len(s.domains)} of the chain, {s.domains[-2].linker} residues after "
                 f"the one before (set it in the list)" if len(s.domains) > 1 else "")
-        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {', '.join(names)}{more}")
+        self.report({"INFO"}, f"{dom.file}: Rg {dom.rg:.2f} Å, set {panel_words.labels(names)}"
+                              f"{more}" + linker_said(context, "linker" in names))
         return {"FINISHED"}
 
 

@@ -138,8 +138,7 @@ def check_pattern(p) -> None:
                                       f"fixed by it); give occupancy only with pattern random")
     if p.pattern == "random":
         decorated_count(p.occupancy, p.chains)
-    if p.pattern == "layers":
-        layer_letters(p.pattern_layers)
+    layer_letters(p.pattern_layers)  # whatever the pattern: a bad value is refused, not kept
     if p.score_layers and is_mixed(p):
         rows = decorated(p).any(axis=1)[p.score_layers:p.layers - p.score_layers]
         if not rows.any():

@@ -21,6 +21,8 @@ def near_range(meta):
         return st.sampled_from([*meta["choices"], "", "Tutorial ", "other"])
     if meta["kind"] is bool:
         return st.booleans()
+    if meta["kind"] is str:  # free text (a per-layer pattern): its letters and others
+        return st.text(alphabet="AB.a x", max_size=5)
     if meta["kind"] is int:
         return st.integers(int(lo) - 3, min(int(hi) + 3, 10**7))
     return st.floats(lo - 1.0, hi + 1.0, allow_nan=False) | st.sampled_from([lo, hi, 0.0, -0.0])
@@ -35,6 +37,8 @@ def in_range(meta, name=None):
         return st.sampled_from(meta["choices"])
     if meta["kind"] is bool:
         return st.booleans()
+    if meta["kind"] is str:  # free text (a per-layer pattern): patterns it accepts
+        return st.sampled_from(["A", "A.", ".A", "A..", "AA."])
     if meta["kind"] is int:
         return st.integers(int(meta["min"]), min(int(meta["max"]), 10**7))
     return st.floats(meta["min"], meta["max"])
@@ -89,6 +93,9 @@ def _accepted_or_refused_with_paramerror_only(values):
             continue
         if "choices" in f.metadata:
             assert v in f.metadata["choices"]
+            continue
+        if f.metadata["kind"] is str:  # free text: a per-layer pattern of known letters
+            assert isinstance(v, str) and v and set(v) <= set("AB.")
             continue
         if f.metadata["kind"] == "points":
             v = [x for xy in v for x in xy]

@@ -271,12 +271,40 @@ def linker_bound(p, budget: float = GRID_BUDGET) -> dict:
     return dict(_linker_bound(_settings_key(p) + f"|{budget:g}", p, budget))
 
 
-_CACHE: dict = {}  # geometry -> bound: a sweep's runs differ by seed, not by geometry
+# geometry -> (bound, Setting): a sweep's runs differ by seed, not by geometry
+_CACHE: dict = {}
+
+
+@dataclasses.dataclass(frozen=True)
+class Setting:
+    """What every inequality of one geometry shares, as the linker bound measured it: the
+    model (its linker one that leaves the core), each domain's reach terms and inner volume,
+    the judged chains (a periodic cell's one layer, or the scored layers lo..hi-1, with
+    chains_per_pf of each protofilament), the first linker that leaves the core, and the voxel
+    room (None when no path leaves the anchor). The bound on the fraction reads the same room
+    (fibrilfit/model/fraction_bound.py, docs/model/bound.md#fraction)."""
+    p: object
+    terms: list
+    volumes: list
+    periodic: bool
+    lo: int
+    hi: int
+    chains_per_pf: int
+    first: int
+    room: Room | None
+    impossible_below: int
+
+
+def setting(p, budget: float = GRID_BUDGET) -> Setting:
+    """The geometry's Setting, measured once with its linker bound (cached like it)."""
+    key = _settings_key(p) + f"|{budget:g}"
+    _linker_bound(key, p, budget)
+    return _CACHE[key][1]
 
 
 def _linker_bound(key: str, p, budget: float) -> dict:
     if key in _CACHE:
-        return _CACHE[key]
+        return _CACHE[key][0]
     volumes = [ball_union_volume(inner_balls(p, d)) for d in p.domains]
     periodic = bool(p.periodic)
     if periodic:
@@ -291,7 +319,8 @@ def _linker_bound(key: str, p, budget: float) -> dict:
         result = {"impossible_below": LONGEST + 1, "method": "no exit: no path clear of the "
                   "core's atoms leaves the anchor (docs/model/buried-terminus.md#model)",
                   "over": "every chain", "fails_below": None, "exit_residues": p.exit_residues}
-        _CACHE[key] = result
+        _CACHE[key] = (result, Setting(p, [], volumes, periodic, lo, hi, chains_per_pf, first,
+                                       None, LONGEST + 1))
         return result
     if p.free_linker < 1:  # a linker that leaves the core, for the chain's lengths (its
         p = dataclasses.replace(p, linker=first)  # checks aside: only chain_x is read)
@@ -326,7 +355,8 @@ def _linker_bound(key: str, p, budget: float) -> dict:
         "voxel": round(room.h, 4),
         "exit_residues": int(p.exit_residues),
     }
-    _CACHE[key] = result
+    _CACHE[key] = (result, Setting(p, terms, volumes, periodic, lo, hi, chains_per_pf, first,
+                                   room, result["impossible_below"]))
     return result
 
 

@@ -13,7 +13,8 @@ import numpy as np
 from ..model import bound, gravity, helix, occupancy, start_layout
 from ..model.answer import answer
 from ..builders.readback import MatrixReader
-from .clashes import bounding_radius, bvh_clashes, reach_from_axis
+from ..builders.scene import LAYER, PROTOFILAMENT
+from .clashes import bounding_radius, bvh_clashes, reach_from_axis, sphere_band
 from .exact import EXACT_CHECKS
 from .envelope import envelope
 from .leaks import members_inside_core
@@ -110,6 +111,7 @@ def check_model(model) -> dict:
                                                            hi, domains)
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
+    tails = tail_clashes(model, clashes["centres"], np.repeat(kept, domains)) if model.tails else None
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
     chains = _chain_blocks(p, clashing, chain_clash, n, domains)
     if domains > 1:
@@ -148,9 +150,10 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "core_entry": entry,
         "linker_intact": bool(intact),
-        "accommodated": bool(verdict == "successful" and intact),
+        "accommodated": bool(verdict == "successful" and intact and not (tails or {}).get("pairs")),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)
-        "answer": answer(clashing=len(clashing), grazing=len(clashes["grazing"]),
+        "answer": answer(clashing=len(clashing) + len((tails or {}).get("pairs", ())),
+                         grazing=len(clashes["grazing"]),
                          max_stretch=max_stretch, tolerance=p.stretch_tolerance),
         "scored_layers": [lo, hi - 1],
         "layer_clashes": layer_clash,
@@ -158,7 +161,29 @@ def check_model(model) -> dict:
         "globule_centres": np.round(centres, 4).tolist(),
         "envelope": overall,
         **periodic,
+        **({"tail_clashes": tails} if tails is not None else {}),
     }
+
+
+def tail_clashes(model, centres: np.ndarray, scored: np.ndarray) -> dict:
+    """A mixed fibril's bare tails against the scored domains (spheres: param_checks refuses
+    bare tails beside real shapes): every (globule, tail bead) overlapping by more than the
+    sphere check's tolerance, as [globule, [layer, protofilament, bead], depth]. A domain that
+    sits on an undecorated subunit's tail does not fit, as one on another domain does not
+    (docs/model/occupancy.md#the-model)."""
+    p = model.params
+    beads = MatrixReader([ob for t in model.tails for ob in t], model.root.children).positions()
+    where = [(t[0][LAYER], t[0].get(PROTOFILAMENT, 0), i)
+             for t in model.tails for i in range(len(t))]
+    radius = np.array([d.radius for d in p.domains])[np.arange(len(centres)) % len(p.domains)]
+    tol = sphere_band(p.globule_radius)
+    depth = (radius[:, None] + p.residue_radius
+             - np.linalg.norm(centres[:, None] - beads[None], axis=-1))
+    hits = np.argwhere((depth > tol) & scored[:, None])
+    return {"tolerance": round(tol, 4), "beads": len(beads),
+            "pairs": [[int(g), [int(x) for x in where[b]], round(float(depth[g, b]), 4)]
+                      for g, b in hits.tolist()],
+            "max_depth": round(float(depth.max()), 4) if depth.size else 0.0}
 
 
 def _clash_checks(model) -> dict:

@@ -86,6 +86,18 @@ def model_rows(doc: dict) -> str:
             + "".join(rows) + "</table>")
 
 
+def occupancy_text(doc: dict) -> str:
+    """A mixed fibril: the fraction's row, and what the answer and P(fit) speak of."""
+    occ = doc.get("occupancy")
+    if not occ:
+        return ""
+    rows = [("fraction carrying the domain", f"{100 * occ['fraction']:.4g} %"),
+            ("pattern", occ["pattern_words"]), ("the answer speaks of", occ["speaks_of"]),
+            ("P(fit) counts", occ["p_fit_counts"])]
+    return ("<h2>Occupancy</h2><table>" + "".join(f"<tr><th>{esc(a)}</th><td>{esc(b)}</td></tr>"
+                                                for a, b in rows) + "</table>")
+
+
 def linker_rows(doc: dict) -> str:
     m, pf = doc["minimal_linker"], doc["p_fit"]
     tried = m.get("tried") or {}
@@ -173,7 +185,7 @@ def html(doc: dict, folder) -> str:
 <p class="small">{esc(versions)}</p>
 <h2>The question</h2><p>{esc(doc['question'])}</p>
 <div class="answer {css}">{esc(sentence)}</div>
-<h2>P(fit) at linker {pf['linker']}</h2>
+{occupancy_text(doc)}<h2>P(fit) at linker {pf['linker']}</h2>
 <p>{pf['fits']} of {pf['runs']} restarts accommodated: P(fit) {p}
 (95 % Wilson interval {pf['low']:.2f}–{pf['high']:.2f}){', ' + str(pf['failed']) +
 ' failed to run' if pf.get('failed') else ''}. Best layout: seed {b['seed']}, verdict

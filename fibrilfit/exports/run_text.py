@@ -82,6 +82,13 @@ def _model_lines(r: dict) -> list[str]:
              f"the axis, linker {p['linker']} residues{detail('linker')}, globule "
              f"{p['globule_diameter']:g} Å{detail('globule_diameter')}, protocol "
              f"{p['protocol']}"]
+    occ = r.get("occupancy")
+    if occ:  # a mixed fibril (docs/model/occupancy.md#what-fits-at-f-means)
+        lines.append(f"occupancy: {occ['decorated']} of {occ['subunits']} subunits "
+                     f"({percent(occ['fraction'])}) carry the domain ({occ['pattern']}"
+                     + (f", drawn with seed {occ['seed']}" if "seed" in occ else "")
+                     + f"; bare tail {occ['bare_tail']} residues); the answer speaks of this "
+                     f"pattern on {occ['on']}")
     if src:
         lines.append("sources: " + sources_text(src))
     return lines

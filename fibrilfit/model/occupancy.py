@@ -96,6 +96,14 @@ def repeat_layers(p) -> int:
     return 0
 
 
+def lattice_period(p) -> int:
+    """Layers of one period of inflate's lattice start in a cell (helix.auto_cell_layers holds
+    whole ones); 1 when there is none."""
+    if getattr(p, "protocol", "tutorial") != "inflate" or not helix.lattice_rows(p):
+        return 1
+    return 2 * helix.lattice_rows(p)
+
+
 def is_mixed(p) -> bool:
     """Whether some subunit lacks the domain (False: every subunit carries it, as before #44)."""
     if p.pattern == "random":
@@ -135,6 +143,9 @@ def check_pattern(p) -> None:
     if p.periodic and p.bare_tail and is_mixed(p):
         raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
                                       "made): use a fibril with ends (periodic 0), or bare_tail 0")
+    if p.bare_tail and p.shape.real and is_mixed(p):
+        raise ParamError("bare_tail", f"is judged against sphere domains only (not yet "
+                                      f"{p.shape.name}): use domain_shape sphere, or bare_tail 0")
     repeat = repeat_layers(p)
     if p.periodic and repeat and p.periodic % repeat:
         raise ParamError("pattern", f"a {p.pattern} pattern repeating every {repeat} layers does "
@@ -168,3 +179,31 @@ def occupancy_block(p) -> dict:
     else:
         block.update(pattern_layers=p.pattern_layers)
     return block
+
+
+def pattern_words(p) -> str:
+    """The pattern in a few words, for the printed result and the report."""
+    if p.pattern == "random":
+        return f"a random draw of {decorated_count(p.occupancy, p.chains)} of {p.chains}, seed {p.seed}"
+    if p.pattern == "periodic":
+        return (f"every {p.pattern_period}th subunit "
+                f"{'along each protofilament' if p.pattern_across == 'protofilament' else 'over the fibril'}")
+    return f"the layers pattern {p.pattern_layers!r}, repeated"
+
+
+def speaks_of(p) -> str:
+    """What a run's answer at this fraction is about (docs/model/occupancy.md#what-fits-at-f-means)."""
+    where = (f"the infinite fibril that repeats a cell of {p.layers} layers, pattern and all"
+             if p.periodic else f"a fibril of {p.layers} layers with two ends")
+    drawn = " drawn with the run's seed" if p.pattern == "random" else ""
+    return f"this pattern{drawn} on {where}"
+
+
+def report_block(p, restarts: int) -> dict:
+    """report.json's "occupancy": the fraction, the pattern, and what P(fit) counts."""
+    return {"fraction": round(fraction(p), 6), "pattern": p.pattern,
+            "pattern_words": pattern_words(p), "speaks_of": speaks_of(p),
+            "p_fit_counts": ("restarts that each draw their own pattern and start from their seed"
+                             if p.pattern == "random" else
+                             "restarts of one fixed pattern, each its own start"),
+            "restarts": int(restarts)}

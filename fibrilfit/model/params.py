@@ -240,7 +240,7 @@ class Params:
     occupancy: float = spec(1.0, 1e-6, 1.0, "fraction",
                             "random: the fraction of subunits that carry the domain, an exact "
                             "count round(f·N) of the fibril's (or the cell's) N subunits, drawn "
-                            "with the seed", section="Globule", shown_in="%", question=True)
+                            "with the seed", section="Globule", shown_in="%")
     pattern: str = spec("random", None, None, "",
                         "Which subunits carry the domain: random (a seeded draw of occupancy's "
                         "count), periodic (every pattern_period-th subunit) or layers (the "
@@ -385,9 +385,12 @@ def make_params(*, force: bool = False, **values) -> Params:
     if auto:  # resolved here, once the geometry it depends on is known
         cell = Params(**{**clean, "periodic": 1})
         clean["periodic"] = helix.auto_cell_layers(cell)
-        repeat = occupancy.repeat_layers(cell)  # a whole number of the pattern's repeats
+        # also a whole number of the pattern's repeats (and of inflate's lattice periods, which
+        # auto_cell_layers' cell already holds): the least common multiple
+        repeat = occupancy.repeat_layers(cell)
         if repeat and clean["periodic"] % repeat:
-            clean["periodic"] += repeat - clean["periodic"] % repeat
+            step = math.lcm(repeat, occupancy.lattice_period(cell))
+            clean["periodic"] = -(-clean["periodic"] // step) * step
     if clean.get("periodic"):
         clean["layers"] = clean["periodic"]  # the model is the cell: M layers
     p = Params(**clean)

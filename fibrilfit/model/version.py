@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "8a1518c36099c9a23a6ead39dfa700786662c3cfc8de6535b6c45f9824902d72"
+MODEL_SOURCES_SHA256 = "0696b22af7c2cae511af5a2ba32cffd90b0c37a59d2cdc9e893b6f221e5b9582"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -19,7 +19,7 @@ import time
 from .. import exits, files
 from ..batch import outdir
 from ..batch.executors import SweepError, make_executor
-from ..model import params as P
+from ..model import occupancy, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
 from . import linker_map, minimal, restarts
@@ -249,10 +249,16 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
     tol = p.stretch_tolerance
     m = row["minimal_linker"]
     measured_width = (case or {}).get("envelope_width")
+    unit = 'chain' if p.protofilaments > 1 else 'layer'
+    mixed = occupancy.is_mixed(p)
+    where = (f"every {unit}" if not mixed else
+             f"{100 * occupancy.fraction(p):.4g} % of the {unit}s ({occupancy.pattern_words(p)})")
     return {
         "question": (f"Can domains of {p.globule_diameter:g} Å, tethered by {p.linker}-residue "
-                     f"linkers to every {'chain' if p.protofilaments > 1 else 'layer'} of this "
-                     f"fibril, all fit without clashing, and how long must the linker be?"),
+                     f"linkers to {where} of this fibril, all fit without clashing, and how "
+                     f"long must the linker be?"),
+        # a mixed fibril: what the answer speaks of (docs/model/occupancy.md#what-fits-at-f-means)
+        **({"occupancy": occupancy.report_block(p, search.restarts)} if mixed else {}),
         "command": list(reproduce),
         "answer": answer_of(best),
         "model": p.to_dict(),

@@ -116,6 +116,8 @@ def _param_property(field):
                             default=default, name=common["name"], description=meta["doc"])
     if meta["kind"] is int:
         return IntProperty(default=default, min=meta["min"], max=meta["max"], **common)
+    if meta["kind"] is str:  # free text (a pattern's letters): make_params reads and checks it
+        return StringProperty(default=default, **common)
     units = _FLOAT_UNITS.get(meta.get("shown_in") or meta["unit"], {})
     k = _scale(field)
     limits = {"min": meta["min"] * k, "max": meta["max"] * k, "precision": 1 if k != 1 else 3}

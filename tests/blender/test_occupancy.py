@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pytest
 
-from helpers import run_cli
+from helpers import ROOT, run_cli
 from fibrilfit.builders import colours
 from fibrilfit.builders.periodic import CELL, CHAIN, image_collection
 from fibrilfit.builders.scene import INDEX, LAYER, PROTOFILAMENT, TAG
@@ -146,9 +146,60 @@ def test_cli_refuses_a_bad_pattern_in_one_line(args, name, tmp_path):
     assert not (tmp_path / "r.json").exists()
 
 
-def test_cli_runs_a_mixed_fibril(tmp_path):
-    out = run_cli("run", "--layers", "10", "--occupancy", "30%", "--frames", "20", "--json",
-                  str(tmp_path / "r.json"))
+def test_cli_runs_a_mixed_fibril_and_its_json_meets_the_schema(tmp_path):
+    import jsonschema
+    out = run_cli("run", "--layers", "10", "--occupancy", "30%", "--bare-tail", "4", "--frames",
+                  "20", "--json", str(tmp_path / "r.json"))
     assert out.returncode == 0, out.stderr
     r = json.loads((tmp_path / "r.json").read_text())
     assert r["params"]["occupancy"] == 0.3 and r["occupancy"]["decorated"] == 3
+    assert r["tail_clashes"]["beads"] == 7 * 4
+    schema = json.loads((ROOT / "docs" / "reference" / "result.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(r)
+    broken = {**r, "occupancy": {**r["occupancy"], "fraction": 1.5}}
+    assert list(jsonschema.Draft202012Validator(schema).iter_errors(broken))
+
+
+def test_a_domain_on_a_bare_tail_does_not_fit(scene, ff):
+    """The check judges decorated domains against undecorated subunits' bare tails too: a tail
+    bead moved into a globule is named, with its depth, and the run is not accommodated; the
+    tails as built (straight out from their anchors) touch no domain."""
+    from mathutils import Matrix
+    p = ff.model.params.make_params(layers=6, linker=8, pattern="layers", pattern_layers="A.",
+                                    bare_tail=3, frames=1)
+    model = ff.builders.build_model(p, scene)
+    clean = ff.analysis.check_model(model)
+    assert clean["tail_clashes"]["pairs"] == [] and clean["tail_clashes"]["beads"] == 9
+    bead = model.tails[1][2]  # layer 3's last bead, into layer 2's globule
+    centre = model.chain[1][-1].matrix_world.translation
+    bead.matrix_world = Matrix.Translation(centre)
+    r = ff.analysis.check_model(model)
+    pairs = r["tail_clashes"]["pairs"]
+    assert [1, [3, 0, 2], pytest.approx(p.globule_radius + p.residue_radius, abs=1e-3)] in pairs
+    assert all(bead == [3, 0, 2] for _, bead, _ in pairs)  # (as built, the globules overlap
+    # one another, 9.6 Å apart: the bead sits in its neighbours' too)
+    assert not r["accommodated"]
+
+
+def test_the_panel_sets_a_fraction_and_a_pattern(registered):
+    """The domain's section of the sidebar holds the fraction (in %) and the pattern, read into
+    the model's parameters and written back."""
+    from fibrilfit.ui import properties
+    names = [f.name for f in properties.fields_in("Globule")]
+    assert {"occupancy", "pattern", "pattern_period", "pattern_across", "pattern_layers",
+            "bare_tail"} <= set(names)
+    ui = registered
+    assert ui.occupancy == pytest.approx(100.0)
+    ui.occupancy, ui.layers = 25.0, 20
+    p = properties.read_params(ui)
+    assert p.occupancy == 0.25 and occupancy.decorated(p).sum() == 5
+    ui.pattern, ui.pattern_layers, ui.occupancy = "layers", "A..", 100.0
+    assert occupancy.decorated(properties.read_params(ui))[:, 0].tolist()[:6] == \
+        [True, False, False] * 2
+    properties.write_params(ui, ff_params(occupancy=0.1))
+    assert ui.occupancy == pytest.approx(10.0) and ui.pattern == "random"
+
+
+def ff_params(**values):
+    from fibrilfit.model import params
+    return params.make_params(**values)

@@ -116,3 +116,44 @@ def test_bad_values_get_one_line_naming_the_parameter(values, param, words):
     with pytest.raises(ParamError) as exc:
         P.make_params(**values)
     assert exc.value.param == param and words in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_the_printed_result_and_the_report_say_the_fraction():
+    """A mixed fibril's result prints its fraction and what the answer speaks of; report.json
+    carries the occupancy block (valid against its schema) and the page shows its row."""
+    import json
+    import jsonschema
+    from helpers import ROOT
+    from fibrilfit.exports import report_page, run_text
+    ref = ROOT / "docs" / "reference"
+    p = P.make_params(layers=20, occupancy=0.3, seed=2)
+    r = json.loads((ref / "samples" / "run_result.json").read_text())
+    r = {**r, "params": p.to_dict(), "occupancy": O.occupancy_block(p)}
+    text = run_text.text(r)
+    assert "occupancy: 6 of 20 subunits (30.0 %) carry the domain (random, drawn with seed 2" \
+        in text and "a fibril of 20 layers with two ends" in text
+    jsonschema.Draft202012Validator(json.loads((ref / "result.schema.json").read_text())
+                                    ).validate(r)
+    doc = json.loads((ref / "samples" / "report.json").read_text())
+    doc["occupancy"] = O.report_block(p, 8)
+    jsonschema.Draft202012Validator(json.loads((ref / "report.schema.json").read_text())
+                                    ).validate(doc)
+    page = report_page.html(doc, ROOT)
+    assert "fraction carrying the domain</th><td>30 %" in page
+    assert "each draw their own pattern" in page
+    del doc["occupancy"]
+    assert "Occupancy" not in report_page.html(doc, ROOT)  # f = 1: the page as before
+
+
+def test_a_sweep_grids_the_fraction_and_the_pattern():
+    from fibrilfit.sweep import grid
+    spec = lambda **kw: {k: grid.parse_spec(k, v) for k, v in kw.items()}  # noqa: E731
+    pts = grid.build(spec(occupancy="0.1:0.3:0.1", layers="20"), ["0", "1"])
+    assert [(pt.params["occupancy"], pt.params["seed"]) for pt in pts] == \
+        [(0.1, 0), (0.2, 0), (0.3, 0), (0.1, 1), (0.2, 1), (0.3, 1)]
+    assert [pt.params["occupancy"] for pt in grid.build(spec(occupancy="25%,50%"), ["0"])] == \
+        [0.25, 0.5]
+    pts = grid.build(spec(pattern="layers", pattern_layers="A.,A.."), ["0"])
+    assert [pt.params["pattern_layers"] for pt in pts] == ["A.", "A.."]
+    with pytest.raises(ParamError, match="rounds to none"):
+        grid.build(spec(occupancy="0.01", layers="20"), ["0"])

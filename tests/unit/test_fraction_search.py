@@ -188,3 +188,29 @@ def test_largest_fraction_refuses_bad_input_in_one_line(tmp_path, args, named):
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.strip().count("\n") == 0 and named in proc.stderr
     assert "Traceback" not in proc.stderr and not (tmp_path / "out").exists()
+
+
+def test_a_results_bound_is_the_bound_at_its_fraction_with_the_bracket_on_the_fraction():
+    """The run's `bound` block (pipeline.check): unchanged at f = 1; a mixed fibril's states the
+    bound at its fraction (never the fully decorated one's), f_B at its linker and the bracket
+    on the fraction, which the printed result and the report carry."""
+    from fibrilfit.exports import run_text
+    from fibrilfit.model import bound, bracket, fraction_bound
+    from fibrilfit.search import report
+    base = P.make_params(globule_diameter=30.0, linker=2, periodic=18, protocol="inflate")
+    assert bracket.bound_block(base, True) == bound.bound_block(base)
+    mixed = base.replace(occupancy=0.5)
+    b = bracket.bound_block(mixed, True)
+    assert b["impossible_below"] == fraction_bound.impossible_below_at(mixed, 0.5)
+    assert b["impossible_below"] <= b["impossible_below_full"] == \
+        bound.bound_block(base)["impossible_below"]
+    assert b["fraction_bound"] == fraction_bound.fraction_bound(mixed, 2)
+    assert b["fraction_bracket"] == fraction_bound.fraction_bracket(b["fraction_bound"], 0.5)
+    assert "no layout found" in bracket.bound_block(mixed, False)["fraction_bracket"]
+    lines = run_text._bound_lines({"bound": b})
+    assert lines[0].startswith("bound at 50 % decorated:")
+    assert lines[-1] == f"bound on the fraction at linker 2: {b['fraction_bracket']}"
+    got = report.fraction_bracket_of(b, {"accommodated": 0})
+    assert got["fits_at"] is None and got["text"] == bracket.bound_block(mixed, False)[
+        "fraction_bracket"]
+    assert report.fraction_bracket_of(bound.bound_block(base), {"accommodated": 1}) is None

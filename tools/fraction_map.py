@@ -7,6 +7,7 @@ seconds, runs made), and prints the docs' tables from what the folders hold. `ni
 the caller.
 
     python tools/fraction_map.py map --diameter 20 --linkers 1:3 [--restarts 3] [--workers 1]
+                                     [--tag L3: into d20_L3, beside a run in d20]
     python tools/fraction_map.py abeta --linkers 13,15 [--restarts 3]     # Aβ42–GFP, largest
     python tools/fraction_map.py abeta-minimal --fraction 0.1 [--restarts 3]
     python tools/fraction_map.py show [--out DIR]
@@ -101,10 +102,12 @@ def main(argv=None) -> int:
     ap.add_argument("--fraction", type=float, default=0.5)
     ap.add_argument("--restarts", type=int, default=3)
     ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--tag", default="", help="a suffix for the map's folder (d<D>_<tag>): "
+                                              "another linker of one diameter run beside it")
     a = ap.parse_args(argv)
     common = ["--periodic", "auto", "--restarts", str(a.restarts), "--workers", str(a.workers)]
     if a.what == "map":
-        return _timed(a.out / f"d{a.diameter:g}",
+        return _timed(a.out / (f"d{a.diameter:g}" + (f"_{a.tag}" if a.tag else "")),
                       ["largest-fraction", "--globule-diameter", f"{a.diameter:g}",
                        "--linker", a.linkers, *common])
     if a.what == "abeta":

@@ -63,7 +63,9 @@ def run_cost(out: pathlib.Path) -> dict:
     work = sum(sum((r.get("timings_s") or {}).get(k, 0.0) for k in ("build", "bake", "check"))
                for r in records)
     return {"wall_s": round(sum(t["wall_s"] for t in timings), 1), "runs": len(records),
-            "worker_s": round(work, 1)}
+            "misses": sum(not r.get("accommodated") for r in records),
+            "worker_s": round(work, 1),
+            "frames": sum(int(r.get("frames_simulated") or 0) for r in records)}
 
 
 def show(out: pathlib.Path) -> None:
@@ -86,11 +88,12 @@ def show(out: pathlib.Path) -> None:
             print(f"| {r['globule_diameter']:g} | {r['linker']} | {n} | {found} | {fit} | "
                   f"{above} | {r['fraction_bound']:.3f} | {r['bracket']} |")
     print()
-    print("| folder | wall (s) | runs | worker seconds (build + bake + check) |")
-    print("|---|---|---|---|")
+    print("| folder | wall (s) | runs (misses) | worker seconds (build + bake + check) | frames |")
+    print("|---|---|---|---|---|")
     for d in sorted(p for p in out.iterdir() if p.is_dir()):
         c = run_cost(d)
-        print(f"| {d.name} | {c['wall_s']:g} | {c['runs']} | {c['worker_s']:g} |")
+        print(f"| {d.name} | {c['wall_s']:g} | {c['runs']} ({c['misses']}) | {c['worker_s']:g} | "
+              f"{c['frames']} |")
 
 
 def main(argv=None) -> int:

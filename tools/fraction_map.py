@@ -11,6 +11,7 @@ the caller.
     python tools/fraction_map.py abeta --linkers 13,15 [--restarts 3]     # Aβ42–GFP, largest
     python tools/fraction_map.py abeta-minimal --fraction 0.1 [--restarts 3]
     python tools/fraction_map.py show [--out DIR]
+    python tools/fraction_map.py docs [--out DIR]   # also docs/largest_fraction.csv and .png
 
 Every folder's largest_fraction.json / minimal_linker.json is the command's own output; this
 script adds only the timings and the table.
@@ -68,25 +69,37 @@ def run_cost(out: pathlib.Path) -> dict:
             "frames": sum(int(r.get("frames_simulated") or 0) for r in records)}
 
 
+def write_docs(out: pathlib.Path, docs: pathlib.Path) -> None:
+    """Every folder's rows as one CSV and one plot (the command's own csv_text and plot):
+    docs/largest_fraction.csv, docs/largest_fraction.png."""
+    from fibrilfit import files
+    from fibrilfit.search import fraction_map
+    rows = [r for doc_path in sorted(out.glob("*/largest_fraction.json"))
+            for r in json.loads(doc_path.read_text())["rows"]]
+    rows.sort(key=lambda r: (r["globule_diameter"], r["linker"]))
+    files.write_text(docs / "largest_fraction.csv", fraction_map.csv_text(rows))
+    fraction_map.write_plot(docs / "largest_fraction.png", rows)
+
+
 def show(out: pathlib.Path) -> None:
     """The docs' map table (one row per diameter and linker) and the cost table."""
     print("| diameter (Å) | linker | subunits N | largest fraction found (k/N) | P(fit) there "
           "(runs) | one more decorated | bound f_B | bracket |")
     print("|---|---|---|---|---|---|---|---|")
-    for doc_path in sorted(out.glob("*/largest_fraction.json")):
-        doc = json.loads(doc_path.read_text())
-        for r in doc["rows"]:
-            k, n = r["largest_count"], r["subunits"]
-            found = f"{r['largest_fraction']:.3f} ({k}/{n})" if k is not None else "none"
-            fit = f"{r['fits']}/{r['restarts']}" if k is not None else "-"
-            if r["count_above"] is None:
-                above = "- (all)"
-            elif r["above_settled_by_bound"]:
-                above = f"{r['count_above']}/{n}: excluded by the bound"
-            else:
-                above = f"{r['count_above']}/{n}: 0/{r['restarts_above']}"
-            print(f"| {r['globule_diameter']:g} | {r['linker']} | {n} | {found} | {fit} | "
-                  f"{above} | {r['fraction_bound']:.3f} | {r['bracket']} |")
+    rows = [r for doc_path in sorted(out.glob("*/largest_fraction.json"))
+            for r in json.loads(doc_path.read_text())["rows"]]
+    for r in sorted(rows, key=lambda r: (r["globule_diameter"], r["linker"])):
+        k, n = r["largest_count"], r["subunits"]
+        found = f"{r['largest_fraction']:.3f} ({k}/{n})" if k is not None else "none"
+        fit = f"{r['fits']}/{r['restarts']}" if k is not None else "-"
+        if r["count_above"] is None:
+            above = "- (all)"
+        elif r["above_settled_by_bound"]:
+            above = f"{r['count_above']}/{n}: excluded by the bound"
+        else:
+            above = f"{r['count_above']}/{n}: 0/{r['restarts_above']}"
+        print(f"| {r['globule_diameter']:g} | {r['linker']} | {n} | {found} | {fit} | "
+              f"{above} | {r['fraction_bound']:.3f} | {r['bracket']} |")
     print()
     print("| folder | wall (s) | runs (misses) | worker seconds (build + bake + check) | frames |")
     print("|---|---|---|---|---|")
@@ -98,7 +111,7 @@ def show(out: pathlib.Path) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("what", choices=("map", "abeta", "abeta-minimal", "show"))
+    ap.add_argument("what", choices=("map", "abeta", "abeta-minimal", "show", "docs"))
     ap.add_argument("--out", default="out/fraction_map", type=pathlib.Path)
     ap.add_argument("--diameter", type=float, default=20.0)
     ap.add_argument("--linkers", default="1:3")
@@ -121,6 +134,8 @@ def main(argv=None) -> int:
         return _timed(a.out / f"abeta_minimal_{a.fraction:g}",
                       ["minimal-linker", "--case", str(ABETA_CASE), "--occupancy",
                        f"{a.fraction:g}", *common])
+    if a.what == "docs":
+        write_docs(a.out, ROOT / "docs")
     show(a.out)
     return 0
 

@@ -1,5 +1,5 @@
 """The largest fraction at a linker: the minimal-linker walk (search/minimal.py) run over the
-decorated count (issue #44, item 3; docs/model/mixed.md#largest-fraction).
+decorated count (issue #44, item 3; docs/model/largest-fraction.md#largest-fraction).
 
 Method (and why it is the walk's): in a model of N subunits (a periodic cell's M × K, a fibril's
 layers × K) the fraction's axis is the decorated count k. The random pattern is a nested draw

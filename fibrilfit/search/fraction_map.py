@@ -3,7 +3,7 @@ diameter and linker, the largest fraction of subunits that can carry the domain,
 restarts (search/fraction.py: the minimal-linker walk over the decorated count), bracketed by
 the proven bound on the fraction (model/fraction_bound.py). The walks run on the plan's
 executor through linker_map's step_walks; the output folder is resumable as minimal-linker's
-(DIR/results.jsonl, --resume). docs/model/mixed.md#largest-fraction.
+(DIR/results.jsonl, --resume). docs/model/largest-fraction.md#largest-fraction.
 
 A plan here is the API's LargestFractionPlan (api/plans.py): `.search` (SearchPlan),
 `.output` (BatchOutput), `.executor` (ExecutorPlan) and `.force`.
@@ -53,6 +53,9 @@ def walks_for(values: dict, plan) -> tuple:
             base = P.make_params(force=plan.force, **values, globule_diameter=d, linker=int(L),
                                  seed=first)
             base.replace(seed=seeds[-1])
+            n = subunits(base)
+            if n > 1:  # a mixed model's own refusals (e.g. bare tails in a cell), in one line
+                base.replace(occupancy=1.0 / n)
             walks.append(new_walk(search, base, len(seeds)))
     return values, seeds, walks
 
@@ -98,7 +101,7 @@ def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:
                    + (", all R at both" if search.all_restarts else
                       " (a count's restarts stop at its first fit)")
                    + "; counts above the proven bound on the fraction settled without runs "
-                     "(search/fraction.py, docs/model/mixed.md#largest-fraction)"),
+                     "(search/fraction.py, docs/model/largest-fraction.md#largest-fraction)"),
         "model": {**values, "seeds": list(seeds)}, "protocol": values["protocol"],
         "restarts": search.restarts, "rows": rows,
     }

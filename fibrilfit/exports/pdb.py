@@ -29,6 +29,7 @@ from ..model import helix
 from ..model.chain import chain_members, chain_radii
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
+from ..builders.scene import LAYER, PROTOFILAMENT
 
 CHAIN_IDS = string.ascii_uppercase + string.ascii_lowercase + string.digits
 KEYFRAME_STEP = 50   # the tutorial's bake_to_keyframes(frame_start=1, frame_end=251, step=50)
@@ -196,6 +197,11 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     frames = [scene.frame_current] if frames is None else [int(f) for f in frames]
     models = positions_at(scene, model, frames)
     p, remarks = model.params, result_remarks(result)
+    if len(model.chain) < p.chains:  # a mixed fibril: which subunits the chains are
+        remarks.append(f"mixed fibril: {len(model.chain)} of {p.chains} subunits carry the "
+                       f"domain; chains in order are (layer, protofilament) "
+                       + ", ".join(f"({m[0][LAYER]}, {m[0].get(PROTOFILAMENT, 0)})"
+                                   for m in model.chain))
     if p.periodic and images:
         n = len(model.chain)
         models = [(f, chains_with_images(p, pos, images)) for f, pos in models]

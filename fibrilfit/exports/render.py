@@ -106,7 +106,10 @@ def legend_entries(model, clashing, grazing, result: dict | None = None) -> list
     if model.params.periodic:  # the cell's screw images, faded towards the backdrop
         faded = tuple(c + FADE * (b - c) for c, b in zip(part_colour("globule", 0), FADE_TO))
         images = [("images of the periodic cell", faded)]
-    return [("fibril core", COLORS["slab"]), ("linker", COLORS["residue"]), *domains, *images,
+    # a mixed fibril: which subunits carry the domain (the others: no chain, or a bare tail)
+    tails = [("bare tail (subunit without the domain)", COLORS["tail"])] if model.tails else []
+    return [("fibril core", COLORS["slab"]), ("linker", COLORS["residue"]), *domains, *tails,
+            *images,
             (f"clash: overlap{deeper} ({len(clashing)})", CLASH_COLOR),
             (f"graze: overlap{within}, mesh resolution ({len(grazing)})", GRAZE_COLOR)]
 
@@ -123,7 +126,9 @@ def angstrom_per_pixel(camera, points, width: int) -> float:
 
 def scale_note(model) -> str:
     p = model.params
-    return (f"{p.layers} layers, linker {p.linker}, domain {p.globule_diameter:g} Å; "
+    mixed = (f", on {len(model.chain)} of {p.chains} subunits" if len(model.chain) < p.chains
+             else "")  # a mixed fibril: how many carry the domain
+    return (f"{p.layers} layers, linker {p.linker}, domain {p.globule_diameter:g} Å{mixed}; "
             "scale at the fibril axis")
 
 

@@ -201,6 +201,8 @@ def _check_param(path, name: str, value):
         return value
     if P.is_angle(name) and isinstance(value, str):
         return value  # an angle with its unit, "-0.961deg" (param_values.angle_value reads it)
+    if meta.get("shown_in") == "%" and isinstance(value, str) and value.strip().endswith("%"):
+        return value  # a fraction in per cent, "25%" (param_values.coerce reads it)
     if meta["kind"] is bool:
         if not isinstance(value, bool):
             raise _error(path, key, f"must be true or false (got {value!r})")

@@ -53,6 +53,11 @@ def test_only_decorated_subunits_get_a_chain(scene, ff):
                for ob in bonds)
     globule_layers = sorted(ob[LAYER] for ob in model.globules)
     assert globule_layers == np.flatnonzero(mask[:, 0]).tolist()
+    # the picture's legend names the tails' colour, its note how many subunits carry the domain
+    from fibrilfit.exports import render
+    legend = dict(render.legend_entries(model, (), ()))
+    assert legend["bare tail (subunit without the domain)"] == colours.COLORS["tail"]
+    assert "on 6 of 20 subunits" in render.scale_note(model)
     # find_model reassembles the same split from the tags
     again = ff.builders.find_model(scene)
     assert [m[0].name for m in again.chain] == [m[0].name for m in model.chain]
@@ -203,3 +208,16 @@ def test_the_panel_sets_a_fraction_and_a_pattern(registered):
 def ff_params(**values):
     from fibrilfit.model import params
     return params.make_params(**values)
+
+
+def test_the_pdb_of_a_mixed_fibril_names_its_decorated_subunits(scene, ff, tmp_path):
+    from fibrilfit.exports import pdb
+    p = ff.model.params.make_params(layers=8, pattern="layers", pattern_layers="A...", frames=2)
+    model = ff.builders.build_model(p, scene)
+    out = pdb.write_pdb(tmp_path / "m.pdb", model, scene)
+    text = (tmp_path / "m.pdb").read_text()
+    members = len(model.chain[0])
+    assert out["atoms_per_model"] == 2 * members
+    assert sum(line.startswith("ATOM") for line in text.splitlines()) == 2 * members
+    assert "(0, 0), (4, 0)" in " ".join(line[11:].strip() for line in text.splitlines()
+                                        if line.startswith("REMARK"))

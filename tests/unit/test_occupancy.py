@@ -157,3 +157,17 @@ def test_a_sweep_grids_the_fraction_and_the_pattern():
     assert [pt.params["pattern_layers"] for pt in pts] == ["A.", "A.."]
     with pytest.raises(ParamError, match="rounds to none"):
         grid.build(spec(occupancy="0.01", layers="20"), ["0"])
+
+
+def test_a_case_file_carries_the_fraction_and_the_pattern(tmp_path):
+    from fibrilfit.model import cases
+    case = tmp_path / "mixed.toml"
+    case.write_text('[params]\nlayers = 12\noccupancy = "25%"\nbare_tail = 3\n', encoding="utf-8")
+    p = P.make_params(**cases.load(case).params)
+    assert (p.occupancy, p.bare_tail, O.decorated(p).sum()) == (0.25, 3, 3)
+    case.write_text('[params]\npattern = "layers"\npattern_layers = "A.."\n', encoding="utf-8")
+    assert O.decorated(P.make_params(**cases.load(case).params))[:3, 0].tolist() == \
+        [True, False, False]
+    case.write_text('[params]\noccupancy = "many"\n', encoding="utf-8")
+    with pytest.raises(cases.CaseError, match="params.occupancy"):
+        cases.load(case)

@@ -1,0 +1,60 @@
+"""The measurements of docs/model/occupancy.md, one JSON line per run on stdout (tutorial protocol,
+the default model otherwise; run with bpy importable, e.g. the project's .venv):
+
+    python tools/occupancy_runs.py nested SEED   # shortest fitting linker at f = 0.25, 0.5, 1
+    python tools/occupancy_runs.py cell          # random f = 0.5 and layers 'A.' in cells of
+                                                 # 14 and 28 layers, and 'A.' at linker 4 in more
+"""
+import json
+import sys
+import time
+
+import bpy
+
+from fibrilfit import pipeline
+from fibrilfit.model import params as P
+
+
+def run(**values) -> dict:
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    t = time.perf_counter()
+    r = pipeline.run_model(P.make_params(**values))
+    return {**{k: v for k, v in values.items()}, "fits": r["accommodated"], "answer": r["answer"],
+            "decorated": (r.get("occupancy") or {}).get("decorated", r["params"]["layers"]),
+            "stretch": r["max_bond_stretch"], "pairs": len(r["clashing_pairs"]),
+            "seconds": round(time.perf_counter() - t, 1)}
+
+
+def nested(seed: int) -> None:
+    """16 layers, 150 frames: the linker scanned upward from 1 to the first fit, per fraction."""
+    for f in (0.25, 0.5, 1.0):
+        for linker in range(1, 13):
+            row = run(layers=16, occupancy=f, linker=linker, seed=seed, frames=150)
+            print(json.dumps(row), flush=True)
+            if row["fits"]:
+                break
+
+
+def cell() -> None:
+    for linker in (3, 5, 7):
+        for m in (14, 28):
+            for s in range(6):
+                print(json.dumps(run(periodic=m, linker=linker, seed=s, occupancy=0.5)), flush=True)
+    for linker in (2, 3, 4, 5):
+        for m in (14, 28):
+            for s in range(3):
+                print(json.dumps(run(periodic=m, linker=linker, seed=s, pattern="layers",
+                                     pattern_layers="A.")), flush=True)
+    for m in (16, 18, 20, 22):
+        for s in range(3):
+            print(json.dumps(run(periodic=m, linker=4, seed=s, pattern="layers",
+                                 pattern_layers="A.")), flush=True)
+
+
+if __name__ == "__main__":
+    if sys.argv[1:2] == ["nested"]:
+        nested(int(sys.argv[2]))
+    elif sys.argv[1:2] == ["cell"]:
+        cell()
+    else:
+        sys.exit(__doc__)

@@ -52,6 +52,19 @@ def partitions(items: list):
             yield part[:i] + [[first] + part[i]] + part[i + 1:]
 
 
+def combine(cap: dict, K: int) -> tuple[float, list]:
+    """The most decorated chains the caps allow (Σ_j f_j, or Σ_j g_j): for every partition of
+    the K protofilaments into groups, Σ over groups of its cap (a cap is already at most the
+    group's chains); the least such sum, and the partition that gives it. Protofilaments may
+    carry different fractions, so a group's cap bounds only that group's share."""
+    best, groups = None, None
+    for part in partitions(list(range(K))):
+        total = sum(cap[tuple(sorted(g))] for g in part)
+        if best is None or total < best:
+            best, groups = total, part
+    return best, groups
+
+
 def caps(s: bound.Setting, linker: int) -> dict:
     """Per set of protofilaments (a tuple), how many of its judged chains can carry the domain
     at this linker: a density per layer (periodic) or a count over the scored layers (finite),
@@ -90,17 +103,12 @@ def fraction_limit(p, linker: int | None = None, budget: float = bound.GRID_BUDG
     L = p.linker if linker is None else int(linker)
     K, S = p.protofilaments, s.chains_per_pf
     cap = caps(s, L)
-    best, groups = None, None
-    for part in partitions(list(range(K))):
-        total = sum(cap[tuple(sorted(g))][0] for g in part)
-        if best is None or total < best:
-            best, groups = total, part
+    best, groups = combine({pfs: c for pfs, (c, _) in cap.items()}, K)
+    n = p.layers * K  # the model's subunits: a periodic cell's M × K, a fibril's layers × K
     if s.periodic:
         f = min(1.0, best / K)
-        n = p.layers * K  # the cell's subunits
         count = min(n, math.floor(f * n + TOLERANCE))
     else:
-        n = p.layers * K
         count = min(n, int(best) + K * (p.layers - S))  # the unscored layers are free
         f = count / n
     binding = [{"protofilaments": sorted(g), "cap": round(float(cap[tuple(sorted(g))][0]), 4),

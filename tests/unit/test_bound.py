@@ -57,17 +57,7 @@ def test_reach_grows_by_one_stretched_spacing_per_residue():
 
 
 # ---- a bound known in closed form -------------------------------------------------------------
-def _half_space_volume(rho: float, rise: float, c: float) -> float:
-    """Per layer, the room around a straight line of anchors `rise` apart, beside a plane c Å
-    away (the eroded face of a wide core): ∫ over one rise of (disk − the segment past the
-    plane), the disk of the nearest anchor's ball at that height."""
-    z = np.linspace(-rise / 2, rise / 2, 20001)
-    s = np.sqrt(np.maximum(rho ** 2 - z ** 2, 0.0))
-    seg = np.where(s > c, s ** 2 * np.arccos(np.minimum(c / np.maximum(s, 1e-12), 1.0))
-                   - c * np.sqrt(np.maximum(s ** 2 - c ** 2, 0.0)), 0.0)
-    area = np.pi * s ** 2 - seg
-    trapezoid = getattr(np, "trapezoid", None) or np.trapz  # numpy 2 renamed it
-    return float(trapezoid(area, z))
+_half_space_volume = oracle.half_space_room  # the closed form, shared with test_fraction_bound
 
 
 def test_one_protofilament_on_a_wide_core_matches_its_closed_form():

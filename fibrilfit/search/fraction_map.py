@@ -55,7 +55,7 @@ def walks_for(values: dict, plan) -> tuple:
             base.replace(seed=seeds[-1])
             n = subunits(base)
             if n > 1:  # a mixed model's own refusals (e.g. bare tails in a cell), in one line
-                base.replace(occupancy=1.0 / n)
+                base.replace(occupancy=(n - 1) / n)
             walks.append(new_walk(search, base, len(seeds)))
     return values, seeds, walks
 

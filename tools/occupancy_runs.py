@@ -4,6 +4,8 @@ the default model otherwise; run with bpy importable, e.g. the project's .venv):
     python tools/occupancy_runs.py nested SEED   # shortest fitting linker at f = 0.25, 0.5, 1
     python tools/occupancy_runs.py cell          # random f = 0.5 and layers 'A.' in cells of
                                                  # 14 and 28 layers, and 'A.' at linker 4 in more
+    python tools/occupancy_runs.py unchanged OUT.json   # five f = 1 models' whole results, to
+                                                 # compare between two checkouts (PYTHONPATH)
 """
 import json
 import sys
@@ -51,10 +53,33 @@ def cell() -> None:
                                  pattern_layers="A.")), flush=True)
 
 
+UNCHANGED = {"default": {}, "linker4": dict(linker=4, frames=120),
+             "cell": dict(periodic="auto", frames=80),
+             "inflate": dict(protocol="inflate", layers=10, linker=8, regrow_cycles=1,
+                             near_cycles=0),
+             "two_pf": dict(layers=10, protofilaments=2, pf_rotation=3.13, pf_rise=2.3,
+                            frames=80, score_layers=2)}
+
+
+def unchanged(path: str) -> None:
+    """Every result but its timings and code versions, for a key-by-key comparison."""
+    out = {}
+    for name, values in UNCHANGED.items():
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+        r = pipeline.run_model(P.make_params(**values))
+        for key in ("timings_s", "fibrilfit_version", "model_sources_sha256", "code"):
+            r.pop(key, None)
+        out[name] = r
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(out, f, sort_keys=True, default=str)
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["nested"]:
         nested(int(sys.argv[2]))
     elif sys.argv[1:2] == ["cell"]:
         cell()
+    elif sys.argv[1:2] == ["unchanged"]:
+        unchanged(sys.argv[2])
     else:
         sys.exit(__doc__)

@@ -111,7 +111,8 @@ def check_model(model) -> dict:
                                                            hi, domains)
     verdict = "intersection" if clashes["faces"] > 0 else "successful"
     intact = max_stretch <= p.stretch_tolerance
-    tails = tail_clashes(model, clashes["centres"], np.repeat(kept, domains)) if model.tails else None
+    tails = (tail_clashes(model, clashes["centres"], np.repeat(kept, domains)) if model.tails
+             else None)  # a mixed fibril's bare tails against the decorated domains
     periodic = {"periodic": periodic_block(model, clashes["cells"])} if p.periodic else {}
     chains = _chain_blocks(p, clashing, chain_clash, n, domains)
     if domains > 1:
@@ -150,7 +151,8 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "core_entry": entry,
         "linker_intact": bool(intact),
-        "accommodated": bool(verdict == "successful" and intact and not (tails or {}).get("pairs")),
+        "accommodated": bool(verdict == "successful" and intact
+                             and not (tails or {}).get("pairs")),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)
         "answer": answer(clashing=len(clashing) + len((tails or {}).get("pairs", ())),
                          grazing=len(clashes["grazing"]),

@@ -7,7 +7,7 @@ import sys
 
 from .. import files
 from ..exports import plans as export_plans
-from ..model import cases
+from ..model import cases, occupancy
 from ..plans import flag
 from ..structure.from_files import exit_block, say_warnings
 from . import model as resolved_model
@@ -122,6 +122,8 @@ def annotate(plan, p, result: dict, resolved, tally, case) -> None:
         tally["reproduced"] = (best.get("accommodated") == result.get("accommodated")
                                and best.get("verdict") == result.get("verdict"))
         result["restarts"] = tally
+        if occupancy.is_mixed(p):  # what P(fit) counts: docs/model/occupancy.md#p-fit
+            tally["p_fit_counts"] = occupancy.report_block(p, len(tally["runs"]))["p_fit_counts"]
         if not tally["reproduced"]:
             tally["not_reproduced"] = (
                 f"the best seed {p.seed}, run again here, did not reproduce the worker's verdict "

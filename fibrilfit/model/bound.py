@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from ..geom import polygons, shape as geom_shape
-from . import helix
+from . import helix, occupancy
 from .chain import chain_x
 from .param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 
@@ -268,6 +268,8 @@ def linker_bound(p, budget: float = GRID_BUDGET) -> dict:
     linker at which every inequality holds (no clash-free layout with intact linkers exists at
     any linker < B), with the inequality that fails one below it (docs/model/bound.md).
     `budget`: voxels per grid (a coarser grid gives a bound as sound, and weaker or equal)."""
+    if occupancy.is_mixed(p):  # its inequalities count every subunit decorated: not a proof
+        return occupancy.exit_bound(p)  # for a mixed fibril (docs/model/occupancy.md#bound)
     return dict(_linker_bound(_settings_key(p) + f"|{budget:g}", p, budget))
 
 

@@ -140,6 +140,14 @@ def check_pattern(p) -> None:
         decorated_count(p.occupancy, p.chains)
     if p.pattern == "layers":
         layer_letters(p.pattern_layers)
+    if p.score_layers and is_mixed(p):
+        rows = decorated(p).any(axis=1)[p.score_layers:p.layers - p.score_layers]
+        if not rows.any():
+            raise ParamError("score_layers", f"leaves no decorated subunit to judge: the "
+                                             f"{p.pattern} pattern decorates none of layers "
+                                             f"{p.score_layers}-{p.layers - p.score_layers - 1}; "
+                                             f"score fewer end layers, or change the pattern "
+                                             f"or seed")
     if p.periodic and p.bare_tail and is_mixed(p):
         raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
                                       "made): use a fibril with ends (periodic 0), or bare_tail 0")
@@ -184,15 +192,18 @@ def occupancy_block(p) -> dict:
 def pattern_words(p) -> str:
     """The pattern in a few words, for the printed result and the report."""
     if p.pattern == "random":
-        return f"a random draw of {decorated_count(p.occupancy, p.chains)} of {p.chains}, seed {p.seed}"
+        count = decorated_count(p.occupancy, p.chains)
+        return f"a random draw of {count} of {p.chains}, seed {p.seed}"
     if p.pattern == "periodic":
-        return (f"every {p.pattern_period}th subunit "
-                f"{'along each protofilament' if p.pattern_across == 'protofilament' else 'over the fibril'}")
+        how = ("along each protofilament" if p.pattern_across == "protofilament"
+               else "over the fibril")
+        return f"every {p.pattern_period}th subunit {how}"
     return f"the layers pattern {p.pattern_layers!r}, repeated"
 
 
 def speaks_of(p) -> str:
-    """What a run's answer at this fraction is about (docs/model/occupancy.md#what-fits-at-f-means)."""
+    """What a run's answer at this fraction is about
+    (docs/model/occupancy.md#what-fits-at-f-means)."""
     where = (f"the infinite fibril that repeats a cell of {p.layers} layers, pattern and all"
              if p.periodic else f"a fibril of {p.layers} layers with two ends")
     drawn = " drawn with the run's seed" if p.pattern == "random" else ""
@@ -207,3 +218,15 @@ def report_block(p, restarts: int) -> dict:
                              if p.pattern == "random" else
                              "restarts of one fixed pattern, each its own start"),
             "restarts": int(restarts)}
+
+
+def exit_bound(p) -> dict:
+    """The linker bound a mixed fibril keeps: only the buried exit's (no linker up to its
+    residues leaves the core). The excluded-volume inequalities of model/bound.py count every
+    subunit decorated, so below their bound a mixed fibril may still fit: they are not applied
+    (docs/model/occupancy.md#bound)."""
+    return {"impossible_below": int(p.exit_residues) + 1,
+            "method": "the buried exit alone (the excluded-volume bound counts every subunit "
+                      "decorated: not applied to a mixed fibril, docs/model/occupancy.md#bound)",
+            "over": "a mixed fibril: the exit only", "fails_below": None,
+            "exit_residues": int(p.exit_residues)}

@@ -65,8 +65,9 @@ def estimated_objects(p) -> int:
     """Objects a build makes: exact without an outline, at most this with one.
 
     Per layer a slab; per decorated chain an anchor, (linker-1) residues, a globule and `linker`
-    constraint empties; per undecorated subunit its bare tail's beads and bonds. An outline's core adds its convex pieces per layer: the n - 2
-    triangles of its n corners, fewer where they merge (builders/meshes.convex_pieces)."""
+    constraint empties; per undecorated subunit its bare tail's beads and bonds. An outline's
+    core adds its convex pieces per layer: the n - 2 triangles of its n corners, fewer where
+    they merge (builders/meshes.convex_pieces)."""
     pieces = 0 if p.core_outline is None else len(p.core_outline) - 2
     if p.pattern == "random" and p.occupancy == 1.0:  # every subunit decorated (as before #44)
         return p.layers * (1 + pieces + p.protofilaments * (2 * chain.chain_members(p) - 1))

@@ -66,6 +66,7 @@ def restarts_line(s: dict, protocol: str | None = None) -> str:
             + (f", {s['failed']} failed" if s["failed"] else "")
             + (f", stopped after {s['restarts'] + s['failed']} of {s['asked']} runs: "
                f"{s['decided']}" if s.get("decided") else "")
+            + (f" over {s['p_fit_counts']}" if s.get("p_fit_counts") else "")  # a mixed fibril
             + f"; best layout: seed {s['best_seed']}"
             + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
                f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "

@@ -91,7 +91,18 @@ def test_the_check_judges_only_decorated_domains(scene, ff):
     assert pair["occupancy"]["decorated_subunits"] == [[0, 0], [1, 0], [5, 0], [6, 0]]
     assert pair["max_bond_stretch"] > pair["params"]["stretch_tolerance"]
     assert all(0 <= i < j < 4 for i, j, *_ in pair["clashing_pairs"])
-    assert {k for k, c in enumerate(pair["layer_clashes"]) if c} <= {0, 1, 5, 6}
+
+
+def test_clashes_are_named_in_the_decorated_subunits_layers(scene, ff):
+    """Checked as built (the tutorial's start: neighbouring globules overlap), decorated layers
+    0, 1, 5 and 6 of 10 clash: the check names chains 0-3 and flags exactly those layers."""
+    p = ff.model.params.make_params(layers=10, linker=1, pattern="layers", pattern_layers="AA...")
+    model = ff.builders.build_model(p, scene)
+    r = ff.analysis.check_model(model)
+    assert r["verdict"] == "intersection"
+    assert {tuple(q[:2]) for q in r["clashing_pairs"]} >= {(0, 1), (2, 3)}
+    assert all(0 <= i < j < 4 for i, j, *_ in r["clashing_pairs"])
+    assert [k for k, c in enumerate(r["layer_clashes"]) if c] == [0, 1, 5, 6]
 
 
 def test_a_lower_nested_fraction_never_needs_a_longer_linker(scene, ff):
@@ -166,24 +177,24 @@ def test_cli_runs_a_mixed_fibril_and_its_json_meets_the_schema(tmp_path):
 
 
 def test_a_domain_on_a_bare_tail_does_not_fit(scene, ff):
-    """The check judges decorated domains against undecorated subunits' bare tails too: a tail
-    bead moved into a globule is named, with its depth, and the run is not accommodated; the
-    tails as built (straight out from their anchors) touch no domain."""
+    """The check judges decorated domains against undecorated subunits' bare tails too. Built
+    with its domains 7 layers (33.6 Å) apart, the model is clean; a tail bead moved into a
+    globule is named with its depth, and that alone makes the run not accommodated."""
     from mathutils import Matrix
-    p = ff.model.params.make_params(layers=6, linker=8, pattern="layers", pattern_layers="A.",
-                                    bare_tail=3, frames=1)
+    p = ff.model.params.make_params(layers=15, linker=8, pattern="layers",
+                                    pattern_layers="A......", bare_tail=3, frames=1)
     model = ff.builders.build_model(p, scene)
     clean = ff.analysis.check_model(model)
-    assert clean["tail_clashes"]["pairs"] == [] and clean["tail_clashes"]["beads"] == 9
-    bead = model.tails[1][2]  # layer 3's last bead, into layer 2's globule
-    centre = model.chain[1][-1].matrix_world.translation
-    bead.matrix_world = Matrix.Translation(centre)
+    assert clean["tail_clashes"]["pairs"] == [] and clean["tail_clashes"]["beads"] == 12 * 3
+    assert clean["verdict"] == "successful" and clean["accommodated"]
+    bead = model.tails[3][2]  # layer 4's last bead, into layer 7's globule
+    assert (bead["fibrilfit_layer"], len(model.chain)) == (4, 3)
+    bead.matrix_world = Matrix.Translation(model.chain[1][-1].matrix_world.translation)
     r = ff.analysis.check_model(model)
-    pairs = r["tail_clashes"]["pairs"]
-    assert [1, [3, 0, 2], pytest.approx(p.globule_radius + p.residue_radius, abs=1e-3)] in pairs
-    assert all(bead == [3, 0, 2] for _, bead, _ in pairs)  # (as built, the globules overlap
-    # one another, 9.6 Å apart: the bead sits in its neighbours' too)
-    assert not r["accommodated"]
+    assert r["tail_clashes"]["pairs"] == [[1, [4, 0, 2], pytest.approx(
+        p.globule_radius + p.residue_radius, abs=1e-3)]]
+    assert r["verdict"] == "successful" and r["linker_intact"] and not r["accommodated"]
+    assert r["answer"] != "fits"
 
 
 def test_the_panel_sets_a_fraction_and_a_pattern(registered):
@@ -221,3 +232,27 @@ def test_the_pdb_of_a_mixed_fibril_names_its_decorated_subunits(scene, ff, tmp_p
     assert sum(line.startswith("ATOM") for line in text.splitlines()) == 2 * members
     assert "(0, 0), (4, 0)" in " ".join(line[11:].strip() for line in text.splitlines()
                                         if line.startswith("REMARK"))
+
+
+def test_the_atoms_of_a_mixed_fibril_keep_every_core_and_only_decorated_domains(ff, scene,
+                                                                                 tmp_path):
+    """`--pdb-atoms` of 6CU7 + ubiquitin decorated every other layer: every subunit's core chain
+    is written (as deposited), linker beads and a domain only on the decorated ones."""
+    gemmi = pytest.importorskip("gemmi")
+    data = ROOT / "tests" / "data"
+    out = tmp_path / "fibril.cif"
+    assert ff.cli.main(["run", "--fibril", str(data / "6cu7.pdb.gz"), "--domain",
+                        str(data / "1ubq.pdb.gz"), "--layers", "4", "--frames", "20",
+                        "--pattern", "layers", "--pattern-layers", "A.", "--pdb-atoms",
+                        str(out), "--json", str(tmp_path / "r.json")]) == 0
+    r = json.loads((tmp_path / "r.json").read_text())
+    pfs = r["params"]["protofilaments"]
+    model = gemmi.read_structure(str(out))[0]
+    names = {ch.name for ch in model}
+    cores = {n for n in names if len(n) == 2}
+    domains = {n for n in names if len(n) == 3}
+    assert len(cores) == 4 * pfs and len(domains) == 2 * pfs
+    assert {n[0] for n in domains} == {"0", "2"}
+    for name in cores:
+        beads = [res for res in model[name] if res.name == "UNK"]
+        assert bool(beads) == (name[0] in "02"), name  # linkers on decorated subunits only

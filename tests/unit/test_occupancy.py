@@ -111,6 +111,9 @@ def test_auto_cell_rounds_up_to_the_patterns_repeat():
     (dict(pattern="zigzag"), "pattern", "one of random, periodic, layers"),
     (dict(pattern_period=0), "pattern_period", "from 1"),
     (dict(bare_tail=-1), "bare_tail", "from 0"),
+    (dict(layers=20, score_layers=5, occupancy=0.05, seed=1), "score_layers",
+     "no decorated subunit"),
+    (dict(periodic=14, occupancy=0.5, bare_tail=4), "bare_tail", "periodic cell"),
 ])
 def test_bad_values_get_one_line_naming_the_parameter(values, param, words):
     with pytest.raises(ParamError) as exc:
@@ -171,3 +174,27 @@ def test_a_case_file_carries_the_fraction_and_the_pattern(tmp_path):
     case.write_text('[params]\noccupancy = "many"\n', encoding="utf-8")
     with pytest.raises(cases.CaseError, match="params.occupancy"):
         cases.load(case)
+
+
+def test_a_mixed_fibril_keeps_only_the_exit_bound():
+    """The excluded-volume bound counts every subunit: it is not a proof for a mixed fibril,
+    which keeps only the exit's bound; at f = 1 the bound is the excluded volume's as before."""
+    from fibrilfit.model import bound
+    base = dict(globule_diameter=50.0, periodic=21, protocol="inflate")
+    full = bound.linker_bound(P.make_params(**base))
+    assert full["impossible_below"] > 1 and "excluded volume" in full["method"]
+    mixed = bound.linker_bound(P.make_params(**base, pattern="periodic", pattern_period=3))
+    assert mixed["impossible_below"] == 1 and mixed["fails_below"] is None
+    assert bound.bound_block(P.make_params(**base, occupancy=0.25, linker=1))["below"] is False
+    assert bound.bound_block(P.make_params(**base, linker=1))["below"] is True
+
+
+def test_the_restarts_line_says_what_p_fit_counts():
+    from fibrilfit.search import linker_map
+    s = {"accommodated": 6, "restarts": 8, "p_fit": 0.75, "p_fit_interval": [0.41, 0.93],
+         "failed": 0, "best_seed": 5}
+    assert "over" not in linker_map.restarts_line(s)
+    p = P.make_params(layers=16, occupancy=0.5)
+    line = linker_map.restarts_line({**s, "p_fit_counts": O.report_block(p, 8)["p_fit_counts"]})
+    assert "P(fit) 0.75 (95 % Wilson 0.41-0.93) over restarts that each draw their own " \
+           "pattern and start from their seed; best layout: seed 5" in line

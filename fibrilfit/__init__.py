@@ -11,9 +11,9 @@ submodule load on first use, so `headless.py inspect` never loads bpy, and an ol
 register()'s version check (one line) rather than an import error from a module it cannot run.
 
 The Python API (docs/reference/api.md): `fibrilfit.api` has every command as a function
-(`api.run`, `api.restarts`, `api.minimal_linker`, `api.report`, `api.sweep`, `api.inspect`), each
-taking a plan or the command line's options as keywords and returning a typed result;
-`run_model(make_params(...))` runs one model in the current scene. `__version__` is
+(`api.run`, `api.restarts`, `api.minimal_linker`, `api.largest_fraction`, `api.report`,
+`api.sweep`, `api.inspect`), each taking a plan or the command line's options as keywords and
+returning a typed result; `run_model(make_params(...))` runs one model in the current scene. `__version__` is
 blender_manifest.toml's version, the one place it is said (pyproject.toml reads it from here).
 """
 import importlib

@@ -10,7 +10,7 @@ from typing import Callable
 
 import bpy
 
-from .model import bound, occupancy, params as P
+from .model import bracket, occupancy, params as P
 from .model import terminus, version as model_version
 from .model.chain import rest_lengths
 from .analysis import StretchLog, check_model, scored_chains
@@ -105,7 +105,8 @@ def bake(model, scene=None, *, on_frame: Callable | None = None) -> dict:
 def check(model, scene=None) -> dict:
     """Judge the model at the scene's current frame (the bake leaves it on its last frame), with
     the bracket's proven side: impossible below the bound (docs/model/bound.md#derivation)."""
-    return {**check_model(model), "bound": bound.bound_block(model.params)}
+    checked = check_model(model)
+    return {**checked, "bound": bracket.bound_block(model.params, checked.get("accommodated"))}
 
 
 def describe(p: P.Params) -> dict:
@@ -138,7 +139,7 @@ def run_model(p: P.Params | None = None, scene=None, *, stop_after: str = "check
 
     if p.free_linker < 1:  # no exit: the linker cannot reach the surface; nothing to build
         return {**result, **terminus.no_exit_result(p),
-                "bound": timed("bound", lambda: bound.bound_block(p))}
+                "bound": timed("bound", lambda: bracket.bound_block(p, False))}
     model = timed("build", lambda: build(p, scene, force=force))
     if stop_after == "build":
         return result

@@ -5,6 +5,8 @@ it, the way the command line's options are, and returns a typed result with `.to
     run(...)             one model built, baked and checked (RunResult)
     restarts(...)        R seeds of one model on the executor, the best run here (RunResult)
     minimal_linker(...)  the minimal-linker walk and map (MinimalLinkerResult)
+    largest_fraction(...) the largest fraction of decorated subunits per diameter and linker
+                         (LargestFractionResult)
     report(...)          the whole answer on one page (ReportResult)
     sweep(...)           a grid of models (SweepResult)
     inspect(...)         structure files measured (InspectResult; no bpy)
@@ -16,9 +18,11 @@ executor (`executor="processes"|"dask"|"slurm"`, `workers=N`, ...).
 """
 from __future__ import annotations
 
-from .plans import (InspectPlan, MinimalLinkerPlan, ReportPlan, RunPlan, SweepPlan, make_plan)
-__all__ = ["run", "restarts", "minimal_linker", "report", "sweep", "inspect", "RunPlan",
-           "MinimalLinkerPlan", "ReportPlan", "SweepPlan", "InspectPlan", "make_plan"]
+from .plans import (InspectPlan, LargestFractionPlan, MinimalLinkerPlan, ReportPlan, RunPlan,
+                    SweepPlan, make_plan)
+__all__ = ["run", "restarts", "minimal_linker", "largest_fraction", "report", "sweep", "inspect",
+           "RunPlan", "MinimalLinkerPlan", "LargestFractionPlan", "ReportPlan", "SweepPlan",
+           "InspectPlan", "make_plan"]
 
 
 def _plan(cls, plan, values: dict):
@@ -59,6 +63,17 @@ def minimal_linker(plan: MinimalLinkerPlan | None = None, **values):
     from .batch import minimal_linker as _minimal
     plan, _ = _plan(MinimalLinkerPlan, plan, values)
     return _minimal(plan)
+
+
+def largest_fraction(plan: LargestFractionPlan | None = None, **values):
+    """The largest fraction of subunits that can carry the domain (a seeded random, nested
+    pattern) for each diameter and linker (`linker`: one, a list "1,2,3" or a range "1:3"),
+    searched with restarts, with the bracket from the proven bound, as `fibrilfit
+    largest-fraction`; the minimal linker at a fraction is `minimal_linker(occupancy=f)`.
+    Returns a LargestFractionResult (largest_fraction.json's document, the printed table)."""
+    from .batch import largest_fraction as _largest
+    plan, _ = _plan(LargestFractionPlan, plan, values)
+    return _largest(plan)
 
 
 def report(plan: ReportPlan | None = None, **values):

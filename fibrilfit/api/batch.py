@@ -1,4 +1,4 @@
-"""The commands that run many models: `minimal-linker`, `report` and `sweep`, from their plans
+"""The commands that run many models: `minimal-linker`, `largest-fraction`, `report` and `sweep`, from their plans
 (api/plans.py); the runs happen on the plan's executor (local workers, Dask, SLURM)."""
 from __future__ import annotations
 
@@ -7,7 +7,8 @@ import pathlib
 from .. import files
 from ..structure.from_files import say_warnings
 from . import model as resolved_model
-from .results import JobScript, MinimalLinkerResult, ReportResult, SweepResult
+from .results import (JobScript, LargestFractionResult, MinimalLinkerResult, ReportResult,
+                      SweepResult)
 
 # The report's own default under the model's: restarts search layouts, and inflate is the
 # search protocol (docs/model/search.md#search)
@@ -33,6 +34,26 @@ def minimal_linker(plan) -> MinimalLinkerResult | JobScript:
     doc = linker_map.minimal_map(*planned, plan, out)
     table, paths = doc.pop("table"), doc.pop("paths")
     return MinimalLinkerResult(doc, table=table, paths=paths)
+
+
+def largest_fraction(plan) -> LargestFractionResult | JobScript:
+    """The largest-fraction map of `plan` (a LargestFractionPlan): for each diameter and
+    linker, the largest fraction of subunits with a layout found, none found with one more
+    decorated, and the bracket with the proven bound (search/fraction_map.py)."""
+    from ..batch import outdir
+    from ..search import fraction_map, linker_map
+    explicit = plan.given()
+    values, block, _ = resolved_model.measured_values(plan.structure, explicit)
+    say_warnings(block)
+    planned = fraction_map.walks_for(values, plan)  # every bad value refused before any file
+    linker_map.need_packages(plan)
+    out = outdir.out_dir(plan.output.out, plan.output.resume)
+    script = plan.executor.job_script(out)
+    if script is not None:
+        return JobScript({"job_script": script}, text=script)
+    doc = fraction_map.fraction_map(*planned, plan, out)
+    table, paths = doc.pop("table"), doc.pop("paths")
+    return LargestFractionResult(doc, table=table, paths=paths)
 
 
 def report(plan, *, case=None, reproduce=(), run_here=None) -> ReportResult | JobScript:

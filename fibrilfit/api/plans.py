@@ -3,6 +3,8 @@ of the rooms that do the work (plans.py has how a plan is declared and checked).
 
     RunPlan            run (with restarts: the seeds on the executor, the best kept)
     MinimalLinkerPlan  minimal-linker (the walk for one or more domain diameters)
+    LargestFractionPlan largest-fraction (the walk over the decorated count, per diameter and
+                       linker)
     ReportPlan         report (restarts at the linker, the walk, the best layout, the page)
     SweepPlan          sweep (a grid of models, the model's values as lists or ranges)
     InspectPlan        inspect (structure files measured, nothing built)
@@ -25,8 +27,8 @@ from ..exports.plans import OutputPlan, RenderLook
 from ..model import cases, params as P
 from ..model.param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST
 from ..plans import Plan, PlanError, is_plan, option, option_fields
-from ..search.plans import (MINIMAL_OUTPUT, REPORT_OUTPUT, REPORT_SEARCH, BatchOutput,
-                            RestartPlan, SearchPlan)
+from ..search.plans import (FRACTION_OUTPUT, MINIMAL_OUTPUT, REPORT_OUTPUT, REPORT_SEARCH,
+                            BatchOutput, RestartPlan, SearchPlan)
 from ..structure.request import StructureRequest
 from ..sweep.plans import SweepOptions
 
@@ -120,6 +122,25 @@ class MinimalLinkerPlan(_CommandPlan):
 
 
 @dataclasses.dataclass(frozen=True)
+class LargestFractionPlan(_CommandPlan):
+    """`largest-fraction`: for each domain diameter and linker (model["globule_diameter"],
+    model["linker"]: one, a list or a range), the largest fraction of subunits (random nested
+    pattern) at which a restart finds a layout, with its bracket (search/fraction.py)."""
+
+    model: dict = _model()
+    structure: StructureRequest = _nested(StructureRequest())
+    search: SearchPlan = _nested(SearchPlan())
+    output: BatchOutput = _nested(FRACTION_OUTPUT)
+    executor: ExecutorPlan = _nested(ExecutorPlan())
+    force: bool = option(False, FORCE_HELP)
+
+    def check(self) -> None:
+        for name in ("interval_width", "known_fit"):
+            if getattr(self.search, name) is not None:
+                raise PlanError(name, "not a largest-fraction option")
+
+
+@dataclasses.dataclass(frozen=True)
 class ReportPlan(_CommandPlan):
     """`report`: P(fit) at the linker with restarts, the minimal linker, the best layout
     rendered, the envelope, as one page."""
@@ -164,10 +185,11 @@ class InspectPlan(_CommandPlan):
                               metavar="PATH", group="inspect")
 
 
-COMMAND_PLANS = {"run": RunPlan, "minimal-linker": MinimalLinkerPlan, "report": ReportPlan,
+COMMAND_PLANS = {"run": RunPlan, "minimal-linker": MinimalLinkerPlan,
+                 "largest-fraction": LargestFractionPlan, "report": ReportPlan,
                  "sweep": SweepPlan, "inspect": InspectPlan}
 # What a command finds, so a case cannot set it
-SEARCHED = {"minimal-linker": ("linker",)}
+SEARCHED = {"minimal-linker": ("linker",), "largest-fraction": ("occupancy",)}
 
 
 def nested_fields(cls) -> list[dataclasses.Field]:

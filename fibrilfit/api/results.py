@@ -71,6 +71,29 @@ class MinimalLinkerResult(Result):
 
 
 @dataclasses.dataclass
+class LargestFractionResult(Result):
+    """The largest-fraction map: largest_fraction.json's document (one row per diameter and
+    linker)."""
+
+    table: str = ""
+    paths: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def rows(self) -> list[dict]:
+        return self.data["rows"]
+
+    def largest(self, diameter: float | None = None, linker: int | None = None) -> float | None:
+        """The largest fraction found at `diameter` and `linker` (either may be left out when
+        only one was mapped), None where no layout was found at any count."""
+        rows = [r for r in self.rows
+                if (diameter is None or float(r["globule_diameter"]) == float(diameter))
+                and (linker is None or int(r["linker"]) == int(linker))]
+        if len(rows) != 1:
+            raise KeyError(f"no single row for diameter {diameter}, linker {linker}")
+        return rows[0]["largest_fraction"]
+
+
+@dataclasses.dataclass
 class ReportResult(Result):
     """The report: report.json's document (docs/reference/schemas.md#report) and its folder."""
 

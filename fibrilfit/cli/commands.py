@@ -95,6 +95,31 @@ def command_minimal_linker(plan, case, argv) -> int:
     return EXIT_OK
 
 
+def command_largest_fraction(plan, case, argv) -> int:
+    """`largest-fraction`: the map printed, its files named; exit 130 when interrupted
+    (finished runs stay in DIR/results.jsonl; continue with --resume)."""
+    from ..api.batch import largest_fraction
+    results = pathlib.Path(plan.output.out) / "results.jsonl"
+    try:
+        done = largest_fraction(plan)
+    except KeyboardInterrupt:
+        print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    if isinstance(done, JobScript):
+        print(done.text)
+        return EXIT_OK
+    paths = done.paths
+    print(done.table)
+    print(f"largest-fraction: {paths['csv']}, {paths['json']}"
+          + (f", {paths['png']}" if "png" in paths else "") + f"; every run in {paths['results']}")
+    for r in done.rows:
+        if r.get("error"):
+            print(f"warning: {r['globule_diameter']:g} Å, linker {r['linker']}: {r['error']}",
+                  file=sys.stderr)
+    return EXIT_OK
+
+
 def command_report(plan, case, argv) -> int:
     """`report`: refuses what `run` refuses (before anything is written), then runs it all."""
     from ..api.batch import report
@@ -133,4 +158,5 @@ def command_inspect(plan, case, argv) -> int:
 
 
 COMMANDS = {"run": command_run, "sweep": command_sweep, "inspect": command_inspect,
-            "minimal-linker": command_minimal_linker, "report": command_report}
+            "minimal-linker": command_minimal_linker,
+            "largest-fraction": command_largest_fraction, "report": command_report}

@@ -18,7 +18,7 @@ from ..batch.plans import GROUPS as EXECUTOR_GROUPS
 from ..exits import UsageError
 from ..model import params as P
 from ..model.version import fibrilfit_version
-from ..search.plans import MINIMAL_FIELDS, REPORT_FIELDS
+from ..search.plans import FRACTION_FIELDS, MINIMAL_FIELDS, REPORT_FIELDS
 
 
 class _Parser(argparse.ArgumentParser):
@@ -108,6 +108,7 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
 
 # What each command offers of its plan's nested plans (all of a plan's options unless named)
 OFFERED = {("minimal-linker", "search"): MINIMAL_FIELDS,
+           ("largest-fraction", "search"): FRACTION_FIELDS,
            ("report", "search"): REPORT_FIELDS,
            ("report", "output"): ("out", "resume", "quiet")}
 
@@ -183,6 +184,10 @@ HELP = {
     "minimal-linker": "for each globule diameter, the shortest linker with an accommodated "
                       "layout, searched with restarts (protocol inflate unless --protocol says "
                       "otherwise)",
+    "largest-fraction": "for each globule diameter and linker, the largest fraction of subunits "
+                        "(a seeded random pattern) with an accommodated layout, searched with "
+                        "restarts, and its bracket: impossible above the proven bound, open "
+                        "between (protocol inflate unless --protocol says otherwise)",
     "report": "the whole answer in one page: P(fit) at the linker with restarts, the minimal "
               "linker, the best layout rendered, the envelope (DIR/report.html, "
               "DIR/report.json)"}
@@ -199,4 +204,11 @@ def build_parser(prog: str = "headless.py") -> argparse.ArgumentParser:
         if action.dest == "globule_diameter":
             action.metavar, action.help = "LIST", (
                 "the diameters to map, a list or range, e.g. 15:60:5 [Å, default 30]")
+    for action in commands["largest-fraction"]._actions:
+        if action.dest in ("globule_diameter", "linker"):
+            action.metavar = "LIST"
+            action.help = ("the diameters to map, a list or range, e.g. 20:50:10 [Å, default 30]"
+                           if action.dest == "globule_diameter" else
+                           "the linkers to map, a list or range, e.g. 1:3 [default "
+                           f"{P.DEFAULTS.linker}]")
     return parser

@@ -94,6 +94,9 @@ def occupancy_text(doc: dict) -> str:
     rows = [("fraction carrying the domain", f"{100 * occ['fraction']:.4g} %"),
             ("pattern", occ["pattern_words"]), ("the answer speaks of", occ["speaks_of"]),
             ("P(fit) counts", occ["p_fit_counts"])]
+    fb = doc.get("fraction_bracket")
+    if fb:
+        rows.append((f"the bracket on the fraction at linker {fb['linker']}", fb["text"]))
     return ("<h2>Occupancy</h2><table>" + "".join(f"<tr><th>{esc(a)}</th><td>{esc(b)}</td></tr>"
                                                 for a, b in rows) + "</table>")
 

@@ -341,8 +341,12 @@ def _bound_lines(r: dict) -> list[str]:
     b = r.get("bound")
     if not b:
         return []
+    # a mixed fibril: the bound at its fraction, and the bracket on the fraction at this linker
+    at = (f" at {100 * b['fraction']:.4g} % decorated" if "fraction" in b else "")
+    on_fraction = ([f"bound on the fraction at linker {b['linker']}: {b['fraction_bracket']}"]
+                   if "fraction_bracket" in b else [])
     if b["impossible_below"] <= 1:
-        return [f"bound: {bound_phrase(b)}"]
+        return [f"bound{at}: {bound_phrase(b)}"] + on_fraction
     where = ("this linker is below it: settled, impossible" if b.get("below")
              else "this linker is at or above it")
-    return [f"bound: {bound_phrase(b)}; {where}"]
+    return [f"bound{at}: {bound_phrase(b)}; {where}"] + on_fraction

@@ -8,11 +8,12 @@ A plan object here is any with `.search` (SearchPlan), `.output` (BatchOutput), 
 from __future__ import annotations
 
 import contextlib
+import math
 import sys
 import tempfile
 
 from .. import exits, files
-from ..model import bound, params as P
+from ..model import bound, fraction_bound, occupancy, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import outdir
@@ -89,19 +90,32 @@ def minimal_map(values: dict, seeds: range, walks: list, plan, out) -> dict:
     plan.output). Returns the JSON document, with `table` (the printed map) and `paths` beside
     it. Interrupted, the finished runs stay in DIR/results.jsonl (KeyboardInterrupt
     propagates)."""
+    with walking(out):
+        run_walks(values, seeds, walks, plan, out)
+        rows = minimal_rows(values, seeds, walks, force=plan.force)
+        return _write_minimal(plan, values, seeds, rows, out)
+
+
+@contextlib.contextmanager
+def walking(out):
+    """`out` made and locked for a batch of walks (held until the block ends), its
+    results.jsonl's torn tail repaired and any other code's runs set aside (never mixed)."""
     out.mkdir(parents=True, exist_ok=True)
-    lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
+    lock = outdir.lock(out)  # noqa: F841 (held until the block ends)
     results = out / RESULTS
     runner.repair_tail(results)
-    aside = outdir.set_aside_other_code(results)  # never mix results of other code
+    aside = outdir.set_aside_other_code(results)
     if aside:
         print(aside, file=sys.stderr)
+    yield
+
+
+def run_walks(values: dict, seeds: range, walks: list, plan, out) -> None:
+    """step_walks on the plan's executor, its refusals one line (UsageError)."""
     try:
         step_walks(values, seeds, walks, out, plan)
     except SweepError as exc:
         raise exits.UsageError(str(exc)) from None
-    rows = minimal_rows(values, seeds, walks, force=plan.force)
-    return _write_minimal(plan, values, seeds, rows, out)
 
 
 def minimal_rows(values: dict, seeds: range, walks: list, *, force: bool = False) -> list:
@@ -149,7 +163,11 @@ def new_walk(search, base: P.Params, restarts: int, known_fit: int | None = None
 def floor_of(base: P.Params, records: list | None = None) -> int:
     """The shortest linker the proven bound does not rule out (docs/model/bound.md#derivation):
     every shorter one is settled, never run. Its linker aside, the bound is `base`'s geometry:
-    read from a run of it in `records` if there is one."""
+    read from a run of it in `records` if there is one. A mixed fibril's is the bound at its
+    fraction as drawn (impossible_below_at, docs/model/bound.md#fraction): a run's recorded
+    bound is the fully decorated fibril's, higher, and not a bound on fewer domains."""
+    if occupancy.is_mixed(base):
+        return max(1, int(fraction_bound.impossible_below_at(base, occupancy.fraction(base))))
     for r in records or ():
         known = (r.get("bound") or {}).get("impossible_below") if r.get("status") == "ok" else None
         if known is not None:
@@ -158,31 +176,30 @@ def floor_of(base: P.Params, records: list | None = None) -> int:
 
 
 def step_walks(values: dict, seeds: range, walks: list, out, plan, executor=None) -> None:
-    """Step every walk until each has its minimum: the restarts of each wanted length run on
-    one executor (`executor()`, a caller's, or one started here), started only if something is
-    left to run, recorded in RESULTS. A walk that stops at a fit (Walk.stop_at_fit) starts no more restarts of a
-    length once one of them fits there."""
+    """Step every walk until each has its answer: the restarts of each wanted step run on one
+    executor (`executor()`, a caller's, or one started here), started only if something is left
+    to run, recorded in RESULTS. A walk's step is a linker length (minimal.Walk) or another
+    axis (search/fraction.py's decorated count): `walk.at(step)` gives its model values. A walk
+    that stops at a fit (Walk.stop_at_fit) starts no more restarts of a step once one of them
+    fits there."""
     results = out / RESULTS
 
-    def points_of(walk, linker, some):
-        return restart_points(values, walk.diameter, linker, some, plan.force)
+    def points_of(walk, step, some):
+        return points_at(values, walk.at(step), some, plan.force)
 
-    def records_of(walk, linker):
-        # every restart of L run so far counts (a screened length completed later, or a
+    def records_of(walk, step):
+        # every restart of the step run so far counts (a screened step completed later, or a
         # resumed walk's records), none beyond the walk's seeds
-        return [r for pt in restart_points(values, walk.diameter, linker, seeds, plan.force)
+        return [r for pt in points_of(walk, step, seeds)
                 for r in restarts.read(results, pt.params)
                 if r["params"]["seed"] == pt.params["seed"]]
 
-    def length_of(params):
-        return (float(params["globule_diameter"]), int(params["linker"]))
+    owner = {}  # a point's key -> the model values of its walk's step, if the walk stops at a fit
 
-    stopping = {w.diameter for w in walks if w.stop_at_fit}
-
-    def decided(point, records):  # a fit already found at this point's length
-        key = length_of(point.params)
-        return key[0] in stopping and any(
-            r.get("status") == "ok" and r.get("accommodated") and length_of(r["params"]) == key
+    def decided(point, records):  # a fit already found at this point's step
+        at = owner.get(point.key)
+        return at is not None and any(
+            r.get("status") == "ok" and r.get("accommodated") and _same(at, r["params"])
             for r in records)
 
     with contextlib.ExitStack() as stack:
@@ -194,9 +211,9 @@ def step_walks(values: dict, seeds: range, walks: list, out, plan, executor=None
             if not wanted:
                 return
             done = runner.done_keys(runner.read_lines(results)[0])
-            # a length already decided by a fit in RESULTS (a resumed walk, the report's
+            # a step already decided by a fit in RESULTS (a resumed walk, the report's
             # restarts) runs nothing more
-            for w, L, some in wanted:  # a length whose model cannot start is a miss, unrun
+            for w, L, some in wanted:  # a step whose model cannot start is a miss, unrun
                 try:
                     points_of(w, L, some[:1])
                 except P.ParamError as exc:
@@ -204,21 +221,26 @@ def step_walks(values: dict, seeds: range, walks: list, out, plan, executor=None
             wanted = [(w, L, some) for w, L, some in wanted if L not in w.unstarted]
             wanted_runs = [(w, L, some) for w, L, some in wanted
                            if not (w.stop_at_fit and _fit_recorded(records_of(w, L)))]
-            todo = [pt for w, L, some in wanted_runs for pt in points_of(w, L, some)
-                    if pt.key not in done]
+            todo = []
+            for w, L, some in wanted_runs:
+                for pt in points_of(w, L, some):
+                    if pt.key not in done:
+                        todo.append(pt)
+                        if w.stop_at_fit:
+                            owner[pt.key] = w.at(L)
             if todo:
                 if started is None:  # SLURM: one job per run of this first step, at most 16
                     started = executor() if executor is not None else stack.enter_context(
                         make_executor(plan.executor, out=out, runs=len(todo),
                                       log_path=out / LOG))
                 if not plan.output.quiet:
-                    print("minimal-linker: trying " + ", ".join(
-                        f"{w.diameter:g} Å at linker {L} ({len(some)} restarts"
+                    print(f"{walks[0].command}: trying " + ", ".join(
+                        f"{_say(w.at(L))} ({len(some)} restarts"
                         + (", until one fits" if w.stop_at_fit else "") + ")"
                         for w, L, some in wanted), file=sys.stderr)
                 runner.run_points(started, todo, results, force=plan.force,
                                   progress=not plan.output.quiet, version=fibrilfit_version(),
-                                  skip=decided if stopping else None,
+                                  skip=decided if owner else None,
                                   window=plan.executor.width(len(todo)))
             for w, L, some in wanted:
                 recs = records_of(w, L)
@@ -226,17 +248,39 @@ def step_walks(values: dict, seeds: range, walks: list, out, plan, executor=None
                 if w.stop_at_fit:  # the same count whichever worker finished first
                     ok = restarts.up_to_first_fit(ok)
                 if not ok:
-                    w.error = f"every restart at linker {L} failed: {recs[-1].get('error')}"
+                    w.error = f"every restart at {_say(w.at(L))} failed: {recs[-1].get('error')}"
                 w.record(L, sum(bool(r["accommodated"]) for r in ok), len(ok))
+
+
+def _same(at: dict, params: dict) -> bool:
+    """Whether a run's params are at these model values (floats compared as floats)."""
+    for k, v in at.items():
+        got = params.get(k)
+        if isinstance(v, float) or isinstance(got, float):
+            if got is None or not math.isclose(float(got), float(v), rel_tol=1e-12, abs_tol=1e-12):
+                return False
+        elif got != v:
+            return False
+    return True
+
+
+def _say(at: dict) -> str:
+    """A step's model values as the progress line says them: '20 Å at linker 4', with the
+    fraction when the walk sets it."""
+    text = f"{at['globule_diameter']:g} Å at linker {at['linker']}"
+    return text + (f", occupancy {at['occupancy']:.4g}" if "occupancy" in at else "")
+
+
+def points_at(values: dict, at: dict, seeds, force: bool = False) -> list:
+    """One sweep point per restart of a walk's step (`at`: its model values over `values`)."""
+    return [pt for s in seeds for pt in restarts.points(
+        P.make_params(force=force, **{**values, **at}, seed=s).to_dict(), [s])]
 
 
 def restart_points(values: dict, diameter: float, linker: int, seeds, force: bool = False
                    ) -> list:
-    """One sweep point per restart of the walk at (diameter, linker): each seed's own model,
-    so with `--periodic auto` each restart runs in its seed's cell (helix.cell_ladder)."""
-    return [pt for s in seeds for pt in restarts.points(
-        P.make_params(force=force, **values, globule_diameter=diameter, linker=linker,
-                      seed=s).to_dict(), [s])]
+    """One sweep point per restart of the walk at (diameter, linker): each seed's own model."""
+    return points_at(values, {"globule_diameter": diameter, "linker": linker}, seeds, force)
 
 
 def _cells(values: dict, diameter: float, seeds: range, force: bool) -> dict:

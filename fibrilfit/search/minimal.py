@@ -46,6 +46,8 @@ class Walk:
     """The walk for one diameter. `tried`: linker -> (accommodated, runs). `restarts`: R, the
     restarts the answer's two lengths get (None: whatever `record` is given, no screening)."""
 
+    command = "minimal-linker"  # what the progress line names (a class attribute, not a field)
+
     diameter: float
     start: int
     max_linker: int
@@ -65,6 +67,11 @@ class Walk:
     def __post_init__(self):
         self.floor = max(1, int(self.floor))
         self.start = max(self.start, min(self.floor, self.max_linker))
+
+    def at(self, linker: int) -> dict:
+        """The model values of this walk's step `linker` (a walk over another axis, e.g.
+        search/fraction.py's, says its own)."""
+        return {"globule_diameter": self.diameter, "linker": linker}
 
     def record(self, linker: int, fits: int, runs: int) -> None:
         self.tried[linker] = (fits, runs)

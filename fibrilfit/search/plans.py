@@ -1,5 +1,5 @@
 """The search's plans: restarts of one model (`run --restarts`), the restarts and the
-minimal-linker walk (`minimal-linker`, `report`, the sidebar's Minimal linker… and Report…,
+minimal-linker walk (`minimal-linker`, `largest-fraction`, `report`, the sidebar's Minimal linker… and Report…,
 the Python API), and the folder a batch of runs writes into. Declared once: the command line's
 options and the sidebar's properties are generated from these fields (plans.py).
 """
@@ -78,6 +78,7 @@ REPORT_SEARCH = SearchPlan(restarts=8)
 # What each command offers of the search plan
 MINIMAL_FIELDS = ("restarts", "max_linker", "known_fit", "all_restarts")
 REPORT_FIELDS = ("restarts", "interval_width", "all_restarts", "max_linker")
+FRACTION_FIELDS = ("restarts", "all_restarts")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,6 +96,7 @@ class BatchOutput(Plan):
 
 MINIMAL_OUTPUT = BatchOutput(out="out/minimal_linker")
 REPORT_OUTPUT = BatchOutput(out="out/report")
+FRACTION_OUTPUT = BatchOutput(out="out/largest_fraction")
 
 
 def seed_range(first: int, count: int) -> range:

@@ -19,7 +19,7 @@ import time
 from .. import exits, files
 from ..batch import outdir
 from ..batch.executors import SweepError, make_executor
-from ..model import occupancy, params as P
+from ..model import fraction_bound, occupancy, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
 from . import linker_map, minimal, restarts
@@ -230,6 +230,18 @@ def bracket_of(bound: dict | None, minimal_linker: int | None) -> dict | None:
             "open": [b, top] if top >= b else None}
 
 
+def fraction_bracket_of(bound: dict | None, tally: dict) -> dict | None:
+    """A mixed fibril's bracket on the fraction at the report's linker: impossible above f_B
+    (proof), fits at its fraction when a restart found a layout, open between."""
+    if not bound or "fraction_bound" not in bound:
+        return None
+    f = bound["fraction"]
+    found = f if tally["accommodated"] else None
+    return {"linker": bound["linker"], "fraction": f, "fraction_bound": bound["fraction_bound"],
+            "fits_at": found, "text": fraction_bound.fraction_bracket(bound["fraction_bound"],
+                                                                       found)}
+
+
 def versions(version: str) -> dict:
     import bpy
     import numpy
@@ -259,6 +271,8 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
                      f"long must the linker be?"),
         # a mixed fibril: what the answer speaks of (docs/model/occupancy.md#what-fits-at-f-means)
         **({"occupancy": occupancy.report_block(p, search.restarts)} if mixed else {}),
+        # and the bracket on the fraction at this linker (docs/model/bound.md#fraction)
+        **({"fraction_bracket": fraction_bracket_of(best.get("bound"), tally)} if mixed else {}),
         "command": list(reproduce),
         "answer": answer_of(best),
         "model": p.to_dict(),

@@ -30,7 +30,7 @@ def test_every_readme_link_is_a_page_of_the_site():
 def test_the_front_page_names_every_command_and_the_tutorial():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     for word in ("docs/tutorial.md", "report", "--full-length", "hull", "minimal-linker",
-                 "inspect", "--periodic auto", "docs/limitations.md", "pip install"):
+                 "largest-fraction", "inspect", "--periodic auto", "docs/limitations.md", "pip install"):
         assert word in readme, word
     # the tutorial is linked on the first screen (its first 25 lines)
     assert "docs/tutorial.md" in "\n".join(readme.splitlines()[:25])

@@ -36,7 +36,7 @@ def test_the_command_has_headless_py_s_subcommands():
     parser = build_parser("fibrilfit")
     sub = next(a for a in parser._actions if a.dest == "command")
     assert set(sub.choices) == set(COMMANDS) == {"run", "sweep", "inspect", "minimal-linker",
-                                                 "report"}
+                                                 "largest-fraction", "report"}
     done = subprocess.run([sys.executable, "-m", "fibrilfit", "run", "--linker", "0"], cwd=ROOT,
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2 and done.stderr.startswith("fibrilfit: error: ") \

@@ -100,7 +100,7 @@ def traces(out: pathlib.Path, also=()) -> list[dict]:
 # ---- candidate rules: (name, fires(params, cycle record) -> True: stop after this judgement) ----
 
 def _near(p, c) -> bool:
-    """growth.near_fit on a cycle's record (deepest overlap at most 1 Å, stretch at most 3 x tol)"""
+    """judgement.near_fit on a cycle's record (deepest overlap at most 1 Å, stretch at most 3 x tol)"""
     return (float(c.get("max_overlap") or 0.0) <= 1.0
             and c["max_bond_stretch"] <= 3.0 * p["stretch_tolerance"])
 

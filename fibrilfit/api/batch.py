@@ -18,42 +18,40 @@ REPORT_DEFAULTS = {"protocol": "inflate"}
 def minimal_linker(plan) -> MinimalLinkerResult | JobScript:
     """The minimal-linker map of `plan` (a MinimalLinkerPlan): for each diameter, the shortest
     linker at which a restart finds a layout, with none found one residue shorter."""
-    from ..batch import outdir
     from ..search import linker_map
-    explicit = plan.given()
-    values, block, _ = resolved_model.measured_values(plan.structure, explicit)
-    say_warnings(block)
-    if "linker" not in explicit:  # a fibril file's tail length: the very thing the map searches
-        values.pop("linker", None)
-    planned = linker_map.walks_for(values, plan)  # every bad value refused before any file
-    linker_map.need_packages(plan)
-    out = outdir.out_dir(plan.output.out, plan.output.resume)
-    script = plan.executor.job_script(out)
-    if script is not None:
-        return JobScript({"job_script": script}, text=script)
-    doc = linker_map.minimal_map(*planned, plan, out)
-    table, paths = doc.pop("table"), doc.pop("paths")
-    return MinimalLinkerResult(doc, table=table, paths=paths)
+    return _walk_map(plan, linker_map.walks_for, linker_map.minimal_map, MinimalLinkerResult,
+                     searches_linker=True)
 
 
 def largest_fraction(plan) -> LargestFractionResult | JobScript:
     """The largest-fraction map of `plan` (a LargestFractionPlan): for each diameter and
     linker, the largest fraction of subunits with a layout found, none found with one more
     decorated, and the bracket with the proven bound (search/fraction_map.py)."""
+    from ..search import fraction_map
+    return _walk_map(plan, fraction_map.walks_for, fraction_map.fraction_map,
+                     LargestFractionResult)
+
+
+def _walk_map(plan, walks_for, run_map, result, searches_linker: bool = False):
+    """A map of walks: the model's values (a fibril file's tail length dropped when the map
+    searches the linker itself, unless given), every bad value refused before any file is
+    written, then the job script (SLURM's --job-script) or the walks run into plan.output.out."""
     from ..batch import outdir
-    from ..search import fraction_map, linker_map
+    from ..search import linker_map
     explicit = plan.given()
     values, block, _ = resolved_model.measured_values(plan.structure, explicit)
     say_warnings(block)
-    planned = fraction_map.walks_for(values, plan)  # every bad value refused before any file
+    if searches_linker and "linker" not in explicit:
+        values.pop("linker", None)
+    planned = walks_for(values, plan)  # every bad value refused before any file
     linker_map.need_packages(plan)
     out = outdir.out_dir(plan.output.out, plan.output.resume)
     script = plan.executor.job_script(out)
     if script is not None:
         return JobScript({"job_script": script}, text=script)
-    doc = fraction_map.fraction_map(*planned, plan, out)
+    doc = run_map(*planned, plan, out)
     table, paths = doc.pop("table"), doc.pop("paths")
-    return LargestFractionResult(doc, table=table, paths=paths)
+    return result(doc, table=table, paths=paths)
 
 
 def report(plan, *, case=None, reproduce=(), run_here=None) -> ReportResult | JobScript:

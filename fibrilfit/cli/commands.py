@@ -75,9 +75,24 @@ def command_minimal_linker(plan, case, argv) -> int:
     """`minimal-linker`: the map printed, its files named; exit 130 when interrupted (finished
     runs stay in DIR/results.jsonl; continue with --resume)."""
     from ..api.batch import minimal_linker
+    return _map_command("minimal-linker", minimal_linker, plan,
+                        lambda r: f"{r['globule_diameter']:g} Å")
+
+
+def command_largest_fraction(plan, case, argv) -> int:
+    """`largest-fraction`: the map printed, its files named; exit 130 when interrupted
+    (finished runs stay in DIR/results.jsonl; continue with --resume)."""
+    from ..api.batch import largest_fraction
+    return _map_command("largest-fraction", largest_fraction, plan,
+                        lambda r: f"{r['globule_diameter']:g} Å, linker {r['linker']}")
+
+
+def _map_command(name: str, run, plan, where) -> int:
+    """A map's command: `run(plan)` (the API's), its table and files printed, a row's error as a
+    warning naming `where(row)`; exit 130 when interrupted."""
     results = pathlib.Path(plan.output.out) / "results.jsonl"
     try:
-        done = minimal_linker(plan)
+        done = run(plan)
     except KeyboardInterrupt:
         print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
               file=sys.stderr)
@@ -87,28 +102,12 @@ def command_minimal_linker(plan, case, argv) -> int:
         return EXIT_OK
     paths = done.paths
     print(done.table)
-    print(f"minimal-linker: {paths['csv']}, {paths['json']}"
+    print(f"{name}: {paths['csv']}, {paths['json']}"
           + (f", {paths['png']}" if "png" in paths else "") + f"; every run in {paths['results']}")
     for r in done.rows:
         if r.get("error"):
-            print(f"warning: {r['globule_diameter']:g} Å: {r['error']}", file=sys.stderr)
+            print(f"warning: {where(r)}: {r['error']}", file=sys.stderr)
     return EXIT_OK
-
-
-def command_largest_fraction(plan, case, argv) -> int:
-    """`largest-fraction`: the map printed, its files named; exit 130 when interrupted
-    (finished runs stay in DIR/results.jsonl; continue with --resume)."""
-    from ..api.batch import largest_fraction
-    results = pathlib.Path(plan.output.out) / "results.jsonl"
-    try:
-        done = largest_fraction(plan)
-    except KeyboardInterrupt:
-        print(f"fibrilfit: interrupted; finished runs kept in {results}; continue with --resume",
-              file=sys.stderr)
-        return EXIT_INTERRUPTED
-    if isinstance(done, JobScript):
-        print(done.text)
-        return EXIT_OK
     paths = done.paths
     print(done.table)
     print(f"largest-fraction: {paths['csv']}, {paths['json']}"

@@ -240,6 +240,27 @@ def test_a_core_thinner_than_the_rise_is_core_only_within_its_height():
     assert exact <= room.volume([0], rho) <= 1.2 * exact
 
 
+# A 120 × 200 Å core, twist 0.2 rad; protofilament 1's anchors 48 Å (ten layers) above
+# protofilament 0's, so each lies in the slice of a layer turned 2 rad further: 29 Å inside that
+# layer's core. Its small domain has no room at all until the reach leaves that core: the bound
+# names that inequality, with a room of exactly 0 Å³ (not divided by: a real shape's volume is a
+# Python float, which a division by 0 stops). The sphere: 4/3·π·(2 × 0.99043)³ = 32.6 Å³; two
+# covering spheres of 2 Å: their union's voxels, 43.3 Å³ (measured 2026-11-27).
+@pytest.mark.parametrize("shape, bound, needed", [
+    ({"globule_diameter": 4.0}, 5, 32.6),
+    ({"domain_shape": "spheres", "domain_spheres": [[1.0, 0, 0, 2.0], [-1.0, 0, 0, 2.0]],
+      "domain_joint": [[3.0, 0, 0]]}, 4, 43.3)], ids=["sphere", "covering spheres"])
+def test_a_protofilament_buried_in_another_layers_core_has_no_room(shape, bound, needed):
+    outline = [(-100, -100), (20, -100), (20, 100), (-100, 100)]
+    p = P.make_params(core_outline=outline, twist=0.2, protofilaments=2, pf_rotation=0.0,
+                      pf_rise=48.0, periodic=10, protocol="inflate", linker=10, **shape)
+    got = B.linker_bound(p)
+    assert got["impossible_below"] == bound
+    fails = got["fails_below"]
+    assert (fails["linker"], fails["protofilaments"], fails["room_A3"]) == (bound - 1, [1], 0.0)
+    assert fails["needed_A3"] == needed
+
+
 def test_a_linker_beyond_the_longest_is_reported_above_it(monkeypatch):
     # the 60 Å domain on the wide core needs 16 residues: with LONGEST at 10 nothing up to it
     # holds, and the bound says "above 10" (LONGEST + 1), with no failing inequality named

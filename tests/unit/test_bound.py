@@ -1,6 +1,8 @@
 """The proven lower bound on the linker (fibrilfit/model/bound.py, docs/model/bound.md): each
 ingredient, a case whose bound is known in closed form, a constructed case known by hand, every
-fit recorded in the repository, and random geometries against an independent layout search."""
+fit recorded in the repository, and random geometries against an independent layout search.
+Over 400 lines: `make mutate` kills bound.py's mutants with this one file
+(tools/mutate/bound.toml), so every test that can see a mutant of the bound lives here."""
 from __future__ import annotations
 
 import csv
@@ -169,6 +171,96 @@ def test_a_finite_fibril_on_a_wide_core_matches_its_closed_form(layers, score_la
     # the voxels' room is an upper bound of the exact one, and not far above it (4.8 Å voxels:
     # 21 % above, measured 2026-11-27)
     assert room(fails["linker"]) <= fails["room_A3"] <= 1.25 * room(fails["linker"])
+
+
+# The finite room at its own reach ρ (the walk's longest length, where no margin is left): every
+# protofilament's voxel room must hold its exact one, the balls whole past the stack's ends and
+# cut by the face only along the stack. Two protofilaments on opposite faces, the second's
+# anchors 45 Å (over nine layers) above the first's: a box that loses its top cap, or a voxel
+# more than a layer above the stack tested against a layer that does not exist, loses room
+# (measured 2026-11-27: each within 16 % above its exact one; such a planted bug: 65-79 % of it).
+@pytest.mark.parametrize("layers, pf_rise", [(2, 45.0), (3, 30.0)])
+def test_a_finite_room_at_its_own_reach_holds_the_exact_one(layers, pf_rise):
+    p = P.make_params(slab=(400.0, 400.0, 4.8), rise=4.8, twist=0.0, layers=layers,
+                      protocol="inflate", globule_diameter=30.0, linker=6, protofilaments=2,
+                      pf_rotation=math.pi, pf_rise=pf_rise)
+    rho = B.reach(p, B.reach_terms(p), 6)[0]
+    room = B.Room(p, rho, False, 0, layers)
+    core = (-2.4 + B.CORE_ENTRY, (layers - 1) * 4.8 + 2.4 - B.CORE_ENTRY)
+    for j in (0, 1):
+        exact = _finite_line_volume(rho, [k * 4.8 + j * pf_rise for k in range(layers)], core,
+                                    1.75 + B.CORE_ENTRY)
+        assert exact <= room.volume([j], rho) <= 1.2 * exact
+
+
+def test_a_finite_rooms_grid_is_the_judged_anchors_reach_in_whole_slices():
+    # docs/model/bound.md#voxels: the box runs from the judged anchors' lowest height less ρ, half
+    # a rise and the protofilaments' stagger (|pf_rise| × K) to their highest layer's plus the
+    # same, each end moved out to a slice's edge ((k + ½) × rise); the edge h divides the rise,
+    # the largest that keeps (box's voxels) × (anchors that can reach one: the judged ones, at
+    # most those within reach) within the budget. Three protofilaments 4.8 Å apart on one layer
+    # of 14.4 Å: a taller or shorter box, an end off a slice's edge, or the anchors counted
+    # wrong changes h or the number of slices.
+    K, rise, stagger = 3, 14.4, 4.8
+    p = P.make_params(slab=(400.0, 400.0, rise), rise=rise, twist=0.0, layers=1, protocol="inflate",
+                      globule_diameter=60.0, linker=10, protofilaments=K, pf_rotation=0.0,
+                      pf_rise=stagger)
+    rho = B.reach(p, B.reach_terms(p), 10)[0]
+    room = B.Room(p, rho, False, 0, 1)
+    margin = rise / 2 + rho + stagger * K
+    z0 = (math.floor((0 - margin) / rise - 0.5) + 0.5) * rise
+    z1 = (math.ceil((0 + margin) / rise - 0.5) + 0.5) * rise
+    reach_layers = math.ceil((rho + stagger * K) / rise) + 2
+    anchors = min(1 * K, (2 * reach_layers + 1) * K)
+    side = 2 * (math.hypot(*p.anchor_xy) + rho + 1.0)
+    raw = max((side ** 2 * (z1 - z0) * anchors / 2.0e7) ** (1 / 3), B.FINEST)
+    h = rise / math.ceil(rise / raw - 1e-9)
+    assert room.h == pytest.approx(h, rel=1e-12)
+    assert room.dist.shape[1] == round((z1 - z0) / h)
+    assert (room.h, room.dist.shape[1]) == (pytest.approx(2.0571, abs=1e-4), 119)  # measured
+
+
+# A box core thinner than the rise (4.0 of 4.8 Å): between two layers' prisms there is no core.
+# One layer of the infinite fibril on a wide core, no twist: voxels are certainly core only in
+# slices whose every point within CORE_ENTRY lies inside the prism's height (|z| + 0.5 + h/2 <=
+# 2.0), and the room holds the exact one (the disk less its segment only there).
+def test_a_core_thinner_than_the_rise_is_core_only_within_its_height():
+    rise, t = 4.8, 4.0
+    p = P.make_params(slab=(400.0, 400.0, t), rise=rise, twist=0.0, periodic=15,
+                      protocol="inflate", globule_diameter=30.0, linker=6)
+    rho = B.reach(p, B.reach_terms(p), 6)[0]
+    room = B.Room(p, rho, True, 0, 1)
+    zs = np.arange(-rise / 2 + room.h / 2, rise / 2 - room.h / 4, room.h)
+    assert len(zs) == room.core.shape[0] == 5
+    within = np.abs(zs) + B.CORE_ENTRY + room.h / 2 <= t / 2
+    assert list(room.core.any(axis=1)) == list(within) == [False, True, True, True, False]
+    z = np.linspace(-rise / 2, rise / 2, 20001)
+    s = np.sqrt(np.maximum(rho ** 2 - z ** 2, 0.0))
+    area = np.where(np.abs(z) <= t / 2 - B.CORE_ENTRY, oracle.cut_disk(s, 1.75 + B.CORE_ENTRY),
+                    np.pi * s ** 2)
+    exact = oracle.trapezoid(area, z)
+    assert exact <= room.volume([0], rho) <= 1.2 * exact
+
+
+# A 120 × 200 Å core, twist 0.2 rad; protofilament 1's anchors 48 Å (ten layers) above
+# protofilament 0's, so each lies in the slice of a layer turned 2 rad further: 29 Å inside that
+# layer's core. Its small domain has no room at all until the reach leaves that core: the bound
+# names that inequality, with a room of exactly 0 Å³ (not divided by: a real shape's volume is a
+# Python float, which a division by 0 stops). The sphere: 4/3·π·(2 × 0.99043)³ = 32.6 Å³; two
+# covering spheres of 2 Å: their union's voxels, 43.3 Å³ (measured 2026-11-27).
+@pytest.mark.parametrize("shape, bound, needed", [
+    ({"globule_diameter": 4.0}, 5, 32.6),
+    ({"domain_shape": "spheres", "domain_spheres": [[1.0, 0, 0, 2.0], [-1.0, 0, 0, 2.0]],
+      "domain_joint": [[3.0, 0, 0]]}, 4, 43.3)], ids=["sphere", "covering spheres"])
+def test_a_protofilament_buried_in_another_layers_core_has_no_room(shape, bound, needed):
+    outline = [(-100, -100), (20, -100), (20, 100), (-100, 100)]
+    p = P.make_params(core_outline=outline, twist=0.2, protofilaments=2, pf_rotation=0.0,
+                      pf_rise=48.0, periodic=10, protocol="inflate", linker=10, **shape)
+    got = B.linker_bound(p)
+    assert got["impossible_below"] == bound
+    fails = got["fails_below"]
+    assert (fails["linker"], fails["protofilaments"], fails["room_A3"]) == (bound - 1, [1], 0.0)
+    assert fails["needed_A3"] == needed
 
 
 def test_a_linker_beyond_the_longest_is_reported_above_it(monkeypatch):

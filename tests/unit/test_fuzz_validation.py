@@ -134,13 +134,14 @@ def _accepted_or_refused_with_paramerror_only(values):
 
 def test_validation_accepts_or_refuses_with_paramerror_only():
     """Both branches are exercised, in a measured share, and accepted sets of every size: with
-    derandomize the 1500 examples are the same every run of one hypothesis version; measured
-    2026-11-27 with hypothesis 6.170.17 (.venv and .venv52): 292 accepted (19.5 %), 279 of them
-    with more than three fields, the largest with 12; 1208 refused. Another hypothesis version
-    draws other examples: there the bands hold (a strategy that drifted to all refused, to
-    mostly accepted, or to no accepted set above three fields fails). A validation that refused
-    every set of more than three fields (planted in a scratch copy) fails here."""
-    import hypothesis
+    derandomize the 1500 examples are the same for one hypothesis version and the same tests run
+    before in the process: measured 2026-11-27 with hypothesis 6.170.17 (.venv and .venv52), 292
+    accepted (19.5 %), 279 of them with more than three fields, the largest with 12, 1208 refused
+    (this file alone); 340 accepted, 326 above three fields, after test_bound.py's hypothesis
+    tests in the same process. So the bands, not one count, are asserted: a strategy that drifted
+    to all refused, to mostly accepted, or to no accepted set above three fields fails, and a
+    validation that refused every set of more than three fields (planted in a scratch copy: 13
+    accepted, none above three) fails here."""
     SEEN.clear()
     _accepted_or_refused_with_paramerror_only()
     sizes = {int(k.split()[1]): n for k, n in SEEN.items() if k.startswith("accepted ")}
@@ -148,5 +149,3 @@ def test_validation_accepts_or_refuses_with_paramerror_only():
     assert SEEN["accepted"] + SEEN["refused"] == 1500
     assert 100 <= SEEN["accepted"] <= 600 and many >= 0.8 * SEEN["accepted"], SEEN
     assert max(sizes) == 12, SEEN
-    if hypothesis.__version__ == "6.170.17":  # the measured draws
-        assert (SEEN["accepted"], many) == (292, 279), SEEN

@@ -5,7 +5,11 @@ meshes and the precomputed layer geometry, then every transform and colour set i
 A mixed fibril (model/occupancy.py): only the decorated subunits get a chain (anchor, linker,
 domains); the others get nothing, or their bare tail (role "tail", bonds "tail_bond"), kept
 apart from the chains so that every chain of model.chain is whole
-(docs/model/occupancy.md#the-model)."""
+(docs/model/occupancy.md#the-model).
+
+Over 400 lines because LayerBuilder is one room: which bodies a layer gets (core, anchor,
+linker, domains, bare tails) and where they go are decided together, over the same shared
+meshes and layer geometry; splitting the tails out is the seam if it grows further."""
 from __future__ import annotations
 
 import dataclasses

@@ -201,7 +201,10 @@ def test_steps_in_order_match_the_api(ui, scene):
     assert shown["max_bond_stretch"] == pytest.approx(api["max_bond_stretch"], abs=1e-6)
     assert (shown["linker_intact"], shown["accommodated"]) == (api["linker_intact"],
                                                                api["accommodated"])
-    assert shown["answer"] == api["answer"] and api["answer"] in ("no layout found", "borderline")
+    # SMALL (8 layers, linker 3, 80 frames, seed 5) ends far from the criterion: 3 clashing
+    # pairs and 35.1 % stretch, measured 2026-11-27 on bpy 4.2.0, 5.0.1 and 5.2.3 alike, so its
+    # answer is "no layout found", never "borderline" (docs/model/verdict.md#answer)
+    assert shown["answer"] == api["answer"] == "no layout found"
     deep, grazing = clash_kinds(api)  # deep clashes red, globules that only graze orange
     assert set(deep + grazing) == {k for pair in api["clashing_pairs"] for k in pair[:2]}
     expected = [tuple(round(c, 4) for c in (CLASH_COLOR if k in deep else GRAZE_COLOR

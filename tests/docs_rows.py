@@ -1,0 +1,76 @@
+"""Physics tables of the docs read from their pages, so that a test recomputing a published number
+compares with the page, not with a copy (editing the number makes the test fail). Each reader
+finds its section by anchor and its table by the start of its header and raises ValueError when
+the section, the table or a row does not parse. Standard library only (tests/unit and
+tests/blender both read them). The infinite fibril's map (docs/notebook/search.md#map-v5) has its
+own reader, bench/docs_map.py, which the bench uses too."""
+import pathlib
+import re
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+LARGEST_FRACTION = ROOT / "docs" / "model" / "largest-fraction.md"
+BENCHMARKS = ROOT / "docs" / "benchmarks.md"
+
+
+def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
+    """The body rows (the cells' text between the outer bars) of the first table under `anchor`
+    whose header starts with `header`."""
+    start = text.find(anchor)
+    if start < 0:
+        raise ValueError(f"{name}: no section {anchor}")
+    lines = text[start:].splitlines()
+    try:
+        head = next(i for i, line in enumerate(lines) if line.startswith(header))
+    except StopIteration:
+        raise ValueError(f"{name} {anchor}: no table starting {header!r}") from None
+    rows = []
+    for line in lines[head + 2:]:
+        if not line.startswith("|"):
+            break
+        rows.append(line.strip().strip("|").strip())
+    if not rows:
+        raise ValueError(f"{name} {anchor}: an empty table")
+    return rows
+
+
+# docs/model/largest-fraction.md#map: diameter, linker, N, k/N (k/N), P(fit) there (fits/runs),
+# one more (k + 1/N: 0/runs), f_B, the bracket
+FRACTION_ROW = re.compile(r"(\d+) \| (\d+) \| (\d+) \| (0\.\d{3}|1\.000) \((\d+)/(\d+)\) \| "
+                          r"(\d+)/(\d+) \| (\d+)/(\d+): 0/(\d+) \| (\d\.\d{3}) \| (.+)")
+
+
+def largest_fraction_map(page: pathlib.Path = LARGEST_FRACTION) -> list[dict]:
+    """The largest-fraction map's rows: diameter, linker, subunits N, largest_count k, fits
+    (fits, runs) at k, above (k + 1, runs missed there), fraction_bound f_B, bracket."""
+    rows = []
+    for row in table_rows(page.read_text(encoding="utf-8"), "{#map}",
+                          "| diameter (Å) | linker | subunits N | largest fraction found (k/N) |",
+                          page.name):
+        m = FRACTION_ROW.fullmatch(row)
+        if not m or m[3] != m[6] or m[10] != m[3] or round(int(m[5]) / int(m[3]), 3) != float(m[4]):
+            raise ValueError(f"{page.name} {{#map}}: a row that does not parse: {row}")
+        rows.append({"diameter": int(m[1]), "linker": int(m[2]), "subunits": int(m[3]),
+                     "largest_count": int(m[5]), "fits": (int(m[7]), int(m[8])),
+                     "above": (int(m[9]), int(m[11])), "fraction_bound": float(m[12]),
+                     "bracket": m[13].strip()})
+    return rows
+
+
+# docs/benchmarks.md#map-v6-cost: diameter, cell layers, misses (clear), a miss's cost, fits,
+# a fit's cost (the costs are the bench's: not read here)
+MAP6_ROW = re.compile(r"(\d+) \| (\d+) \| (\d+) \((\d+)\) \| [^|]+ \| (\d+) \| [^|]+")
+
+
+def map_v6_runs(page: pathlib.Path = BENCHMARKS) -> dict[int, dict[str, int]]:
+    """{diameter: {"cell_layers", "misses", "clear_misses", "fits"}}: the runs of the infinite
+    fibril's minimal-linker map at MODEL_VERSION 6 (`minimal-linker --periodic auto --restarts
+    5 --workers 2`), counted by diameter."""
+    rows = {}
+    for row in table_rows(page.read_text(encoding="utf-8"), "{#map-v6-cost}",
+                          "| diameter (Å) | cell layers | misses (clear) |", page.name):
+        m = MAP6_ROW.fullmatch(row)
+        if not m:
+            raise ValueError(f"{page.name} {{#map-v6-cost}}: a row that does not parse: {row}")
+        rows[int(m[1])] = {"cell_layers": int(m[2]), "misses": int(m[3]),
+                           "clear_misses": int(m[4]), "fits": int(m[5])}
+    return rows

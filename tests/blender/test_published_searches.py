@@ -14,8 +14,10 @@ what needs no bake (cells, bounds, brackets) is tests/unit/test_published_maps.p
 Measured 2026-11-27 on bpy 5.0.1 at 06:48 UTC (this worktree, model as main at 020e8b9): the
 same counts as the pages; the minimal-linker walk 68 s and the largest-fraction search 69 s of
 wall time, side by side on this 2-core machine at a load of 2-3 (the pages' costs: the map's
-20 Å runs 27 worker-seconds, the fraction search 38). Bullet's numbers can differ between
-bpy versions, and the pages' were measured on bpy 5.0.1 (the Makefile's BPY): one_bpy.
+20 Å runs 27 worker-seconds, the fraction search 38). On bpy 4.2.0 and 5.2.3 (06:56 UTC) every
+run of both searches was the same as on 5.0.1 (linker, decorated count, seed, fit, clear miss,
+clashing pairs, worst stretch to 1e-4, frames), so the answer does not depend on the bpy:
+one_bpy (about 100 s once, on the Makefile's BPY).
 The 30-50 Å rows take minutes to hours each (docs/benchmarks.md#map-v6-cost,
 docs/model/largest-fraction.md#cost) and are left to the bench."""
 import json

@@ -181,7 +181,7 @@ def current_model() -> int:
 def is_current(context: str, table: str, version: int | None = None) -> bool:
     """Whether a table's provenance names today's model, `MODEL_VERSION N`."""
     version = current_model() if version is None else version
-    return re.search(rf"(?<!before )\bMODEL_VERSION {version}\b(?![.\d])",
+    return re.search(rf"(?<!before )\bMODEL_VERSION {version}(?!\.?\d)",
                      context + "\n" + table) is not None
 
 
@@ -391,4 +391,5 @@ def test_the_fast_test_rule_catches_a_table_without_one(tmp_path):
     assert not is_current("before MODEL_VERSION 1", "", version=1)
     assert is_current("MODEL_VERSION 1", "", version=1)
     assert not is_current("MODEL_VERSION 12", "", version=1)
+    assert is_current("measured at MODEL_VERSION 1.", "", version=1)
     assert problems("", table="| case | seconds |\n|---|---|\n| a | 12 |\n") == []

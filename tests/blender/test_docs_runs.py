@@ -1,8 +1,11 @@
-"""One short run at one seed for each physics table of the guides whose runs are cheap: the
+"""One short run at one seed for each physics table whose runs are cheap: the
 number the run gives is read from the page's table (helpers.docs_table), so that editing it, or
 code that stops giving it, fails here (issue #46; tests/unit/test_docs_tables.py names these tests
 above their tables).
 
+- docs/validation.md#gallery (MODEL_VERSION 6): the tutorial's minimal linker, 5, and one below:
+  seed 0 fits at 5 and not at 4 (inflate, as the walk); the negative control on 20 layers at its
+  real linker, seed 0: no layout found (a clear miss at its first judgement, 161 frames);
 - docs/guide/atoms-and-domains.md#tdp43-three-domains: the lumped 40 Å sphere at linker 3, seed
   0, tutorial protocol, jams with 36 clashing pairs and a bond stretched 374 %;
 - the same page, "Under inflate": that sphere at linker 3 under inflate finds no layout (its
@@ -13,8 +16,10 @@ above their tables).
 - docs/model/domain-shapes.md#measured: ubiquitin's sphere on 6CU7, 10 layers, inflate: seed 0
   fits at 4 and not at 3.
 
-Timed 2026-11-27 on bpy 5.0.1 at 706b6b2 (pytest --durations, the shared 2 cores at load ~6):
-5.6 s, 2.5 s, 48 s and 31 s, 87 s in all. The tables name bpy 5.0.1, the Makefile's BPY, so
+Timed 2026-11-27 07:12-07:15 UTC on bpy 5.0.1 (pytest under /usr/bin/time, the shared 2 cores
+at load 13-18): the negative control 79 s of wall time but 15 s of CPU (5OQV's exit path measured
+in it), the other five 135 s of wall, 37 s of CPU; at load ~6 (06:58 UTC) the guides' four took
+5.6, 2.5, 48 and 31 s (pytest --durations). The tables name bpy 5.0.1, the Makefile's BPY, so
 these run there only (one_bpy: the numbers to the digit are that bpy's)."""
 import json
 import re
@@ -26,7 +31,12 @@ EXAMPLES = ROOT / "examples"
 TDP43 = ("--case", str(EXAMPLES / "tdp43_8qx9.toml"), "--layers", "16", "--score-layers", "4")
 UBIQUITIN = ("--case", str(EXAMPLES / "asyn_6cu7_ubiquitin.toml"), "--layers", "10")
 GUIDE = "guide/atoms-and-domains.md"
+GALLERY = "| case | experiment says |"
 SPHERE = "one 40 Å sphere"
+
+
+def gallery_row(case: str) -> dict:
+    return next(r for r in docs_table("validation.md", GALLERY) if r["case"].startswith(case))
 
 
 def run(ff, tmp_path, *args) -> dict:
@@ -80,3 +90,25 @@ def test_ubiquitins_sphere_minimal_linker_on_10_layers_one_seed(scene, ff, tmp_p
     args = (*UBIQUITIN, "--protocol", "inflate", "--seed", "0")
     assert run(ff, tmp_path, *args, "--linker", str(minimal))["accommodated"]
     assert not run(ff, tmp_path, *args, "--linker", str(minimal - 1))["accommodated"]
+
+
+@pytest.mark.one_bpy
+def test_the_tutorials_minimal_linker_one_seed(scene, ff, tmp_path):
+    row = gallery_row("`tutorial.toml`")
+    m = re.fullmatch(r"(\d+) \(3/3 fit; (\d+): 0/3\)", row["minimal linker (walk)"])
+    minimal = int(m[1])
+    assert int(m[2]) == minimal - 1
+    args = ("--case", str(EXAMPLES / "tutorial.toml"), "--protocol", "inflate", "--seed", "0")
+    assert run(ff, tmp_path, *args, "--linker", str(minimal))["accommodated"]
+    assert not run(ff, tmp_path, *args, "--linker", str(minimal - 1))["accommodated"]
+
+
+@pytest.mark.one_bpy
+def test_the_negative_control_on_20_layers_finds_no_layout_at_its_real_linker(scene, ff,
+                                                                              tmp_path):
+    case = "abeta42_5oqv_gfp_linker12_20layers.toml"
+    row = gallery_row(f"`{case}`")
+    said = row["FibrilFit says at the real linker (answer: P(fit))"]
+    r = run(ff, tmp_path, "--case", str(EXAMPLES / case), "--seed", "0")
+    assert r["params"]["linker"] == int(row["real linker"])
+    assert said.startswith(r["answer"] + ": 0/") and r["answer"] == "no layout found"

@@ -74,6 +74,8 @@ FAST = re.compile(r"^<!-- fast test: (tests/\w+/\w+\.py)::(\w+) -->$")
 NO_FAST = re.compile(r"^<!-- no fast test: (\S.*) -->$")
 # a measured cost: a number and its unit ("38 min", "1,232 s", "2.5 h")
 COST = re.compile(r"\d[\d,.]*\s*(?:s|min|h)\b")
+NONE_NAMED = ("no fast test (`<!-- fast test: tests/<dir>/<file>.py::<test_name> -->`) and no "
+              "`<!-- no fast test: REASON with its cost -->`")
 # Sections (a page and the start of its `## ` heading) whose tables other work is rewriting at the
 # time of writing, exempt from the whole rule. Each must still have a table without its
 # provenance: fix the section, then take it off this list. Empty since issue #34 gave
@@ -185,7 +187,7 @@ def is_current(context: str, table: str, version: int | None = None) -> bool:
                      context + "\n" + table) is not None
 
 
-def test_exists(path: str, name: str, root: pathlib.Path = ROOT) -> bool:
+def defines_test(path: str, name: str, root: pathlib.Path = ROOT) -> bool:
     """Whether `root/path` is a Python file defining a function `name` (at its top or in a
     class)."""
     file = root / path
@@ -194,9 +196,6 @@ def test_exists(path: str, name: str, root: pathlib.Path = ROOT) -> bool:
     tree = ast.parse(file.read_text(encoding="utf-8"))
     return any(isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and n.name == name
                for n in ast.walk(tree))
-
-
-test_exists.__test__ = False  # a helper, not a test
 
 
 def fast_problems(notes: list[str], header: str, context: str, table: str,
@@ -210,7 +209,7 @@ def fast_problems(notes: list[str], header: str, context: str, table: str,
             m = FAST.match(note)
             if not m:
                 problems.append(f"a marker that does not parse: {note}")
-            elif not test_exists(*m.groups()):
+            elif not defines_test(*m.groups()):
                 problems.append(f"no test {m[1]}::{m[2]}")
             else:
                 tests.append(m.groups())
@@ -223,8 +222,7 @@ def fast_problems(notes: list[str], header: str, context: str, table: str,
                 waivers.append(m[1])
     if (PHYSICS_WORDS.search(header) and is_current(context, table, version) and not tests
             and not waivers and not problems):
-        problems.append("no fast test (`<!-- fast test: tests/<dir>/<file>.py::<test_name> -->`) and no "
-                        "`<!-- no fast test: REASON with its cost -->`")
+        problems.append(NONE_NAMED)
     return problems
 
 
@@ -349,8 +347,9 @@ def test_every_current_physics_table_has_a_fast_test():
             continue
         for line, header, context, table, _ in tables(page):
             checked += PHYSICS_WORDS.search(header) is not None and is_current(context, table)
+            notes = fast_markers(page, line)
             bad += [f"{name}:{line}: {header[:50]}...: {problem}"
-                    for problem in fast_problems(fast_markers(page, line), header, context, table)]
+                    for problem in fast_problems(notes, header, context, table)]
     assert not bad, "\n".join(bad)
     assert checked >= 1  # docs/validation.md's gallery is MODEL_VERSION 6 at the time of writing
     assert all((ROOT / name).is_file() for name in FAST_PENDING), "a FAST_PENDING page is gone"
@@ -369,8 +368,7 @@ def test_the_fast_test_rule_catches_a_table_without_one(tmp_path):
         (line, header, context, body, _), = tables(page)
         return fast_problems(fast_markers(page, line), header, context, body)
 
-    assert problems("") == ["no fast test (`<!-- fast test: tests/<dir>/<file>.py::<test_name> -->`) and no "
-                            "`<!-- no fast test: REASON with its cost -->`"]
+    assert problems("") == [NONE_NAMED]
     assert problems(f"<!-- fast test: {here} -->") == []
     assert problems(f"<!-- fast test: {here} -->\n<!-- fast test: {here} -->") == []
     # a test that is not there, a file that is not there, a marker that does not parse

@@ -27,7 +27,21 @@ the text says so and the marker gives that as its reason.
 
 The layer and restart words are searched in the same provenance text as the rest, so a table
 passes if that text names them for any reason (a paragraph about the infinite fibril above a
-table of finite ones, say): the check catches a table that says neither, not every wrong one."""
+table of finite ones, say): the check catches a table that says neither, not every wrong one.
+
+**A fast test of every current physics table** (issue #46): a physics table whose provenance
+names today's model (`MODEL_VERSION N`, N the one in fibrilfit/model/version.py) carries, on the
+lines above it, one or more markers `<!-- fast test: tests/<dir>/<file>.py::<test_name> -->`,
+each naming a test that exists (the file, and a function of that name in it; parametrized ids
+are not named): a test that would fail if the table's number changed (it reads the page and
+recomputes one of its numbers with today's code, or pins the page to the stored runs). Where no
+number of the table can be recomputed fast, `<!-- no fast test: REASON -->` instead, whose
+reason gives the measured cost (a number with its unit, s, min or h: "every number is a
+3-restart walk, 38 min"); rare. A table of an older model (history: docs/notebook/, a table
+measured at MODEL_VERSION 2 that names no newer one) is exempt: today's code is not the code
+that made it, so it cannot recompute it; a fast-test marker on any table, current or not, must
+still name a test that exists."""
+import ast
 import pathlib
 import re
 import shutil
@@ -56,6 +70,12 @@ LAYERS_COLUMN = re.compile(r"\blayers\b", re.I)
 RESTARTS_COLUMN = re.compile(r"\|\s*(?:restarts|seeds?|runs)\b(?:\s*\([^|]*\))?\s*(?=\|)", re.I)
 WAIVER = re.compile(r"^<!-- no (layers|seeds): \S.* -->$")
 SEPARATOR = re.compile(r"^\|[-:| ]+\|\s*$")
+FAST = re.compile(r"^<!-- fast test: (tests/\w+/\w+\.py)::(\w+) -->$")
+NO_FAST = re.compile(r"^<!-- no fast test: (\S.*) -->$")
+# a measured cost: a number and its unit ("38 min", "1,232 s", "2.5 h")
+COST = re.compile(r"\d[\d,.]*\s*(?:s|min|h)\b")
+NONE_NAMED = ("no fast test (`<!-- fast test: tests/<dir>/<file>.py::<test_name> -->`) and no "
+              "`<!-- no fast test: REASON with its cost -->`")
 # Sections (a page and the start of its `## ` heading) whose tables other work is rewriting at the
 # time of writing, exempt from the whole rule. Each must still have a table without its
 # provenance: fix the section, then take it off this list. Empty since issue #34 gave
@@ -69,6 +89,15 @@ PENDING: set = set()
 # once no table of a listed section lacks them).
 PENDING_SIZE = set()
 SIZE = {"the layers", "the restarts"}
+
+# Pages exempt from the fast-test rule (not from the rest): being annotated on branch tables-b
+# (issue #46); the lead empties this set at merge.
+FAST_PENDING = {
+    "docs/model/end-effects.md", "docs/model/linker-integrity.md", "docs/model/periodic-cell.md",
+    "docs/model/protofilaments.md", "docs/model/search.md", "docs/model/settling.md",
+    "docs/model/bound.md", "docs/model/largest-fraction.md", "docs/notebook/periodic-cell.md",
+    "docs/notebook/search.md", "docs/benchmarks.md",
+}
 
 
 def pending(name: str, heading: str, entries=None):
@@ -142,6 +171,64 @@ def missing(header: str, context: str, table: str, waived=frozenset()) -> list[s
 
 def pages():
     return sorted((ROOT / "docs").rglob("*.md"))
+
+
+def current_model() -> int:
+    """MODEL_VERSION of today's code (fibrilfit/model/version.py, read as text: the unit tests
+    check the tree they run in)."""
+    text = (ROOT / "fibrilfit" / "model" / "version.py").read_text(encoding="utf-8")
+    return int(re.search(r"^MODEL_VERSION = (\d+)", text, re.M).group(1))
+
+
+def is_current(context: str, table: str, version: int | None = None) -> bool:
+    """Whether a table's provenance names today's model, `MODEL_VERSION N`."""
+    version = current_model() if version is None else version
+    return re.search(rf"(?<!before )\bMODEL_VERSION {version}(?!\.?\d)",
+                     context + "\n" + table) is not None
+
+
+def defines_test(path: str, name: str, root: pathlib.Path = ROOT) -> bool:
+    """Whether `root/path` is a Python file defining a function `name` (at its top or in a
+    class)."""
+    file = root / path
+    if not file.is_file():
+        return False
+    tree = ast.parse(file.read_text(encoding="utf-8"))
+    return any(isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and n.name == name
+               for n in ast.walk(tree))
+
+
+def fast_problems(notes: list[str], header: str, context: str, table: str,
+                  version: int | None = None) -> list[str]:
+    """What a results table lacks under the fast-test rule (the module's docstring): a marker
+    naming a test that does not exist (on any table), a waiver without its measured cost, or,
+    on a current physics table, neither a fast test nor a waiver."""
+    problems, tests, waivers = [], [], []
+    for note in notes:
+        if note.startswith("<!-- fast test"):
+            m = FAST.match(note)
+            if not m:
+                problems.append(f"a marker that does not parse: {note}")
+            elif not defines_test(*m.groups()):
+                problems.append(f"no test {m[1]}::{m[2]}")
+            else:
+                tests.append(m.groups())
+        elif note.startswith("<!-- no fast test"):
+            m = NO_FAST.match(note)
+            if not (m and COST.search(m[1])):
+                problems.append(f"a waiver without its measured cost (a number with s, min or "
+                                f"h): {note}")
+            else:
+                waivers.append(m[1])
+    if (PHYSICS_WORDS.search(header) and is_current(context, table, version) and not tests
+            and not waivers and not problems):
+        problems.append(NONE_NAMED)
+    return problems
+
+
+def fast_markers(path: pathlib.Path, line: int) -> list[str]:
+    """The markers above the table at line `line` (1-based) of `path`."""
+    return markers(path.read_text(encoding="utf-8").splitlines(), line - 1)
 
 
 def test_results_tables_are_found():
@@ -248,3 +335,60 @@ def test_a_table_where_seeds_or_layers_do_not_apply_says_why(tmp_path):
     assert missing(*first[1:]) == [] and missing(*second[1:]) == ["the layers", "the restarts"]
     # a table of times (not physics) needs neither
     assert lacks(tmp_path, PROVENANCE + ".", "| case | seconds |\n|---|---|\n| a | 12 |\n") == []
+
+
+def test_every_current_physics_table_has_a_fast_test():
+    """Issue #46: every physics table of today's model names a fast test that recomputes one of
+    its numbers (or waives it with the cost that forbids one); every marker names a real test."""
+    bad, checked = [], 0
+    for page in pages():
+        name = page.relative_to(ROOT).as_posix()
+        if name in FAST_PENDING:
+            continue
+        for line, header, context, table, _ in tables(page):
+            checked += PHYSICS_WORDS.search(header) is not None and is_current(context, table)
+            notes = fast_markers(page, line)
+            bad += [f"{name}:{line}: {header[:50]}...: {problem}"
+                    for problem in fast_problems(notes, header, context, table)]
+    assert not bad, "\n".join(bad)
+    assert checked >= 1  # docs/validation.md's gallery is MODEL_VERSION 6 at the time of writing
+    assert all((ROOT / name).is_file() for name in FAST_PENDING), "a FAST_PENDING page is gone"
+
+
+def test_the_fast_test_rule_catches_a_table_without_one(tmp_path):
+    now = current_model()
+    here = "tests/unit/test_docs_tables.py::test_results_tables_are_found"
+    table = "| linker | P(fit) |\n|---|---|\n| 5 | 0.4 |\n"
+
+    def problems(notes: str, version: int = now, table: str = table) -> list[str]:
+        page = tmp_path / "p.md"
+        page.write_text(f"## Measured\n\n2026-11-25, commit 182851d, MODEL_VERSION {version}, "
+                        f"bpy 5.0.1, 20 layers, 5 restarts.\n\n{notes}\n{table}",
+                        encoding="utf-8")
+        (line, header, context, body, _), = tables(page)
+        return fast_problems(fast_markers(page, line), header, context, body)
+
+    assert problems("") == [NONE_NAMED]
+    assert problems(f"<!-- fast test: {here} -->") == []
+    assert problems(f"<!-- fast test: {here} -->\n<!-- fast test: {here} -->") == []
+    # a test that is not there, a file that is not there, a marker that does not parse
+    assert problems("<!-- fast test: tests/unit/test_docs_tables.py::test_no_such_thing -->") == [
+        "no test tests/unit/test_docs_tables.py::test_no_such_thing"]
+    nowhere = "tests/unit" + "/no_such_file.py"  # (spelt so: no path for test_docs_citations)
+    assert problems(f"<!-- fast test: {nowhere}::test_results_tables_are_found -->") == [
+        f"no test {nowhere}::test_results_tables_are_found"]
+    assert problems("<!-- fast test: test_docs_tables.py -->")[0].startswith("a marker that does")
+    # a waiver gives its measured cost
+    assert problems("<!-- no fast test: every number is a walk, 38 min on 2 cores -->") == []
+    assert problems("<!-- no fast test: too slow -->")[0].startswith("a waiver without")
+    assert problems("<!-- no fast test: 3 restarts -->")[0].startswith("a waiver without")
+    # a table of an older model is history: exempt, but a marker on it still names a real test
+    assert problems("", version=now - 1) == []
+    assert problems(f"<!-- fast test: {nowhere}::test_y -->", version=now - 1) == [
+        f"no test {nowhere}::test_y"]
+    # "before MODEL_VERSION 1" is not MODEL_VERSION 1; a table of times is not physics
+    assert not is_current("before MODEL_VERSION 1", "", version=1)
+    assert is_current("MODEL_VERSION 1", "", version=1)
+    assert not is_current("MODEL_VERSION 12", "", version=1)
+    assert is_current("measured at MODEL_VERSION 1.", "", version=1)
+    assert problems("", table="| case | seconds |\n|---|---|\n| a | 12 |\n") == []

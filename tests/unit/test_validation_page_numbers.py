@@ -1,0 +1,133 @@
+"""docs/validation.md's physics tables, the numbers today's code gives without a bake: each test
+reads its table from the page (helpers.docs_table) and recomputes what geometry decides, so that
+a published number that is edited, or that the code stops giving, fails here (issue #46: a fast
+test of every docs physics table; tests/unit/test_docs_tables.py names them from the page).
+
+- the gallery (#gallery): every case's real linker and its bound, "impossible below B";
+- the negative control (#negative-control): the residues the buried Ala42's exit spends and the
+  bound of each case (its MODEL_VERSION 4 free linkers, 7 and 9, are of an older model: today's
+  linker 13 leaves 8 free, as #infinite-walk says);
+- the walks on the infinite fibril (#infinite-walk): each length's free linker after the exit,
+  the 20-layer cell, and the walk's start at the bound;
+- the real shapes (#real-shapes): the real linkers the hull runs took, and the comparison table's
+  minimal linkers are the two tables' (the thresholds themselves are baked by
+  tests/blender/test_real_shape_thresholds.py, which reads them from the page).
+
+Structure files are measured once per module (5OQV's exit path takes seconds)."""
+import copy
+import re
+
+import pytest
+from helpers import ROOT, docs_table
+
+from fibrilfit.api.model import resolve
+from fibrilfit.api.plans import RunPlan, make_plan
+from fibrilfit.model import bound
+
+EXAMPLES = ROOT / "examples"
+PAGE = "validation.md"
+GALLERY = docs_table(PAGE, "| case | experiment says |")
+NEGATIVE = docs_table(PAGE, "| case | fibril | linker | exit: residues spent, free linker |")
+PROBES = docs_table(PAGE, "| linker (anchor counted) | free after the exit | seed |")
+WALK = docs_table(PAGE, "| linker (anchor counted) | free after the exit | restarts (seeds) |")
+HULL = docs_table(PAGE, "| case | source | observed | P(fit) at the real linker |")
+SHAPES = docs_table(PAGE, "| case | minimal linker, sphere | minimal linker, hull |")
+INFINITE = EXAMPLES / "abeta42_5oqv_gfp_linker12.toml"
+
+
+@pytest.fixture(scope="module")
+def model():
+    """model(case, **values): the model parameters `run --case` makes (structure files measured
+    as `run` measures them, each file once here)."""
+    from fibrilfit.structure import domain, fibril
+    cache = {}
+
+    def once(measure):
+        def measured(*args, **kwargs):
+            key = repr((measure.__module__, args, sorted(kwargs.items())))
+            if key not in cache:
+                cache[key] = measure(*args, **kwargs)
+            return copy.deepcopy(cache[key])
+        return measured
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(fibril, "measure", once(fibril.measure))
+        mp.setattr(domain, "measure", once(domain.measure))
+
+        def make(case, **values):
+            plan, _ = make_plan(RunPlan, values, case=str(case), command="run")
+            return resolve(plan).p
+        yield make
+
+
+def case_of(cell: str):
+    """The case file a row names (`tutorial.toml`, `abeta42_5oqv_gfp_linker12` ...)."""
+    return EXAMPLES / (re.match(r"`(\w+)(?:\.toml)?`", cell)[1] + ".toml")
+
+
+def number(cell: str) -> int:
+    """A cell's whole number, bold or not (`**23**`)."""
+    return int(re.fullmatch(r"\*{0,2}(\d+)\*{0,2}", cell)[1])
+
+
+def test_the_pages_tables_are_read():
+    assert len(GALLERY) == 13 and len(NEGATIVE) == 5 and len(HULL) == len(SHAPES) == 2
+    assert [number(r["linker (anchor counted)"]) for r in WALK] == [13, 14, 16, 20, 22, 23, 24, 28]
+
+
+@pytest.mark.parametrize("row", GALLERY, ids=lambda r: case_of(r["case"]).stem)
+def test_the_gallerys_real_linker_and_bound_are_todays(model, row):
+    """Each row's real linker is its case file's, and its bound ("impossible below B": 1 on
+    every finite fibril, 13 on the infinite one for Aβ42-GFP) is what linker_bound gives today."""
+    p = model(case_of(row["case"]))
+    assert p.linker == number(row["real linker"])
+    said = re.match(r"impossible below (\d+) /", row["impossible below / fits at / open"])
+    assert bound.linker_bound(p)["impossible_below"] == int(said[1])
+
+
+@pytest.mark.parametrize("row", NEGATIVE, ids=lambda r: case_of(r["case"]).stem)
+def test_the_negative_controls_exit_and_bound_are_todays(model, row):
+    """Ala42's exit spends 5 residues (none for 2N0A's surface anchor); the bound is 13 on the
+    infinite fibril, 7 on 20 layers, 1 for the near-threshold case."""
+    p = model(case_of(row["case"]))
+    assert p.linker == int(re.search(r"(\d+)(?: \(|$)", row["linker"])[1])
+    exit_cell = row["exit: residues spent, free linker"]
+    spent = 0 if exit_cell.startswith("none") else int(exit_cell.split(",")[0])
+    assert p.exit_residues == spent
+    assert bound.linker_bound(p)["impossible_below"] == number(row["bound: impossible below"])
+
+
+@pytest.mark.parametrize("table", [PROBES, WALK], ids=["probes", "walk"])
+def test_the_infinite_walks_free_linkers_and_cell_are_todays(model, table):
+    """Every length probed or walked leaves `linker - 5` free after the exit, in a 20-layer
+    cell; the walk starts at the bound (13)."""
+    for row in table:
+        p = model(INFINITE, linker=number(row["linker (anchor counted)"]))
+        assert (p.free_linker, p.layers, p.periodic) == (
+            number(row["free after the exit"]), 20, 20), row
+    if table is WALK:
+        start = number(table[0]["linker (anchor counted)"])
+        assert start == bound.linker_bound(model(INFINITE))["impossible_below"]
+
+
+@pytest.mark.parametrize("row", HULL, ids=lambda r: case_of(r["case"]).stem)
+def test_the_hull_runs_real_linker_is_todays(model, row):
+    p = model(case_of(row["case"]), domain_shape="hull")
+    assert p.domain_shape == "hull" and p.linker == number(row["real linker"])
+
+
+def test_the_shape_comparison_is_the_two_tables():
+    """The comparison's hull column is the hull table's minimal linker (baked from the page by
+    tests/blender/test_real_shape_thresholds.py), its sphere column the gallery's."""
+    def threshold(cell):
+        m = re.match(r"\*{0,2}(\d+)\*{0,2} \((\d)/3(?: fit)?; (\d+): 0/3\)", cell)
+        assert m and int(m[3]) == int(m[1]) - 1, cell
+        return int(m[1]), int(m[2])
+
+    gallery = {case_of(r["case"]).name: r["minimal linker (walk)"] for r in GALLERY}
+    hull = {case_of(r["case"]).name: r["minimal linker"] for r in HULL}
+    names = {"2N0A": "asyn_2n0a_gfp.toml", "6CU7": "asyn_6cu7_ubiquitin.toml"}
+    for row in SHAPES:
+        name = names[row["case"][:4]]
+        assert threshold(row["minimal linker, hull"]) == threshold(hull[name])
+        assert threshold(row["minimal linker, sphere"]) == threshold(gallery[name])

@@ -12,6 +12,24 @@ LARGEST_FRACTION = ROOT / "docs" / "model" / "largest-fraction.md"
 BENCHMARKS = ROOT / "docs" / "benchmarks.md"
 
 
+def body(lines: list[str], head: int, where: str) -> list[str]:
+    """The body lines of the table whose header is lines[head] (up to the first line that is not a
+    table row); ValueError if it has none."""
+    rows = []
+    for line in lines[head + 2:]:
+        if not line.startswith("|"):
+            break
+        rows.append(line)
+    if not rows:
+        raise ValueError(f"{where}: an empty table")
+    return rows
+
+
+def cells(line: str) -> list[str]:
+    """A table row's cells, stripped (`**` kept)."""
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
 def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
     """The body rows (the cells' text between the outer bars) of the first table under `anchor`
     whose header starts with `header`."""
@@ -23,13 +41,25 @@ def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
         head = next(i for i, line in enumerate(lines) if line.startswith(header))
     except StopIteration:
         raise ValueError(f"{name} {anchor}: no table starting {header!r}") from None
-    rows = []
-    for line in lines[head + 2:]:
-        if not line.startswith("|"):
-            break
-        rows.append(line.strip().strip("|").strip())
-    if not rows:
-        raise ValueError(f"{name} {anchor}: an empty table")
+    return [line.strip().strip("|").strip() for line in body(lines, head, f"{name} {anchor}")]
+
+
+def docs_table(page: str, header: str) -> list[dict[str, str]]:
+    """The rows of the one table of docs page `page` (a path under docs/) whose header row starts
+    with `header`, each a {column: cell}: a fast test reads the number it recomputes from the
+    page, so that editing the published number makes it fail (tests/unit/test_docs_tables.py,
+    the fast-test rule). ValueError if there is no such table, or more than one, or an empty one,
+    or a row of another width."""
+    lines = (ROOT / "docs" / page).read_text(encoding="utf-8").splitlines()
+    starts = [i for i, line in enumerate(lines) if line.startswith(header)]
+    if len(starts) != 1:
+        raise ValueError(f"docs/{page}: {len(starts)} tables start {header!r}, not one")
+    names, rows = cells(lines[starts[0]]), []
+    for line in body(lines, starts[0], f"docs/{page} {header!r}"):
+        row = cells(line)
+        if len(row) != len(names):
+            raise ValueError(f"docs/{page}: a row of {len(row)} cells: {line}")
+        rows.append(dict(zip(names, row)))
     return rows
 
 

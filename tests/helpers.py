@@ -94,28 +94,3 @@ def synthetic_full_length(tmp_path, *, shift: int = 0, flat: bool = False, name=
     out = tmp_path / name
     st.write_pdb(str(out))
     return out
-
-
-def docs_table(page: str, header: str) -> list[dict[str, str]]:
-    """The rows of the one table of docs page `page` (a path under docs/) whose header row starts
-    with `header`, each a {column: cell} (cells stripped, `**` kept): a fast test reads the number
-    it recomputes from the page, so that editing the published number makes it fail
-    (tests/unit/test_docs_tables.py, the fast-test rule). AssertionError if there is no such
-    table, or more than one, or an empty one."""
-    lines = (ROOT / "docs" / page).read_text(encoding="utf-8").splitlines()
-    starts = [i for i, line in enumerate(lines) if line.startswith(header)]
-    assert len(starts) == 1, f"docs/{page}: {len(starts)} tables start {header!r}, not one"
-    start = starts[0]
-
-    def cells(line):
-        return [c.strip() for c in line.strip().strip("|").split("|")]
-
-    names, rows = cells(lines[start]), []
-    for line in lines[start + 2:]:
-        if not line.startswith("|"):
-            break
-        row = cells(line)
-        assert len(row) == len(names), f"docs/{page}: a row of {len(row)} cells: {line}"
-        rows.append(dict(zip(names, row)))
-    assert rows, f"docs/{page}: the table starting {header!r} is empty"
-    return rows

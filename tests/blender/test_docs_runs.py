@@ -1,5 +1,5 @@
 """One short run at one seed for each physics table whose runs are cheap: the
-number the run gives is read from the page's table (helpers.docs_table), so that editing it, or
+number the run gives is read from the page's table (docs_rows.docs_table), so that editing it, or
 code that stops giving it, fails here (issue #46; tests/unit/test_docs_tables.py names these tests
 above their tables).
 
@@ -25,7 +25,8 @@ import json
 import re
 
 import pytest
-from helpers import ROOT, docs_table
+from docs_rows import docs_table
+from helpers import ROOT
 
 EXAMPLES = ROOT / "examples"
 TDP43 = ("--case", str(EXAMPLES / "tdp43_8qx9.toml"), "--layers", "16", "--score-layers", "4")

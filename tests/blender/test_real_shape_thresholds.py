@@ -18,7 +18,8 @@ import json
 import re
 
 import pytest
-from helpers import ROOT, docs_table
+from docs_rows import docs_table
+from helpers import ROOT
 
 EXAMPLES, DATA = ROOT / "examples", ROOT / "tests" / "data"
 HULL = ("--domain-shape", "hull", "--protocol", "inflate")

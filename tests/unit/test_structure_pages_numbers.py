@@ -1,5 +1,5 @@
 """Numbers of the structure guides' physics tables that today's code gives without a bake, read
-from the pages (helpers.docs_table), so that editing one, or code that stops giving it, fails here
+from the pages (docs_rows.docs_table), so that editing one, or code that stops giving it, fails here
 (issue #46; tests/unit/test_docs_tables.py names these tests above their tables):
 
 - docs/guide/structures.md#run-from-files: the domains' sphere diameters (ubiquitin 30.3 Å, GFP
@@ -13,7 +13,8 @@ The runs of these tables are baked by tests/blender/test_docs_runs.py."""
 import re
 
 import pytest
-from helpers import ROOT, docs_table
+from docs_rows import docs_table
+from helpers import ROOT
 
 from fibrilfit import structure
 from fibrilfit.api.model import resolve

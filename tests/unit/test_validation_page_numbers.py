@@ -1,5 +1,5 @@
 """docs/validation.md's physics tables, the numbers today's code gives without a bake: each test
-reads its table from the page (helpers.docs_table) and recomputes what geometry decides, so that
+reads its table from the page (docs_rows.docs_table) and recomputes what geometry decides, so that
 a published number that is edited, or that the code stops giving, fails here (issue #46: a fast
 test of every docs physics table; tests/unit/test_docs_tables.py names them from the page).
 
@@ -18,7 +18,8 @@ import copy
 import re
 
 import pytest
-from helpers import ROOT, docs_table
+from docs_rows import docs_table
+from helpers import ROOT
 
 from fibrilfit.api.model import resolve
 from fibrilfit.api.plans import RunPlan, make_plan

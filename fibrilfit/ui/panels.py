@@ -9,7 +9,7 @@ import math
 
 import bpy
 
-from ..model import helix, params as P
+from ..model import helix, occupancy, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
 from . import (minimal_summary, panel_words, properties, report_summary, result_words,
                structure_trace)
@@ -271,6 +271,9 @@ def shown(field, s) -> bool:
         return False  # the list of domains has each linker (draw_domains)
     if name == "image_updates":
         return s.use_periodic
+    pattern = next((k for k, names in occupancy.PATTERN_FIELDS.items() if name in names), None)
+    if pattern is not None:  # a mixed fibril's settings: those of the pattern chosen
+        return s.pattern == pattern
     if name in NOT_WITH_PERIODIC:
         return not s.use_periodic
     switch = name.split("_")[0]  # settle_speed, settle_frames: only with settle on

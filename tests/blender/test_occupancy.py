@@ -217,7 +217,7 @@ def test_the_panel_sets_a_fraction_and_a_pattern(registered):
 
 
 def test_a_build_from_the_panel_decorates_the_fraction_and_marks_the_bare_anchors(registered,
-                                                                                 scene):
+                                                                                 scene, tmp_path):
     """Half of 8 subunits set in the panel (50 %): the step buttons build round(f·N) = 4 chains;
     each other subunit gets a marker at its anchor's place, in the bare colour, that is no
     rigid body (the physics is the model's as before) and that the picture's legend names. The
@@ -252,6 +252,14 @@ def test_a_build_from_the_panel_decorates_the_fraction_and_marks_the_bare_anchor
         assert ob.location.z == pytest.approx(model.slabs[ob[LAYER]].location.z, abs=1e-3)
     legend = dict(render.legend_entries(model, (), ()))
     assert legend["bare anchor (subunit without the domain)"] == colours.COLORS["bare_anchor"]
+    # the picture: the markers framed with the rest, their entry in the drawn legend
+    from fibrilfit.exports import dressing
+    points = dressing.model_points(model)
+    for ob in model.bare_anchors:
+        assert (points.min(axis=0) <= np.array(ob.location) + 1e-3).all()
+        assert (np.array(ob.location) <= points.max(axis=0) + 1e-3).all()
+    drawn = render.render_png(scene, tmp_path / "mixed.png", engine="workbench", size=(480, 270))
+    assert "bare anchor (subunit without the domain)" in drawn["legend"]["entries"]
 
 
 def ff_params(**values):

@@ -27,6 +27,14 @@ from .background import BackgroundOperator
 SEARCH = SearchPlan()  # minimal-linker's and largest-fraction's own defaults (search/plans.py)
 
 
+def diameters_property():
+    """The dialog's diameters (either map's)."""
+    return bpy.props.StringProperty(
+        name="Diameters", default="",
+        description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
+                    "empty: the panel's")
+
+
 class WalkOperator(BackgroundOperator):
     """A map of walks over the panel's model (the modal part: BackgroundOperator). A subclass
     names its plan (api/plans.py), its job (search/background.py), the panel's property it keeps
@@ -106,10 +114,7 @@ class FIBRILFIT_OT_minimal_linker(WalkOperator, bpy.types.Operator):
     # own walk is this walk with these restarts, so the panel's two boxes agree for one model
     restarts: plan_property(REPORT_SEARCH, "restarts")
     max_linker: plan_property(REPORT_SEARCH, "max_linker")
-    diameters: bpy.props.StringProperty(
-        name="Diameters", default="",
-        description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
-                    "empty: the panel's")
+    diameters: diameters_property()
     what, job_name = "minimal linker", "minimal-linker walk"
     plan_class, job_class, kept, summary = (MinimalLinkerPlan, BackgroundWalk, "minimal_map",
                                             minimal_summary)
@@ -131,10 +136,7 @@ class FIBRILFIT_OT_largest_fraction(WalkOperator, bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}  # it keeps the map in the scene's settings
     restarts: plan_property(REPORT_SEARCH, "restarts")
     max_linker: plan_property(REPORT_SEARCH, "max_linker", options={"HIDDEN"})  # not walked
-    diameters: bpy.props.StringProperty(
-        name="Diameters", default="",
-        description="globule diameters in Å, e.g. 20,30 or 20:40:10 (as --globule-diameter); "
-                    "empty: the panel's")
+    diameters: diameters_property()
     linkers: bpy.props.StringProperty(
         name="Linkers", default="",
         description="linker lengths in residues, e.g. 4,6 or 4:10:2 (as --linker); empty: the "

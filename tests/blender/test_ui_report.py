@@ -154,3 +154,22 @@ def test_stage_progress_reads_the_stages():
     assert text == "minimal linker (stage 2 of 6), 1 of 4 runs done"
     assert fraction == pytest.approx((1 + 1 / 4) / 6)
     assert report.STAGES[1] == "minimal linker"
+
+
+def test_the_panels_report_refuses_a_fraction_plot_it_cannot_draw(ui, tmp_path):
+    """Report…'s Fraction plot is checked before anything runs or is made: two fractions that
+    decorate the same count of the panel's 3 subunits, or a pattern that fixes its fraction, are
+    one line each (the command line's), with no folder beside the one picked."""
+    from fibrilfit.plans import PlanError
+    properties.write_params(ui, P.make_params(**FAST, seed=0))
+    out = tmp_path / "page"
+    for plot, values, needle in (
+            ("0.3,0.4", {}, "--fraction-plot: 0.3 and 0.4 both decorate 1 of the 3 subunits"),
+            ("0.5", {"pattern": "layers", "pattern_layers": "A."},
+             "--fraction-plot: needs pattern random")):
+        properties.write_params(ui, P.make_params(**FAST, seed=0, **values))
+        op = _operator(out, 2, 4, fraction_plot=plot)
+        with pytest.raises(PlanError, match=needle):
+            op.start(bpy.context)
+        assert not out.exists() and _beside(out) == set()
+        assert background.RUNNING.get(op.bl_idname) is None

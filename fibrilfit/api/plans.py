@@ -119,6 +119,8 @@ class MinimalLinkerPlan(_CommandPlan):
     def check(self) -> None:
         if self.search.interval_width is not None:
             raise PlanError("interval_width", "not a minimal-linker option (the report's)")
+        if self.search.fraction_plot:
+            raise PlanError("fraction_plot", "not a minimal-linker option (the report's)")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -138,6 +140,8 @@ class LargestFractionPlan(_CommandPlan):
         for name in ("interval_width", "known_fit"):
             if getattr(self.search, name) is not None:
                 raise PlanError(name, "not a largest-fraction option")
+        if self.search.fraction_plot:
+            raise PlanError("fraction_plot", "not a largest-fraction option (the report's)")
 
 
 @dataclasses.dataclass(frozen=True)

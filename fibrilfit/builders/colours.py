@@ -8,14 +8,17 @@ import numpy as np
 from .physics import keep_bake
 from .scene import PROTOFILAMENT, TAG
 
+# an undecorated subunit (a mixed fibril): its bare tail or, without one, its anchor's marker;
+# grey-blue, apart from the decorated chains' dark anchors and yellow linkers, so the picture
+# shows which subunits carry the domain
+BARE = (0.42, 0.45, 0.55, 1.0)
 COLORS = {  # viewport/object colours; analysis recolours clashing globules
     "slab": (0.55, 0.62, 0.75, 1.0),
     "anchor": (0.25, 0.25, 0.3, 1.0),
     "residue": (0.95, 0.75, 0.2, 1.0),
     "globule": (0.7, 0.72, 0.7, 1.0),
-    # an undecorated subunit's bare tail (a mixed fibril): grey-blue, apart from the decorated
-    # chains' yellow linkers, so the picture shows which subunits carry the domain
-    "tail": (0.42, 0.45, 0.55, 1.0),
+    "tail": BARE,
+    "bare_anchor": BARE,
 }
 CLASH_COLOR = (0.9, 0.08, 0.05, 1.0)
 # A grazing pair (only the BVH names it, within the mesh's resolution:

@@ -3,9 +3,10 @@ meshes and the precomputed layer geometry, then every transform and colour set i
 (LayerBuilder.place). How each domain shape is drawn: GLOBULE_MESHES.
 
 A mixed fibril (model/occupancy.py): only the decorated subunits get a chain (anchor, linker,
-domains); the others get nothing, or their bare tail (role "tail", bonds "tail_bond"), kept
-apart from the chains so that every chain of model.chain is whole
-(docs/model/occupancy.md#the-model).
+domains); the others get their bare tail (role "tail", bonds "tail_bond"), kept apart from the
+chains so that every chain of model.chain is whole (docs/model/occupancy.md#the-model), or,
+without a tail, a marker at their anchor's place (role "bare_anchor": drawn, no body, so the
+physics is the same) so the picture shows which subunits carry the domain.
 
 Over 400 lines because LayerBuilder is one room: which bodies a layer gets (core, anchor,
 linker, domains, bare tails) and where they go are decided together, over the same shared
@@ -139,6 +140,8 @@ class LayerBuilder:
         if not self.decorated[c]:  # an undecorated subunit: its bare tail's beads, if any
             if i < self.tail:
                 self._tail_member(k, j, i)
+            elif i == 0 and not self.tail:
+                self._bare_anchor(k, j)
             return
         role = "anchor" if i == 0 else ("globule" if i in self.domain_at else "residue")
         # several real shapes: each domain its own mesh; spheres share domain 1's, scaled
@@ -188,6 +191,21 @@ class LayerBuilder:
             rbc.type = "POINT"
             rbc.object1, rbc.object2 = members[i - 1], members[i]
             rbc.disable_collisions = True
+
+    def _bare_anchor(self, k, j):
+        """The marker of an undecorated subunit without a tail: the anchor's bead at its place,
+        in the bare tails' colour, in a collection of its own; not a rigid body (nothing in the
+        physics changes), only what the picture and the viewport show."""
+        if "bare_anchor" not in self.parts:
+            self.parts["bare_anchor"] = new_collection("FibrilFit bare anchors", "bare_anchors",
+                                                       self.model.root)
+            self.placed["bare_anchor"] = []
+        ob = tag(bpy.data.objects.new(f"{self._name(k, j)} bare anchor",
+                                      self._shared_mesh("residue")), "bare_anchor")
+        ob[LAYER], ob[INDEX], ob[PROTOFILAMENT] = k, 0, j
+        self.parts["bare_anchor"].objects.link(ob)
+        self.placed["bare_anchor"].append((ob, k * self.pfs + j, 0))
+        self.model.bare_anchors.append(ob)
 
     def _real_globule(self, ob, k, domain=0):
         """A hull keeps Bullet's surface its margin (domains.HULL_MARGIN) outside its mesh (the

@@ -26,7 +26,8 @@ class Model:
     with one protofilament, chain c is layer c. `slabs[k]`: layer k's core. `constraints[c]`:
     chain c's bonds. A mixed fibril (model/occupancy.py): `chain` holds the decorated subunits'
     chains only, in the same order (occupancy.decorated_chains(params) names them); `tails[t]`
-    is an undecorated subunit's bare tail (when bare_tail asks for one)."""
+    is an undecorated subunit's bare tail (when bare_tail asks for one), `bare_anchors` the
+    marker at each undecorated subunit's anchor when it has none (no body: drawn only)."""
 
     root: bpy.types.Collection
     params: P.Params
@@ -34,6 +35,7 @@ class Model:
     chain: list
     constraints: list
     tails: list = field(default_factory=list)
+    bare_anchors: list = field(default_factory=list)
 
     @property
     def globules(self) -> list:
@@ -53,7 +55,7 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
     if root is None:
         return None
     p = params_of(root)
-    slabs, chain, cons, tails = {}, {}, {}, {}
+    slabs, chain, cons, tails, bare = {}, {}, {}, {}, {}
     # Not root.all_objects: Blender rebuilds that cache in O(n²) after any change (4.5 s for
     # 14,000 objects, measured on 5.0.1); each collection's own objects are a plain list.
     for ob in (ob for coll in (root, *root.children_recursive) for ob in coll.objects):
@@ -67,10 +69,12 @@ def find_model(scene: bpy.types.Scene) -> Model | None:
             cons.setdefault(key, {})[ob[INDEX]] = ob
         elif role == "tail":
             tails.setdefault(key, {})[ob[INDEX]] = ob
+        elif role == "bare_anchor":
+            bare[key] = ob
     ordered = lambda d: [d[i] for i in sorted(d)]
     return Model(root, p, ordered(slabs), [ordered(chain[k]) for k in sorted(chain)],
                  [ordered(cons[k]) for k in sorted(cons)],
-                 [ordered(tails[k]) for k in sorted(tails)])
+                 [ordered(tails[k]) for k in sorted(tails)], [bare[k] for k in sorted(bare)])
 
 
 PARTS = ("slab", "anchor", "linker", "globule")  # one layer's parts, in the tutorial's order

@@ -198,9 +198,11 @@ def _owned_object(coll, role, new_data):
 
 
 def model_points(model) -> np.ndarray:
-    """World-space corners of every object's bounding box, shape (n, 3): the cores, chains
-    and, in a periodic cell, every image, so that the camera frames the cell and its images."""
-    objects = [*model.slabs, *(ob for members in model.chain for ob in members)]
+    """World-space corners of every object's bounding box, shape (n, 3): the cores, chains, a
+    mixed fibril's bare tails and bare-anchor markers and, in a periodic cell, every image, so
+    that the camera frames the cell and its images and every subunit, decorated or not."""
+    objects = [*model.slabs, *(ob for members in model.chain for ob in members),
+               *(ob for members in model.tails for ob in members), *model.bare_anchors]
     for role in (MOVING, STATIC):
         coll = image_collection(model, role)
         if coll is not None:

@@ -107,7 +107,9 @@ def legend_entries(model, clashing, grazing, result: dict | None = None) -> list
         faded = tuple(c + FADE * (b - c) for c, b in zip(part_colour("globule", 0), FADE_TO))
         images = [("images of the periodic cell", faded)]
     # a mixed fibril: which subunits carry the domain (the others: no chain, or a bare tail)
-    tails = [("bare tail (subunit without the domain)", COLORS["tail"])] if model.tails else []
+    tails = ([("bare tail (subunit without the domain)", COLORS["tail"])] if model.tails else
+             [("bare anchor (subunit without the domain)", COLORS["bare_anchor"])]
+             if model.bare_anchors else [])
     return [("fibril core", COLORS["slab"]), ("linker", COLORS["residue"]), *domains, *tails,
             *images,
             (f"clash: overlap{deeper} ({len(clashing)})", CLASH_COLOR),

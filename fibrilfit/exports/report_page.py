@@ -101,6 +101,32 @@ def occupancy_text(doc: dict) -> str:
                                                 for a, b in rows) + "</table>")
 
 
+def fraction_plot_text(doc: dict, folder: pathlib.Path) -> str:
+    """--fraction-plot: P(fit) at each fraction asked, at the report's linker, as a table (the
+    plot's numbers) and the plot."""
+    fp = doc.get("fraction_plot")
+    if not fp:
+        return ""
+
+    def cells(r):
+        failed = f" ({r['failed']} failed)" if r["failed"] else ""
+        p = "–" if r["p_fit"] is None else f"{r['p_fit']:.2f}"
+        return (f"<tr><td>{r['fraction_asked']:g}</td><td>{r['decorated']} of {r['subunits']} "
+                f"({100 * r['fraction']:.4g} %)</td><td>{r['fits']}/{r['restarts']}{failed}</td>"
+                f"<td>{p}</td><td>{interval(r['interval'])}</td>"
+                f"<td>{'the report’s' if r['report_fraction'] else ''}</td></tr>")
+    rows = "".join(cells(r) for r in fp["rows"])
+    first, last = fp["rows"][0]["seeds"]
+    return (f"<h2 id='fraction-plot'>P(fit) against the fraction at linker {fp['linker']}</h2>"
+            f"<p>Each fraction: the report's model with that share of its subunits carrying the "
+            f"domain (pattern random: each restart draws its own subunits with its seed), "
+            f"{fp['restarts']} restarts, seeds {first}–{last}, protocol {esc(fp['protocol'])}; "
+            f"P(fit) with its {esc(fp['interval'])} interval.</p>"
+            f"<table><tr><th>fraction asked</th><th>decorated subunits</th>"
+            f"<th>accommodated</th><th>P(fit)</th><th>95 % Wilson</th><th></th></tr>{rows}"
+            f"</table>{embedded(folder, doc['files'].get('fraction_plot'), 'fraction plot')}")
+
+
 def linker_rows(doc: dict) -> str:
     m, pf = doc["minimal_linker"], doc["p_fit"]
     tried = m.get("tried") or {}
@@ -188,7 +214,7 @@ def html(doc: dict, folder) -> str:
 <p class="small">{esc(versions)}</p>
 <h2>The question</h2><p>{esc(doc['question'])}</p>
 <div class="answer {css}">{esc(sentence)}</div>
-{occupancy_text(doc)}<h2>P(fit) at linker {pf['linker']}</h2>
+{occupancy_text(doc)}{fraction_plot_text(doc, folder)}<h2>P(fit) at linker {pf['linker']}</h2>
 <p>{pf['fits']} of {pf['runs']} restarts accommodated: P(fit) {p}
 (95 % Wilson interval {pf['low']:.2f}–{pf['high']:.2f}){', ' + str(pf['failed']) +
 ' failed to run' if pf.get('failed') else ''}. Best layout: seed {b['seed']}, verdict

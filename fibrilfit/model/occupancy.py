@@ -24,6 +24,9 @@ from .param_spec import ParamError
 PATTERN_SALT = 0x0CC0
 LETTERS = {"A": True, ".": False}  # a per-layer pattern's letters: the domain, or none
 SECOND_DOMAIN = "B"  # a hetero-amyloid's second domain: not built yet (issue #44, item 1)
+# The parameters each pattern reads (the others it ignores: the panel hides them)
+PATTERN_FIELDS = {"random": ("occupancy",), "periodic": ("pattern_period", "pattern_across"),
+                  "layers": ("pattern_layers",)}
 
 
 def decorated(p, n_layers: int | None = None, n_pf: int | None = None,

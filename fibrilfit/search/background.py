@@ -1,7 +1,8 @@
 """Batch work on a thread of its own, for a caller that must stay responsive (the sidebar's
-Minimal linker… and Report…, ui/operators/minimal.py and report.py): the same plan, runs and
-rows as the `minimal-linker` command (linker_map.py), or the first stages of `report` (report.py's
-search), on worker processes, with their progress readable and a stop that kills the workers.
+Minimal linker…, Largest fraction… and Report…, ui/operators/minimal.py and report.py): the same
+plan, runs and rows as the `minimal-linker` command (linker_map.py) or the `largest-fraction`
+command (fraction_map.py), or the first stages of `report` (report.py's search), on worker
+processes, with their progress readable and a stop that kills the workers.
 Nothing here touches bpy: the runs happen in the workers, and the thread only waits for them.
 The walk's runs go to a temporary folder removed at the end, and the report's to a folder beside
 its own, moved into place only when the report is whole, so a stopped job leaves nothing
@@ -16,7 +17,7 @@ import threading
 
 from ..batch import outdir
 from ..batch.executors import Stopped
-from . import linker_map, report
+from . import fraction_map, linker_map, report
 from .table import table
 
 
@@ -108,7 +109,8 @@ class Background:
 class BackgroundWalk(Background):
     """`linker_map.walks_for` and the walk for `values` (as minimal-linker takes them) under
     `plan` (api/plans.py's MinimalLinkerPlan); its result is the map: rows, table, seeds,
-    protocol, restarts."""
+    protocol, restarts. A subclass walks another map (BackgroundFraction) by its three
+    hooks: walks_for, rows and table, as its command makes them."""
 
     name, first_stage = "fibrilfit-minimal-linker", "bound"
 
@@ -116,19 +118,46 @@ class BackgroundWalk(Background):
         super().__init__(executor)
         self.plan, self.values = plan, dict(values)
 
+    def walks_for(self, values: dict) -> tuple:
+        return linker_map.walks_for(values, self.plan)
+
+    def rows(self, values: dict, seeds: range, walks: list) -> list:
+        return linker_map.minimal_rows(values, seeds, walks, force=self.plan.force)
+
+    def table(self, rows: list, values: dict, seeds: range) -> str:
+        return table(rows, values["protocol"], self.plan.search.restarts, seeds)
+
     def _work(self) -> dict:
-        values, seeds, walks = linker_map.walks_for(self.values, self.plan)
+        values, seeds, walks = self.walks_for(self.values)
         self.stage("runs")
-        with tempfile.TemporaryDirectory(prefix="fibrilfit-minimal-") as out, \
+        with tempfile.TemporaryDirectory(prefix=f"{self.name}-") as out, \
                 self.executor as executor:
             counted = self.counted(executor)
             linker_map.step_walks(values, seeds, walks, pathlib.Path(out), self.plan,
                                   lambda: counted)
-        rows = linker_map.minimal_rows(values, seeds, walks, force=self.plan.force)
+        rows = self.rows(values, seeds, walks)
         search = self.plan.search
         return {"rows": rows, "protocol": values["protocol"], "restarts": search.restarts,
                 "seeds": [seeds[0], seeds[-1]], "max_linker": search.max_linker,
-                "table": table(rows, values["protocol"], search.restarts, seeds)}
+                "table": self.table(rows, values, seeds)}
+
+
+class BackgroundFraction(BackgroundWalk):
+    """The `largest-fraction` walks (fraction_map.walks_for: one per diameter and linker, over
+    the decorated count) for `values` under `plan` (api/plans.py's LargestFractionPlan); its
+    result is the map as BackgroundWalk's, each row largest_fraction.json's (the largest
+    count with a fit, P(fit) there and at one more, the bound and the bracket)."""
+
+    name = "fibrilfit-largest-fraction"
+
+    def walks_for(self, values: dict) -> tuple:
+        return fraction_map.walks_for(values, self.plan)
+
+    def rows(self, values: dict, seeds: range, walks: list) -> list:
+        return fraction_map.fraction_rows(values, walks)
+
+    def table(self, rows: list, values: dict, seeds: range) -> str:
+        return fraction_map.table(rows, values["protocol"], self.plan.search.restarts, seeds)
 
 
 class BackgroundReport(Background):

@@ -82,9 +82,13 @@ def fraction_map(values: dict, seeds: range, walks: list, plan, out) -> dict:
     --resume)."""
     with linker_map.walking(out):
         linker_map.run_walks(values, seeds, walks, plan, out)
-        kind = linker_map.kind_of(dict(values))
-        rows = [{"kind": kind, **w.row(), "protocol": values["protocol"]} for w in walks]
-        return _write(plan, values, seeds, rows, out)
+        return _write(plan, values, seeds, fraction_rows(values, walks), out)
+
+
+def fraction_rows(values: dict, walks: list) -> list:
+    """The map's rows (largest_fraction.json's), one per walk, once the walks are done."""
+    kind = linker_map.kind_of(dict(values))
+    return [{"kind": kind, **w.row(), "protocol": values["protocol"]} for w in walks]
 
 
 def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:

@@ -45,6 +45,31 @@ class RestartPlan(Plan):
                     raise PlanError(name, "only with --restarts")
 
 
+def plot_fractions(text: str) -> tuple[float, ...]:
+    """--fraction-plot's fractions, "0.25,0.5,1" -> (0.25, 0.5, 1.0); () for none. Raises
+    ValueError saying what is wrong."""
+    words = [w.strip() for w in str(text or "").split(",") if w.strip()]
+    try:
+        values = tuple(float(w) for w in words)
+    except ValueError:
+        raise ValueError(f"must be fractions separated by commas, e.g. 0.25,0.5,1 "
+                         f"(got {text!r})") from None
+    bad = [w for w, v in zip(words, values) if not 0.0 < v <= 1.0]
+    if bad:
+        raise ValueError(f"each fraction must be above 0 and at most 1 (got {', '.join(bad)})")
+    if len(set(values)) < len(values):
+        raise ValueError(f"names a fraction twice (got {text!r})")
+    return values
+
+
+def _fractions(text: str) -> str | None:
+    try:
+        plot_fractions(text)
+    except ValueError as exc:
+        return str(exc)
+    return None
+
+
 @dataclasses.dataclass(frozen=True)
 class SearchPlan(Plan):
     """Restarts at every linker length the minimal-linker walk tries (and, for the report, at
@@ -70,6 +95,12 @@ class SearchPlan(Plan):
                                                 "once P(fit)'s 95 % Wilson interval there is at "
                                                 "most W wide (0 < W < 1) [default: all R]",
                                           kind=float, metavar="W", check=_width, group=SEARCH)
+    fraction_plot: str = option("", "report: P(fit) also at these fractions of subunits carrying "
+                                    "the domain (pattern random), at the report's linker with "
+                                    "its seeds and restarts: a plot against the fraction with "
+                                    "95 % Wilson intervals (fraction_plot.png) and its table on "
+                                    "the page [default: none]", metavar="F1,F2,...",
+                                check=_fractions, group=SEARCH, label="Fraction plot")
 
 
 # The report's search: more restarts than the map's, since its P(fit) at the asked linker is
@@ -77,7 +108,7 @@ class SearchPlan(Plan):
 REPORT_SEARCH = SearchPlan(restarts=8)
 # What each command offers of the search plan
 MINIMAL_FIELDS = ("restarts", "max_linker", "known_fit", "all_restarts")
-REPORT_FIELDS = ("restarts", "interval_width", "all_restarts", "max_linker")
+REPORT_FIELDS = ("restarts", "interval_width", "all_restarts", "max_linker", "fraction_plot")
 FRACTION_FIELDS = ("restarts", "all_restarts")
 
 

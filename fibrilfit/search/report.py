@@ -3,8 +3,10 @@
 Measures nothing itself (the command line has measured the structures and validated the model
 before anything runs); it runs R restarts at the asked linker (P(fit) with its Wilson interval,
 search/restarts.py), walks the minimal linker with the same seeds (search/minimal.py: the
-restarts' records are reused, nothing runs twice), runs the best layout again here, renders it
-with its legend and scale bar, plots the envelope, and writes DIR/report.html (one
+restarts' records are reused, nothing runs twice), when asked runs the same restarts at other
+fractions of subunits carrying the domain (search/fraction_plot.py), runs the best layout again
+here, renders it with its legend and scale bar, plots the envelope (and P(fit) against the
+fraction), and writes DIR/report.html (one
 self-contained page, exports/report_page.py), DIR/report.json and the pictures. The method is
 in docs/guide/report.md#method.
 """
@@ -22,12 +24,12 @@ from ..batch.executors import SweepError, make_executor
 from ..model import fraction_bound, occupancy, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
-from . import linker_map, minimal, restarts
-from .plans import SearchPlan, seed_range
+from . import fraction_plot, linker_map, minimal, restarts
+from .plans import SearchPlan, plot_fractions, seed_range
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
                                       "envelope.png", "best_layout.json")
-STAGES = ("restarts", "minimal linker", "best layout", "pictures", "page")
+STAGES = ("restarts", "minimal linker", "fractions", "best layout", "pictures", "page")
 
 
 def need_packages(executor_plan) -> None:
@@ -49,6 +51,7 @@ def make_report(plan, p: P.Params, values: dict, *, structure_block: dict | None
     makes this report again (report.json's "command"). Returns report.json's document.
     """
     seed_range(p.seed, plan.search.restarts)  # refused before the folder is made
+    fraction_plot.models(p, plot_fractions(plan.search.fraction_plot))  # and these
     out = outdir.out_dir(plan.output.out, plan.output.resume)
     out.mkdir(parents=True, exist_ok=True)
     lock = outdir.lock(out)  # noqa: F841 (held until this function returns)
@@ -65,8 +68,9 @@ def search(plan, p: P.Params, values: dict, out, stage, *, executor=None,
     thread may run it: search/background.py). `stage(name)` is told each stage; `executor`: an
     unentered executor (default: the plan's, made when first needed); `counted(executor)`:
     what the entered executor is used through (background.py counts its runs). Returns what
-    write() needs: seeds, tally, the walk's row and the timings."""
+    write() needs: seeds, tally, the walk's row, the fractions' rows and the timings."""
     seeds = seed_range(p.seed, plan.search.restarts)
+    at_fractions = fraction_plot.models(p, plot_fractions(plan.search.fraction_plot))
     runner.repair_tail(out / outdir.RESULTS)
     t0 = time.perf_counter()
     timings = {}
@@ -110,8 +114,19 @@ def search(plan, p: P.Params, values: dict, out, stage, *, executor=None,
         except SweepError as exc:
             raise exits.UsageError(str(exc)) from None
         timings["minimal_linker"] = round(time.perf_counter() - t, 1)
+
+        stage("fractions")  # --fraction-plot: the same restarts at each fraction asked
+        t = time.perf_counter()
+        rows = [fraction_plot.row(q, records if q.to_dict() == p.to_dict() else
+                                  _restarts(plan, q, seeds, out, entered, reuse=True),
+                                  seeds, p.occupancy)
+                for q in at_fractions]
+        fractions = fraction_plot.block(rows, p, len(seeds)) if rows else None
+        if rows:
+            timings["fractions"] = round(time.perf_counter() - t, 1)
     # the workers are gone: the pictures are made here with the cores free again
-    return {"tally": tally, "row": walk.row(), "timings": timings, "t0": t0}
+    return {"tally": tally, "row": walk.row(), "fractions": fractions, "timings": timings,
+            "t0": t0}
 
 
 def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dict | None,
@@ -132,14 +147,15 @@ def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dic
 
     stage("pictures")
     t = time.perf_counter()
-    pictures, problems = _pictures(best, out, plan.look.look())
+    pictures, problems = _pictures(best, out, plan.look.look(), searched.get("fractions"))
     files.write_json(out / BEST, best)
     timings["pictures"] = round(time.perf_counter() - t, 1)
 
     stage("page")
     doc = document(plan.search, p, best, tally, searched["row"], sources=sources,
                    structure_block=structure_block, case=case, pictures=pictures,
-                   problems=problems, version=fibrilfit_version(), reproduce=reproduce)
+                   problems=problems, version=fibrilfit_version(), reproduce=reproduce,
+                   fractions=searched.get("fractions"))
     timings["total"] = round(time.perf_counter() - searched["t0"], 1)
     doc["timings_s"] = timings
     files.write_json(out / JSON, doc)
@@ -147,12 +163,14 @@ def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dic
     return doc
 
 
-def _restarts(plan, p: P.Params, seeds: range, out, executor) -> list[dict]:
-    """The restarts at the asked linker; with --resume, a seed already in RESULTS is not run
+def _restarts(plan, p: P.Params, seeds: range, out, executor, reuse: bool = False) -> list[dict]:
+    """The restarts at the asked linker; with --resume (or `reuse`: runs this report made
+    already, e.g. the walk's at a fraction's model), a seed already in RESULTS is not run
     again (as the walk's runs)."""
     results = out / outdir.RESULTS
     done = {r["params"]["seed"] for r in restarts.read(results, p.to_dict())
-            if r.get("status") == "ok"} if plan.output.resume and results.exists() else set()
+            if r.get("status") == "ok"} if (plan.output.resume or reuse) and results.exists() \
+        else set()
     todo = [s for s in seeds if s not in done]
     try:
         if todo:
@@ -166,9 +184,9 @@ def _restarts(plan, p: P.Params, seeds: range, out, executor) -> list[dict]:
         raise exits.UsageError(str(exc)) from None
 
 
-def _pictures(best: dict, out, look: dict) -> tuple[dict, list[str]]:
-    """The best layout rendered (legend, scale bar) and the envelope plot; failures reported,
-    never fatal (the page says what is missing)."""
+def _pictures(best: dict, out, look: dict, fractions: dict | None = None) -> tuple[dict, list[str]]:
+    """The best layout rendered (legend, scale bar), the envelope plot and, when asked, P(fit)
+    against the fraction; failures reported, never fatal (the page says what is missing)."""
     import bpy
     from ..exports import writers
     pictures, problems = {}, []
@@ -178,7 +196,11 @@ def _pictures(best: dict, out, look: dict) -> tuple[dict, list[str]]:
             ("render", "render", out / RENDER,
              lambda: writers.write_render(scene, best, out / RENDER, look)),
             ("envelope_plot", "envelope plot", out / ENVELOPE,
-             lambda: writers.envelope_plot.write(best, out / ENVELOPE))):
+             lambda: writers.envelope_plot.write(best, out / ENVELOPE)),
+            *([("fraction_plot", "fraction plot", out / fraction_plot.PNG,
+                lambda: fraction_plot.write(out / fraction_plot.PNG, fractions,
+                                            (best.get("bound") or {}).get("fraction_bound")))]
+              if fractions else [])):
         problem = writers.export(best, key, label, write)
         if problem:
             problems.append(problem)
@@ -255,8 +277,9 @@ def versions(version: str) -> dict:
 
 def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict, *,
              sources: dict, structure_block, case, pictures: dict, problems: list[str],
-             version: str, reproduce=()) -> dict:
-    """report.json: the question, the model and its sources, the answer and what it rests on."""
+             version: str, reproduce=(), fractions: dict | None = None) -> dict:
+    """report.json: the question, the model and its sources, the answer and what it rests on;
+    `fractions`: P(fit) against the fraction (fraction_plot.block), when asked."""
     low, high = tally["p_fit_interval"]
     tol = p.stretch_tolerance
     m = row["minimal_linker"]
@@ -297,6 +320,8 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
         # layout), open between (docs/model/bound.md#bracket)
         "bound": best.get("bound"),
         "bracket": bracket_of(best.get("bound"), m),
+        # --fraction-plot: P(fit) at each fraction asked, at this linker (fraction_plot.png)
+        **({"fraction_plot": fractions} if fractions else {}),
         "margin": {
             "linker_residues": None if m is None else p.linker - m,
             "stretch_tolerance": tol,

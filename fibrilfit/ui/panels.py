@@ -9,10 +9,10 @@ import math
 
 import bpy
 
-from ..model import helix, params as P
+from ..model import helix, occupancy, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
-from . import (minimal_summary, panel_words, properties, report_summary, result_words,
-               structure_trace)
+from . import (fraction_summary, minimal_summary, panel_words, properties, report_summary,
+               result_words, structure_trace)
 from .result_words import wrapped
 from ..builders import model_stage
 from ..builders.stored import params_of
@@ -192,7 +192,9 @@ def draw_run(col, context):
     row.operator("fibrilfit.run_all", icon="PLAY")
     row.operator("fibrilfit.clear", icon="TRASH")
     col.operator("fibrilfit.report", icon="FILE")  # the whole answer as one page (report.md)
-    col.operator("fibrilfit.minimal_linker", icon="SORTSIZE")
+    row = col.row(align=True)  # the two maps of walks, side by side
+    row.operator("fibrilfit.minimal_linker", icon="SORTSIZE")
+    row.operator("fibrilfit.largest_fraction", icon="MOD_ARRAY")
     stage = model_stage(scene)
     text, icon = STATUS[stage]
     col.label(text=text, icon=icon)
@@ -202,8 +204,9 @@ def draw_run(col, context):
         draw_result(col.box(), s, params_of(find_root(scene)))
     if s.report_summary:
         draw_report(col.box(), s)
-    if s.minimal_map:
-        draw_minimal(col.box(), s)
+    for kept, summary_module in MAPS:
+        if getattr(s, kept):
+            draw_map(col.box(), s, kept, summary_module)
     col.label(text="Lengths in Å (1 unit = 1 Å)")
 
 
@@ -246,16 +249,21 @@ def draw_report(box, s):
     box.operator("fibrilfit.open_report", icon="URL")
 
 
-def draw_minimal(box, s):
-    """The last Minimal linker…'s map, per diameter (ui/minimal_summary.py), or "cancelled";
-    greyed when the panel's values are no longer its own (result_words.draw_kept)."""
+# The maps of walks the panel keeps: (scene setting, the module that makes and draws it)
+MAPS = (("minimal_map", minimal_summary), ("fraction_map", fraction_summary))
+
+
+def draw_map(box, s, kept: str, summary_module):
+    """The last map kept in `kept` (Minimal linker…'s, per diameter; Largest fraction…'s, per
+    diameter and linker with its bracket), or "cancelled"; greyed when the panel's values are
+    no longer its own (result_words.draw_kept)."""
     try:
-        summary = json.loads(s.minimal_map)
+        summary = json.loads(getattr(s, kept))
     except ValueError:
         return
     result_words.draw_kept(box, summary, [], properties.compared_values(s),
-                           ignore=minimal_summary.NOT_ASKED)
-    minimal_summary.draw(box, summary)
+                           ignore=summary_module.NOT_ASKED)
+    summary_module.draw(box, summary)
 
 
 # ---- the collapsed sub-panels ----------------------------------------------------------------
@@ -271,6 +279,9 @@ def shown(field, s) -> bool:
         return False  # the list of domains has each linker (draw_domains)
     if name == "image_updates":
         return s.use_periodic
+    pattern = next((k for k, names in occupancy.PATTERN_FIELDS.items() if name in names), None)
+    if pattern is not None:  # a mixed fibril's settings: those of the pattern chosen
+        return s.pattern == pattern
     if name in NOT_WITH_PERIODIC:
         return not s.use_periodic
     switch = name.split("_")[0]  # settle_speed, settle_frames: only with settle on

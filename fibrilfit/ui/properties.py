@@ -216,6 +216,10 @@ _SETTINGS = {
     "minimal_map": StringProperty(
         name="Minimal linker", description="The last minimal-linker map the panel shows (JSON)",
         options={"HIDDEN"}),
+    # The last Largest fraction…'s map (ui/fraction_summary.py), or that it was cancelled.
+    "fraction_map": StringProperty(
+        name="Largest fraction", description="The last largest-fraction map the panel shows "
+                                             "(JSON)", options={"HIDDEN"}),
     # Several domains per chain: the list (ui/domain_list.py) and its active entry.
     "domains": CollectionProperty(
         type=domain_list.FIBRILFIT_PG_domain, name="Domains",

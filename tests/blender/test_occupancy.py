@@ -216,6 +216,52 @@ def test_the_panel_sets_a_fraction_and_a_pattern(registered):
     assert ui.occupancy == pytest.approx(10.0) and ui.pattern == "random"
 
 
+def test_a_build_from_the_panel_decorates_the_fraction_and_marks_the_bare_anchors(registered,
+                                                                                 scene, tmp_path):
+    """Half of 8 subunits set in the panel (50 %): the step buttons build round(f·N) = 4 chains;
+    each other subunit gets a marker at its anchor's place, in the bare colour, that is no
+    rigid body (the physics is the model's as before) and that the picture's legend names. The
+    panel shows only the pattern's own settings."""
+    import bpy
+    from fibrilfit.builders import find_model
+    from fibrilfit.exports import render
+    from fibrilfit.ui import panels, properties
+    ui = registered
+    shown = lambda: {f.name for f in properties.fields_in("Globule") if panels.shown(f, ui)}
+    assert {"occupancy", "pattern"} <= shown() and not shown() & {"pattern_period",
+                                                                    "pattern_layers"}
+    ui.pattern = "periodic"
+    assert {"pattern_period", "pattern_across"} <= shown() and "occupancy" not in shown()
+    ui.pattern, ui.layers, ui.occupancy = "random", 8, 50.0
+    for step in ("build_slab", "build_anchor", "build_linker", "build_globule",
+                 "replicate_layers"):
+        assert getattr(bpy.ops.fibrilfit, step)() == {"FINISHED"}
+    model = find_model(scene)
+    mask = occupancy.decorated(properties.read_params(ui))
+    assert len(model.chain) == mask.sum() == 4 and len(model.bare_anchors) == 4
+    assert [(ob[LAYER], ob[PROTOFILAMENT]) for ob in model.bare_anchors] == \
+        [tuple(x) for x in np.argwhere(~mask).tolist()]
+    assert all(ob.rigid_body is None and ob[TAG] == "bare_anchor" for ob in model.bare_anchors)
+    assert all(tuple(ob.color) == pytest.approx(colours.COLORS["bare_anchor"])
+               for ob in model.bare_anchors)
+    # at the place a decorated subunit's anchor would take: the same radius, its own layer
+    decorated_anchor = model.chain[0][0].location
+    for ob in model.bare_anchors:
+        assert np.hypot(*ob.location[:2]) == pytest.approx(np.hypot(*decorated_anchor[:2]),
+                                                           abs=1e-3)
+        assert ob.location.z == pytest.approx(model.slabs[ob[LAYER]].location.z, abs=1e-3)
+    legend = dict(render.legend_entries(model, (), ()))
+    assert legend["bare anchor (subunit without the domain)"] == colours.COLORS["bare_anchor"]
+    # the picture: the markers framed with the rest, their entry in the drawn legend
+    from fibrilfit.exports import dressing
+    points = dressing.model_points(model)
+    for ob in model.bare_anchors:
+        assert (points.min(axis=0) <= np.array(ob.location) + 1e-3).all()
+        assert (np.array(ob.location) <= points.max(axis=0) + 1e-3).all()
+    drawn = render.render_png(scene, tmp_path / "mixed.png", engine="workbench", size=(480, 270))
+    assert "bare anchor (subunit without the domain)" in drawn["legend"]["entries"]
+
+
 def ff_params(**values):
     from fibrilfit.model import params
     return params.make_params(**values)

@@ -158,7 +158,66 @@ def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
     assert len(keys) == len(set(keys))
 
 
+# A tiny fibril where the fraction matters: 20 Å domains on 3 layers at linker 1, the tutorial's
+# 60 frames, seed 4 (the same model misses at linker 1 with every subunit decorated and fits at 2:
+# test_ui_minimal.py); measured on bpy 5.0.1, 2026-11-27: 1 of 3 decorated fits, 3 of 3 do not
+FRACTION_TINY = ["--protocol", "tutorial", "--layers", "3", "--frames", "60", "--seed", "4",
+                 "--globule-diameter", "20", "--linker", "1", "--restarts", "1",
+                 "--max-linker", "3", "--workers", "2", "--render-engine", "workbench",
+                 "--render-size", "320x180"]
+
+
+@pytest.mark.one_bpy
+def test_report_plots_p_fit_against_the_fraction(tmp_path):
+    """--fraction-plot 0.34,1 on a tiny fibril (3 subunits, 1 restart): P(fit) at each fraction
+    at the report's linker, the same numbers in report.json, the page's table and the plot,
+    each row counted from the runs in results.jsonl (the report's own fraction, 1, its restarts
+    reused, not run twice); one fraction fits and the other does not, so a row that took
+    another row's runs, or the restarts for the fits, fails."""
+    out = tmp_path / "rep"
+    proc = run_cli("report", *FRACTION_TINY, "--fraction-plot", "0.34,1", "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads((out / "report.json").read_text())
+    schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(doc)
+    fp = doc["fraction_plot"]
+    assert fp["linker"] == 1 and fp["restarts"] == 1 and fp["interval"] == "95 % Wilson"
+    rows = fp["rows"]
+    assert [(r["fraction_asked"], r["decorated"], r["subunits"]) for r in rows] == \
+        [(0.34, 1, 3), (1.0, 3, 3)]
+    assert [r["report_fraction"] for r in rows] == [False, True]
+    assert [r["fits"] for r in rows] == [1, 0]  # as measured (above)
+    runs = [json.loads(x) for x in (out / "results.jsonl").read_text().splitlines()]
+    at_linker = [r for r in runs if r["params"]["linker"] == 1]
+    for row in rows:
+        mine = [r for r in at_linker if r["params"].get("occupancy", 1.0) == row["fraction_asked"]]
+        assert len(mine) == row["restarts"] == 1  # one seed, run once
+        fits = sum(r["accommodated"] for r in mine)
+        assert row["fits"] == fits and row["p_fit"] == fits / len(mine)
+        assert row["interval"] == pytest.approx(wilson(fits, len(mine)), abs=1e-4)
+        assert row["seeds"] == [4, 4]
+        if row["fraction_asked"] < 1:  # the draw: 1 of the 3 subunits in that run
+            assert mine[0]["occupancy"]["decorated"] == 1
+    own = rows[1]
+    assert (own["fits"], own["restarts"]) == (doc["p_fit"]["fits"], doc["p_fit"]["runs"])
+    assert doc["files"]["fraction_plot"] == "fraction_plot.png"
+    assert (out / "fraction_plot.png").stat().st_size > 10_000
+    page = (out / "report.html").read_text()
+    table = page.split("id='fraction-plot'", 1)[1].split("</table>", 1)[0]
+    cells = re.findall(r"<tr><td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td>"
+                       r"<td>([^<]*)</td>", table)
+    assert cells == [(f"{r['fraction_asked']:g}", f"{r['decorated']} of {r['subunits']} "
+                      f"({100 * r['fraction']:.4g} %)", f"{r['fits']}/{r['restarts']}",
+                      f"{r['p_fit']:.2f}", f"{r['interval'][0]:.2f}–{r['interval'][1]:.2f}")
+                     for r in rows]
+    assert len(re.findall(r'src="data:image/png;base64,', page)) == 3  # and the plot inside
+
+
 @pytest.mark.parametrize("bad, needle", [
+    (["--fraction-plot", "0.5,2"], "--fraction-plot"),
+    (["--fraction-plot", "0.3,0.4"], "--fraction-plot"),
+    (["--pattern", "periodic", "--pattern-period", "2", "--fraction-plot", "0.5"],
+     "--fraction-plot"),
     (["--linker", "0"], "linker"),
     (["--layers", "many"], "layers"),
     (["--fibril", "no-such-file.pdb"], "no-such-file"),
@@ -173,7 +232,8 @@ def test_report_refuses_what_run_refuses_and_writes_nothing(tmp_path, bad, needl
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.strip().count("\n") == 0 and needle in proc.stderr
     assert "Traceback" not in proc.stderr and not out.exists()
-    if bad[0] not in ("--restarts", "--render-size", "--workers", "--max-linker"):
+    if bad[0] not in ("--restarts", "--render-size", "--workers", "--max-linker",
+                      "--fraction-plot", "--pattern"):
         ran = cli_in_process("run", *bad, "--layers", "3", "--stop-after", "build") if \
             bad[0] != "--layers" else cli_in_process("run", *bad, "--stop-after", "build")
         assert ran.returncode == 2  # run refuses it too

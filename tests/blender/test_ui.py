@@ -455,12 +455,13 @@ def test_panels_draw_in_every_state(ui, scene):
         inapplicable = {"periodic", "image_updates", "grow_start", "grow_frames", "hold_frames",
                         "regrow_cycles", "regrow_scale", "near_cycles", "clear_miss_pairs",
                         "clear_miss_stretch",
-                        "polish_factor"}  # tutorial protocol, no cell
+                        "polish_factor",  # tutorial protocol, no cell
+                        "pattern_period", "pattern_across", "pattern_layers"}  # random pattern
         assert sorted(props) == sorted(set(everything) - inapplicable)
         ops = {name for log in drawn.values() for kind, name in log if kind == "operator"}
         assert ops == {"fibrilfit." + op for op in (*STEPS, "join_globules", "render", "export_pdb",
                                                     "report", "minimal_linker",
-                                                    "load_case", "save_case",
+                                                    "largest_fraction", "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
                                                     "import_domain", "import_full_length")}

@@ -94,7 +94,7 @@ def test_the_panels_walk_gives_the_commands_map(ui, tmp_path, capsys):
     assert all(_text_px(t) <= FIELD_PX for t in texts), texts
     assert all(_text_px(c) <= FIELD_PX / 4 for r in table for c in r), table
     drawn = _Box()
-    panels.draw_minimal(drawn, ui)
+    panels.draw_map(drawn, ui, "minimal_map", minimal_summary)
     assert drawn.labels[:len(texts)] == texts
     assert drawn.labels[len(texts):len(texts) + 4 * len(table)] == [c for r in table for c in r]
 

@@ -36,9 +36,10 @@ def ui(registered):
     background.RUNNING.clear()
 
 
-def _operator(directory, restarts, max_linker):
+def _operator(directory, restarts, max_linker, fraction_plot=""):
     op = detached(report_op.FIBRILFIT_OT_report)
     op.directory, op.restarts, op.max_linker = str(directory), restarts, max_linker
+    op.fraction_plot = fraction_plot
     return op
 
 
@@ -81,7 +82,7 @@ def test_the_panels_report_is_the_commands_and_blender_stays_live(ui, tmp_path, 
             bars += [b["text"] for b in bar.drawn]
     assert bars and all(b.startswith("FibrilFit: report: ") and b.endswith("(Esc to cancel)")
                         for b in bars)
-    assert any("stage 1 of 5" in b for b in bars) and any("stage 2 of 5" in b for b in bars)
+    assert any("stage 1 of 6" in b for b in bars) and any("stage 2 of 6" in b for b in bars)
     assert _beside(out) == set() and (out / "report.html").is_file()
 
     # the panel: the report's numbers, Open report, the scene's best layout checked
@@ -150,6 +151,25 @@ def test_esc_stops_the_workers_and_writes_nothing(ui, tmp_path):
 def test_stage_progress_reads_the_stages():
     p = types.SimpleNamespace(stage="minimal linker", done=1, submitted=4)
     text, fraction = report_op.FIBRILFIT_OT_report.progress_text(p)
-    assert text == "minimal linker (stage 2 of 5), 1 of 4 runs done"
-    assert fraction == pytest.approx((1 + 1 / 4) / 5)
+    assert text == "minimal linker (stage 2 of 6), 1 of 4 runs done"
+    assert fraction == pytest.approx((1 + 1 / 4) / 6)
     assert report.STAGES[1] == "minimal linker"
+
+
+def test_the_panels_report_refuses_a_fraction_plot_it_cannot_draw(ui, tmp_path):
+    """Report…'s Fraction plot is checked before anything runs or is made: two fractions that
+    decorate the same count of the panel's 3 subunits, or a pattern that fixes its fraction, are
+    one line each (the command line's), with no folder beside the one picked."""
+    from fibrilfit.plans import PlanError
+    properties.write_params(ui, P.make_params(**FAST, seed=0))
+    out = tmp_path / "page"
+    for plot, values, needle in (
+            ("0.3,0.4", {}, "--fraction-plot: 0.3 and 0.4 both decorate 1 of the 3 subunits"),
+            ("0.5", {"pattern": "layers", "pattern_layers": "A."},
+             "--fraction-plot: needs pattern random")):
+        properties.write_params(ui, P.make_params(**FAST, seed=0, **values))
+        op = _operator(out, 2, 4, fraction_plot=plot)
+        with pytest.raises(PlanError, match=needle):
+            op.start(bpy.context)
+        assert not out.exists() and _beside(out) == set()
+        assert background.RUNNING.get(op.bl_idname) is None

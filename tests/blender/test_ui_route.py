@@ -62,11 +62,8 @@ FAST = dict(layers=3, linker=3, protocol="inflate", grow_frames=20, hold_frames=
 
 
 def _report(out, context):
-    from fibrilfit.ui.operators import report as report_op
-    from test_ui import detached
-    from test_ui_report import _ticks
-    op = detached(report_op.FIBRILFIT_OT_report)
-    op.directory, op.restarts, op.max_linker = str(out), 2, 4
+    from test_ui_report import _operator, _ticks
+    op = _operator(out, 2, 4)
     op.start(context)
     assert _ticks(op, context) == {"FINISHED"}
     return op

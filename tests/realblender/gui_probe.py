@@ -6,7 +6,9 @@ $FIBRILFIT_PROBE/state.json, and it obeys commands from $FIBRILFIT_PROBE/command
 colours), so the test can find the buttons and the panels' extent in a screenshot; "unmark"
 restores the theme; "small DIR" types a small model's values into the panel (the domain list
 emptied, as its remove button does) and sets the report's folder and settings (what Report…'s
-chooser then offers), standing in for typing them; "domains DIR" types ROUTE's layers and
+chooser then offers), standing in for typing them; "mixed" types MIXED (half of the subunits
+decorated: the fraction 50 % in the Globule section) and empties the verdict, so the next Run all
+is seen; "domains DIR" types ROUTE's layers and
 frames and imports ubiquitin and GFP chain A from DIR with Import domain… (the path its file
 browser gives); "bake" presses Step by step ›
 Bake (the operator as its button calls it, modal, in the window) and "clear" Clear, each noting
@@ -136,6 +138,38 @@ def _small(folder):
     bpy.context.preferences.view.filebrowser_display_type = "SCREEN"
 
 
+# A mixed fibril from the panel (issue #44 item 5): the small model (after "small") on 8 layers,
+# the fraction 50 % (the panel shows it in %), a short bake of the tutorial's protocol
+MIXED = {"layers": 8, "occupancy": 50.0, "pattern": "random", "protocol": "tutorial",
+         "frames": 20}
+
+
+def _mixed():
+    s = bpy.context.scene.fibrilfit
+    for name, value in MIXED.items():
+        setattr(s, name, value)
+    s.verdict = ""
+    _state["mixed_asked"] = True  # the state reads the mixed model from now on
+
+
+def _mixed_state():
+    """The built model's subunits (decorated: chains; the others: markers) and what the last
+    result records of the pattern and the fraction (scene's model root, its check's JSON)."""
+    try:
+        from bl_ext.user_default.fibrilfit.builders import find_model
+    except ImportError:
+        return None
+    model = find_model(bpy.context.scene)
+    if model is None:
+        return None
+    result = json.loads(model.root.get("fibrilfit_result", "{}"))
+    return {"subunits": model.params.chains, "decorated": len(model.chain),
+            "globules": len(model.globules), "bare_anchors": len(model.bare_anchors),
+            "bare_anchor_bodies": sum(ob.rigid_body is not None for ob in model.bare_anchors),
+            "occupancy": result.get("occupancy"),
+            "params_occupancy": (result.get("params") or {}).get("occupancy")}
+
+
 def _in_view3d(fn):
     """`fn()` with the window and its 3D View as a button press gives them; a refusal (an
     operator's ERROR report raises) kept in the state's "refused"."""
@@ -194,13 +228,15 @@ def _tick():
                 _small(cmd.split(" ", 1)[1])
             elif cmd.startswith("domains "):
                 _domains(cmd.split(" ", 1)[1])
+            elif cmd == "mixed":
+                _mixed()
             elif cmd == "bake":
                 _in_view3d(lambda: bpy.ops.fibrilfit.bake("INVOKE_DEFAULT"))
             elif cmd == "clear":
                 _in_view3d(lambda: bpy.ops.fibrilfit.clear())
             _state["theme"] = {"mark": "marked", "unmark": "normal"}.get(
                 cmd, cmd.split(" ", 1)[0] if cmd.split(" ", 1)[0] in (
-                    "small", "domains", "bake", "clear") else _state["theme"])
+                    "small", "domains", "bake", "clear", "mixed") else _state["theme"])
             for window in bpy.context.window_manager.windows:
                 for area in window.screen.areas:
                     area.tag_redraw()
@@ -226,6 +262,7 @@ def _tick():
             "minimal_map": bool(ff and ff.minimal_map),
             "domains": [e.name for e in ff.domains] if ff else [],
             "stage": _stage(),
+            "mixed": _mixed_state() if _state.get("mixed_asked") else None,
         })
         tmp = PROBE / "state.json.tmp"
         tmp.write_text(json.dumps(_state))

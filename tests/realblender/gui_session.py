@@ -2,8 +2,9 @@
 test_gui.py starts it): Xvfb, Blender 4.3.2 with the installed extension, and a user's input
 through xdotool: N opens the sidebar, Ctrl+Wheel over it turns to the FibrilFit tab; ubiquitin
 and GFP imported (the probe's "domains", the paths their file browser gives), a click presses
-Run all, Step by step › Bake (the probe's "bake"), a click on Report…, and Clear (the probe's
-"clear"): issue #45's route. Blender's side is read from gui_probe.py's state file;
+Run all, Step by step › Bake (the probe's "bake"), a click on Report…, Clear (the probe's
+"clear"): issue #45's route; then a mixed fibril (issue #44 item 5): the fraction 50 % set in the
+panel (the probe's "mixed") and a click on Run all. Blender's side is read from gui_probe.py's state file;
 screenshots are the X root (`import -window root`), cropped to the sidebar and the 3D View.
 
     python3 gui_session.py OUT_DIR SHOTS_DIR      (the structures: tests/data)
@@ -249,6 +250,7 @@ class Session:
         self.bake_step_by_step()
         self.report(window_region)
         self.clear(window_region)
+        self.mixed(window_region)
 
     def bake_step_by_step(self):
         """Step by step › Bake on the two domains' model Run all built: it must bake (issue #45
@@ -276,6 +278,25 @@ class Session:
         self.command("unmark", "normal")
         shot = self.screenshot(self.out / "cleared.png")
         self.crop(shot, self.panel_rect(marked, ui), "panel-cleared.png")
+
+    def mixed(self, away):
+        """A mixed fibril: the fraction 50 % typed by the probe on the small model, a click on
+        Run all (found as before), and the model and result the panel's run made."""
+        self.command("mixed", "mixed")
+        self.step("the probe typed the fraction 50 % (8 layers)")
+        ui = self.screen_rect(self.fresh_state()["views"][0]["regions"]["UI"])
+        self.hover(away)
+        self.command("mark", "marked")
+        marked = self.pixels(self.screenshot(self.out / "marked-mixed.png"))
+        self.command("unmark", "normal")
+        run_all = self.find_run_all(marked, ui)
+        t0 = time.monotonic()
+        self.xdo("mousemove", *run_all, "click", "1")
+        self.hover(away)
+        self.step(f"clicked Run all at {run_all} (50 %)")
+        self.watch_bake()
+        self.log["mixed_seconds"] = round(time.monotonic() - t0, 1)
+        self.log["state_mixed"] = self.fresh_state(5)
 
     def report(self, away):
         """Report… on a small model (test_report.py's): the values typed by the probe, then a

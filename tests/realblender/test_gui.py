@@ -140,3 +140,20 @@ def test_report_button_writes_the_page_and_the_panel_shows_its_numbers(session):
     assert lines[:2] == ["Report: fits", "P(fit) 2/2 at linker 3"]
     assert "Minimal linker: 1 residue" in lines
     assert "panel-report.png" in session["screenshots"]
+
+
+def test_a_fraction_set_in_the_panel_decorates_that_share_of_the_subunits(session):
+    """Issue #44 item 5: the fraction 50 % set in the panel's Globule section, then Run all: the
+    model in the window carries the domain on round(f·N) of its N subunits, the others marked
+    at their anchors (drawn, no bodies), and the run's result records the fraction 0.5 and the
+    decorated count."""
+    mixed = session["state_mixed"]
+    assert mixed["verdict"], session["steps"][-3:]
+    m = mixed["mixed"]
+    n = m["subunits"]
+    assert n == 8 and m["decorated"] == round(0.5 * n) == 4, m
+    assert m["globules"] == m["decorated"] and m["bare_anchors"] == n - m["decorated"], m
+    assert m["bare_anchor_bodies"] == 0, m
+    assert m["params_occupancy"] == 0.5, m
+    assert m["occupancy"]["fraction"] == 0.5 and m["occupancy"]["decorated"] == 4, m
+    assert m["occupancy"]["subunits"] == n and len(m["occupancy"]["decorated_subunits"]) == 4

@@ -149,10 +149,11 @@ def clear_results(context) -> None:
 
 
 def clear_kept_results(context) -> None:
-    """The last report's and minimal-linker map's boxes gone (Clear): a result shows only beside
-    the model it belongs to (a rebuild with other values marks them: panels.draw_kept)."""
+    """The last report's, minimal-linker map's and largest-fraction map's boxes gone (Clear): a
+    result shows only beside the model it belongs to (a rebuild with other values marks them:
+    panels.draw_kept)."""
     s = settings(context)
-    s.report_summary = s.minimal_map = ""
+    s.report_summary = s.minimal_map = s.fraction_map = ""
 
 
 def record_bake(context, model, bake: dict) -> None:

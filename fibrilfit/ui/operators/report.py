@@ -21,9 +21,9 @@ from ...batch.executors import make_executor
 from ...builders.model import find_model
 from ...model import cases, params as P
 from ...structure import from_files
-from ...search import linker_map, report
+from ...search import fraction_plot, linker_map, report
 from ...search.background import BackgroundReport
-from ...search.plans import REPORT_SEARCH, seed_range
+from ...search.plans import REPORT_SEARCH, plot_fractions, seed_range
 from .. import minimal_summary, properties, provenance, report_summary, structure_trace
 from ..plan_properties import plan_property
 from . import common
@@ -43,6 +43,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
     directory: bpy.props.StringProperty(subtype="DIR_PATH", options={"SKIP_SAVE"})
     restarts: plan_property(REPORT_SEARCH, "restarts")
     max_linker: plan_property(REPORT_SEARCH, "max_linker")
+    fraction_plot: plan_property(REPORT_SEARCH, "fraction_plot", options={"SKIP_SAVE"})
     replace: bpy.props.BoolProperty(
         name="Replace a report there", default=False, options={"SKIP_SAVE"},
         description="Write over the report already in the chosen folder (off: a folder that "
@@ -86,7 +87,8 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
         s = common.settings(context)
         p, request, block, self._sources = panel_model(context.scene, s)
         self._out, self._request, self._block = out, request, block
-        search = REPORT_SEARCH.replace(restarts=self.restarts, max_linker=self.max_linker)
+        search = REPORT_SEARCH.replace(restarts=self.restarts, max_linker=self.max_linker,
+                                       fraction_plot=self.fraction_plot)
         plan = ReportPlan.make(model=p.to_dict(), search=search)
         plan = plan.replace(output=plan.output.replace(out=str(out), resume=True, quiet=True))
         self._reproduce = reproduce_line(out / CASE, ReportPlan.make(
@@ -94,6 +96,7 @@ class FIBRILFIT_OT_report(BackgroundOperator, bpy.types.Operator):
                                                       quiet=False)))
         report.need_packages(plan.executor)
         seed_range(p.seed, plan.search.restarts)
+        fraction_plot.models(p, plot_fractions(plan.search.fraction_plot))  # refused here
         files.check_writable("directory", out / report.HTML, (".html",))
         work = BackgroundReport.folder_beside(out)
         job = BackgroundReport(plan, p, p.to_dict(), None, work)

@@ -17,7 +17,7 @@ from scipy.spatial.transform import Rotation
 from fibrilfit import structure as S
 from fibrilfit.exports import mmcif
 from fibrilfit.exports.plans import OutputPlan
-from fibrilfit.model import params as P
+from fibrilfit.model import occupancy, params as P
 from fibrilfit.plans import PlanError
 from fibrilfit.structure import atoms as A
 
@@ -39,21 +39,26 @@ def _moved(t: np.ndarray, xyz: np.ndarray) -> np.ndarray:
     return xyz @ t[:3, :3].T + t[:3, 3]
 
 
-@pytest.fixture(scope="module", params=["8a9l", "6cu7"])
+@pytest.fixture(scope="module", params=["8a9l", "6cu7", "6cu7 mixed"])
 def case(request):
-    """A periodic cell on a deposited core (8A9L: one protofilament; 6CU7: two) with ubiquitin on
-    every chain, beads and globules placed at random (what the bake would have left)."""
-    geometry = S.measure_fibril(DATA / f"{request.param}.pdb.gz")
+    """A periodic cell on a deposited core (8A9L: one protofilament; 6CU7: two; mixed: every
+    other subunit decorated, the rest bare core chains) with ubiquitin on the decorated chains,
+    beads and globules placed at random (what the bake would have left)."""
+    name, *mixed = request.param.split()
+    geometry = S.measure_fibril(DATA / f"{name}.pdb.gz")
     values = {k: v for k, v in S.model_values(geometry).items() if k != "linker"}
-    p = P.make_params(periodic=M, linker=4, **values)
+    pattern = {"pattern": "periodic", "pattern_period": 2} if mixed else {}
+    p = P.make_params(periodic=M, linker=4, **values, **pattern)
     ubq = A.domain_atoms(DATA / "1ubq.pdb.gz")
-    sources = A.sources(DATA / f"{request.param}.pdb.gz", geometry, [ubq])
+    sources = A.sources(DATA / f"{name}.pdb.gz", geometry, [ubq])
     rng = np.random.default_rng(11)
-    mats = np.tile(np.eye(4), (p.chains, 1, 1))
-    mats[:, :3, :3] = Rotation.random(p.chains, random_state=rng).as_matrix()
-    mats[:, :3, 3] = rng.normal(size=(p.chains, 3)) * 30 + [60, 0, 0]
-    mats[:, 2, 3] += np.arange(p.chains) // p.protofilaments * p.rise
-    positions = rng.normal(size=(p.chains, p.linker + 1, 3)) * 5 + [40, 0, 0]
+    n = len(occupancy.decorated_chains(p))
+    assert n == (p.chains // 2 if mixed else p.chains)
+    mats = np.tile(np.eye(4), (n, 1, 1))
+    mats[:, :3, :3] = Rotation.random(n, random_state=rng).as_matrix()
+    mats[:, :3, 3] = rng.normal(size=(n, 3)) * 30 + [60, 0, 0]
+    mats[:, 2, 3] += np.linspace(0, p.periodic * p.rise, n, endpoint=False)  # up the cell
+    positions = rng.normal(size=(n, p.linker + 1, 3)) * 5 + [40, 0, 0]
     return p, sources, positions, mats
 
 
@@ -62,11 +67,13 @@ def _whole(p, sources, positions, mats, tmp_path):
     of the cell's lowest image (its layer 0 is the cell's image S^-CELLS)."""
     cells = 2 * CELLS + 1
     q = P.make_params(**{**p.to_dict(), "periodic": 0, "layers": cells * p.periodic})
-    n = p.chains
     up = [_screw(p, c) for c in range(cells)]  # chain c + c_cell·n is chain c moved by S^c_cell
     pos = np.concatenate([_moved(t, positions) for t in up])
     mat = np.concatenate([np.einsum("ij,njk->nik", t, mats) for t in up])
-    assert q.chains == cells * n
+    assert q.chains == cells * p.chains
+    cell = occupancy.decorated_chains(p)  # a mixed fibril: the cell's pattern, cell by cell
+    assert np.array_equal(occupancy.decorated_chains(q),
+                          np.concatenate([cell + c * p.chains for c in range(cells)]))
     atoms = mmcif.decorated_atoms(q, pos, mat, sources)
     mmcif.write(tmp_path / "whole.cif", atoms, mmcif.header({"params": q.to_dict()}))
     return q, atoms

@@ -74,7 +74,7 @@ def checked_run(plan) -> tuple:
     if o.envelope_plot:
         from ..exports import envelope_plot
         envelope_plot.available(plan.stop_after)
-    outputs = {"look": plan.look.look(), "pdb_images": o.pdb_images_for(p)}
+    outputs = {"look": plan.look.look(), **o.cells_for(p)}
     if o.pdb:
         export_plans.pdb_fits(p)
     if o.pdb_atoms:
@@ -148,5 +148,6 @@ def write_outputs(plan, p, result: dict, outputs: dict, case) -> list[str]:
     return writers.write_all(writers.Job(
         bpy.context.scene, result, outputs["paths"], look=outputs["look"],
         pdb_frames=plan.outputs.pdb_frames, pdb_images=outputs["pdb_images"],
+        pdb_assembly=outputs["pdb_assembly"],
         movie_step=outputs["movie_step"], progress=not plan.quiet, case=saved,
         atoms=outputs.get("atoms")))

@@ -10,6 +10,13 @@ domain its number in chain order ("0A", "0A1", "1B", "1B1", ...). The model's pa
 and verdict are in the header (_struct.title, _struct.pdbx_model_details, and a
 _fibrilfit_param loop). docs/guide/atoms-and-domains.md#pdb-atoms
 
+With --pdb-assembly N (a periodic cell only) the atoms are the cell, which is exact as an
+asymmetric unit (the infinite fibril is the cell repeated by the screw S), and assembly 1 of
+_pdbx_struct_assembly / _pdbx_struct_assembly_gen / _pdbx_struct_oper_list expands it to the
+cell and its images in N cells below and above: one operator S^m per copy, a flat list (viewers
+that read only one factor of an operator product would drop copies).
+docs/guide/atoms-and-domains.md#helical-assembly
+
 Plain numpy and gemmi, no bpy: exports.writers reads the matrices and calls `write`.
 """
 from __future__ import annotations
@@ -21,6 +28,7 @@ import numpy as np
 from .. import files
 from ..model import helix, occupancy
 from ..model.chain import chain_radii
+from .plans import NOT_SCREW_SYMMETRIC
 
 ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",
                 "label_comp_id", "label_asym_id", "label_entity_id", "label_seq_id",
@@ -29,6 +37,9 @@ ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id
                 "pdbx_PDB_model_num")
 PF_LETTERS = string.ascii_uppercase
 SUFFIXES = (".cif", ".mmcif")
+ASSEMBLY_ID = "1"
+OPER_TAGS = ("id", "type", "name", "symmetry_operation", *(  # row i: matrix[i][1..3], vector[i]
+    tag for i in (1, 2, 3) for tag in (*(f"matrix[{i}][{j}]" for j in (1, 2, 3)), f"vector[{i}]")))
 BEAD_NAME = "UNK"  # a linker bead: a residue of unknown type, its CA only
 GLOBULE_NAME = "GLB"  # a domain without a structure file: one pseudo-atom at the centre
 
@@ -152,6 +163,30 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
     return table.joined()
 
 
+def helical_assembly(p, cells: int) -> dict:
+    """The periodic cell's helical assembly: the cell (m = 0, the identity) and its images in
+    `cells` cells below and above (helix.image_cells order), one 4 × 4 matrix S^m each
+    (helix.screw_matrix): a flat list, never a product."""
+    if not p.periodic:
+        raise AtomsError(f"a helical assembly needs a periodic cell (--periodic): "
+                         f"{NOT_SCREW_SYMMETRIC}")
+    turn, rise = helix.screw_turn(p, 1)
+    ms = [0, *helix.image_cells(cells)]
+    return {"cells": int(cells), "cell_layers": int(p.periodic), "m": ms,
+            "matrices": [helix.screw_matrix(p, m) for m in ms],
+            "screw_turn_deg": float(np.degrees(turn)), "screw_rise": float(rise)}
+
+
+def assembly_text(assembly: dict) -> str:
+    """What the assembly is, for _struct.pdbx_model_details."""
+    n = assembly["cells"]
+    return (f"the atoms are the periodic cell of {assembly['cell_layers']} layers (the "
+            f"asymmetric unit: the infinite fibril is the cell repeated by the screw S, turn "
+            f"{assembly['screw_turn_deg']:.6g} deg about Z and rise "
+            f"{assembly['screw_rise']:.6g} A); assembly {ASSEMBLY_ID} is the cell and its images "
+            f"S^m, m = -{n} .. {n} ({2 * n + 1} cells), one operator per cell, a flat list")
+
+
 def header(result: dict | None) -> dict:
     """Title, details and parameters of the header from the run's result."""
     result = result or {}
@@ -202,8 +237,9 @@ def _fmt(values, spec: str) -> list:
     return [spec % v for v in np.asarray(values).tolist()]
 
 
-def document(atoms: dict, header: dict):
-    """A gemmi.cif.Document of the atoms. `header`: title, details, params {name: text}."""
+def document(atoms: dict, header: dict, assembly: dict | None = None):
+    """A gemmi.cif.Document of the atoms. `header`: title, details, params {name: text};
+    `assembly` (helical_assembly): the atoms are its asymmetric unit, expanded by its operators."""
     import gemmi
     doc = gemmi.cif.Document()
     block = doc.add_new_block("fibrilfit")
@@ -211,7 +247,10 @@ def document(atoms: dict, header: dict):
     block.set_pair("_entry.id", "fibrilfit")
     block.set_pair("_struct.entry_id", "fibrilfit")
     block.set_pair("_struct.title", q(header.get("title", "FibrilFit decorated fibril")))
-    block.set_pair("_struct.pdbx_model_details", q(header.get("details", "")))
+    details = header.get("details", "")
+    if assembly is not None:
+        details = "; ".join(filter(None, [details, assembly_text(assembly)]))
+    block.set_pair("_struct.pdbx_model_details", q(details))
     entities = sorted(set(atoms["entity"].tolist()))
     block.set_mmcif_category("_entity", {
         "id": [str(e) for e in entities], "type": ["polymer"] * len(entities),
@@ -240,14 +279,60 @@ def document(atoms: dict, header: dict):
         "auth_comp_id": resname, "auth_asym_id": chain, "auth_atom_id": name,
         "pdbx_PDB_model_num": ["1"] * n}
     block.set_mmcif_category("_atom_site", {k: cols[k] for k in ATOM_COLUMNS}, raw=True)
+    if assembly is not None:
+        _assembly_categories(block, atoms, assembly)
     return doc
 
 
-def write(path, atoms: dict, header: dict) -> dict:
-    """Write the atoms to `path` (atomically) as mmCIF; what was written, for the result."""
+def _chains_in_order(atoms: dict) -> list[str]:
+    return list(dict.fromkeys(atoms["chain"].tolist()))
+
+
+def _assembly_categories(block, atoms: dict, assembly: dict) -> None:
+    """_struct_asym, and assembly ASSEMBLY_ID: every chain, under every operator (listed one by
+    one: '1,2,3', never a product '(1-3)(4)'), each operator's 3 × 4 matrix."""
+    chains = _chains_in_order(atoms)
+    entity_of = dict(zip(atoms["chain"].tolist(), atoms["entity"].tolist()))
+    block.set_mmcif_category("_struct_asym", {
+        "id": chains, "entity_id": [str(entity_of[c]) for c in chains]})
+    ops = [str(i + 1) for i in range(len(assembly["m"]))]
+    count = len(chains) * len(ops)
+    block.set_mmcif_category("_pdbx_struct_assembly", {
+        "id": [ASSEMBLY_ID], "details": ["software_defined_assembly"],
+        "method_details": ["FibrilFit periodic cell"],
+        "oligomeric_details": [f"{count}-meric"], "oligomeric_count": [str(count)]})
+    block.set_mmcif_category("_pdbx_struct_assembly_gen", {
+        "assembly_id": [ASSEMBLY_ID], "oper_expression": [",".join(ops)],
+        "asym_id_list": [",".join(chains)]})
+    rows = {tag: [] for tag in OPER_TAGS}
+    for op, m, matrix in zip(ops, assembly["m"], assembly["matrices"]):
+        rows["id"].append(op)
+        rows["type"].append("identity operation" if m == 0 else "helical symmetry operation")
+        rows["name"].append(f"S^{m}")
+        rows["symmetry_operation"].append(None)  # '?': not a crystal symmetry
+        matrix = np.round(matrix, 10) + 0.0  # no '-0.0000000000'
+        for i in range(3):
+            for j in range(3):
+                rows[f"matrix[{i + 1}][{j + 1}]"].append(f"{matrix[i, j]:.10f}")
+            rows[f"vector[{i + 1}]"].append(f"{matrix[i, 3]:.6f}")
+    block.set_mmcif_category("_pdbx_struct_oper_list", rows)
+
+
+def write(path, atoms: dict, header: dict, assembly: dict | None = None) -> dict:
+    """Write the atoms to `path` (atomically) as mmCIF; what was written, for the result.
+    `assembly` (helical_assembly): the atoms are its asymmetric unit, and the file says how to
+    expand them."""
     if not len(atoms["xyz"]):
         raise AtomsError("no atoms to write")
-    doc = document(atoms, header)
+    doc = document(atoms, header, assembly)
     files.atomic_write(path, lambda tmp: doc.write_file(str(tmp)))
-    return {"path": str(path), "atoms": int(len(atoms["xyz"])),
+    info = {"path": str(path), "atoms": int(len(atoms["xyz"])),
             "chains": int(len(set(atoms["chain"].tolist())))}
+    if assembly is not None:
+        info["assembly"] = {"id": ASSEMBLY_ID, "operators": len(assembly["m"]),
+                            "image_cells": assembly["m"][1:],
+                            "screw_turn_deg": assembly["screw_turn_deg"],
+                            "screw_rise": assembly["screw_rise"],
+                            "chains": info["chains"] * len(assembly["m"]),
+                            "atoms": info["atoms"] * len(assembly["m"])}
+    return info

@@ -177,15 +177,10 @@ def positions_at(scene: bpy.types.Scene, model, frames) -> list[tuple[int, np.nd
     return out
 
 
-def image_cells(images: int) -> list[int]:
-    """The cells (m) whose images follow the periodic cell's chains: -1 .. -N, then 1 .. N."""
-    return [*range(-1, -images - 1, -1), *range(1, images + 1)]
-
-
 def chains_with_images(p, positions: np.ndarray, images: int) -> np.ndarray:
     """The cell's chain positions followed by their exact images S^m, cell by cell."""
     return np.concatenate([positions] + [helix.apply_points(p, m, positions)
-                                         for m in image_cells(images)])
+                                         for m in helix.image_cells(images)])
 
 
 def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
@@ -207,7 +202,7 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
         models = [(f, chains_with_images(p, pos, images)) for f, pos in models]
         remarks.append(f"periodic cell: chains 0-{n - 1} are the cell; then its images, "
                        f"{n} chains per cell, in cells "
-                       + ", ".join(f"{m:+d}" for m in image_cells(images))
+                       + ", ".join(f"{m:+d}" for m in helix.image_cells(images))
                        + " (S^m: turn m*M*twist about Z, raise m*M*rise)")
         # PDB chains, one per chain of the cell and its images: layers × protofilaments
         p = dataclasses.replace(p, layers=len(models[0][1]) // p.protofilaments)
@@ -215,4 +210,5 @@ def write_pdb(path, model, scene: bpy.types.Scene | None = None, *, frames=None,
     files.write_text(path, text)
     return {"path": str(path), "frames": frames,
             "atoms_per_model": len(models[0][1]) * chain_members(p),
-            **({"image_cells": image_cells(images)} if model.params.periodic and images else {})}
+            **({"image_cells": helix.image_cells(images)}
+               if model.params.periodic and images else {})}

@@ -2,7 +2,7 @@
 once for `run`, `report`, the sidebar and the Python API (no bpy: the parser needs none).
 
     --json PATH  --blend PATH  --save-case FILE.toml  --envelope-plot PATH.png
-    --pdb PATH [--pdb-frames last|all] [--pdb-images N]  --pdb-atoms PATH.cif
+    --pdb PATH [--pdb-frames last|all] [--pdb-images N]  --pdb-atoms PATH.cif [--pdb-assembly N]
     --render PATH.png [--render-size WxH] [--render-samples N] [--render-engine cycles|workbench]
     --movie PATH.mp4|PATH.gif [--movie-step K]
 """
@@ -20,6 +20,10 @@ SIZE_RANGE, SAMPLES_RANGE = (16, 8192), (1, 4096)
 DEFAULT_SIZE, DEFAULT_SAMPLES = "640x360", 8
 PDB_STEP = 50                        # exports.pdb.KEYFRAME_STEP
 MOVIE_STEP, MOVIE_STEP_RANGE = 5, (1, 10000)
+ASSEMBLY_CELLS_MAX = 500             # --pdb-assembly: 1001 operators, a viewer's whole fibril
+# Why only a periodic cell has a helical assembly (--pdb-assembly, exports.mmcif.helical_assembly)
+NOT_SCREW_SYMMETRIC = ("a fibril with ends is not screw-symmetric once baked: each layer's "
+                       "domains settle on their own, so no part of it repeats to the whole")
 PICTURES = "pictures and structures"
 LOOK = "the report's picture"
 
@@ -92,6 +96,12 @@ class OutputPlan(Plan):
                                          "linker beads as CA-only residues (needs --fibril "
                                          "and/or --domain)", kind="path", metavar="PATH.cif",
                                    group=PICTURES)
+    pdb_assembly: int = option(0, "with --periodic and --pdb-atoms: add to the file a helical "
+                                  "assembly for viewers to expand, the cell and its images in "
+                                  "the N cells below and above (a flat pdbx_struct_oper_list, "
+                                  "one screw operator per cell; 0: none)",
+                               lo=0, hi=ASSEMBLY_CELLS_MAX, unit="cells", metavar="N",
+                               group=PICTURES)
     render: str | None = option(None, "render the final frame to a PNG (clashing globules red)",
                                 kind="path", metavar="PATH.png", group=PICTURES)
     movie: str | None = option(None, "render the bake as a movie (Workbench, --render-size; "
@@ -105,18 +115,22 @@ class OutputPlan(Plan):
     def check(self) -> None:
         if self.pdb_images and not self.pdb:
             raise PlanError("pdb_images", "only with --pdb")
+        if self.pdb_assembly and not self.pdb_atoms:
+            raise PlanError("pdb_assembly", "only with --pdb-atoms")
 
     def paths(self) -> dict:
         """Output key -> path, for every file asked for."""
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
                 if f.metadata["kind"] == "path" and getattr(self, f.name)}
 
-    def pdb_images_for(self, p) -> int:
-        """pdb_images, checked against the model: only with --periodic."""
-        if self.pdb_images and not p.periodic:
-            raise PlanError("pdb_images", "only with --periodic (a fibril with ends has no "
-                                          "images)")
-        return self.pdb_images
+    def cells_for(self, p) -> dict:
+        """pdb_images and pdb_assembly, checked against the model: only with --periodic."""
+        why = {"pdb_images": "a fibril with ends has no images",
+               "pdb_assembly": f"{NOT_SCREW_SYMMETRIC}; --pdb-atoms alone writes it whole"}
+        for name, reason in why.items():
+            if getattr(self, name) and not p.periodic:
+                raise PlanError(name, f"only with --periodic ({reason})")
+        return {name: getattr(self, name) for name in why}
 
 
 def pdb_fits(p) -> None:

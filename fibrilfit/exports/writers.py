@@ -39,8 +39,10 @@ def write_pdb(scene: bpy.types.Scene, result: dict, path, frames: str = "last",
     return pdb.write_pdb(path, model, scene, frames=wanted, result=result, images=images)
 
 
-def write_atoms(scene: bpy.types.Scene, result: dict, path, sources) -> dict:
-    """--pdb-atoms: the decorated fibril in atoms at the last baked frame (exports/mmcif.py)."""
+def write_atoms(scene: bpy.types.Scene, result: dict, path, sources, assembly: int = 0) -> dict:
+    """--pdb-atoms: the decorated fibril in atoms at the last baked frame (exports/mmcif.py);
+    with `assembly` N (--pdb-assembly, a periodic cell) the cell and a helical assembly of it
+    and its images in N cells below and above."""
     from ..analysis.verdict import chain_positions, world_matrices
     model = find_model(scene)
     if model is None:
@@ -62,7 +64,8 @@ def write_atoms(scene: bpy.types.Scene, result: dict, path, sources) -> dict:
         if now != last:
             scene.frame_set(now)
     atoms = mmcif.decorated_atoms(model.params, positions, mats, sources, members)
-    info = mmcif.write(path, atoms, mmcif.header(result))
+    helical = mmcif.helical_assembly(model.params, assembly) if assembly else None
+    info = mmcif.write(path, atoms, mmcif.header(result), helical)
     info["frame"] = last
     return info
 
@@ -113,6 +116,7 @@ class Job:
     look: dict = field(default_factory=dict)  # exports.plans.RenderLook.look
     pdb_frames: str = "last"
     pdb_images: int = 0
+    pdb_assembly: int = 0                     # --pdb-assembly: cells below and above the cell
     movie_step: int = 1
     progress: bool = False
     case: dict | None = None                  # what --save-case writes
@@ -150,7 +154,8 @@ OUTPUTS = (  # in the order they run: the slow ones last
     Output("pdb", "--pdb", (".pdb",), _asked("pdb"), lambda j: write_pdb(
         j.scene, j.result, j.paths["pdb"], j.pdb_frames, j.pdb_images)),
     Output("pdb_atoms", "--pdb-atoms", mmcif.SUFFIXES, _asked("pdb_atoms"),
-           lambda j: write_atoms(j.scene, j.result, j.paths["pdb_atoms"], j.atoms)),
+           lambda j: write_atoms(j.scene, j.result, j.paths["pdb_atoms"], j.atoms,
+                                 j.pdb_assembly)),
     Output("blend", "--blend", (".blend",), _asked("blend"), _blend, guarded=False),
     Output("save_case", "--save-case", cases.SUFFIXES, _asked("save_case"),
            lambda j: cases.write(j.paths["save_case"], j.case) and None, guarded=False),

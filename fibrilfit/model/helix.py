@@ -5,8 +5,8 @@ protofilaments' turn and rise (`layer_transforms`, `chain_transforms`). A period
 layers repeats under the screw S (turn M·twist, raise M·rise); S^m is its m-th power, and a point
 of chain c in the cell has an image in chain c + m·n_chains of the infinite fibril
 (`screw_turn`, `screw_matrix`, `apply_points`, `apply_matrices`, `image_gap`; `turn_matrix` for
-any turn and rise); the cell `auto` picks (`auto_cell_layers`) and the period of the inflate
-start's lattice it holds (`lattice_rows`).
+any turn and rise; `image_cells`, the order the outputs list images in); the cell `auto` picks
+(`auto_cell_layers`) and the period of the inflate start's lattice it holds (`lattice_rows`).
 `layer_frame_xy` is the inverse: a point's layer and its position in that layer's own frame.
 `handedness` names a twist's hand.
 
@@ -86,6 +86,12 @@ def turn_matrix(angle: float, height: float) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s, 0.0, 0.0], [s, c, 0.0, 0.0], [0.0, 0.0, 1.0, height],
                      [0.0, 0.0, 0.0, 1.0]])
+
+
+def image_cells(cells: int) -> list[int]:
+    """The image cells (m) an output lists after the cell itself (m = 0): -1 .. -N below, then
+    1 .. N above (--pdb-images' chains, --pdb-assembly's operators)."""
+    return [*range(-1, -cells - 1, -1), *range(1, cells + 1)]
 
 
 def apply_points(p, m, points: np.ndarray) -> np.ndarray:

@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "0f10bc4aa8ffac5f1814f17ade7f4046f7aa8cbd188a5df1f3778bd087c05cdc"
+MODEL_SOURCES_SHA256 = "bab1ff855009a0e5ca5db316a592fe1a920ef5db9e57fa3e74137cf4c3c38178"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

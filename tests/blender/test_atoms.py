@@ -93,3 +93,49 @@ def test_pdb_atoms_without_a_structure_is_refused(ff, scene, tmp_path, capsys):
     assert ff.cli.main(["run", "--domain", str(DATA / "1ubq.pdb.gz"), *FAST,
                         "--pdb-atoms", str(tmp_path / "x.pdb")]) == 2
     assert not (tmp_path / "x.pdb").exists()
+
+
+@pytest.mark.one_bpy
+def test_the_helical_assembly_of_a_periodic_cell_expands_seamlessly(ff, scene, tmp_path, capsys):
+    """`--pdb-atoms --pdb-assembly 2` on a built cell of 8A9L (one protofilament) + ubiquitin:
+    gemmi expands assembly 1 to 5 cells, and across every seam the core goes on one layer at a
+    time (layer 0 of a copy is one layer above the top layer of the copy below). The expansion
+    against the whole fibril atom by atom: tests/unit/test_helical_assembly.py."""
+    out, cells, M = tmp_path / "cell.cif", 2, 10
+    assert ff.cli.main(["run", "--fibril", str(DATA / "8a9l.pdb.gz"), "--domain",
+                        str(DATA / "1ubq.pdb.gz"), "--periodic", str(M), "--stop-after", "build",
+                        "--pdb-atoms", str(out), "--pdb-assembly", str(cells),
+                        "--json", str(tmp_path / "r.json")]) == 0
+    result = json.loads((tmp_path / "r.json").read_text())
+    info = result["pdb_atoms"]["assembly"]
+    assert info["operators"] == 2 * cells + 1 and info["image_cells"] == [-1, -2, 1, 2]
+    st = gemmi.read_structure(str(out))
+    n = len(st[0])
+    assert n == 2 * M  # the cell: a core chain and a domain chain per layer
+    whole = gemmi.make_assembly(st.assemblies[0], st[0], gemmi.HowToNameCopiedChain.Dup)
+    assert len(whole) == info["chains"] == (2 * cells + 1) * n
+    assert sum(1 for _ in whole.all()) == info["atoms"] == (2 * cells + 1) * sum(
+        1 for _ in st[0].all())
+    p = result["params"]
+    a, h = p["twist"], p["rise"]
+    one_layer = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+
+    def core(copy: int, layer: int):
+        chain = whole[copy * n + 2 * layer]  # copies in operator order: the cell, S^-1, S^-2, ...
+        assert chain.name == f"{layer}A"
+        return np.array([at.pos.tolist() for r in chain for at in r if r.name != "UNK"])
+
+    order, z = [0, *info["image_cells"]], {}
+    for copy, m in enumerate(order):
+        z[m] = core(copy, 0)[:, 2].mean()
+        if m > -cells:  # this copy's layer 0 over the top layer of the copy below it
+            step = core(copy, 0) - (core(order.index(m - 1), M - 1) @ one_layer.T + [0, 0, h])
+            assert np.abs(step).max() < 2e-3, m
+    assert np.allclose(np.diff([z[m] for m in sorted(z)]), M * h, atol=1e-3)
+    # a fibril with ends has no helical assembly: refused before anything runs
+    capsys.readouterr()
+    assert ff.cli.main(["run", "--fibril", str(DATA / "8a9l.pdb.gz"), "--layers", "3",
+                        "--pdb-atoms", str(tmp_path / "ends.cif"), "--pdb-assembly", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--pdb-assembly: only with --periodic" in err[0]
+    assert not (tmp_path / "ends.cif").exists()

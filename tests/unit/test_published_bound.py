@@ -40,13 +40,15 @@ def test_the_20_layer_fibrils_bound_is_the_pages(diameter):
 
 def test_the_page_names_the_four_diameters_and_the_20_layer_row():
     assert [(r["globule"], r["fibril"]) for r in BRACKET] == (
-        [(f"{d} Å", "infinite (auto cell)") for d in (20, 30, 40, 50)] + [("15–60 Å", "20 layers")])
+        [(f"{d} Å", "infinite (auto cell)") for d in (20, 30, 40, 50)]
+        + [("15–60 Å", "20 layers")])
 
 
 def test_a_cell_or_row_that_does_not_parse_is_an_error(tmp_path):
     with pytest.raises(ValueError, match="not a number"):
         span("1 up to the minimum")
-    assert span("29–36") == (29, 36) and span("0.3 %") == (0.3, 0.3) and span("2–6 of 50") == (2, 6)
+    assert span("29–36") == (29, 36) and span("0.3 %") == (0.3, 0.3)
+    assert span("2–6 of 50") == (2, 6)
     page = tmp_path / "page.md"
     page.write_text((ROOT / "docs" / "model" / "bound.md").read_text(encoding="utf-8").replace(
         "| 30 Å | infinite (auto cell) | 2 |", "| 30 Å | infinite (auto cell) | 2 | 3 |"))

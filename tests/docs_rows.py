@@ -104,3 +104,45 @@ def map_v6_runs(page: pathlib.Path = BENCHMARKS) -> dict[int, dict[str, int]]:
         rows[int(m[1])] = {"cell_layers": int(m[2]), "misses": int(m[3]),
                            "clear_misses": int(m[4]), "fits": int(m[5])}
     return rows
+
+
+def table(page: pathlib.Path, anchor: str, header: str) -> list[dict[str, str]]:
+    """The rows of the first table under `anchor` whose header starts with `header`, each a dict
+    of the header's cells to the row's (raises ValueError when a row has another number of cells).
+    For the tables whose rows are read cell by cell (docs/model/*.md: end effects, linker
+    integrity, the inflate schedule, the bound's bracket, ...)."""
+    text = page.read_text(encoding="utf-8")
+    start = text.find(anchor)
+    if start < 0:
+        raise ValueError(f"{page.name}: no section {anchor}")
+    head = next((line for line in text[start:].splitlines() if line.startswith(header)), None)
+    if head is None:
+        raise ValueError(f"{page.name} {anchor}: no table starting {header!r}")
+    names = [c.strip() for c in head.strip().strip("|").split("|")]
+    rows = []
+    for row in table_rows(text, anchor, header, page.name):
+        cells = [c.strip() for c in row.split("|")]
+        if len(cells) != len(names):
+            raise ValueError(f"{page.name} {anchor}: a row that does not parse: {row}")
+        rows.append(dict(zip(names, cells)))
+    return rows
+
+
+def row(rows: list[dict[str, str]], where: dict[str, str]) -> dict[str, str]:
+    """The one row whose cells are `where` ({column: cell})."""
+    found = [r for r in rows if all(r[k] == v for k, v in where.items())]
+    if len(found) != 1:
+        raise ValueError(f"{len(found)} rows with {where}")
+    return found[0]
+
+
+SPAN = re.compile(r"(-?\d+(?:\.\d+)?)(?:\s*[–-]\s*(-?\d+(?:\.\d+)?))?(?: %| of \d+| Å)?")
+
+
+def span(cell: str) -> tuple[float, float]:
+    """A cell's number or range as (low, high): "0" -> (0, 0), "29–36" -> (29, 36), "0.3 %" ->
+    (0.3, 0.3), "2–6 of 50" -> (2, 6); anything else is a ValueError."""
+    m = SPAN.fullmatch(cell.strip().strip("*"))
+    if not m:
+        raise ValueError(f"not a number or a range: {cell!r}")
+    return float(m[1]), float(m[2] if m[2] is not None else m[1])

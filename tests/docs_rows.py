@@ -30,17 +30,34 @@ def cells(line: str) -> list[str]:
     return [c.strip() for c in line.strip().strip("|").split("|")]
 
 
-def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
-    """The body rows (the cells' text between the outer bars) of the first table under `anchor`
-    whose header starts with `header`."""
+def as_dicts(lines: list[str], head: int, where: str) -> list[dict[str, str]]:
+    """The table whose header is lines[head] as {column: cell} rows; ValueError for a row of
+    another width."""
+    names, rows = cells(lines[head]), []
+    for line in body(lines, head, where):
+        row = cells(line)
+        if len(row) != len(names):
+            raise ValueError(f"{where}: a row that does not parse ({len(row)} cells): {line}")
+        rows.append(dict(zip(names, row)))
+    return rows
+
+
+def under(text: str, anchor: str, header: str, name: str) -> tuple[list[str], int]:
+    """The page's lines from `anchor` on, and the index of the first header starting `header`."""
     start = text.find(anchor)
     if start < 0:
         raise ValueError(f"{name}: no section {anchor}")
     lines = text[start:].splitlines()
-    try:
-        head = next(i for i, line in enumerate(lines) if line.startswith(header))
-    except StopIteration:
-        raise ValueError(f"{name} {anchor}: no table starting {header!r}") from None
+    head = next((i for i, line in enumerate(lines) if line.startswith(header)), None)
+    if head is None:
+        raise ValueError(f"{name} {anchor}: no table starting {header!r}")
+    return lines, head
+
+
+def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
+    """The body rows (the cells' text between the outer bars) of the first table under `anchor`
+    whose header starts with `header`."""
+    lines, head = under(text, anchor, header, name)
     return [line.strip().strip("|").strip() for line in body(lines, head, f"{name} {anchor}")]
 
 
@@ -54,13 +71,7 @@ def docs_table(page: str, header: str) -> list[dict[str, str]]:
     starts = [i for i, line in enumerate(lines) if line.startswith(header)]
     if len(starts) != 1:
         raise ValueError(f"docs/{page}: {len(starts)} tables start {header!r}, not one")
-    names, rows = cells(lines[starts[0]]), []
-    for line in body(lines, starts[0], f"docs/{page} {header!r}"):
-        row = cells(line)
-        if len(row) != len(names):
-            raise ValueError(f"docs/{page}: a row of {len(row)} cells: {line}")
-        rows.append(dict(zip(names, row)))
-    return rows
+    return as_dicts(lines, starts[0], f"docs/{page}")
 
 
 # docs/model/largest-fraction.md#map: diameter, linker, N, k/N (k/N), P(fit) there (fits/runs),
@@ -108,24 +119,11 @@ def map_v6_runs(page: pathlib.Path = BENCHMARKS) -> dict[int, dict[str, int]]:
 
 def table(page: pathlib.Path, anchor: str, header: str) -> list[dict[str, str]]:
     """The rows of the first table under `anchor` whose header starts with `header`, each a dict
-    of the header's cells to the row's (raises ValueError when a row has another number of cells).
-    For the tables whose rows are read cell by cell (docs/model/*.md: end effects, linker
+    of the header's cells to the row's (a ValueError when a row has another number of cells):
+    docs_table where a header is not unique on its page (docs/model/*.md: end effects, linker
     integrity, the inflate schedule, the bound's bracket, ...)."""
-    text = page.read_text(encoding="utf-8")
-    start = text.find(anchor)
-    if start < 0:
-        raise ValueError(f"{page.name}: no section {anchor}")
-    head = next((line for line in text[start:].splitlines() if line.startswith(header)), None)
-    if head is None:
-        raise ValueError(f"{page.name} {anchor}: no table starting {header!r}")
-    names = [c.strip() for c in head.strip().strip("|").split("|")]
-    rows = []
-    for row in table_rows(text, anchor, header, page.name):
-        cells = [c.strip() for c in row.split("|")]
-        if len(cells) != len(names):
-            raise ValueError(f"{page.name} {anchor}: a row that does not parse: {row}")
-        rows.append(dict(zip(names, cells)))
-    return rows
+    lines, head = under(page.read_text(encoding="utf-8"), anchor, header, page.name)
+    return as_dicts(lines, head, f"{page.name} {anchor}")
 
 
 def row(rows: list[dict[str, str]], where: dict[str, str]) -> dict[str, str]:

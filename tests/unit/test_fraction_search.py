@@ -182,7 +182,8 @@ def test_the_fraction_floor_is_never_above_the_full_bound_on_a_real_geometry():
     (["--linker", "0"], "linker"),
     (["--known-fit", "3"], "unrecognized arguments: --known-fit"),
     # refused for a mixed model only: said before anything runs, not met as a count unstarted
-    (["--periodic", "12", "--bare-tail", "5"], "bare_tail: is not built in a periodic cell"),
+    (["--domain", str(ROOT / "tests/data/1ubq.pdb.gz"), "--domain-shape", "hull",
+      "--bare-tail", "5"], "bare_tail: is judged against sphere domains only"),
 ])
 def test_largest_fraction_refuses_bad_input_in_one_line(tmp_path, args, named):
     proc = subprocess.run([PY, str(ROOT / "headless.py"), "largest-fraction", *args, "--out",

@@ -10,15 +10,13 @@ A plan here is the API's LargestFractionPlan (api/plans.py): `.search` (SearchPl
 """
 from __future__ import annotations
 
-import csv
-import io
-
 from .. import exits, files
 from ..model import fraction_bound, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import grid
 from . import fraction, linker_map, minimal
 from .plans import seed_range
+from .table import csv_lines
 
 CSV, JSON, PNG = "largest_fraction.csv", "largest_fraction.json", "largest_fraction.png"
 COLUMNS = ("kind", "globule_diameter", "linker", "subunits", "largest_count", "largest_fraction",
@@ -116,21 +114,15 @@ def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:
 
 
 def csv_text(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(COLUMNS)
-    for r in rows:
+    """largest_fraction.csv: one line per (diameter, linker) (COLUMNS)."""
+    def cells(r):
         lo, hi = r["p_fit_interval"] or (None, None)
         above_hi = (r["p_fit_above_interval"] or (None, None))[1]
-        writer.writerow([_cell(v) for v in (
-            r["kind"], r["globule_diameter"], r["linker"], r["subunits"], r["largest_count"],
-            r["largest_fraction"], r["p_fit"], lo, hi, r["fraction_above"], r["p_fit_above"],
-            above_hi, r["restarts"], r["fraction_bound"], r["bracket"], r.get("protocol"))])
-    return buf.getvalue()
-
-
-def _cell(v):
-    return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
+        return (r["kind"], r["globule_diameter"], r["linker"], r["subunits"],
+                r["largest_count"], r["largest_fraction"], r["p_fit"], lo, hi,
+                r["fraction_above"], r["p_fit_above"], above_hi, r["restarts"],
+                r["fraction_bound"], r["bracket"], r.get("protocol"))
+    return csv_lines(COLUMNS, (cells(r) for r in rows))
 
 
 def table(rows: list[dict], protocol: str | None = None, restarts: int | None = None,

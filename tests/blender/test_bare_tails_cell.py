@@ -18,8 +18,9 @@ def _centre(ob) -> np.ndarray:
 @pytest.mark.one_bpy
 def test_bare_tails_in_a_cell_have_images_bake_and_are_judged(scene, ff):
     """A 14-layer cell at occupancy 0.5 with bare_tail 10: each undecorated subunit has a tail
-    of 10 members (a passive anchor, 9 beads); the tails at the cell's end layers have an image
-    of every member across the end they touch, each at S^m of its source; a short bake stays
+    of 10 members (a passive anchor, 9 beads), each bead with an image, images above and below
+    the cell; the tails at the cell's end layers have an image of every member (anchor too)
+    across the end they touch; every image stands at S^m of its source; a short bake stays
     finite; and a tail bead moved onto the image of a globule from the other end of the cell is
     named by the check (with its layer in the infinite fibril) and makes the run not fit."""
     from mathutils import Matrix
@@ -41,6 +42,11 @@ def test_bare_tails_in_a_cell_have_images_bake_and_are_judged(scene, ff):
     for t, m in ends:  # layer 0's image sits above the top (m = +1), layer M-1's below
         assert {(t, i, m) for i in range(1, 10)} <= imaged, (t, m)
         assert (t, m) in anchors
+    # a tail reaches ~45 Å and the cell is 67 Å tall: every bead of every tail has an image,
+    # and every tail has images above and below the cell
+    for t in range(len(model.tails)):
+        assert {i for u, i, _ in imaged if u == t} == set(range(1, 10)), t
+        assert {m for u, _, m in imaged if u == t} >= {-1, 1}, t
     for ob in moving:  # each at S^m of its source (the follower placed them at build)
         source = model.tails[ob[CHAIN]][ob[INDEX]]
         want = helix.apply_points(p, ob[CELL], _centre(source)[None])[0]

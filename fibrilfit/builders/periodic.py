@@ -349,8 +349,8 @@ class TurnedImages:
     than the check's (docs/model/domain-shapes.md#periodic)."""
 
     def __init__(self, model, follower):
-        self.rows = np.flatnonzero(np.isin(follower.member, [d.member for d in model.params.domains])
-                                   & ~follower.tail)
+        domains = [d.member for d in model.params.domains]  # a tail's bead is none of them
+        self.rows = np.flatnonzero(np.isin(follower.member, domains) & ~follower.tail)
         sources = [follower.sources[k] for k in self.rows.tolist()]
         globules = [c for c in model.root.children if c.get(TAG) == "globules"]
         self.reader = MatrixReader(sources, globules)

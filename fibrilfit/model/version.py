@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "c131799bd0f1654062b6c22b80a1cf77d6ee6bd41fa14b680d23db7ba34c0b28"
+MODEL_SOURCES_SHA256 = "1c2dc305531b32a5014fd5e4e88c36fdfa9a138c4c428e3b86c4f89f076f64b7"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -54,7 +54,7 @@ def walks_for(values: dict, plan) -> tuple:
                                  seed=first)
             base.replace(seed=seeds[-1])
             n = subunits(base)
-            if n > 1:  # a mixed model's own refusals (e.g. bare tails in a cell), in one line
+            if n > 1:  # a mixed model's own refusals (bare tails beside hulls), in one line
                 base.replace(occupancy=(n - 1) / n)
             walks.append(new_walk(search, base, len(seeds)))
     return values, seeds, walks

@@ -56,7 +56,8 @@ def test_bare_tails_in_a_cell_have_images_bake_and_are_judged(scene, ff):
     baked = ff.pipeline.bake(model, scene)
     assert baked["frames_simulated"] > 0
     tails = np.array([[_centre(ob) for ob in t] for t in model.tails])
-    assert np.isfinite(tails).all() and np.isfinite(ff.analysis.verdict.chain_positions(model)).all()
+    chains = ff.analysis.verdict.chain_positions(model)
+    assert np.isfinite(tails).all() and np.isfinite(chains).all()
     assert np.abs(tails[..., 2]).max() < 10 * M * p.rise  # nothing flew off
     for ob in moving:  # the images just across the ends followed their sources to the end
         if (ob[CHAIN], ob[CELL]) in {(t, m) for t, m in ends}:
@@ -71,7 +72,8 @@ def test_bare_tails_in_a_cell_have_images_bake_and_are_judged(scene, ff):
     # a bead of the lowest undecorated tail onto S^-1 of the highest globule, and one of the
     # highest tail onto S^+1 of the lowest globule: both pairs cross the cell's ends (the
     # globule against the bead's image S^+1, layer k + M, and S^-1, layer k - M)
-    order = lambda chains: sorted(range(len(chains)), key=lambda c: chains[c][0][LAYER])  # noqa: E731
+    def order(members):  # indices, lowest layer first
+        return sorted(range(len(members)), key=lambda c: members[c][0][LAYER])
     want = []
     for t, g, m in ((order(model.tails)[0], order(model.chain)[-1], -1),
                     (order(model.tails)[-1], order(model.chain)[0], +1)):

@@ -56,7 +56,7 @@ def main(argv=None) -> int:
             K = p.protofilaments
             chains = [(c // K, c % K, f"{s[c].max():.0%}", round(float(pos[c, -1, 2]), 1))
                       for c in bad]
-            inside = _inside(p, pos, geometry)
+            inside = _inside(p, pos, polygons)
             print(f"| {linker} | {seed} | {r['verdict']} | {r['max_bond_stretch']:.1%} | "
                   f"{chains or '-'} | {inside or '-'} | {r['frames_simulated']} | "
                   f"{time.perf_counter() - t:.0f} |", flush=True)
@@ -64,8 +64,9 @@ def main(argv=None) -> int:
     return 0
 
 
-def _inside(p, pos, geometry):
-    """[chain, member] inside a core (analysis.leaks where the checkout has it)."""
+def _inside(p, pos, polygons):
+    """[chain, member] inside a core (analysis.leaks where the checkout has it; else the same
+    test inline, with `polygons`, fibrilfit.geom.polygons, for the outline)."""
     try:
         from fibrilfit.analysis.leaks import members_inside_core
     except ImportError:  # an older checkout: the same test, inline

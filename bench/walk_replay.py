@@ -21,12 +21,15 @@ from fibrilfit.search import linker_map, minimal
 from fibrilfit.search.plans import BatchOutput, SearchPlan
 
 
-class Replay:
-    """The executor interface (submit, pending, wait), answering from the file's records in the
-    order the jobs were submitted; `in_flight` jobs at a time as on `workers` workers."""
+class Answering:
+    """The executor interface (submit, pending, wait) without Blender: each job, in the order
+    submitted, is answered by `answer(params)` -> the run's record (its params become the
+    job's), and `ran` lists `noted(params, record)` for each (default: the record). Here it
+    replays a file's runs (replay); the unit tests answer from a table
+    (tests/unit/test_search_walk.py, tests/unit/test_fraction_search.py)."""
 
-    def __init__(self, records: dict):
-        self.records, self.queue, self.ran = records, [], []
+    def __init__(self, answer, noted=lambda params, record: record):
+        self.answer, self.noted, self.queue, self.ran = answer, noted, [], []
 
     def submit(self, job):
         self.queue.append(job)
@@ -37,12 +40,19 @@ class Replay:
     def wait(self):
         job = self.queue.pop(0)
         p = job["params"]
-        key = (int(p["linker"]), int(p["seed"]))
-        if key not in self.records:
-            raise SystemExit(f"the walk asks for linker {key[0]}, seed {key[1]}: not in the file")
-        r = self.records[key]
-        self.ran.append(r)
+        r = self.answer(p)
+        self.ran.append(self.noted(p, r))
         return job, {"id": job["id"], "ok": True, "result": {**r, "params": p}}
+
+
+def replay(records: dict) -> Answering:
+    """An executor answering from the file's records by (linker, seed); `ran`: the records."""
+    def answer(p):
+        key = (int(p["linker"]), int(p["seed"]))
+        if key not in records:
+            raise SystemExit(f"the walk asks for linker {key[0]}, seed {key[1]}: not in the file")
+        return records[key]
+    return Answering(answer)
 
 
 def main() -> None:
@@ -70,9 +80,9 @@ def main() -> None:
     if args.floor is not None:
         walk = minimal.Walk(walk.diameter, walk.start, walk.max_linker, restarts=walk.restarts,
                             stop_at_fit=walk.stop_at_fit, floor=args.floor)
-    replay = Replay(records)
+    replayed = replay(records)
     with tempfile.TemporaryDirectory() as tmp:
-        linker_map.step_walks(values, seeds, [walk], pathlib.Path(tmp), plan, lambda: replay)
+        linker_map.step_walks(values, seeds, [walk], pathlib.Path(tmp), plan, lambda: replayed)
     row = walk.row()
 
     def cost(rs):
@@ -85,8 +95,8 @@ def main() -> None:
           f"one below {row['linker_below']}: "
           + ("0, proven by the bound" if row["below_settled_by_bound"] else
              f"0/{row['restarts_below']}") + f"; tried {row['tried']}")
-    print(f"runs: {len(replay.ran)} of the file's {len(before)} at those lengths; run time "
-          f"{cost(replay.ran):.0f} s of {cost(before):.0f} s (summed over workers, as recorded)")
+    print(f"runs: {len(replayed.ran)} of the file's {len(before)} at those lengths; run time "
+          f"{cost(replayed.ran):.0f} s of {cost(before):.0f} s (summed over workers, as recorded)")
 
 
 if __name__ == "__main__":

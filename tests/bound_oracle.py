@@ -92,27 +92,42 @@ def layout(p, seed: int = 0, steps: int = 600, R: float | None = None,
     """A layout at p's linker, or with the centres' reach R (Å) if given. `decorated`: bool per
     chain (helix.chain_layers' order: layer-major), the chains that carry a domain (a mixed
     fibril; default every chain); the others carry none, and the core is every layer's."""
+    R = reach(p) if R is None else R
+    return _descend(p, decorated, R, seed, steps, range(0, 1), lambda c, r: None,
+                    lambda c, a, r: valid(p, c, a, R, r))
+
+
+def _descend(p, decorated, R: float, seed: int, steps: int, images, core_layers, ok):
+    """The descent both layouts share: balls started R out from their anchors (the decorated
+    chains' only, if `decorated` is given) with a seeded jitter, pushed apart from each other
+    and from every image S^m, m in `images` (range(0, 1): the finite fibril), and out of the
+    boxes (of `core_layers(c, r)`, None: the fibril's own), pulled back within R of their
+    anchors, until `ok(c, a, r)`; None after `steps`."""
     rng = np.random.default_rng(seed)
     a = anchors(p)
     if decorated is not None:
         a = a[np.asarray(decorated, dtype=bool).ravel()]
         if len(a) == 0:
             return a
-    R, r = (reach(p) if R is None else R), p.globule_radius
+    r = p.globule_radius
     out = a.copy()
     out[:, :2] *= 1.0 + R / np.maximum(np.linalg.norm(a[:, :2], axis=1), 1e-9)[:, None]
     c = out + rng.normal(scale=1.0, size=a.shape)
     for _ in range(steps):
-        diff = c[:, None] - c[None]
-        dist = np.linalg.norm(diff, axis=2) + np.eye(len(c)) * 1e9
-        over = np.maximum(2 * r * 1.001 - dist, 0.0)
-        move = (diff / dist[..., None] * over[..., None] / 2.0).sum(1)
-        c = c + move + box_push(p, c, r * 1.001)
+        move = np.zeros_like(c)
+        for m in images:
+            diff = c[:, None] - (screw(p, c, m) if m else c)[None]
+            dist = np.linalg.norm(diff, axis=2)
+            if m == 0:
+                dist = dist + np.eye(len(c)) * 1e9
+            over = np.maximum(2 * r * 1.001 - dist, 0.0)
+            move += (diff / np.maximum(dist, 1e-9)[..., None] * over[..., None] / 2.0).sum(1)
+        c = c + move + box_push(p, c, r * 1.001, core_layers(c, r))
         off = c - a
         n = np.linalg.norm(off, axis=1)
         far = n > R
         c[far] = a[far] + off[far] / n[far, None] * R
-        if valid(p, c, a, R, r):
+        if ok(c, a, r):
             return c
     return None
 
@@ -168,29 +183,6 @@ def periodic_layout(p, decorated: np.ndarray, R: float, seed: int = 0,
     """A layout of the infinite fibril whose cell (p.layers × protofilaments, layer-major) has
     these chains decorated, the centres within R of their anchors; None if the descent finds
     none that passes `periodic_valid`."""
-    rng = np.random.default_rng(seed)
-    a = anchors(p)[np.asarray(decorated, dtype=bool).ravel()]
-    if len(a) == 0:
-        return a
-    r = p.globule_radius
-    out = a.copy()
-    out[:, :2] *= 1.0 + R / np.maximum(np.linalg.norm(a[:, :2], axis=1), 1e-9)[:, None]
-    c = out + rng.normal(scale=1.0, size=a.shape)
-    images = _images(p, R, r)
-    for _ in range(steps):
-        move = np.zeros_like(c)
-        for m in images:
-            diff = c[:, None] - screw(p, c, m)[None]
-            dist = np.linalg.norm(diff, axis=2)
-            if m == 0:
-                dist = dist + np.eye(len(c)) * 1e9
-            over = np.maximum(2 * r * 1.001 - dist, 0.0)
-            move += (diff / np.maximum(dist, 1e-9)[..., None] * over[..., None] / 2.0).sum(1)
-        c = c + move + box_push(p, c, r * 1.001, _core_layers(p, c, r))
-        off = c - a
-        n = np.linalg.norm(off, axis=1)
-        far = n > R
-        c[far] = a[far] + off[far] / n[far, None] * R
-        if periodic_valid(p, c, a, R, r):
-            return c
-    return None
+    return _descend(p, decorated, R, seed, steps, _images(p, R, p.globule_radius),
+                    lambda c, r: _core_layers(p, c, r),
+                    lambda c, a, r: periodic_valid(p, c, a, R, r))

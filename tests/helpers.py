@@ -1,10 +1,19 @@
 """Shared test helpers (conftest holds the fixtures)."""
+import importlib.util
 import pathlib
 import re
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def bench_module(name: str):
+    """bench/<name>.py, imported (bench is scripts, not a package)."""
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", ROOT / "bench" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def makefile_bpy() -> dict[str, str]:

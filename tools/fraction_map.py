@@ -74,9 +74,7 @@ def write_docs(out: pathlib.Path, docs: pathlib.Path) -> None:
     docs/largest_fraction.csv, docs/largest_fraction.png."""
     from fibrilfit import files
     from fibrilfit.search import fraction_map
-    rows = [r for doc_path in sorted(out.glob("*/largest_fraction.json"))
-            for r in json.loads(doc_path.read_text())["rows"]]
-    rows.sort(key=lambda r: (r["globule_diameter"], r["linker"]))
+    rows = fraction_map.folder_rows(out)
     files.write_text(docs / "largest_fraction.csv", fraction_map.csv_text(rows))
     fraction_map.write_plot(docs / "largest_fraction.png", rows)
 
@@ -86,20 +84,13 @@ def show(out: pathlib.Path) -> None:
     print("| diameter (Å) | linker | subunits N | largest fraction found (k/N) | P(fit) there "
           "(runs) | one more decorated | bound f_B | bracket |")
     print("|---|---|---|---|---|---|---|---|")
-    rows = [r for doc_path in sorted(out.glob("*/largest_fraction.json"))
-            for r in json.loads(doc_path.read_text())["rows"]]
-    for r in sorted(rows, key=lambda r: (r["globule_diameter"], r["linker"])):
+    from fibrilfit.search import fraction_map
+    for r in fraction_map.folder_rows(out):
         k, n = r["largest_count"], r["subunits"]
         found = f"{r['largest_fraction']:.3f} ({k}/{n})" if k is not None else "none"
         fit = f"{r['fits']}/{r['restarts']}" if k is not None else "-"
-        if r["count_above"] is None:
-            above = "- (all)"
-        elif r["above_settled_by_bound"]:
-            above = f"{r['count_above']}/{n}: excluded by the bound"
-        else:
-            above = f"{r['count_above']}/{n}: 0/{r['restarts_above']}"
         print(f"| {r['globule_diameter']:g} | {r['linker']} | {n} | {found} | {fit} | "
-              f"{above} | {r['fraction_bound']:.3f} | {r['bracket']} |")
+              f"{fraction_map.one_more(r)} | {r['fraction_bound']:.3f} | {r['bracket']} |")
     print()
     print("| folder | wall (s) | runs (misses) | worker seconds (build + bake + check) | frames |")
     print("|---|---|---|---|---|")

@@ -4,6 +4,9 @@ the default model otherwise; run with bpy importable, e.g. the project's .venv):
     python tools/occupancy_runs.py nested SEED   # shortest fitting linker at f = 0.25, 0.5, 1
     python tools/occupancy_runs.py cell          # random f = 0.5 and layers 'A.' in cells of
                                                  # 14 and 28 layers, and 'A.' at linker 4 in more
+    python tools/occupancy_runs.py tails [LINKER [A:B]]  # the auto cell at linker 4 (or
+                                                 # LINKER), f = 0.5, seeds 0-2 (or A..B-1),
+                                                 # without and with a 40-residue bare tail
     python tools/occupancy_runs.py unchanged OUT.json   # five f = 1 models' whole results, to
                                                  # compare between two checkouts (PYTHONPATH)
 """
@@ -24,6 +27,10 @@ def run(**values) -> dict:
     return {**{k: v for k, v in values.items()}, "fits": r["accommodated"], "answer": r["answer"],
             "decorated": (r.get("occupancy") or {}).get("decorated", r["params"]["layers"]),
             "stretch": r["max_bond_stretch"], "pairs": len(r["clashing_pairs"]),
+            **({"tail_pairs": len(r["tail_clashes"]["pairs"]),
+                "tail_depth": r["tail_clashes"]["max_depth"]} if "tail_clashes" in r else {}),
+            **({"cell_layers": r["periodic"]["cell_layers"]} if "periodic" in r else {}),
+            "frames": r["frames_simulated"], "settled_at": r["settled_at"],
             "seconds": round(time.perf_counter() - t, 1)}
 
 
@@ -53,6 +60,17 @@ def cell() -> None:
                                  pattern_layers="A.")), flush=True)
 
 
+def tails(linker: int = 4, seeds: str = "0:3") -> None:
+    """The auto cell (default model, tutorial), f = 0.5, at `linker`: bare_tail 0 and 40
+    (alpha-synuclein's C-terminal tail) under the same seeds (`seeds` a range "a:b"), so the
+    same patterns."""
+    lo, hi = map(int, seeds.split(":"))
+    for tail in (0, 40):
+        for s in range(lo, hi):
+            print(json.dumps(run(periodic="auto", linker=linker, occupancy=0.5, bare_tail=tail,
+                                 seed=s)), flush=True)
+
+
 UNCHANGED = {"default": {}, "linker4": dict(linker=4, frames=120),
              "cell": dict(periodic="auto", frames=80),
              "inflate": dict(protocol="inflate", layers=10, linker=8, regrow_cycles=1,
@@ -79,6 +97,8 @@ if __name__ == "__main__":
         nested(int(sys.argv[2]))
     elif sys.argv[1:2] == ["cell"]:
         cell()
+    elif sys.argv[1:2] == ["tails"]:
+        tails(*([int(sys.argv[2])] if sys.argv[2:] else []), *sys.argv[3:4])
     elif sys.argv[1:2] == ["unchanged"]:
         unchanged(sys.argv[2])
     else:

@@ -151,20 +151,33 @@ def tail_clashes(model, centres: np.ndarray, scored: np.ndarray) -> dict:
     bare tails beside real shapes): every (globule, tail bead) overlapping by more than the
     sphere check's tolerance, as [globule, [layer, protofilament, bead], depth]. A domain that
     sits on an undecorated subunit's tail does not fit, as one on another domain does not
-    (docs/model/occupancy.md#the-model)."""
+    (docs/model/occupancy.md#the-model).
+
+    A periodic cell counts every pair of the infinite fibril once: each cell globule against
+    the cell's beads and their images S^m, m = -cells .. cells (below as well as above: a
+    globule and a bead are not alike, so a pair seen from below is not one already counted),
+    as far as the heights now can reach; an image bead's layer is its original's + m·M."""
     p = model.params
     beads = MatrixReader([ob for t in model.tails for ob in t], model.root.children).positions()
     where = [(t[0][LAYER], t[0].get(PROTOFILAMENT, 0), i)
              for t in model.tails for i in range(len(t))]
+    shifts = [0]
+    if p.periodic:
+        touch = (max(d.radius for d in p.domains) + p.residue_radius) / 2.0
+        cells = helix.check_cells(p, np.concatenate([centres[:, 2], beads[:, 2]]), touch)
+        shifts = [m for m in range(-cells, cells + 1)]
+        beads = np.concatenate([helix.apply_points(p, m, beads) for m in shifts])
+        where = [(k + m * p.layers, j, i) for m in shifts for k, j, i in where]
     radius = np.array([d.radius for d in p.domains])[np.arange(len(centres)) % len(p.domains)]
     tol = sphere_band(p.globule_radius)
     depth = (radius[:, None] + p.residue_radius
              - np.linalg.norm(centres[:, None] - beads[None], axis=-1))
     hits = np.argwhere((depth > tol) & scored[:, None])
-    return {"tolerance": round(tol, 4), "beads": len(beads),
+    return {"tolerance": round(tol, 4), "beads": len(where) // len(shifts),
             "pairs": [[int(g), [int(x) for x in where[b]], round(float(depth[g, b]), 4)]
                       for g, b in hits.tolist()],
-            "max_depth": round(float(depth.max()), 4) if depth.size else 0.0}
+            "max_depth": round(float(depth.max()), 4) if depth.size else 0.0,
+            **({"cells": len(shifts) // 2} if p.periodic else {})}
 
 
 def _clash_checks(model) -> dict:

@@ -13,8 +13,6 @@ linker, domains, bare tails) and where they go are decided together, over the sa
 meshes and layer geometry; splitting the tails out is the seam if it grows further."""
 from __future__ import annotations
 
-import dataclasses
-
 import bpy
 import numpy as np
 
@@ -23,6 +21,7 @@ from ..geom.rigid import euler_xyz, joint_rotations
 from ..model import helix, occupancy, params as P
 from ..model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS, RESIDUE_RINGS, RESIDUE_SEGMENTS
 from ..model.bent_layout import domain_terminals, real_chain_layout, spread_chains
+from ..model.chain import tail_chain, tail_members
 from ..model.start_layout import (bond_pivots, inflate_layout, rest_positions, spread_layout,
                                   walk_directions)
 from . import meshes
@@ -137,8 +136,9 @@ class LayerBuilder:
     def _chain_member(self, k, j, i):
         p = self.p
         c = k * self.pfs + j
-        if not self.decorated[c]:  # an undecorated subunit: its bare tail's beads, if any
-            if i < self.tail:
+        if not self.decorated[c]:  # an undecorated subunit: its bare tail's anchor, if any
+            # (its beads, however many: _linker; never again at a globule's place)
+            if i == 0 and self.tail:
                 self._tail_member(k, j, i)
             elif i == 0 and not self.tail:
                 self._bare_anchor(k, j)
@@ -255,8 +255,11 @@ class LayerBuilder:
     def _linker(self, k):
         for j in range(self.pfs):  # each protofilament's linker whole: bonds in chain order
             # (an undecorated subunit: its whole bare tail, however long)
-            last = self.p.free_linker if self.decorated[k * self.pfs + j] else self.tail
-            for i in range(1, last):
+            if not self.decorated[k * self.pfs + j]:
+                for i in range(1, self.tail):
+                    self._tail_member(k, j, i)
+                continue
+            for i in range(1, self.p.free_linker):
                 self._chain_member(k, j, i)
 
     def _globule(self, k):
@@ -351,18 +354,11 @@ class LayerBuilder:
                              child_world.transpose(0, 2, 1).astype(np.float32).ravel())
 
 
-def tail_members(p) -> int:
-    """Beads of an undecorated subunit's bare tail the model builds: `bare_tail` from the
-    buried anchor, less the residues its exit spends (as for the linker; 0: none)."""
-    return max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
-
-
 def tail_layout(p, n: int) -> tuple[np.ndarray, np.ndarray]:
     """A bare tail of n beads at every subunit: rest places (chains, n, 3) and its bonds'
     pivots (chains, n - 1, 3), straight out from the anchor along the chain's own line (a
     one-sphere chain as long as the tail, whose first n members are the beads)."""
-    q = dataclasses.replace(p, linker=p.exit_residues + n + 1, domain_shape="sphere",
-                            domain_diameters=None, domain_linker=None)
+    q = tail_chain(p)
     return rest_positions(q)[:, :n], bond_pivots(q)[:, :n - 1]
 
 

@@ -3,7 +3,8 @@
 Only images that can reach the cell are built (from the linker's length, not a fixed ±1 cell):
 static passive copies of the cores and anchors, and kinematic ("Animated") copies of the linker
 beads and globules, which ImageFollower moves after every frame to S^m of their originals, all
-in one foreach_set. Every image is tagged under the model's "images" collection.
+in one foreach_set. A mixed fibril's bare tails get theirs the same way (their anchors static,
+their beads kinematic, tagged TAIL). Every image is tagged under the model's "images" collection.
 """
 from __future__ import annotations
 
@@ -13,39 +14,49 @@ from mathutils import Matrix
 
 from ..geom.rigid import euler_xyz
 from ..model import helix
-from ..model.chain import body_radii, body_reach, chain_reach
+from ..model.chain import body_radii, body_reach, chain_reach, tail_reach
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
 MOVING, STATIC = "image", "image_static"  # roles of the two kinds of image
 CHAIN = "fibrilfit_chain"  # on an image: the chain (or core, for a static core image) it copies
 CELL = "fibrilfit_cell"    # on an image: m, the power of the screw
+TAIL = "fibrilfit_tail"    # on an image of a bare tail's member (anchor or bead): 1; its CHAIN
+# is then the tail's index in model.tails
 COLLECTIONS = {MOVING: "FibrilFit images", STATIC: "FibrilFit static images"}
 FADE_TO, FADE = (0.3, 0.32, 0.36), 0.6  # images: their original's colour, 60 % of the way to the
 # render's backdrop (exports/dressing.BACKGROUND), so the cell stands out
 _RB_COPIED = ("friction", "restitution", "use_margin", "collision_margin")
 
 
-def plan(p, chain_layers, core_layers) -> dict:
-    """Which images to build: {"moving": [(m, chain, member)], "static": [(m, kind, index)]}.
+def plan(p, chain_layers, core_layers, tail_layers=()) -> dict:
+    """Which images to build: {"moving": [(m, chain, member)], "static": [(m, kind, index)],
+    "tails": [(m, tail, member)]}.
 
     A body of an image layer a height gap g beyond the cell is built when its own reach
-    (model.chain.chain_reach, or half the core's height) plus the farthest reach of any cell body
-    covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
+    (model.chain.chain_reach, tail_reach for a bare tail's, or half the core's height) plus the
+    farthest reach of any cell body covers g; a static "anchor" image copies member 0 of a
+    chain, "tail" member 0 of a bare tail (`tail_layers`: each tail's layer), "core" a core
+    object. "tails": the kinematic images of the bare tails' beads.
     """
+    tails = tail_reach(p) if len(tail_layers) else np.zeros(0)
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
-    member_reach = chain_reach(p)
-    moving, static = [], []
-    for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
-        g = helix.image_gap(p, m, k)
-        for c in np.flatnonzero(np.asarray(chain_layers) == k).tolist():
-            for i in np.flatnonzero(member_reach + reach_cell >= g).tolist():
-                (static if i == 0 else moving).append((m, "anchor", c) if i == 0 else (m, c, i))
+    reach_cell = (max(body_reach(p), float(tails.max(initial=0.0)))
+                  + abs(p.pf_rise) * (p.protofilaments - 1))
+    moving, static, tail_moving = [], [], []
+    for layers, member_reach, kind, beads in ((chain_layers, chain_reach(p), "anchor", moving),
+                                              (tail_layers, tails, "tail", tail_moving)):
+        if not len(layers):
+            continue
+        for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
+            g = helix.image_gap(p, m, k)
+            for c in np.flatnonzero(np.asarray(layers) == k).tolist():
+                for i in np.flatnonzero(member_reach + reach_cell >= g).tolist():
+                    (static if i == 0 else beads).append((m, kind, c) if i == 0 else (m, c, i))
     for m, k in helix.image_layers(p, reach_cell + p.slab[2] / 2.0):
         for j in np.flatnonzero(np.asarray(core_layers) == k).tolist():
             static.append((m, "core", j))
-    return {"moving": moving, "static": static}
+    return {"moving": moving, "static": static, "tails": tail_moving}
 
 
 def build_images(model, scene) -> dict:
@@ -53,7 +64,8 @@ def build_images(model, scene) -> dict:
     p = model.params
     chain_layers = [members[0][LAYER] for members in model.chain]
     core_layers = [ob[LAYER] for ob in model.slabs]
-    todo = plan(p, chain_layers, core_layers)
+    tail_layers = [members[0][LAYER] for members in model.tails]
+    todo = plan(p, chain_layers, core_layers, tail_layers)
     colls = {role: new_collection(title, role + "s", model.root)
              for role, title in COLLECTIONS.items()}
     bodies = scene.rigidbody_world.collection
@@ -63,8 +75,11 @@ def build_images(model, scene) -> dict:
         for child in coll.objects:
             spheres.setdefault(child.parent.session_uid, []).append(child)
     for m, what, j in todo["static"]:
-        source = model.chain[j][0] if what == "anchor" else model.slabs[j]
+        source = (model.slabs[j] if what == "core" else
+                  (model.chain if what == "anchor" else model.tails)[j][0])
         ob = _copy(source, STATIC, m, j, 0, colls[STATIC], bodies)
+        if what == "tail":
+            ob[TAIL] = 1
         ob.matrix_world = _to_blender(helix.apply_matrices(p, m, _matrix(source)[None])[0])
         made[STATIC].append(ob)
         _copy_pieces(source, ob, colls[STATIC], bodies)
@@ -79,12 +94,18 @@ def build_images(model, scene) -> dict:
                                                   colls[MOVING])
             _copy_pieces(model.chain[c][i], ob, colls["spheres"], bodies, "globule_sphere",
                          spheres.get(model.chain[c][i].session_uid, ()))
+    for m, t, i in todo["tails"]:  # a bare tail's beads: kinematic, after the chains' images
+        ob = _copy(model.tails[t][i], MOVING, m, t, i, colls[MOVING], bodies)
+        ob[TAIL] = 1
+        ob.rigid_body.kinematic = True
+        made[MOVING].append(ob)
     follower = ImageFollower(model)
     rest = np.array([[np.array(ob.matrix_world.translation) for ob in members]
                      for members in model.chain])
     follower.place(rest)
     return {"moving": len(made[MOVING]), "static": len(made[STATIC]),
-            "cells": sorted({m for m, *_ in todo["moving"] + todo["static"]})}
+            "cells": sorted({m for m, *_ in todo["moving"] + todo["static"] + todo["tails"]}),
+            **({"tail_moving": len(todo["tails"])} if todo["tails"] else {})}
 
 
 def _matrix(ob) -> np.ndarray:
@@ -152,6 +173,10 @@ class ImageFollower:
     matrices written, see _write): an image whose place, old and new, lies farther along Z from
     every cell body than its radius plus the largest cell body's plus twice this frame's largest
     move keeps its old place, which nothing can reach.
+
+    A mixed fibril's bare tails (model.tails) are cell bodies too: their beads' images (TAIL)
+    follow them, read with one foreach_get of their own each frame (the bake's positions are
+    the chains').
     """
 
     def __init__(self, model):
@@ -161,18 +186,25 @@ class ImageFollower:
         self.m = np.array([ob[CELL] for ob in obs], dtype=float)
         self.chain = np.array([ob[CHAIN] for ob in obs], dtype=np.intp)
         self.member = np.array([ob[INDEX] for ob in obs], dtype=np.intp)
+        self.tail = np.array([bool(ob.get(TAIL, 0)) for ob in obs], dtype=bool)
+        # the bare tails' members, (tails, members): read each frame when any has an image
+        self.tails = (MatrixReader([ob for t in model.tails for ob in t], model.root.children)
+                      if self.tail.any() else None)
+        self.tail_shape = (len(model.tails), len(model.tails[0]) if model.tails else 0, 3)
         angle, _ = helix.screw_turn(self.p, self.m)
         self.rotation = np.zeros((len(obs), 3), dtype=np.float32)
         self.rotation[:, 2] = angle
         self.count = len(obs)
-        self.imaged = (self.chain, self.member)
         # each image's original: an image carries its scale (inflate grows and shrinks globules)
-        self.sources = [model.chain[c][i] for c, i in zip(self.chain.tolist(), self.member.tolist())]
+        self.sources = [(model.tails if t else model.chain)[c][i] for c, i, t
+                        in zip(self.chain.tolist(), self.member.tolist(), self.tail.tolist())]
         # several domains per chain: the further globules share domain 1's mesh at their own
         # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
         radii = body_radii(self.p)  # a real shape's globule: its reach
-        self.radius = radii[self.member] if len(obs) else np.zeros(0)
+        own = np.where(self.tail, 0, self.member)  # a bare tail's bead: a residue's radius
+        self.radius = (np.where(self.tail, self.p.residue_radius, radii[own]) if len(obs)
+                       else np.zeros(0))
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
                        (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
@@ -184,9 +216,24 @@ class ImageFollower:
         self.depsgraphs = None  # the scene's depsgraphs, known from the first frame's hook call
         self.turned = TurnedImages(model, self) if self.p.shape.real else None
 
+    def originals(self, positions: np.ndarray) -> np.ndarray:
+        """Each image's original's centre now (n, 3), from the chain positions (chains, members,
+        3) and, for a bare tail's images, the tails as they stand."""
+        if self.tails is None:
+            return positions[self.chain, self.member]
+        out = np.empty((self.count, 3))
+        own = ~self.tail
+        out[own] = positions[self.chain[own], self.member[own]]
+        out[self.tail] = self.tail_positions()[self.chain[self.tail], self.member[self.tail]]
+        return out
+
+    def tail_positions(self) -> np.ndarray:
+        """The bare tails' members now, (tails, members, 3)."""
+        return self.tails.positions().reshape(self.tail_shape)
+
     def targets(self, positions: np.ndarray) -> np.ndarray:
         """Where the images belong for chain positions (chains, members, 3)."""
-        return helix.apply_points(self.p, self.m, positions[self.chain, self.member])
+        return helix.apply_points(self.p, self.m, self.originals(positions))
 
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
@@ -194,6 +241,10 @@ class ImageFollower:
         radii = body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
+        if self.tails is not None:  # the bare tails' beads are cell bodies too
+            tz = self.tail_positions()[..., 2]
+            lo = min(lo, float(tz.min()) - self.p.residue_radius - self.reach - margin)
+            hi = max(hi, float(tz.max()) + self.p.residue_radius + self.reach + margin)
         out = np.zeros(self.count, dtype=bool)
         for where in (loc, self.current):
             out |= (where[:, 2] + self.radius >= lo) & (where[:, 2] - self.radius <= hi)
@@ -277,7 +328,7 @@ class ImageFollower:
         (Placing them where the last move would take them next instead was measured and is
         worse: the images overshoot at every contact, and the cell blew apart.)"""
         self._know(scene)
-        now = positions[self.imaged]
+        now = self.originals(positions)
         self.lag.append(float(np.linalg.norm(now - self.prev, axis=-1).max())
                         if self.prev is not None and self.count else 0.0)
         self.prev = now.copy()
@@ -298,7 +349,8 @@ class TurnedImages:
     than the check's (docs/model/domain-shapes.md#periodic)."""
 
     def __init__(self, model, follower):
-        self.rows = np.flatnonzero(np.isin(follower.member, [d.member for d in model.params.domains]))
+        domains = [d.member for d in model.params.domains]  # a tail's bead is none of them
+        self.rows = np.flatnonzero(np.isin(follower.member, domains) & ~follower.tail)
         sources = [follower.sources[k] for k in self.rows.tolist()]
         globules = [c for c in model.root.children if c.get(TAG) == "globules"]
         self.reader = MatrixReader(sources, globules)

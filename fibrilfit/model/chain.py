@@ -10,6 +10,7 @@ this module for the chain's lengths; `Params.chain_layout` keeps the layout of o
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -103,6 +104,27 @@ def chain_reach(p) -> np.ndarray:
     """
     x = np.asarray(chain_x(p), dtype=float)
     return (x - x[0]) * (1.0 + p.stretch_tolerance) + body_radii(p)
+
+
+def tail_members(p) -> int:
+    """Members of an undecorated subunit's bare tail the model builds (its buried anchor first):
+    `bare_tail` less the residues its exit spends, as for the linker (0: none)."""
+    return max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
+
+
+def tail_chain(p):
+    """The Params of a bare tail's chain: a one-sphere chain longer than the tail, whose first
+    tail_members(p) members (anchor and beads) are the tail's (builders.layers lays it out)."""
+    return dataclasses.replace(p, linker=p.exit_residues + tail_members(p) + 1,
+                               domain_shape="sphere", domain_diameters=None, domain_linker=None)
+
+
+def tail_reach(p) -> np.ndarray:
+    """How far along Z each bare-tail member's surface can get from its anchor's height (Å),
+    as chain_reach for a linker: its beads at rest plus the stretch tolerance, one radius
+    further (empty without tails)."""
+    n = tail_members(p)
+    return chain_reach(tail_chain(p))[:n] if n else np.zeros(0)
 
 
 def body_reach(p) -> float:

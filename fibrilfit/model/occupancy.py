@@ -150,9 +150,6 @@ def check_pattern(p) -> None:
                                              f"{p.score_layers}-{p.layers - p.score_layers - 1}; "
                                              f"score fewer end layers, or change the pattern "
                                              f"or seed")
-    if p.periodic and p.bare_tail and is_mixed(p):
-        raise ParamError("bare_tail", "is not built in a periodic cell yet (its images are not "
-                                      "made): use a fibril with ends (periodic 0), or bare_tail 0")
     if p.bare_tail and p.shape.real and is_mixed(p):
         raise ParamError("bare_tail", f"is judged against sphere domains only (not yet "
                                       f"{p.shape.name}): use domain_shape sphere, or bare_tail 0")

@@ -72,7 +72,7 @@ def estimated_objects(p) -> int:
     if p.pattern == "random" and p.occupancy == 1.0:  # every subunit decorated (as before #44)
         return p.layers * (1 + pieces + p.protofilaments * (2 * chain.chain_members(p) - 1))
     decorated = int(occupancy.decorated(p).sum())  # a mixed fibril: the bare tails' beads
-    tail = max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
+    tail = chain.tail_members(p)
     return (p.layers * (1 + pieces) + decorated * (2 * chain.chain_members(p) - 1)
             + (p.chains - decorated) * max(0, 2 * tail - 1))
 

@@ -20,14 +20,17 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch); 5: a buried anchor's
 # exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
+# 7: a bare tail longer than the free linker no longer gets a stray unbonded bead at the
+# globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
+# cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "bab1ff855009a0e5ca5db316a592fe1a920ef5db9e57fa3e74137cf4c3c38178"
+MODEL_SOURCES_SHA256 = "4197a455e67cd94c52bcd0345112d4d067cb7494bd63ac825f202a383f680517"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -10,8 +10,7 @@ A plan here is the API's LargestFractionPlan (api/plans.py): `.search` (SearchPl
 """
 from __future__ import annotations
 
-import csv
-import io
+import json
 
 from .. import exits, files
 from ..model import fraction_bound, params as P
@@ -19,6 +18,7 @@ from ..model.version import fibrilfit_version
 from ..sweep import grid
 from . import fraction, linker_map, minimal
 from .plans import seed_range
+from .table import csv_lines
 
 CSV, JSON, PNG = "largest_fraction.csv", "largest_fraction.json", "largest_fraction.png"
 COLUMNS = ("kind", "globule_diameter", "linker", "subunits", "largest_count", "largest_fraction",
@@ -54,7 +54,7 @@ def walks_for(values: dict, plan) -> tuple:
                                  seed=first)
             base.replace(seed=seeds[-1])
             n = subunits(base)
-            if n > 1:  # a mixed model's own refusals (e.g. bare tails in a cell), in one line
+            if n > 1:  # a mixed model's own refusals (bare tails beside hulls), in one line
                 base.replace(occupancy=(n - 1) / n)
             walks.append(new_walk(search, base, len(seeds)))
     return values, seeds, walks
@@ -120,21 +120,15 @@ def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:
 
 
 def csv_text(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(COLUMNS)
-    for r in rows:
+    """largest_fraction.csv: one line per (diameter, linker) (COLUMNS)."""
+    def cells(r):
         lo, hi = r["p_fit_interval"] or (None, None)
         above_hi = (r["p_fit_above_interval"] or (None, None))[1]
-        writer.writerow([_cell(v) for v in (
-            r["kind"], r["globule_diameter"], r["linker"], r["subunits"], r["largest_count"],
-            r["largest_fraction"], r["p_fit"], lo, hi, r["fraction_above"], r["p_fit_above"],
-            above_hi, r["restarts"], r["fraction_bound"], r["bracket"], r.get("protocol"))])
-    return buf.getvalue()
-
-
-def _cell(v):
-    return "" if v is None else (f"{v:g}" if isinstance(v, float) else v)
+        return (r["kind"], r["globule_diameter"], r["linker"], r["subunits"],
+                r["largest_count"], r["largest_fraction"], r["p_fit"], lo, hi,
+                r["fraction_above"], r["p_fit_above"], above_hi, r["restarts"],
+                r["fraction_bound"], r["bracket"], r.get("protocol"))
+    return csv_lines(COLUMNS, (cells(r) for r in rows))
 
 
 def table(rows: list[dict], protocol: str | None = None, restarts: int | None = None,
@@ -152,22 +146,36 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
         k, n = r["largest_count"], r["subunits"]
         shown = f"{k}/{n} ({r['largest_fraction']:.3f})" if k is not None else "none"
         fit = f"{r['p_fit']:.2f} ({r['fits']}/{r['restarts']})" if k is not None else "-"
-        if r["count_above"] is None:
-            above = "- (every subunit)"
-        elif r["above_settled_by_bound"]:
-            above = f"{r['count_above']}/{n}: excluded by the bound (not run)"
-        elif r.get("above_unstarted"):
-            above = f"{r['count_above']}/{n}: not started ({r['above_unstarted']})"
-        elif r["p_fit_above"] is not None:
-            above = f"{r['count_above']}/{n}: 0/{r['restarts_above']}"
-        else:
-            above = "-"
         lines.append(f"{r['globule_diameter']:>12g}  {r['linker']:>6}  {shown:>22}  "
-                     f"{fit:<14}  {above}")
+                     f"{fit:<14}  {one_more(r)}")
         notes.append(f"{r['globule_diameter']:g} Å, linker {r['linker']}: {r['bracket']}")
         if r.get("error"):
             notes.append(f"{r['globule_diameter']:g} Å, linker {r['linker']}: {r['error']}")
     return "\n".join(lines + notes)
+
+
+def one_more(r: dict) -> str:
+    """A row's "one more" cell: the count above the largest found, and why it does not fit
+    (excluded by the bound, its misses) or that it was not started; "-" when there is none
+    to say. The printed map's and the docs' table's (tools/fraction_map.py)."""
+    n = r["subunits"]
+    if r["count_above"] is None:
+        return "- (every subunit)"
+    if r["above_settled_by_bound"]:
+        return f"{r['count_above']}/{n}: excluded by the bound (not run)"
+    if r.get("above_unstarted"):
+        return f"{r['count_above']}/{n}: not started ({r['above_unstarted']})"
+    if r["p_fit_above"] is not None:
+        return f"{r['count_above']}/{n}: 0/{r['restarts_above']}"
+    return "-"
+
+
+def folder_rows(out) -> list[dict]:
+    """Every row of the largest_fraction.json in each folder under `out` (one map run each),
+    by diameter and linker."""
+    rows = [r for path in sorted(out.glob("*/" + JSON))
+            for r in json.loads(path.read_text(encoding="utf-8"))["rows"]]
+    return sorted(rows, key=lambda r: (r["globule_diameter"], r["linker"]))
 
 
 def write_plot(path, rows: list[dict]):

@@ -10,16 +10,23 @@ COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "
 
 
 def csv_text(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(COLUMNS)
-    for r in rows:
+    """minimal_linker.csv: one line per diameter (COLUMNS)."""
+    def cells(r):
         lo, hi = r["p_fit_interval"] or (None, None)
         below_hi = (r["p_fit_below_interval"] or (None, None))[1]
-        writer.writerow([_cell(v) for v in (r["kind"], r["globule_diameter"], r["minimal_linker"],
-                                            r["p_fit"], lo, hi, r["p_fit_below"], below_hi,
-                                            r["restarts"], r["linker_below"],
-                                            r.get("protocol"))])
+        return (r["kind"], r["globule_diameter"], r["minimal_linker"], r["p_fit"], lo, hi,
+                r["p_fit_below"], below_hi, r["restarts"], r["linker_below"], r.get("protocol"))
+    return csv_lines(COLUMNS, (cells(r) for r in rows))
+
+
+def csv_lines(columns, lines) -> str:
+    """A CSV: the header `columns`, then each of `lines` (values in the columns' order; None
+    an empty cell, a float as %g). A map's CSV (this one's, search/fraction_map.py's)."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(columns)
+    for values in lines:
+        writer.writerow([_cell(v) for v in values])
     return buf.getvalue()
 
 

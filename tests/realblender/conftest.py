@@ -33,10 +33,6 @@ def installed():
     cp = chroot(f"rm -rf {USER} && blender --version && blender -b --factory-startup --command "
                 f"extension install-file -r user_default -e {inside(ZIP)}")
     assert cp.returncode == 0, cp.stdout + cp.stderr
-    assert f'Installed "fibrilfit"' in cp.stdout, cp.stdout
+    assert 'Installed "fibrilfit"' in cp.stdout, cp.stdout
     assert cp.stdout.startswith(f"Blender {BLENDER_VERSION}"), cp.stdout[:200]
     return cp.stdout.splitlines()[0]
-
-
-def read_json(path: pathlib.Path) -> dict:
-    return json.loads(path.read_text(encoding="utf-8"))

@@ -8,7 +8,7 @@ import pytest
 
 from fibrilfit.model import params as P
 from fibrilfit.search import fraction, minimal
-from helpers import ROOT
+from helpers import ROOT, bench_module
 
 PY = sys.executable
 
@@ -96,29 +96,17 @@ def test_the_steps_model_values_round_back_to_the_count():
         assert occupancy.decorated(q).sum() == k and at["linker"] == 3
 
 
-class _Judge:
-    """The executor interface answering from a table: fits when at most `largest` of the N
-    subunits are decorated (the fraction of the run's params), no Blender."""
-
-    def __init__(self, n, largest):
-        self.n, self.largest, self.queue, self.ran = n, largest, [], []
-
-    def submit(self, job):
-        self.queue.append(job)
-
-    def pending(self):
-        return len(self.queue)
-
-    def wait(self):
-        job = self.queue.pop(0)
-        p = job["params"]
-        k = round(p["occupancy"] * self.n)
-        self.ran.append((k, p["seed"]))
-        fits = k <= self.largest
-        return job, {"id": job["id"], "ok": True, "result": {
-            "params": p, "status": "ok", "accommodated": fits,
-            "verdict": "successful" if fits else "intersection", "clashing_pairs": [],
-            "max_overlap": 0.0, "max_bond_stretch": 0.0, "frames_simulated": 10}}
+def _judge(n, largest):
+    """An executor answering from a table, no Blender (bench/walk_replay.py's Answering): a run
+    fits when at most `largest` of the N subunits are decorated (the fraction of its params);
+    `ran` lists (decorated count, seed)."""
+    def answer(p):
+        fits = round(p["occupancy"] * n) <= largest
+        return {"status": "ok", "accommodated": fits,
+                "verdict": "successful" if fits else "intersection", "clashing_pairs": [],
+                "max_overlap": 0.0, "max_bond_stretch": 0.0, "frames_simulated": 10}
+    return bench_module("walk_replay").Answering(
+        answer, noted=lambda p, r: (round(p["occupancy"] * n), p["seed"]))
 
 
 def test_the_map_steps_on_an_executor_and_a_resumed_walk_runs_nothing_again(tmp_path):
@@ -132,7 +120,7 @@ def test_the_map_steps_on_an_executor_and_a_resumed_walk_runs_nothing_again(tmp_
     rows = []
     for attempt in range(2):
         w = fraction.fraction_walk(30.0, 2, 10, bound_count=10, fraction_bound=1.0, restarts=3)
-        ex = _Judge(10, largest=6)
+        ex = _judge(10, largest=6)
         linker_map.step_walks(values, range(3), [w], tmp_path, plan, lambda: ex)
         rows.append(w.row())
         if attempt == 0:
@@ -182,7 +170,8 @@ def test_the_fraction_floor_is_never_above_the_full_bound_on_a_real_geometry():
     (["--linker", "0"], "linker"),
     (["--known-fit", "3"], "unrecognized arguments: --known-fit"),
     # refused for a mixed model only: said before anything runs, not met as a count unstarted
-    (["--periodic", "12", "--bare-tail", "5"], "bare_tail: is not built in a periodic cell"),
+    (["--domain", str(ROOT / "tests/data/1ubq.pdb.gz"), "--domain-shape", "hull",
+      "--bare-tail", "5"], "bare_tail: is judged against sphere domains only"),
 ])
 def test_largest_fraction_refuses_bad_input_in_one_line(tmp_path, args, named):
     proc = subprocess.run([PY, str(ROOT / "headless.py"), "largest-fraction", *args, "--out",

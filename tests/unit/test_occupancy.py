@@ -113,7 +113,6 @@ def test_auto_cell_rounds_up_to_the_patterns_repeat():
     (dict(bare_tail=-1), "bare_tail", "from 0"),
     (dict(layers=20, score_layers=5, occupancy=0.05, seed=1), "score_layers",
      "no decorated subunit"),
-    (dict(periodic=14, occupancy=0.5, bare_tail=4), "bare_tail", "periodic cell"),
 ])
 def test_bad_values_get_one_line_naming_the_parameter(values, param, words):
     with pytest.raises(ParamError) as exc:
@@ -198,3 +197,16 @@ def test_the_restarts_line_says_what_p_fit_counts():
     line = linker_map.restarts_line({**s, "p_fit_counts": O.report_block(p, 8)["p_fit_counts"]})
     assert "P(fit) 0.75 (95 % Wilson 0.41-0.93) over restarts that each draw their own " \
            "pattern and start from their seed; best layout: seed 5" in line
+
+
+def test_bare_tails_are_built_in_a_periodic_cell():
+    """A cell takes bare tails (their images: builders/periodic.py); each tail member reaches
+    as far as a linker bead at its place along the chain (model.chain.tail_reach)."""
+    from fibrilfit.model import chain
+    p = P.make_params(periodic=14, occupancy=0.5, bare_tail=10)
+    assert (p.bare_tail, chain.tail_members(p)) == (10, 10)
+    reach = chain.tail_reach(p)
+    assert len(reach) == 10 and reach[0] == pytest.approx(p.residue_radius)
+    assert np.diff(reach) == pytest.approx(p.residue_spacing * (1 + p.stretch_tolerance))
+    linker = chain.chain_reach(p)[:p.free_linker]  # the linker's beads: the same places
+    assert reach[:len(linker)] == pytest.approx(linker)

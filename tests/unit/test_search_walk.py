@@ -4,7 +4,7 @@ import sys
 import pytest
 from fibrilfit.model import params as P
 from fibrilfit.search import minimal, restarts
-from helpers import ROOT
+from helpers import ROOT, bench_module
 
 PY = sys.executable
 
@@ -53,31 +53,18 @@ def test_restarts_tally_has_p_fit_its_wilson_interval_and_the_best_seed():
     assert none["p_fit"] == 0 and none["p_fit_interval"][0] == 0 and none["best_seed"] == 0
 
 
-class FakeExecutor:
-    """The executor interface (submit, pending, wait) answering from a table, no Blender."""
-
-    def __init__(self, fits):
-        self.fits, self.queue, self.ran = fits, [], []
-
-    def submit(self, job):
-        self.queue.append(job)
-
-    def pending(self):
-        return len(self.queue)
-
-    def wait(self):
-        job = self.queue.pop(0)
-        seed = job["params"]["seed"]
-        self.ran.append(seed)
-        return job, {"id": job["id"], "ok": True, "result": {
-            **_record(seed, seed in self.fits), "params": job["params"]}}
+def answering(fits, noted=lambda p, r: (p["linker"], p["seed"])):
+    """An executor answering from a table, no Blender (bench/walk_replay.py's Answering): a
+    run fits when `fits(params)`; `ran` lists `noted(params, record)`."""
+    return bench_module("walk_replay").Answering(
+        lambda p: _record(p["seed"], fits(p)), noted)
 
 
 @pytest.mark.parametrize("stop, window, ran", [(False, 1, [0, 1, 2, 3, 4]), (True, 1, [0, 1, 2]),
                                                (True, 2, [0, 1, 2, 3])])
 def test_stop_on_fit_starts_no_seed_after_a_fit(tmp_path, stop, window, ran):
     base = P.make_params(linker=5).to_dict()
-    ex = FakeExecutor(fits={2, 4})
+    ex = answering(lambda p: p["seed"] in {2, 4}, noted=lambda p, r: p["seed"])
     recs = restarts.run_restarts(ex, base, range(5), tmp_path / "r.jsonl", stop_on_fit=stop,
                                  window=window)
     assert ex.ran == ran and [r["params"]["seed"] for r in recs] == ran
@@ -316,22 +303,13 @@ def test_the_walk_starts_no_restart_of_a_length_once_one_fits_there(tmp_path):
     from fibrilfit.search import linker_map
     from fibrilfit.search.plans import BatchOutput, SearchPlan
 
-    class Table(FakeExecutor):
-        def wait(self):
-            job = self.queue.pop(0)
-            p = job["params"]
-            self.ran.append((p["linker"], p["seed"]))
-            fits = p["linker"] >= 5 and p["seed"] >= 1
-            return job, {"id": job["id"], "ok": True, "result": {
-                **_record(p["seed"], fits), "params": p}}
-
     for every, ran_at_5 in ((False, [0, 1]), (True, [0, 1, 2, 3, 4])):
         plan = MinimalLinkerPlan(search=SearchPlan(max_linker=20, all_restarts=every),
                                  output=BatchOutput(quiet=True),
                                  executor=ExecutorPlan(executor="processes", workers=2))
         base = P.make_params(globule_diameter=30.0, linker=1)
         w = linker_map.new_walk(plan.search, base, 5)
-        ex = Table(fits=set())
+        ex = answering(lambda p: p["linker"] >= 5 and p["seed"] >= 1)
         out = tmp_path / f"every{every}"
         out.mkdir()
         linker_map.step_walks({"protocol": "inflate"}, range(5), [w], out, plan, lambda: ex)
@@ -370,14 +348,6 @@ def test_a_resumed_walk_runs_nothing_again(tmp_path):
     from fibrilfit.search import linker_map
     from fibrilfit.search.plans import BatchOutput, SearchPlan
 
-    class Table(FakeExecutor):
-        def wait(self):
-            job = self.queue.pop(0)
-            p = job["params"]
-            self.ran.append((p["linker"], p["seed"]))
-            return job, {"id": job["id"], "ok": True, "result": {
-                **_record(p["seed"], p["linker"] >= 5 and p["seed"] != 1), "params": p}}
-
     plan = MinimalLinkerPlan(search=SearchPlan(max_linker=20, all_restarts=False),
                              output=BatchOutput(quiet=True),
                              executor=ExecutorPlan(executor="processes", workers=1))
@@ -385,7 +355,7 @@ def test_a_resumed_walk_runs_nothing_again(tmp_path):
     rows = []
     for k in range(2):
         w = linker_map.new_walk(plan.search, base, 5)
-        ex = Table(fits=set())
+        ex = answering(lambda p: p["linker"] >= 5 and p["seed"] != 1)
         linker_map.step_walks({"protocol": "inflate"}, range(5), [w], tmp_path, plan,
                               lambda: ex)
         rows.append(w.row())

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import bound, gravity, helix, occupancy, start_layout
+from ..model import bound, gravity, helix, hetero, occupancy, start_layout
 from ..model.answer import answer
 from ..model.judgement import TOUCH_SLACK, accommodated, compare_checks
 from ..builders.readback import MatrixReader
@@ -83,7 +83,7 @@ def check_model(model) -> dict:
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = ends_stretch(*bond_ends(p, matrices[kept]))
+    stretch = ends_stretch(*bond_ends(p, matrices[kept], hetero.rest_lengths_by_chain(p)[kept]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
@@ -111,6 +111,9 @@ def check_model(model) -> dict:
                         f"the bound speaks of")
     centres = clashes["centres"]
     reach = None if clashes["reach"] is None else clashes["reach"][scored[:n]]
+    if occupancy.is_hetero(p):  # each globule's farthest point from the axis: A's or B's
+        reach = (np.hypot(centres[:, 0], centres[:, 1])
+                 + hetero.globule_radii_by_chain(p))[scored[:n]]
     overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius,
                                                        reach)
     return {
@@ -191,11 +194,14 @@ def _clash_checks(model) -> dict:
     # radius is its original's (blocks of n: globule g is domain g % D)
     radius = (p.globule_radius if domains == 1 else
               np.tile(np.asarray([d.radius for d in p.domains]), len(everything) // domains))
+    if occupancy.is_hetero(p):  # A's and B's (one domain a chain), an image its original's
+        radius = np.tile(hetero.globule_radii_by_chain(p), len(everything) // n)
+    each = np.ndim(radius) > 0
     scored = np.zeros(len(everything), dtype=bool)
     scored[:n] = True if p.periodic else np.repeat(kept, domains)
 
     def centre_depth(i, j):
-        touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
+        touch = radius[i] + radius[j] if each else 2 * p.globule_radius
         return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
     kinds = np.arange(len(everything)) % len(meshes)

@@ -13,7 +13,7 @@ from mathutils import Matrix
 
 from ..geom.rigid import euler_xyz
 from ..model import helix
-from ..model.chain import body_radii, body_reach, chain_reach
+from ..model.hetero import widest_body_radii, widest_chain_reach
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
@@ -34,8 +34,10 @@ def plan(p, chain_layers, core_layers) -> dict:
     covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
     """
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
-    member_reach = chain_reach(p)
+    # (a hetero-amyloid: the wider reach of an A or a B chain, member by member)
+    member_reach = widest_chain_reach(p)
+    reach_cell = (max(float(member_reach.max()), p.slab[2] / 2.0)  # chain.body_reach's
+                  + abs(p.pf_rise) * (p.protofilaments - 1))
     moving, static = [], []
     for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
         g = helix.image_gap(p, m, k)
@@ -171,7 +173,7 @@ class ImageFollower:
         # several domains per chain: the further globules share domain 1's mesh at their own
         # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
-        radii = body_radii(self.p)  # a real shape's globule: its reach
+        radii = widest_body_radii(self.p)  # a real shape's globule: its reach
         self.radius = radii[self.member] if len(obs) else np.zeros(0)
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
@@ -191,7 +193,7 @@ class ImageFollower:
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
         z = positions[..., 2]
-        radii = body_radii(self.p)
+        radii = widest_body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
         out = np.zeros(self.count, dtype=bool)

@@ -270,6 +270,8 @@ def linker_bound(p, budget: float = GRID_BUDGET) -> dict:
     `budget`: voxels per grid (a coarser grid gives a bound as sound, and weaker or equal)."""
     if occupancy.is_mixed(p):  # its inequalities count every subunit decorated: not a proof
         return occupancy.exit_bound(p)  # for a mixed fibril (docs/model/occupancy.md#bound)
+    if occupancy.is_hetero(p):  # two domain sizes: not computed (docs/model/bound.md#hetero)
+        return occupancy.exit_bound(p, hetero=True)
     return dict(_linker_bound(_settings_key(p) + f"|{budget:g}", p, budget))
 
 

@@ -104,7 +104,24 @@ def test_auto_cell_rounds_up_to_the_patterns_repeat():
     (dict(occupancy=0), "occupancy", "from"),
     (dict(occupancy=1.5), "occupancy", "from"),
     (dict(pattern="periodic", occupancy=0.5), "occupancy", "only with pattern random"),
-    (dict(pattern="layers", pattern_layers="AB"), "pattern_layers", "second domain"),
+    (dict(pattern="layers", pattern_layers="AB"), "domain_b_diameter", "is needed"),
+    (dict(domain_b_diameter=40.0), "domain_b_diameter", "pattern is random"),
+    (dict(pattern="layers", pattern_layers="A.", linker_b=6), "linker_b",
+     "pattern_layers has no B"),
+    (dict(pattern_layers="AB", domain_b_diameter=40.0), "domain_b_diameter",
+     "pattern is random"),
+    (dict(pattern_layers="AB"), "pattern_layers", "only with pattern layers"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, linker_b=7),
+     "linker_b", "not built yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, bare_tail=2),
+     "bare_tail", "not supported yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0,
+          domain_diameters=[20.0], domain_linker=[3]), "domain_diameters",
+     "not supported yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=0.1),
+     "domain_b_diameter", "from"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, periodic=15),
+     "pattern", "multiple of 2"),
     (dict(pattern="layers", pattern_layers="A-"), "pattern_layers", "only A"),
     (dict(pattern="layers", pattern_layers=".."), "pattern_layers", "no domain"),
     (dict(pattern="layers", pattern_layers="A..", periodic=16), "pattern", "multiple of 3"),
@@ -198,3 +215,82 @@ def test_the_restarts_line_says_what_p_fit_counts():
     line = linker_map.restarts_line({**s, "p_fit_counts": O.report_block(p, 8)["p_fit_counts"]})
     assert "P(fit) 0.75 (95 % Wilson 0.41-0.93) over restarts that each draw their own " \
            "pattern and start from their seed; best layout: seed 5" in line
+
+
+# ---- a hetero-amyloid: the letter B (docs/model/occupancy.md#hetero) -------------------------
+def test_b_layers_carry_the_second_domain_and_count_as_decorated():
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=6,
+                      protofilaments=2, pf_rotation=3.13, pf_rise=2.3)
+    assert O.is_hetero(p) and not O.is_mixed(p) and O.decorated(p).all()
+    assert O.second_domain(p)[:, 0].tolist() == [False, True] * 3
+    assert (O.second_domain(p)[:, 0] == O.second_domain(p)[:, 1]).all()  # a layer's letter
+    assert O.repeat_layers(p) == 2 and p.widest_diameter == 40.0
+    q = P.make_params(pattern="layers", pattern_layers="A.B.", domain_b_diameter=20.0, layers=8)
+    assert O.is_mixed(q) and O.decorated(q)[:, 0].tolist() == [True, False] * 4
+    assert O.second_domain(q)[:, 0].tolist() == [False, False, True, False] * 2
+    assert q.widest_diameter == 30.0  # A's is the wider
+    assert not O.is_hetero(P.make_params(pattern="layers", pattern_layers="A."))
+    assert P.DEFAULTS.domain_b_diameter is None and P.DEFAULTS.linker_b is None
+
+
+def test_a_hetero_cell_holds_whole_repeats_and_is_long_enough_for_b():
+    auto = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=60.0,
+                         periodic="auto")
+    assert auto.periodic % 2 == 0 and auto.periodic * auto.rise > 60.0
+    with pytest.raises(ParamError, match="periodic"):  # 8 layers: 38.4 Å, shorter than B
+        P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=60.0, periodic=8)
+
+
+def test_each_chain_has_its_own_last_bond_and_globule():
+    from fibrilfit.model import hetero
+    from fibrilfit.model.chain import rest_lengths
+    p = P.make_params(pattern="layers", pattern_layers="A.B", domain_b_diameter=40.0, layers=6,
+                      linker=4)
+    b = hetero.b_chains(p)  # the model's chains: the decorated subunits, layers 0, 2, 3, 5
+    assert b.tolist() == [False, True, False, True]
+    rest = hetero.rest_lengths_by_chain(p)
+    assert rest.shape == (4, 4)
+    assert rest[~b] == pytest.approx(np.tile(rest_lengths(p), (2, 1)))
+    assert rest[b, -1] == pytest.approx(20.0 + p.residue_radius)  # B's surface
+    assert rest[b, :-1] == pytest.approx(3.5)
+    assert hetero.globule_radii_by_chain(p).tolist() == [15.0, 20.0, 15.0, 20.0]
+    same = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=30.0, layers=4)
+    plain = P.make_params(pattern="layers", pattern_layers="AA", layers=4)
+    assert np.array_equal(hetero.rest_lengths_by_chain(same), hetero.rest_lengths_by_chain(plain))
+
+
+def test_the_occupancy_block_names_the_b_subunits_and_validates():
+    import json
+    import jsonschema
+    from helpers import ROOT
+    ref = ROOT / "docs" / "reference"
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=4)
+    block = O.occupancy_block(p)
+    assert block["second_domain"] == {"letter": "B", "diameter": 40.0, "linker": p.linker,
+                                      "subunits": [[1, 0], [3, 0]]}
+    r = json.loads((ref / "samples" / "run_result.json").read_text())
+    r = {**r, "params": p.to_dict(), "occupancy": block}
+    jsonschema.Draft202012Validator(json.loads((ref / "result.schema.json").read_text())
+                                    ).validate(r)
+
+
+def test_a_hetero_fibril_states_no_excluded_volume_bound():
+    """Two domain sizes: the excluded-volume bound is not computed (the exit's alone is kept,
+    and says why); the same fibril of A alone is bounded as before."""
+    from fibrilfit.model import bound
+    base = dict(globule_diameter=50.0, periodic=22, protocol="inflate", pattern="layers")
+    hetero = bound.linker_bound(P.make_params(**base, pattern_layers="AB",
+                                              domain_b_diameter=40.0))
+    assert hetero["impossible_below"] == 1 and hetero["fails_below"] is None
+    assert "no excluded-volume bound computed for two domain sizes" in hetero["method"]
+    full = bound.linker_bound(P.make_params(**base, pattern_layers="AA"))
+    assert full["impossible_below"] > 1 and "excluded volume" in full["method"]
+
+
+def test_a_case_file_carries_the_second_domain(tmp_path):
+    from fibrilfit.model import cases
+    case = tmp_path / "hetero.toml"
+    case.write_text('[params]\npattern = "layers"\npattern_layers = "AB"\n'
+                    'domain_b_diameter = 40.0\nlinker_b = 6\n', encoding="utf-8")
+    p = P.make_params(**cases.load(case).params)
+    assert (p.domain_b_diameter, p.linker_b, O.is_hetero(p)) == (40.0, 6, True)

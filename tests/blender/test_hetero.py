@@ -1,0 +1,89 @@
+"""A hetero-amyloid (issue #44 item 1): the letter B of a layers pattern puts a second domain, a
+sphere of domain_b_diameter, on its layers (docs/model/occupancy.md#hetero). Cheap builds and
+short bakes."""
+import numpy as np
+import pytest
+
+from fibrilfit.builders.scene import INDEX, LAYER, PROTOFILAMENT, TAG
+from fibrilfit.model import occupancy
+
+pytestmark = pytest.mark.one_bpy
+
+
+def _params(ff, **values):
+    return ff.model.params.make_params(**{"layers": 6, "frames": 40, **values})
+
+
+@pytest.mark.parametrize("protocol", ["tutorial", "inflate"])
+def test_b_layers_carry_their_own_globule_on_a_bond_to_its_surface(scene, ff, protocol):
+    """Odd layers (A) carry 30 Å globules, even ones (B) 40 Å, every chain its linker's beads;
+    as built, every bond of every chain is at its own rest length, a B chain's last one at
+    B's surface (the check would read a B chain measured by A's lengths as 30 % stretched)."""
+    p = _params(ff, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, linker=5,
+                protocol=protocol)
+    model = ff.builders.build_model(p, scene)
+    b = occupancy.second_domain(p)
+    assert len(model.chain) == 6
+    for members in model.chain:
+        layer = members[0][LAYER]
+        assert len(members) == p.linker + 1  # anchor, 4 residues, the globule
+        assert [ob[TAG] for ob in members] == ["anchor"] + ["residue"] * 4 + ["globule"]
+        assert [ob[INDEX] for ob in members] == list(range(6))
+        globule = members[-1]
+        want = 40.0 if b[layer, members[0].get(PROTOFILAMENT, 0)] else 30.0
+        assert layer % 2 == (want == 40.0)  # A on layers 0, 2, 4; B on 1, 3, 5
+        if protocol == "tutorial":  # (inflate starts them small: grown by the bake)
+            assert max(globule.dimensions) == pytest.approx(want, abs=1e-3)
+        else:
+            assert globule.scale[0] == pytest.approx(want / 30.0)
+    bonds = [ob for ob in scene.objects if ob.get(TAG) == "bond"]
+    assert len(bonds) == 6 * p.linker
+    if protocol == "tutorial":
+        for members in model.chain:
+            last = np.linalg.norm(np.subtract(members[-1].matrix_world.translation,
+                                              members[-2].matrix_world.translation))
+            want = (20.0 if members[0][LAYER] % 2 else 15.0) + p.residue_radius
+            assert last == pytest.approx(want, abs=1e-4)
+        r = ff.analysis.check_model(model)
+        assert r["max_bond_stretch"] == pytest.approx(0.0, abs=1e-5)
+        # as built the straight chains overlap (4.8 Å apart): each pair's depth is its own
+        # two radii less the centres' distance
+        c = np.asarray(r["globule_centres"])
+        radius = np.where(np.arange(6) % 2, 20.0, 15.0)
+        assert r["clashing_pairs"]
+        for i, j, d in r["clashing_pairs"]:
+            assert d == pytest.approx(radius[i] + radius[j] - np.linalg.norm(c[i] - c[j]),
+                                      abs=1e-3)
+
+
+def test_b_as_large_as_a_is_the_all_a_model_bit_for_bit(scene, ff):
+    """B with A's diameter and linker builds and bakes the model of the all-A pattern of the
+    same letters to the last digit (AB as AA, B. as A.)."""
+    keys = ("globule_centres", "max_bond_stretch", "clashing_pairs", "verdict",
+            "frames_simulated", "envelope", "accommodated")
+    for hetero, plain in (("AB", "AA"), ("B.", "A.")):
+        a = ff.pipeline.run_model(_params(ff, pattern="layers", pattern_layers=plain,
+                                             linker=4), scene)
+        h = ff.pipeline.run_model(_params(ff, pattern="layers", pattern_layers=hetero,
+                                             linker=4, domain_b_diameter=30.0, linker_b=4),
+                                     scene)
+        for key in keys:
+            assert h[key] == a[key], (hetero, key)
+        assert h["occupancy"]["second_domain"]["diameter"] == 30.0
+
+
+def test_a_hetero_run_records_b_and_judges_b_by_its_size(scene, ff):
+    """A short bake of AB with a larger B: the result's params and occupancy block carry B, the
+    bound says it was not computed, and the sphere check's pairs agree with the centres' depth
+    at each globule's own radius."""
+    r = ff.pipeline.run_model(_params(ff, pattern="layers", pattern_layers="AB",
+                                         domain_b_diameter=40.0, linker=6), scene)
+    assert r["params"]["domain_b_diameter"] == 40.0 and r["params"]["linker_b"] is None
+    assert r["occupancy"]["second_domain"]["subunits"] == [[1, 0], [3, 0], [5, 0]]
+    assert "no excluded-volume bound computed" in r["bound"]["method"]
+    c = np.asarray(r["globule_centres"])
+    radius = np.where(np.arange(6) % 2, 20.0, 15.0)
+    depth = radius[:, None] + radius[None] - np.linalg.norm(c[:, None] - c[None], axis=-1)
+    band = r["sphere_check"]["tolerance"]
+    deep = {(i, j) for i, j in zip(*np.nonzero(np.triu(depth > band, 1)))}
+    assert deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}

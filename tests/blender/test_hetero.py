@@ -87,3 +87,43 @@ def test_a_hetero_run_records_b_and_judges_b_by_its_size(scene, ff):
     band = r["sphere_check"]["tolerance"]
     deep = {(i, j) for i, j in zip(*np.nonzero(np.triu(depth > band, 1)))}
     assert deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+
+
+def test_inflate_grows_each_globule_to_its_own_size(scene, ff):
+    """Under inflate the globules start small and grow: at the end A's sphere is at scale 1
+    and B's at d_B / d_A, and the judgement's pairs count each at its own size."""
+    p = _params(ff, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, linker=8,
+                protocol="inflate", grow_frames=20, hold_frames=10, regrow_cycles=0,
+                near_cycles=0)
+    r = ff.pipeline.run_model(p, scene)
+    assert r["inflate"]["start_scale"] < 1.0
+    model = ff.builders.find_model(scene)
+    scales = {int(members[0][LAYER]): members[-1].matrix_world.to_scale()[0]
+              for members in model.chain}
+    for layer, s in scales.items():
+        assert s == pytest.approx(40.0 / 30.0 if layer % 2 else 1.0, abs=1e-5), layer
+
+
+def test_a_cell_images_b_at_its_own_size(scene, ff):
+    """A periodic cell of AB: every image stands at S^m of its source as built, and after a
+    short bake every image globule carries its source's scale (B's larger sphere above and
+    below the cell too)."""
+    from fibrilfit.builders.periodic import CELL, CHAIN, image_collection
+    from fibrilfit.model import helix
+    p = _params(ff, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, linker=6,
+                periodic="auto", frames=20)
+    assert p.periodic % 2 == 0
+    model = ff.builders.build_model(p, scene)
+    for ob in image_collection(model).objects:  # as built: at S^m of its source
+        source = model.chain[ob[CHAIN]][ob[INDEX]]
+        want = helix.apply_points(p, ob[CELL], np.array(source.matrix_world.translation)[None])
+        assert np.allclose(ob.matrix_world.translation, want[0], atol=1e-3)
+    r = ff.pipeline.run_model(p, scene)  # baked: each image carries its source's scale
+    model = ff.builders.find_model(scene)
+    images = list(image_collection(model).objects)
+    globules = [ob for ob in images if model.chain[ob[CHAIN]][ob[INDEX]][TAG] == "globule"]
+    assert globules and {model.chain[ob[CHAIN]][0][LAYER] % 2 for ob in globules} == {0, 1}
+    for ob in globules:
+        source = model.chain[ob[CHAIN]][ob[INDEX]]
+        assert ob.scale[0] == pytest.approx(40.0 / 30.0 if source[LAYER] % 2 else 1.0)
+    assert r["periodic"] and "sphere_check" in r

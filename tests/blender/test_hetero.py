@@ -73,11 +73,11 @@ def test_b_as_large_as_a_is_the_all_a_model_bit_for_bit(scene, ff):
 
 
 def test_a_hetero_run_records_b_and_judges_b_by_its_size(scene, ff):
-    """A short bake of AB with a larger B: the result's params and occupancy block carry B, the
-    bound says it was not computed, and the sphere check's pairs agree with the centres' depth
-    at each globule's own radius."""
+    """A short bake of AB with a larger B on a linker too short to hold them: the result's
+    params and occupancy block carry B, the bound says it was not computed, and the sphere
+    check's pairs are those of the centres' depth at each globule's own radius."""
     r = ff.pipeline.run_model(_params(ff, pattern="layers", pattern_layers="AB",
-                                         domain_b_diameter=40.0, linker=6), scene)
+                                         domain_b_diameter=40.0, linker=3, frames=2), scene)
     assert r["params"]["domain_b_diameter"] == 40.0 and r["params"]["linker_b"] is None
     assert r["occupancy"]["second_domain"]["subunits"] == [[1, 0], [3, 0], [5, 0]]
     assert "no excluded-volume bound computed" in r["bound"]["method"]
@@ -86,7 +86,8 @@ def test_a_hetero_run_records_b_and_judges_b_by_its_size(scene, ff):
     depth = radius[:, None] + radius[None] - np.linalg.norm(c[:, None] - c[None], axis=-1)
     band = r["sphere_check"]["tolerance"]
     deep = {(i, j) for i, j in zip(*np.nonzero(np.triu(depth > band, 1)))}
-    assert deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+    assert deep and deep == {(i, j) for i, j, _ in r["sphere_check"]["clashing_pairs"]}
+    assert not r["accommodated"]  # two frames in: still pushing apart
 
 
 def test_inflate_grows_each_globule_to_its_own_size(scene, ff):

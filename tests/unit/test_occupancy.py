@@ -272,6 +272,9 @@ def test_the_occupancy_block_names_the_b_subunits_and_validates():
     r = {**r, "params": p.to_dict(), "occupancy": block}
     jsonschema.Draft202012Validator(json.loads((ref / "result.schema.json").read_text())
                                     ).validate(r)
+    from fibrilfit.exports import run_text
+    assert "second domain: B, 40 Å (a sphere) on a 6-residue linker, on 2 of those subunits " \
+           "(pattern 'AB'); the others carry A, 30 Å" in run_text.text(r)
 
 
 def test_a_hetero_fibril_states_no_excluded_volume_bound():

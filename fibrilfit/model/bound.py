@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from ..geom import polygons, shape as geom_shape
-from . import helix, occupancy
+from . import helix, hetero, occupancy
 from .chain import chain_x
 from .param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 
@@ -256,6 +256,7 @@ def _settings_key(p) -> str:
     keep = ("slab", "residue_radius", "residue_spacing", "globule_diameter", "layers", "rise",
             "twist", "stretch_tolerance", "score_layers", "protofilaments", "pf_rotation",
             "pf_rise", "core_outline", "anchor", "periodic", "domain_diameters",
+            "pattern", "pattern_layers", "domain_b_diameter", "linker_b",
             "domain_linker", "domain_shape", "domain_atoms", "domain_spheres", "domain_joint",
             "further_atoms", "further_spheres", "further_joints", "domain_exits",
             "exit_residues")
@@ -269,9 +270,9 @@ def linker_bound(p, budget: float = GRID_BUDGET) -> dict:
     any linker < B), with the inequality that fails one below it (docs/model/bound.md).
     `budget`: voxels per grid (a coarser grid gives a bound as sound, and weaker or equal)."""
     if occupancy.is_mixed(p):  # its inequalities count every subunit decorated: not a proof
-        return occupancy.exit_bound(p)  # for a mixed fibril (docs/model/occupancy.md#bound)
-    if occupancy.is_hetero(p):  # two domain sizes: not computed (docs/model/bound.md#hetero)
-        return occupancy.exit_bound(p, hetero=True)
+        # for a mixed fibril (docs/model/occupancy.md#bound); a mixed hetero-amyloid's: the
+        # exit's alone too (docs/model/bound.md#hetero)
+        return occupancy.exit_bound(p, hetero=occupancy.is_hetero(p))
     return dict(_linker_bound(_settings_key(p) + f"|{budget:g}", p, budget))
 
 
@@ -301,6 +302,9 @@ class Setting:
 
 def setting(p, budget: float = GRID_BUDGET) -> Setting:
     """The geometry's Setting, measured once with its linker bound (cached like it)."""
+    if occupancy.is_hetero(p):  # its volumes are the two letters' shares: not one domain's
+        raise ValueError("the fraction bound is not built for a hetero-amyloid "
+                         "(docs/model/bound.md#hetero)")
     key = _settings_key(p) + f"|{budget:g}"
     _linker_bound(key, p, budget)
     return _CACHE[key][1]
@@ -316,6 +320,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     else:
         lo, hi = p.score_layers, p.layers - p.score_layers  # analysis/verdict.scored_range
         chains_per_pf = hi - lo
+    letters = letter_shares(p, lo, hi) if occupancy.is_hetero(p) else None
     # a buried anchor's exit spends its residues first: no linker up to them leaves the core
     # (docs/model/buried-terminus.md#model); the model's anchor is where the free linker starts
     first = int(p.exit_residues) + 1
@@ -329,6 +334,13 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     if p.free_linker < 1:  # a linker that leaves the core, for the chain's lengths (its
         p = dataclasses.replace(p, linker=first)  # checks aside: only chain_x is read)
     terms = reach_terms(p)
+    shown = volumes
+    if letters is not None:  # a hetero-amyloid: A's and B's, each its share of the chains
+        q = hetero.b_params(p)
+        (b_volume,) = [ball_union_volume(inner_balls(q, d)) for d in q.domains]
+        shown = [volumes[0], b_volume]
+        terms = terms + reach_terms(q)
+        volumes = [v * share for v, share in zip(shown, letters)]
     top = max(8, first)  # not the linker asked: the bound is the geometry's, whatever ran first
     while True:
         rho_top = reach(p, terms, top)
@@ -350,11 +362,12 @@ def _linker_bound(key: str, p, budget: float) -> dict:
                    "needed_A3": round(worst["need"], 1), "room_A3": round(worst["have"], 1)}
     result = {
         "impossible_below": found if found is not None else LONGEST + 1,
-        "method": "excluded volume (docs/model/bound.md#derivation)",
+        "method": ("excluded volume (docs/model/bound.md#derivation)" if letters is None else
+                   "excluded volume, A and B each at its own size (docs/model/bound.md#hetero)"),
         "over": ("one layer of the infinite fibril" if periodic
                  else f"the scored layers {lo}-{hi - 1}"),
         "fails_below": failing,
-        "inner_volume_A3": [round(v, 1) for v in volumes],
+        "inner_volume_A3": [round(v, 1) for v in shown],
         "core_entry": CORE_ENTRY,
         "voxel": round(room.h, 4),
         "exit_residues": int(p.exit_residues),
@@ -362,6 +375,21 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     _CACHE[key] = (result, Setting(p, terms, volumes, periodic, lo, hi, chains_per_pf, first,
                                    room, result["impossible_below"]))
     return result
+
+
+def letter_shares(p, lo: int, hi: int) -> list[float]:
+    """A hetero-amyloid's (docs/model/bound.md#hetero): the shares (A, B) of a protofilament's
+    judged chains that carry each letter, as the inequalities count them (need = protofilaments
+    × chains_per_pf × Σ share·V): a finite fibril's scored layers lo..hi-1 (counts over
+    chains_per_pf = hi − lo), or a periodic cell's average per layer over the pattern's
+    repeat (one layer of the infinite fibril)."""
+    b = occupancy.second_domain(p)[:, 0]
+    if p.periodic:
+        n = len(occupancy.letters(p.pattern_layers))
+        b_layers = sum(ch == occupancy.SECOND_DOMAIN for ch in occupancy.letters(p.pattern_layers))
+        return [(n - b_layers) / n, b_layers / n]
+    judged = b[lo:hi]
+    return [float((~judged).sum()) / len(judged), float(judged.sum()) / len(judged)]
 
 
 def bound_block(p) -> dict:

@@ -292,13 +292,15 @@ def exit_bound(p, hetero: bool = False) -> dict:
     """The linker bound a mixed fibril keeps: only the buried exit's (no linker up to its
     residues leaves the core). The excluded-volume inequalities of model/bound.py count every
     subunit decorated, so below their bound a mixed fibril may still fit: they are not applied
-    (docs/model/occupancy.md#bound). `hetero`: a fibril of two domain sizes (A and B), whose
-    excluded-volume bound is not computed yet (docs/model/bound.md#hetero)."""
+    (docs/model/occupancy.md#bound). `hetero`: a mixed fibril of two domain sizes (A and B),
+    whose excluded-volume bound (the fraction's, with two sizes) is not built
+    (docs/model/bound.md#hetero)."""
     if hetero:
         return {"impossible_below": int(p.exit_residues) + 1,
-                "method": "the buried exit alone: no excluded-volume bound computed for two "
-                          "domain sizes (A and B; docs/model/bound.md#hetero)",
-                "over": "a hetero-amyloid: the exit only", "fails_below": None,
+                "method": "the buried exit alone: no excluded-volume bound computed for a "
+                          "mixed fibril of two domain sizes (A and B; "
+                          "docs/model/bound.md#hetero)",
+                "over": "a mixed hetero-amyloid: the exit only", "fails_below": None,
                 "exit_residues": int(p.exit_residues)}
     return {"impossible_below": int(p.exit_residues) + 1,
             "method": "the buried exit alone (the excluded-volume bound counts every subunit "

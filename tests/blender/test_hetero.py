@@ -74,13 +74,13 @@ def test_b_as_large_as_a_is_the_all_a_model_bit_for_bit(scene, ff):
 
 def test_a_hetero_run_records_b_and_judges_b_by_its_size(scene, ff):
     """A short bake of AB with a larger B on a linker too short to hold them: the result's
-    params and occupancy block carry B, the bound says it was not computed, and the sphere
+    params and occupancy block carry B, the bound counts A and B at their sizes, and the sphere
     check's pairs are those of the centres' depth at each globule's own radius."""
     r = ff.pipeline.run_model(_params(ff, pattern="layers", pattern_layers="AB",
                                          domain_b_diameter=40.0, linker=3, frames=2), scene)
     assert r["params"]["domain_b_diameter"] == 40.0 and r["params"]["linker_b"] is None
     assert r["occupancy"]["second_domain"]["subunits"] == [[1, 0], [3, 0], [5, 0]]
-    assert "no excluded-volume bound computed" in r["bound"]["method"]
+    assert "A and B each at its own size" in r["bound"]["method"]
     c = np.asarray(r["globule_centres"])
     radius = np.where(np.arange(6) % 2, 20.0, 15.0)
     depth = radius[:, None] + radius[None] - np.linalg.norm(c[:, None] - c[None], axis=-1)

@@ -277,17 +277,41 @@ def test_the_occupancy_block_names_the_b_subunits_and_validates():
            "(pattern 'AB'); the others carry A, 30 Å" in run_text.text(r)
 
 
-def test_a_hetero_fibril_states_no_excluded_volume_bound():
-    """Two domain sizes: the excluded-volume bound is not computed (the exit's alone is kept,
-    and says why); the same fibril of A alone is bounded as before."""
+def test_a_hetero_fibril_is_bounded_with_each_letter_at_its_own_size():
+    """Two domain sizes (docs/model/bound.md#hetero): B as large as A is bounded as the all-A
+    fibril to the number; a larger B is bounded at most as high as the fibril of that larger
+    domain on every layer (each of its inequalities is implied by one of that fibril's); a
+    mixed hetero-amyloid keeps the exit's bound alone, and the fraction bound is refused."""
     from fibrilfit.model import bound
-    base = dict(globule_diameter=50.0, periodic=22, protocol="inflate", pattern="layers")
-    hetero = bound.linker_bound(P.make_params(**base, pattern_layers="AB",
-                                              domain_b_diameter=40.0))
-    assert hetero["impossible_below"] == 1 and hetero["fails_below"] is None
-    assert "no excluded-volume bound computed for two domain sizes" in hetero["method"]
-    full = bound.linker_bound(P.make_params(**base, pattern_layers="AA"))
-    assert full["impossible_below"] > 1 and "excluded volume" in full["method"]
+    base = dict(periodic=22, pattern="layers")
+    aa = bound.linker_bound(P.make_params(**base, pattern_layers="AA"))
+    same = bound.linker_bound(P.make_params(**base, pattern_layers="AB", domain_b_diameter=30.0))
+    assert aa["impossible_below"] == same["impossible_below"] == 2
+    assert "A and B each at its own size" in same["method"]
+    for d in (40.0, 50.0):
+        ab = bound.linker_bound(P.make_params(**base, pattern_layers="AB", domain_b_diameter=d))
+        bb = bound.linker_bound(P.make_params(**base, pattern_layers="AA", globule_diameter=d))
+        assert 1 <= ab["impossible_below"] <= bb["impossible_below"]
+        assert ab["inner_volume_A3"][0] == aa["inner_volume_A3"][0]
+        assert ab["inner_volume_A3"][1] == bb["inner_volume_A3"][0]
+    # the shares each letter's volume is counted with: the scored layers' letters, or the
+    # pattern's per layer in a cell
+    def shares(**kw):
+        q = P.make_params(pattern="layers", **kw)
+        return bound.letter_shares(q, q.score_layers, q.layers - q.score_layers)
+
+    assert shares(layers=12, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([8 / 12, 4 / 12])
+    assert shares(layers=12, score_layers=2, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([5 / 8, 3 / 8])  # layers 2-9: B on 2, 5, 8
+    assert shares(periodic=21, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([2 / 3, 1 / 3])
+    mixed = P.make_params(periodic=24, pattern="layers", pattern_layers="A.B.",
+                          domain_b_diameter=40.0)
+    b = bound.linker_bound(mixed)
+    assert b["impossible_below"] == 1 and "no excluded-volume bound" in b["method"]
+    with pytest.raises(ValueError, match="hetero"):
+        bound.setting(P.make_params(**base, pattern_layers="AB", domain_b_diameter=40.0))
 
 
 def test_a_case_file_carries_the_second_domain(tmp_path):

@@ -128,3 +128,14 @@ def test_a_cell_images_b_at_its_own_size(scene, ff):
         source = model.chain[ob[CHAIN]][ob[INDEX]]
         assert ob.scale[0] == pytest.approx(40.0 / 30.0 if source[LAYER] % 2 else 1.0)
     assert r["periodic"] and "sphere_check" in r
+
+
+def test_the_pdb_writes_each_globule_at_its_own_radius(ff):
+    """The coarse-grained PDB's B-factor column is each sphere's radius: A's 15 Å, B's 20 Å."""
+    from fibrilfit.exports import pdb
+    p = _params(ff, layers=4, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0)
+    pos = np.zeros((4, p.linker + 1, 3))
+    text = pdb.pdb_text(p, [(1, pos)])
+    radii = [float(line[60:66]) for line in text.splitlines()
+             if line.startswith("ATOM") and line[17:20] == "GLB"]
+    assert radii == [15.0, 20.0, 15.0, 20.0]

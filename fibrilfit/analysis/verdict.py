@@ -104,7 +104,9 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     # the bound's third assumption, measured on this layout (docs/model/bound.md#assumptions)
-    entry = bound.core_entry(p, matrices[kept])
+    entry = bound.core_entry(p, matrices[kept], (hetero.globule_radii_by_chain(p)[kept]
+                                                 / p.globule_radius)
+                             if occupancy.is_hetero(p) else None)
     if entry > bound.CORE_ENTRY:
         warnings.append(f"a domain enters the core by {entry:.2f} Å, more than the "
                         f"{bound.CORE_ENTRY} Å the linker bound assumes: this layout is not one "

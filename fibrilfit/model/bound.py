@@ -399,13 +399,14 @@ def bound_block(p) -> dict:
     return {**b, "linker": p.linker, "below": p.linker < b["impossible_below"]}
 
 
-def core_entry(p, matrices) -> float:
+def core_entry(p, matrices, sizes=None) -> float:
     """How deep (Å) the deepest inner ball (`inner_balls`) of any domain enters a core prism, for
     chain members' world matrices (chains, members, 4, 4): the bound's third assumption,
     measured (docs/model/bound.md#assumptions). A ball counts against the prism of the layer
     whose slice holds its centre: its depth is its radius less the centre's distance outside
     the layer's outline (plus the distance inside it); a centre above or below a finite stack's
-    end counts nothing."""
+    end counts nothing. `sizes`: each chain's globule as a scale of the first domain's (a
+    hetero-amyloid's B chains: d_B / d_A, their spheres' balls that much larger; default 1)."""
     matrices = np.asarray(matrices, dtype=float)
     outline = p.outline()
     t = core_thickness(p)
@@ -419,7 +420,9 @@ def core_entry(p, matrices) -> float:
         dist = polygons.edge_distance(outline, rows)[0]
         inside = polygons.even_odd(outline, rows)
         signed = np.where(inside, -dist, dist).reshape(k.shape)
-        depth = balls[None, :, 3] - signed
+        radius = balls[None, :, 3] if sizes is None else \
+            balls[None, :, 3] * np.asarray(sizes, dtype=float)[:, None]
+        depth = radius - signed
         in_slice = np.abs(world[..., 2] - k * p.rise) <= t / 2.0
         if not p.periodic:
             in_slice &= (k >= 0) & (k < p.layers)

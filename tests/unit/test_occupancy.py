@@ -321,3 +321,15 @@ def test_a_case_file_carries_the_second_domain(tmp_path):
                     'domain_b_diameter = 40.0\nlinker_b = 6\n', encoding="utf-8")
     p = P.make_params(**cases.load(case).params)
     assert (p.domain_b_diameter, p.linker_b, O.is_hetero(p)) == (40.0, 6, True)
+
+
+def test_the_core_entry_counts_each_globule_at_its_own_size():
+    """The bound's third assumption, measured on a layout (bound.core_entry): a B globule's
+    inner ball is B's, d_B / d_A times A's."""
+    from fibrilfit.model import bound
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=4)
+    m = np.tile(np.eye(4), (1, p.linker + 1, 1, 1))
+    m[0, -1, :3, 3] = (30.0, 0.0, 0.0)  # layer 0's globule, 10 Å outside the 40 Å slab's face
+    f = bound.uv_fraction()
+    assert bound.core_entry(p, m) == pytest.approx(15.0 * f - 10.0, abs=1e-4)
+    assert bound.core_entry(p, m, [40.0 / 30.0]) == pytest.approx(20.0 * f - 10.0, abs=1e-4)

@@ -333,3 +333,16 @@ def test_the_core_entry_counts_each_globule_at_its_own_size():
     f = bound.uv_fraction()
     assert bound.core_entry(p, m) == pytest.approx(15.0 * f - 10.0, abs=1e-4)
     assert bound.core_entry(p, m, [40.0 / 30.0]) == pytest.approx(20.0 * f - 10.0, abs=1e-4)
+
+
+def test_b_chains_that_cannot_leave_the_core_are_refused_before_a_build():
+    """In a slot 34 Å wide a 30 Å domain's chain leaves the core straight, a 40 Å one cannot:
+    a B of 40 Å beside that A is refused at validation, naming domain_b_diameter."""
+    slot = [[-50, -60], [90, -60], [90, -17], [10, -17], [10, 17], [90, 17], [90, 60], [-50, 60]]
+    base = dict(core_outline=slot, anchor=[11.75, 0.0], layers=4, linker=6)
+    P.make_params(**base)
+    P.make_params(**base, pattern="layers", pattern_layers="AB", domain_b_diameter=20.0)
+    with pytest.raises(ParamError) as exc:
+        P.make_params(**base, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0)
+    assert exc.value.param == "domain_b_diameter" and "the B chains (40 Å)" in str(exc.value)
+    assert "\n" not in str(exc.value)

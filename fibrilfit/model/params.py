@@ -268,7 +268,8 @@ class Params:
                                            label="Domain B diameter")
     linker_b: int | None = spec(None, 1, 200, "residues",
                                 "layers: linker length of the B layers' chains in residues, "
-                                "counting the passive anchor", kind=int, section="Globule",
+                                "counting the passive anchor (only linker's own length is "
+                                "built yet)", kind=int, section="Globule",
                                 derived="the same as linker", label="Linker B")
     bare_tail: int = spec(0, 0, 200, "residues",
                           "Undecorated subunits' own disordered tail, a bead chain of this many "

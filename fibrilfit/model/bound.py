@@ -1,5 +1,7 @@
 """The proven lower bound on the linker: below `impossible_below` residues no layout of this model
 is clash-free with intact linkers. Geometry alone, no simulation; plain numpy, no bpy.
+Over 400 lines because it is one proof: what a globule holds, how far it reaches, the room the
+anchors leave and the search for the shortest linker they allow, said together.
 
 The argument (written out for a referee: docs/model/bound.md#derivation):
 
@@ -320,7 +322,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     else:
         lo, hi = p.score_layers, p.layers - p.score_layers  # analysis/verdict.scored_range
         chains_per_pf = hi - lo
-    letters = letter_shares(p, lo, hi) if occupancy.is_hetero(p) else None
+    letters = hetero.letter_shares(p, lo, hi) if occupancy.is_hetero(p) else None
     # a buried anchor's exit spends its residues first: no linker up to them leaves the core
     # (docs/model/buried-terminus.md#model); the model's anchor is where the free linker starts
     first = int(p.exit_residues) + 1
@@ -375,21 +377,6 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     _CACHE[key] = (result, Setting(p, terms, volumes, periodic, lo, hi, chains_per_pf, first,
                                    room, result["impossible_below"]))
     return result
-
-
-def letter_shares(p, lo: int, hi: int) -> list[float]:
-    """A hetero-amyloid's (docs/model/bound.md#hetero): the shares (A, B) of a protofilament's
-    judged chains that carry each letter, as the inequalities count them (need = protofilaments
-    × chains_per_pf × Σ share·V): a finite fibril's scored layers lo..hi-1 (counts over
-    chains_per_pf = hi − lo), or a periodic cell's average per layer over the pattern's
-    repeat (one layer of the infinite fibril)."""
-    b = occupancy.second_domain(p)[:, 0]
-    if p.periodic:
-        n = len(occupancy.letters(p.pattern_layers))
-        b_layers = sum(ch == occupancy.SECOND_DOMAIN for ch in occupancy.letters(p.pattern_layers))
-        return [(n - b_layers) / n, b_layers / n]
-    judged = b[lo:hi]
-    return [float((~judged).sum()) / len(judged), float(judged.sum()) / len(judged)]
 
 
 def bound_block(p) -> dict:

@@ -1,6 +1,7 @@
 """A hetero-amyloid's two domains, chain by chain (issue #44 item 1,
-docs/model/occupancy.md#hetero): which of the model's chains carry the second domain B, and
-the lengths and sizes each chain has with its own domain. Plain numpy, no bpy.
+docs/model/occupancy.md#hetero): which of the model's chains carry the second domain B, the
+lengths and sizes each chain has with its own domain, and each letter's share of the chains the
+linker bound counts. Plain numpy, no bpy.
 
 The pattern (which layers are A, B or none) is model/occupancy.py's; a B chain is the chain
 of `b_params(p)`, the same model with B's diameter (and linker), so every length of it comes
@@ -77,3 +78,18 @@ def widest_chain_reach(p) -> np.ndarray:
     """chain.chain_reach over both domains (see widest_body_radii)."""
     reach = chain_reach(p)
     return np.maximum(reach, chain_reach(b_params(p))) if occupancy.is_hetero(p) else reach
+
+
+def letter_shares(p, lo: int, hi: int) -> list[float]:
+    """A hetero-amyloid's (the linker bound, docs/model/bound.md#hetero): the shares (A, B) of a protofilament's
+    judged chains that carry each letter, as the inequalities count them (need = protofilaments
+    × chains_per_pf × Σ share·V): a finite fibril's scored layers lo..hi-1 (counts over
+    chains_per_pf = hi − lo), or a periodic cell's average per layer over the pattern's
+    repeat (one layer of the infinite fibril)."""
+    b = occupancy.second_domain(p)[:, 0]
+    if p.periodic:
+        n = len(occupancy.letters(p.pattern_layers))
+        b_layers = sum(ch == occupancy.SECOND_DOMAIN for ch in occupancy.letters(p.pattern_layers))
+        return [(n - b_layers) / n, b_layers / n]
+    judged = b[lo:hi]
+    return [float((~judged).sum()) / len(judged), float(judged.sum()) / len(judged)]

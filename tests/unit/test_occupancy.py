@@ -282,7 +282,7 @@ def test_a_hetero_fibril_is_bounded_with_each_letter_at_its_own_size():
     fibril to the number; a larger B is bounded at most as high as the fibril of that larger
     domain on every layer (each of its inequalities is implied by one of that fibril's); a
     mixed hetero-amyloid keeps the exit's bound alone, and the fraction bound is refused."""
-    from fibrilfit.model import bound
+    from fibrilfit.model import bound, hetero
     base = dict(periodic=22, pattern="layers")
     aa = bound.linker_bound(P.make_params(**base, pattern_layers="AA"))
     same = bound.linker_bound(P.make_params(**base, pattern_layers="AB", domain_b_diameter=30.0))
@@ -298,7 +298,7 @@ def test_a_hetero_fibril_is_bounded_with_each_letter_at_its_own_size():
     # pattern's per layer in a cell
     def shares(**kw):
         q = P.make_params(pattern="layers", **kw)
-        return bound.letter_shares(q, q.score_layers, q.layers - q.score_layers)
+        return hetero.letter_shares(q, q.score_layers, q.layers - q.score_layers)
 
     assert shares(layers=12, pattern_layers="AAB", domain_b_diameter=40.0) == \
         pytest.approx([8 / 12, 4 / 12])

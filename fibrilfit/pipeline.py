@@ -10,9 +10,8 @@ from typing import Callable
 
 import bpy
 
-from .model import bracket, occupancy, params as P
+from .model import bracket, hetero, occupancy, params as P
 from .model import terminus, version as model_version
-from .model.chain import rest_lengths
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -41,7 +40,8 @@ class Baking:
     def __init__(self, model, scene=None):
         self.model, self.scene = model, scene or bpy.context.scene
         p = model.params
-        self.stretch = StretchLog(rest_lengths(p), p.stretch_tolerance, scored_chains(p))
+        self.stretch = StretchLog(hetero.rest_lengths_by_chain(p), p.stretch_tolerance,
+                                  scored_chains(p))
         self.stats = BakeStats()
         # Hooks that judge a layout mid-bake (inflate) use the same check as the verdict.
         self.hooks = frame_hooks(model, self.scene, judge=check_model)
@@ -117,8 +117,10 @@ def describe(p: P.Params) -> dict:
         "params": p.to_dict(),
         "seed": p.seed,
         "gravity": list(draw_gravity(p)),
-        # a mixed fibril: which subunits carry the domain, drawn with the seed (none at f = 1)
-        **({"occupancy": occupancy.occupancy_block(p)} if occupancy.is_mixed(p) else {}),
+        # a mixed fibril: which subunits carry the domain, drawn with the seed (none at f = 1);
+        # a hetero-amyloid: which carry A and which B (docs/model/occupancy.md#hetero)
+        **({"occupancy": occupancy.occupancy_block(p)}
+           if occupancy.is_mixed(p) or occupancy.is_hetero(p) else {}),
     }
 
 

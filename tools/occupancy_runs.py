@@ -9,6 +9,8 @@ the default model otherwise; run with bpy importable, e.g. the project's .venv):
                                                  # without and with a 40-residue bare tail
     python tools/occupancy_runs.py unchanged OUT.json   # five f = 1 models' whole results, to
                                                  # compare between two checkouts (PYTHONPATH)
+    python tools/occupancy_runs.py hetero SEED   # shortest fitting linker of AA, AB (B 40 Å)
+                                                 # and all-40 Å, and an AB inflate run
 """
 import json
 import sys
@@ -71,6 +73,23 @@ def tails(linker: int = 4, seeds: str = "0:3") -> None:
                                  seed=s)), flush=True)
 
 
+def hetero(seed: int) -> None:
+    """docs/model/occupancy.md#hetero: 16 layers, 150 frames, the linker scanned upward from 2
+    to the first fit: A 30 Å on every layer (AA), A 30 Å and B 40 Å alternating (AB), 40 Å on
+    every layer; then one AB run under inflate (10 layers, linker 8)."""
+    for name, extra in (("AA 30", dict(pattern_layers="AA")),
+                        ("AB 30/40", dict(pattern_layers="AB", domain_b_diameter=40.0)),
+                        ("AA 40", dict(pattern_layers="AA", globule_diameter=40.0))):
+        for linker in range(2, 16):
+            row = run(layers=16, pattern="layers", linker=linker, seed=seed, frames=150, **extra)
+            print(json.dumps({"case": name, **row}), flush=True)
+            if row["fits"]:
+                break
+    row = run(layers=10, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0,
+              linker=8, seed=seed, protocol="inflate", regrow_cycles=1, near_cycles=0)
+    print(json.dumps({"case": "AB 30/40 inflate", **row}), flush=True)
+
+
 UNCHANGED = {"default": {}, "linker4": dict(linker=4, frames=120),
              "cell": dict(periodic="auto", frames=80),
              "inflate": dict(protocol="inflate", layers=10, linker=8, regrow_cycles=1,
@@ -99,6 +118,8 @@ if __name__ == "__main__":
         cell()
     elif sys.argv[1:2] == ["tails"]:
         tails(*([int(sys.argv[2])] if sys.argv[2:] else []), *sys.argv[3:4])
+    elif sys.argv[1:2] == ["hetero"]:
+        hetero(int(sys.argv[2]))
     elif sys.argv[1:2] == ["unchanged"]:
         unchanged(sys.argv[2])
     else:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..model import occupancy
 from .clashes import (_margin, candidate_pairs, close_pairs, float_tolerance, grazing_depth,
                       mesh_arrays, sphere_band)
 
@@ -171,7 +172,11 @@ class SphereCheck:
 
     @staticmethod
     def band(p, meshes) -> float:
-        return grazing_depth(meshes[0]) * max(d.radius for d in p.domains) / p.globule_radius
+        # a hetero-amyloid's B globules share the mesh too, at B's scale
+        widest = max(d.radius for d in p.domains)
+        if occupancy.is_hetero(p):
+            widest = max(widest, float(p.domain_b_diameter) / 2.0)
+        return grazing_depth(meshes[0]) * widest / p.globule_radius
 
     @staticmethod
     def clashes(p, meshes, matrices, kinds, centres, radius, band):

@@ -17,7 +17,7 @@ def bond_stretch(positions: np.ndarray, rest_lengths) -> np.ndarray:
     return dist / rest - 1.0
 
 
-def bond_ends(p, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def bond_ends(p, matrices: np.ndarray, rest=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Where each linker bond starts and ends in the world, (chains, members − 1, 3) each, and its
     rest length, from the chain members' world matrices (chains, members, 4, 4).
 
@@ -27,20 +27,24 @@ def bond_ends(p, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarr
     spacing from the bead beside it. Measured from the domain's centre, a joint pulled 0.95 Å
     apart read as 4 % of GFP's 23.5 Å centre bond, against 27 % of the 3.5 Å bond it is
     (docs/model/domain-shapes.md#joint-stretch).
+
+    `rest`: each chain's own rest lengths (chains, members − 1), a hetero-amyloid's
+    (model.hetero.rest_lengths_by_chain: a B chain's last bond reaches B's surface); default
+    the one chain's of `p`, (members − 1,).
     """
     matrices = np.asarray(matrices, dtype=float)
     positions = matrices[..., :3, 3]
     starts, ends = positions[:, :-1].copy(), positions[:, 1:].copy()
-    rest = np.asarray(rest_lengths(p), dtype=float).copy()
+    rest = np.array(rest_lengths(p) if rest is None else rest, dtype=float)
     for d in p.domains:  # a sphere has no joint: its bonds end at its centre, as a bead's
         if d.joint is None:
             continue
         g, m = d.member, matrices[:, d.member]
         ends[:, g - 1] = m[:, :3, :3] @ d.joint + m[:, :3, 3]
-        rest[g - 1] = joint_lever(p)
+        rest[..., g - 1] = joint_lever(p)
         if d.exit is not None and g < positions.shape[1] - 1:
             starts[:, g] = m[:, :3, :3] @ d.exit + m[:, :3, 3]
-            rest[g] = p.residue_spacing
+            rest[..., g] = p.residue_spacing
     return starts, ends, rest
 
 
@@ -59,6 +63,10 @@ class StretchLog:
     """
 
     def __init__(self, rest_lengths, tolerance: float, scored: slice = slice(None)):
+        """`rest_lengths`: one chain's (members − 1,), or every chain's (chains, members − 1)
+        (a hetero-amyloid's: model.hetero.rest_lengths_by_chain), then taken at `scored`."""
+        if np.ndim(rest_lengths) == 2:
+            rest_lengths = np.asarray(rest_lengths)[scored]
         self.rest, self.tolerance, self.scored = rest_lengths, tolerance, scored
         self.worst: list[float] = []
 

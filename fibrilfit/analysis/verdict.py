@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model import bound, gravity, helix, occupancy, start_layout
+from ..model import bound, gravity, helix, hetero, occupancy, start_layout
 from ..model.answer import answer
 from ..model.judgement import TOUCH_SLACK, accommodated, compare_checks
 from ..builders.readback import MatrixReader
@@ -83,7 +83,7 @@ def check_model(model) -> dict:
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = ends_stretch(*bond_ends(p, matrices[kept]))
+    stretch = ends_stretch(*bond_ends(p, matrices[kept], hetero.rest_lengths_by_chain(p)[kept]))
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
@@ -104,13 +104,18 @@ def check_model(model) -> dict:
             warnings.append(f"{len(chains['inside_core'])} chain member(s) inside a core "
                             f"([chain, member]: {chains['inside_core'][:5]})")
     # the bound's third assumption, measured on this layout (docs/model/bound.md#assumptions)
-    entry = bound.core_entry(p, matrices[kept])
+    entry = bound.core_entry(p, matrices[kept], (hetero.globule_radii_by_chain(p)[kept]
+                                                 / p.globule_radius)
+                             if occupancy.is_hetero(p) else None)
     if entry > bound.CORE_ENTRY:
         warnings.append(f"a domain enters the core by {entry:.2f} Å, more than the "
                         f"{bound.CORE_ENTRY} Å the linker bound assumes: this layout is not one "
                         f"the bound speaks of")
     centres = clashes["centres"]
     reach = None if clashes["reach"] is None else clashes["reach"][scored[:n]]
+    if occupancy.is_hetero(p):  # each globule's farthest point from the axis: A's or B's
+        reach = (np.hypot(centres[:, 0], centres[:, 1])
+                 + hetero.globule_radii_by_chain(p))[scored[:n]]
     overall = chains.pop("envelope", None) or envelope(centres[scored[:n]], p.globule_radius,
                                                        reach)
     return {
@@ -204,11 +209,14 @@ def _clash_checks(model) -> dict:
     # radius is its original's (blocks of n: globule g is domain g % D)
     radius = (p.globule_radius if domains == 1 else
               np.tile(np.asarray([d.radius for d in p.domains]), len(everything) // domains))
+    if occupancy.is_hetero(p):  # A's and B's (one domain a chain), an image its original's
+        radius = np.tile(hetero.globule_radii_by_chain(p), len(everything) // n)
+    each = np.ndim(radius) > 0
     scored = np.zeros(len(everything), dtype=bool)
     scored[:n] = True if p.periodic else np.repeat(kept, domains)
 
     def centre_depth(i, j):
-        touch = 2 * p.globule_radius if domains == 1 else radius[i] + radius[j]
+        touch = radius[i] + radius[j] if each else 2 * p.globule_radius
         return touch - float(np.linalg.norm(everything[i] - everything[j]))
 
     kinds = np.arange(len(everything)) % len(meshes)

@@ -21,11 +21,10 @@ from typing import Callable
 import numpy as np
 
 from ..geom.rigid import euler_xyz
-from ..model import helix, occupancy
-from ..model.chain import rest_lengths
+from ..model import helix, hetero, occupancy
 from ..model.judgement import clear_miss, near_fit
 from .readback import collection_matrices
-from .scene import INDEX, TAG
+from .scene import INDEX, LAYER, PROTOFILAMENT, TAG
 
 GRAVITY_SALT = 0x6A5  # the gravity of cycle c >= 1: uniform in [-g, g]^3 from (seed, c, salt)
 OVERLAP_TOLERANCE = 0.05  # Å: sphere overlap the fallback judge lets pass (resting contacts)
@@ -49,7 +48,8 @@ def start_scale(p, centres: np.ndarray) -> float:
     d = _closest(centres_with_images(p, centres)[0])
     if d is None:
         return p.grow_start
-    return float(min(p.grow_start, max(0.01, 0.95 * d / p.globule_diameter)))
+    # a hetero-amyloid: the wider of A and B meets first (p.widest_diameter; one domain: its own)
+    return float(min(p.grow_start, max(0.01, 0.95 * d / p.widest_diameter)))
 
 
 def _start_scale_domains(p, centres: np.ndarray) -> float:
@@ -74,14 +74,24 @@ def _start_scale_domains(p, centres: np.ndarray) -> float:
 
 def globule_radii(p, n: int) -> np.ndarray:
     """Full-size radii of n globules in the order of Model.globules, chain after chain (and
-    image block after block): globule g is domain g % D."""
+    image block after block): globule g is domain g % D (a hetero-amyloid: its chain's, A's
+    or B's)."""
+    if occupancy.is_hetero(p):
+        radii = hetero.globule_radii_by_chain(p)
+        return np.tile(radii, -(-n // len(radii)))[:n]
     radii = np.asarray([d.radius for d in p.domains], dtype=float)
     return np.tile(radii, -(-n // len(radii)))[:n]
 
 
 def globule_scales(p, objects) -> np.ndarray | None:
     """Several domains per chain: each globule object's full size as a scale of domain 1's mesh,
-    which they share (builders.layers); None for one domain (every full size is 1)."""
+    which they share (builders.layers); None for one domain (every full size is 1). A
+    hetero-amyloid's B globules share A's sphere at B's scale (each object's layer and
+    protofilament say which)."""
+    if occupancy.is_hetero(p):
+        b = occupancy.second_domain(p)
+        return np.array([hetero.b_scale(p) if b[int(ob[LAYER]), int(ob.get(PROTOFILAMENT, 0))]
+                         else 1.0 for ob in objects], dtype=float)
     if len(p.domains) == 1 or p.shape.real:  # real shapes: each its own mesh at full size
         return None
     size = {d.member: d.radius / p.globule_radius for d in p.domains}
@@ -98,6 +108,8 @@ def centres_with_images(p, centres: np.ndarray) -> tuple[np.ndarray, int]:
     # several domains: each body's reach, as _start_scale_domains counts them; one domain: its
     # sphere's radius, as start_scale and sphere_judge count it (a real shape: its Rg sphere's)
     reach = max(d.reach for d in p.domains) if len(p.domains) > 1 else p.domains[0].radius
+    if occupancy.is_hetero(p):  # B's sphere may be the wider
+        reach = p.widest_diameter / 2.0
     cells = helix.check_cells(p, centres[:, 2], reach)
     m = np.repeat(np.arange(1, cells + 1, dtype=float), len(centres))
     images = helix.apply_points(p, m, np.tile(centres, (cells, 1)))
@@ -132,7 +144,7 @@ def sphere_judge(p, positions: np.ndarray, scored) -> dict:
     """The fallback judgement: no scored globule pair overlapping by more than
     OVERLAP_TOLERANCE and every scored bond within the stretch tolerance. `scored`: bool per
     chain of the model (analysis.scored_chains), or a slice of them."""
-    rest = np.asarray(rest_lengths(p), dtype=float)
+    rest = hetero.rest_lengths_by_chain(p)[scored]  # each chain's own (a B chain's last bond)
     stretch = np.linalg.norm(np.diff(positions[scored], axis=1), axis=-1) / rest - 1.0
     worst = float(stretch.max()) if stretch.size else 0.0
     members = [d.member for d in p.domains]
@@ -152,7 +164,8 @@ def sphere_judge(p, positions: np.ndarray, scored) -> dict:
         if dz.min() >= p.widest_diameter:
             break
         d = np.linalg.norm(c[shift:] - c[:-shift], axis=1)
-        touch = p.globule_diameter if domains == 1 else r[shift:] + r[:-shift]
+        touch = (p.globule_diameter if domains == 1 and not occupancy.is_hetero(p)
+                 else r[shift:] + r[:-shift])
         mine = k[shift:] | k[:-shift]
         hit = (touch - d > OVERLAP_TOLERANCE) & mine
         deep += int(hit.sum())

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..geom import shape
 from ..geom.rigid import euler_xyz, joint_rotations
-from ..model import helix, occupancy, params as P
+from ..model import helix, hetero, occupancy, params as P
 from ..model.param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS, RESIDUE_RINGS, RESIDUE_SEGMENTS
 from ..model.bent_layout import domain_terminals, real_chain_layout, spread_chains
 from ..model.chain import tail_chain, tail_members
@@ -55,6 +55,11 @@ class LayerBuilder:
         elif p.shape.spread:  # full size from the start: spread, or they can lock
             # (docs/model/domain-shapes.md#spheres-start)
             self.pos, self.pivots = spread_layout(p, self.pos, spheres_body(p))
+        # a hetero-amyloid: the B subunits' chains are B's model's (its diameter and linker),
+        # laid out as A's are (docs/model/occupancy.md#hetero)
+        self.b = hetero.b_subunits(p)
+        if self.b.any():
+            self._b_layout()
         self.domain_at = {d.member: d for d in p.domains}  # each domain by its place
         # which subunits carry the domain (chain c, layer-major); model.chain holds those only,
         # in the same order: self.slot[c] is chain c's place in it
@@ -67,6 +72,16 @@ class LayerBuilder:
         # Each object with its (layer, index), per part, in the order they were linked: place()
         # sets transforms and colours in bulk afterwards (one foreach_set each, not per object).
         self.placed = {role: [] for role in PART_COLLECTIONS}
+
+    def _b_layout(self) -> None:
+        """The B subunits' rest (or inflate) places and pivots: B's model's, whose last bond
+        reaches B's surface; the same start as A's chains otherwise (the same seed's walks)."""
+        q = hetero.b_params(self.p)
+        pos, pivots = rest_positions(q), bond_pivots(q)
+        if self.p.protocol == "inflate":
+            pos, pivots = inflate_layout(q, pos, self.p.seed)
+        self.pos = np.where(self.b[:, None, None], pos, self.pos)
+        self.pivots = np.where(self.b[:, None, None], pivots, self.pivots)
 
     def add(self, part: str, k: int) -> None:
         getattr(self, "_" + part)(k)
@@ -274,10 +289,13 @@ class LayerBuilder:
             for i in range(self.p.free_linker + 1, last + 1):
                 self._chain_member(k, j, i)
 
-    def _domain_scale(self, members: np.ndarray):
+    def _domain_scale(self, members: np.ndarray, chains: np.ndarray):
         """Globules of further domains share domain 1's mesh, scaled to their size: Bullet's
         sphere follows the scale (docs/guide/atoms-and-domains.md#several-domains). None for
-        one domain (no scale set: the build as before)."""
+        one domain (no scale set: the build as before). A hetero-amyloid's B globules share A's
+        sphere too, at B's scale (`chains`: each globule's chain)."""
+        if self.b.any():  # one sphere domain per chain (occupancy.check_second_domain)
+            return np.where(self.b[chains], hetero.b_scale(self.p), 1.0)
         if len(self.domain_at) == 1 or self.p.shape.real:  # each its own mesh
             return None
         return np.array([self.domain_at[int(i)].radius / self.p.globule_radius for i in members])
@@ -310,7 +328,7 @@ class LayerBuilder:
                 loc = (self.pivots if role == "bond" else self.pos)[k, i]
             rot_z = (np.zeros(len(k)) if role in ("bond", "tail_bond") else
                      self.angle[k] if role == "slab" else self.chain_angle[k])
-            scale = self._domain_scale(i) if role == "globule" else None
+            scale = self._domain_scale(i, k) if role == "globule" else None
             _place(objects, loc, rot_z, scale=scale)
             if role == "globule" and self.turns is not None:  # several real shapes
                 dom = np.array([self.domain_at[int(m)].index for m in i])

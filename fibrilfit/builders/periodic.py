@@ -14,7 +14,8 @@ from mathutils import Matrix
 
 from ..geom.rigid import euler_xyz
 from ..model import helix
-from ..model.chain import body_radii, body_reach, chain_reach, tail_reach
+from ..model.chain import tail_reach
+from ..model.hetero import widest_body_radii, widest_chain_reach
 from .readback import MatrixReader
 from .scene import INDEX, LAYER, TAG, new_collection, tag
 
@@ -41,10 +42,12 @@ def plan(p, chain_layers, core_layers, tail_layers=()) -> dict:
     """
     tails = tail_reach(p) if len(tail_layers) else np.zeros(0)
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = (max(body_reach(p), float(tails.max(initial=0.0)))
-                  + abs(p.pf_rise) * (p.protofilaments - 1))
+    # (a hetero-amyloid: the wider reach of an A or a B chain, member by member)
+    chains = widest_chain_reach(p)
+    reach_cell = (max(float(chains.max()), p.slab[2] / 2.0, float(tails.max(initial=0.0)))
+                  + abs(p.pf_rise) * (p.protofilaments - 1))  # chain.body_reach's, and the tails'
     moving, static, tail_moving = [], [], []
-    for layers, member_reach, kind, beads in ((chain_layers, chain_reach(p), "anchor", moving),
+    for layers, member_reach, kind, beads in ((chain_layers, chains, "anchor", moving),
                                               (tail_layers, tails, "tail", tail_moving)):
         if not len(layers):
             continue
@@ -201,7 +204,7 @@ class ImageFollower:
         # several domains per chain: the further globules share domain 1's mesh at their own
         # scale (builders.layers), and their images must carry it under every protocol
         self.scale = np.array([ob.scale[0] for ob in self.sources], dtype=np.float32)
-        radii = body_radii(self.p)  # a real shape's globule: its reach
+        radii = widest_body_radii(self.p)  # a real shape's globule: its reach
         own = np.where(self.tail, 0, self.member)  # a bare tail's bead: a residue's radius
         self.radius = (np.where(self.tail, self.p.residue_radius, radii[own]) if len(obs)
                        else np.zeros(0))
@@ -238,7 +241,7 @@ class ImageFollower:
     def near(self, positions: np.ndarray, loc: np.ndarray, margin: float) -> np.ndarray:
         """Images whose new or old place can touch a cell body along Z (see the class)."""
         z = positions[..., 2]
-        radii = body_radii(self.p)
+        radii = widest_body_radii(self.p)
         lo = min(float((z - radii).min()), self.core_z[0]) - self.reach - margin
         hi = max(float((z + radii).max()), self.core_z[1]) + self.reach + margin
         if self.tails is not None:  # the bare tails' beads are cell bodies too

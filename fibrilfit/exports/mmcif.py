@@ -28,6 +28,7 @@ import numpy as np
 from .. import files
 from ..model import helix, occupancy
 from ..model.chain import chain_radii
+from ..model.hetero import b_chains, globule_radii_by_chain
 from .plans import NOT_SCREW_SYMMETRIC
 
 ATOM_COLUMNS = ("group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",
@@ -114,6 +115,10 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
     layer, pf = (a[ids] for a in helix.chain_layers(p))
     angle, height = angle[ids], height[ids]
     radii = np.asarray(_member_radii(p, members))
+    # a hetero-amyloid's chains: each its own sphere, A's or B's (B has no structure file)
+    second = (b_chains(p) if occupancy.is_hetero(p) and chains == len(ids)
+              else np.zeros(chains, dtype=bool))
+    sphere_radius = globule_radii_by_chain(p) if second.any() else None
     table = _Table()
     core = sources.core
     entity_of_domain = [2 + d for d in range(n_dom)]
@@ -139,14 +144,15 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
                                                entity_of_domain[d - 1])
             table.add(positions[c, beads], "CA", "C", BEAD_NAME, numbers, radii[beads], *owner)
             dname = chain_name(int(layer[c]), int(pf[c]), d)
-            if d < len(sources.domains):
+            if d < len(sources.domains) and not second[c]:
                 atoms = sources.domains[d]
                 r, t = rigid_part(mats[c, d])
                 table.add(atoms.xyz @ r.T + t, atoms.name, atoms.element, atoms.resname,
                           atoms.resnum, atoms.b, dname, entity_of_domain[d])
                 number = int(atoms.resnum.max() if step > 0 else atoms.resnum.min())
             else:  # a sphere without a structure file: its centre, B-factor = its radius
-                table.add(mats[c, d, :3, 3][None], "CA", "C", GLOBULE_NAME, 1, radii[member],
+                table.add(mats[c, d, :3, 3][None], "CA", "C", GLOBULE_NAME, 1,
+                          radii[member] if sphere_radius is None else sphere_radius[c],
                           dname, entity_of_domain[d], hetero=True)
                 number = None
             start = member + 1

@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import files
 from .mmcif import shown as _shown
-from ..model import helix
+from ..model import helix, hetero, occupancy
 from ..model.chain import chain_members, chain_radii
 from ..analysis.verdict import chain_positions
 from ..builders.physics import keep_bake
@@ -88,7 +88,9 @@ def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -
     layers = len(models[0][1]) if models else p.chains
     members = chain_members(p)
     names = residue_names(p)
-    radii = chain_radii(p)
+    radii = np.tile(chain_radii(p), (layers, 1))
+    if occupancy.is_hetero(p) and layers == len(hetero.b_chains(p)):  # each chain's own globule
+        radii[:, p.domains[0].member] = hetero.globule_radii_by_chain(p)
     labels = [chain_label(k, layers) for k in range(layers)]
     pfs = (f" X {p.protofilaments} PROTOFILAMENTS" if p.protofilaments > 1 else "")
     lines = [f"TITLE     FIBRILFIT COARSE-GRAINED FIBRIL, {p.layers} LAYERS{pfs}, LINKER {p.linker}"]
@@ -122,7 +124,7 @@ def pdb_text(p, models: list[tuple[int, np.ndarray]], remarks: list[str] = ()) -
                 lines.append(
                     f"ATOM  {hybrid36(int(serial_of[k, i]))}  CA  {names[i]} {chain}"
                     f"{hybrid36(first + i + 1, 4)}    {x:8.3f}{y:8.3f}{z:8.3f}{1.0:6.2f}"
-                    f"{radii[i]:6.2f}      {segment:<4} C  ")
+                    f"{radii[k, i]:6.2f}      {segment:<4} C  ")
             lines.append(f"TER   {hybrid36(int(serial_of[k, -1]) + 1)}      {names[-1]} "
                          f"{chain}{hybrid36(first + members, 4)}")
         if multi:

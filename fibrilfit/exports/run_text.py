@@ -89,6 +89,12 @@ def _model_lines(r: dict) -> list[str]:
                      + (f", drawn with seed {occ['seed']}" if "seed" in occ else "")
                      + f"; bare tail {occ['bare_tail']} residues); the answer speaks of this "
                      f"pattern on {occ['on']}")
+        b = occ.get("second_domain")
+        if b:  # a hetero-amyloid (docs/model/occupancy.md#hetero)
+            lines.append(f"second domain: B, {b['diameter']:g} Å (a sphere) on a {b['linker']}-"
+                         f"residue linker, on {len(b['subunits'])} of those subunits (pattern "
+                         f"{occ['pattern_layers']!r}); the others carry A, "
+                         f"{p['globule_diameter']:g} Å")
     if src:
         lines.append("sources: " + sources_text(src))
     return lines

@@ -1,5 +1,7 @@
 """The proven lower bound on the linker: below `impossible_below` residues no layout of this model
 is clash-free with intact linkers. Geometry alone, no simulation; plain numpy, no bpy.
+Over 400 lines because it is one proof: what a globule holds, how far it reaches, the room the
+anchors leave and the search for the shortest linker they allow, said together.
 
 The argument (written out for a referee: docs/model/bound.md#derivation):
 
@@ -35,7 +37,7 @@ import math
 import numpy as np
 
 from ..geom import polygons, shape as geom_shape
-from . import helix, occupancy
+from . import helix, hetero, occupancy
 from .chain import chain_x
 from .param_spec import GLOBULE_RINGS, GLOBULE_SEGMENTS
 
@@ -256,6 +258,7 @@ def _settings_key(p) -> str:
     keep = ("slab", "residue_radius", "residue_spacing", "globule_diameter", "layers", "rise",
             "twist", "stretch_tolerance", "score_layers", "protofilaments", "pf_rotation",
             "pf_rise", "core_outline", "anchor", "periodic", "domain_diameters",
+            "pattern", "pattern_layers", "domain_b_diameter", "linker_b",
             "domain_linker", "domain_shape", "domain_atoms", "domain_spheres", "domain_joint",
             "further_atoms", "further_spheres", "further_joints", "domain_exits",
             "exit_residues")
@@ -269,7 +272,9 @@ def linker_bound(p, budget: float = GRID_BUDGET) -> dict:
     any linker < B), with the inequality that fails one below it (docs/model/bound.md).
     `budget`: voxels per grid (a coarser grid gives a bound as sound, and weaker or equal)."""
     if occupancy.is_mixed(p):  # its inequalities count every subunit decorated: not a proof
-        return occupancy.exit_bound(p)  # for a mixed fibril (docs/model/occupancy.md#bound)
+        # for a mixed fibril (docs/model/occupancy.md#bound); a mixed hetero-amyloid's: the
+        # exit's alone too (docs/model/bound.md#hetero)
+        return occupancy.exit_bound(p, hetero=occupancy.is_hetero(p))
     return dict(_linker_bound(_settings_key(p) + f"|{budget:g}", p, budget))
 
 
@@ -299,6 +304,9 @@ class Setting:
 
 def setting(p, budget: float = GRID_BUDGET) -> Setting:
     """The geometry's Setting, measured once with its linker bound (cached like it)."""
+    if occupancy.is_hetero(p):  # its volumes are the two letters' shares: not one domain's
+        raise ValueError("the fraction bound is not built for a hetero-amyloid "
+                         "(docs/model/bound.md#hetero)")
     key = _settings_key(p) + f"|{budget:g}"
     _linker_bound(key, p, budget)
     return _CACHE[key][1]
@@ -314,6 +322,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     else:
         lo, hi = p.score_layers, p.layers - p.score_layers  # analysis/verdict.scored_range
         chains_per_pf = hi - lo
+    letters = hetero.letter_shares(p, lo, hi) if occupancy.is_hetero(p) else None
     # a buried anchor's exit spends its residues first: no linker up to them leaves the core
     # (docs/model/buried-terminus.md#model); the model's anchor is where the free linker starts
     first = int(p.exit_residues) + 1
@@ -327,6 +336,13 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     if p.free_linker < 1:  # a linker that leaves the core, for the chain's lengths (its
         p = dataclasses.replace(p, linker=first)  # checks aside: only chain_x is read)
     terms = reach_terms(p)
+    shown = volumes
+    if letters is not None:  # a hetero-amyloid: A's and B's, each its share of the chains
+        q = hetero.b_params(p)
+        (b_volume,) = [ball_union_volume(inner_balls(q, d)) for d in q.domains]
+        shown = [volumes[0], b_volume]
+        terms = terms + reach_terms(q)
+        volumes = [v * share for v, share in zip(shown, letters)]
     top = max(8, first)  # not the linker asked: the bound is the geometry's, whatever ran first
     while True:
         rho_top = reach(p, terms, top)
@@ -348,11 +364,12 @@ def _linker_bound(key: str, p, budget: float) -> dict:
                    "needed_A3": round(worst["need"], 1), "room_A3": round(worst["have"], 1)}
     result = {
         "impossible_below": found if found is not None else LONGEST + 1,
-        "method": "excluded volume (docs/model/bound.md#derivation)",
+        "method": ("excluded volume (docs/model/bound.md#derivation)" if letters is None else
+                   "excluded volume, A and B each at its own size (docs/model/bound.md#hetero)"),
         "over": ("one layer of the infinite fibril" if periodic
                  else f"the scored layers {lo}-{hi - 1}"),
         "fails_below": failing,
-        "inner_volume_A3": [round(v, 1) for v in volumes],
+        "inner_volume_A3": [round(v, 1) for v in shown],
         "core_entry": CORE_ENTRY,
         "voxel": round(room.h, 4),
         "exit_residues": int(p.exit_residues),
@@ -369,13 +386,14 @@ def bound_block(p) -> dict:
     return {**b, "linker": p.linker, "below": p.linker < b["impossible_below"]}
 
 
-def core_entry(p, matrices) -> float:
+def core_entry(p, matrices, sizes=None) -> float:
     """How deep (Å) the deepest inner ball (`inner_balls`) of any domain enters a core prism, for
     chain members' world matrices (chains, members, 4, 4): the bound's third assumption,
     measured (docs/model/bound.md#assumptions). A ball counts against the prism of the layer
     whose slice holds its centre: its depth is its radius less the centre's distance outside
     the layer's outline (plus the distance inside it); a centre above or below a finite stack's
-    end counts nothing."""
+    end counts nothing. `sizes`: each chain's globule as a scale of the first domain's (a
+    hetero-amyloid's B chains: d_B / d_A, their spheres' balls that much larger; default 1)."""
     matrices = np.asarray(matrices, dtype=float)
     outline = p.outline()
     t = core_thickness(p)
@@ -389,7 +407,9 @@ def core_entry(p, matrices) -> float:
         dist = polygons.edge_distance(outline, rows)[0]
         inside = polygons.even_odd(outline, rows)
         signed = np.where(inside, -dist, dist).reshape(k.shape)
-        depth = balls[None, :, 3] - signed
+        radius = balls[None, :, 3] if sizes is None else \
+            balls[None, :, 3] * np.asarray(sizes, dtype=float)[:, None]
+        depth = radius - signed
         in_slice = np.abs(world[..., 2] - k * p.rise) <= t / 2.0
         if not p.periodic:
             in_slice &= (k >= 0) & (k < p.layers)

@@ -18,8 +18,8 @@ def bound_block(p, found: bool | None = None) -> dict:
     fraction at this linker (f_B) and the bracket on the fraction (`found`: whether a layout
     was found at this fraction; None: not judged)."""
     b = bound.bound_block(p)
-    if not occupancy.is_mixed(p):
-        return b
+    if not occupancy.is_mixed(p) or occupancy.is_hetero(p):  # a hetero-amyloid: two domain
+        return b  # sizes, the exit's bound alone (docs/model/bound.md#hetero)
     f = occupancy.fraction(p)
     at = int(fraction_bound.impossible_below_at(p, f))
     limit = fraction_bound.fraction_limit(p, p.linker)

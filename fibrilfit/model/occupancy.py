@@ -10,7 +10,9 @@ cell's images then repeat every M layers (docs/model/occupancy.md#what-fits-at-f
   one's, so a lower fraction never holds a pair of neighbours a higher one lacks.
 - periodic: every k-th subunit from the first, counted along each protofilament (every k-th
   layer of each) or over the fibril (layer-major).
-- layers: one letter per layer ('A' the domain, '.' none), repeated along the fibril.
+- layers: one letter per layer ('A' the domain, 'B' a second domain, '.' none), repeated along
+  the fibril. A 'B' subunit is decorated too, with the second domain (domain_b_diameter, a
+  sphere, on its own linker linker_b): a hetero-amyloid (docs/model/occupancy.md#hetero).
 """
 from __future__ import annotations
 
@@ -22,8 +24,10 @@ from .param_spec import ParamError
 # Keeps the pattern's random stream apart from the gravity's and the start layouts' under one
 # seed (start_layout.SEED_SALT is another): a seed fixes the pattern and the start together.
 PATTERN_SALT = 0x0CC0
-LETTERS = {"A": True, ".": False}  # a per-layer pattern's letters: the domain, or none
-SECOND_DOMAIN = "B"  # a hetero-amyloid's second domain: not built yet (issue #44, item 1)
+# a per-layer pattern's letters: whether the subunit is decorated (A the domain, B the second
+# domain: a hetero-amyloid's other protein, docs/model/occupancy.md#hetero; '.' none)
+LETTERS = {"A": True, "B": True, ".": False}
+SECOND_DOMAIN = "B"
 # The parameters each pattern reads (the others it ignores: the panel hides them)
 PATTERN_FIELDS = {"random": ("occupancy",), "periodic": ("pattern_period", "pattern_across"),
                   "layers": ("pattern_layers",)}
@@ -53,6 +57,27 @@ def decorated(p, n_layers: int | None = None, n_pf: int | None = None,
     return np.repeat(rows[np.arange(n_layers) % len(rows)][:, None], n_pf, axis=1)
 
 
+def second_domain(p, n_layers: int | None = None, n_pf: int | None = None) -> np.ndarray:
+    """bool (layers, protofilaments): True where the subunit carries the second domain, B
+    (a layers pattern's letter B; none otherwise). Defaults as decorated()'s."""
+    n_layers = p.layers if n_layers is None else int(n_layers)
+    n_pf = p.protofilaments if n_pf is None else int(n_pf)
+    if not is_hetero(p):
+        return np.zeros((n_layers, n_pf), dtype=bool)
+    rows = np.array([ch == SECOND_DOMAIN for ch in letters(p.pattern_layers)])
+    return np.repeat(rows[np.arange(n_layers) % len(rows)][:, None], n_pf, axis=1)
+
+
+def is_hetero(p) -> bool:
+    """Whether the pattern puts the second domain (B) on some layers: a hetero-amyloid."""
+    return p.pattern == "layers" and SECOND_DOMAIN in letters(p.pattern_layers)
+
+
+def letters(text: str) -> str:
+    """A per-layer pattern's letters as written, without blanks, upper case."""
+    return "".join(str(text).split()).upper()
+
+
 def draw_order(n: int, seed: int) -> np.ndarray:
     """The random pattern's order of N subunits under `seed`: a fraction decorates its first
     round(f·N). The same for every fraction (what makes the draws nested)."""
@@ -72,17 +97,16 @@ def layer_letters(text: str) -> np.ndarray:
     """A per-layer pattern's letters as bool per layer. Raises ParamError naming what is allowed."""
     text = "".join(str(text).split())
     if not text:
-        raise ParamError("pattern_layers", "needs at least one letter: A (the domain) or . (none)")
-    if SECOND_DOMAIN in text.upper():
-        raise ParamError("pattern_layers", f"{SECOND_DOMAIN} (a second domain) is not built yet: "
-                                           f"use A (the domain) and . (none)")
+        raise ParamError("pattern_layers", "needs at least one letter: A (the domain), B (the "
+                                           "second domain) or . (none)")
     bad = sorted({ch for ch in text.upper() if ch not in LETTERS})
     if bad:
-        raise ParamError("pattern_layers", f"has {''.join(bad)!r}: only A (the domain) and . "
-                                           f"(none) (got {text!r})")
+        raise ParamError("pattern_layers", f"has {''.join(bad)!r}: only A (the domain), B (the "
+                                           f"second domain) and . (none) (got {text!r})")
     rows = np.array([LETTERS[ch] for ch in text.upper()])
     if not rows.any():
-        raise ParamError("pattern_layers", f"carries no domain: give at least one A (got {text!r})")
+        raise ParamError("pattern_layers", f"carries no domain: give at least one A or B "
+                                           f"(got {text!r})")
     return rows
 
 
@@ -142,6 +166,7 @@ def check_pattern(p) -> None:
     if p.pattern == "random":
         decorated_count(p.occupancy, p.chains)
     layer_letters(p.pattern_layers)  # whatever the pattern: a bad value is refused, not kept
+    check_second_domain(p)
     if p.score_layers and is_mixed(p):
         rows = decorated(p).any(axis=1)[p.score_layers:p.layers - p.score_layers]
         if not rows.any():
@@ -158,6 +183,44 @@ def check_pattern(p) -> None:
         raise ParamError("pattern", f"a {p.pattern} pattern repeating every {repeat} layers does "
                                     f"not fit a cell of {p.periodic} layers: give a cell that is "
                                     f"a multiple of {repeat} (or 'auto', which rounds up to one)")
+
+
+def check_second_domain(p) -> None:
+    """The second domain's combinations (docs/model/occupancy.md#hetero): B needs its
+    diameter, the B fields need a B in a layers pattern, and B is built as a sphere beside one
+    sphere domain A, on a linker as long as A's. One line each, naming the parameter."""
+    has_b = SECOND_DOMAIN in letters(p.pattern_layers)
+    if not is_hetero(p):
+        for name in ("domain_b_diameter", "linker_b"):
+            if getattr(p, name) is not None:
+                where = ("pattern_layers has no B" if p.pattern == "layers" else
+                         f"pattern is {p.pattern}, not layers")
+                raise ParamError(name, f"sets the second domain, but {where}: give a layers "
+                                       f"pattern with B (e.g. --pattern layers --pattern-layers "
+                                       f"AB), or leave {name} unset")
+        if has_b:
+            raise ParamError("pattern_layers", f"B (the second domain) is read only with pattern "
+                                               f"layers (pattern is {p.pattern}): use A and . "
+                                               f"here, or --pattern layers")
+        return
+    if p.domain_b_diameter is None:
+        raise ParamError("domain_b_diameter", f"is needed: pattern_layers {p.pattern_layers!r} "
+                                              f"puts the second domain B on its B layers; give "
+                                              f"its diameter in Å (a sphere)")
+    if p.shape.real:
+        raise ParamError("domain_shape", f"{p.shape.name} with a second domain (B) is not "
+                                         f"supported yet: B and A are spheres (domain_shape "
+                                         f"sphere)")
+    if p.domain_diameters:
+        raise ParamError("domain_diameters", "several domains per chain with a second domain "
+                                             "(B) are not supported yet: one domain per chain")
+    if p.linker_b is not None and p.linker_b != p.linker:
+        raise ParamError("linker_b", f"a B linker of another length than linker ({p.linker}) "
+                                     f"is not built yet (chains of two lengths): give "
+                                     f"{p.linker} or leave it unset (got {p.linker_b})")
+    if p.bare_tail:
+        raise ParamError("bare_tail", "beside a second domain (B) is not supported yet: "
+                                      "bare_tail 0")
 
 
 def occupancy_block(p) -> dict:
@@ -185,6 +248,12 @@ def occupancy_block(p) -> dict:
         block.update(pattern_period=p.pattern_period, pattern_across=p.pattern_across)
     else:
         block.update(pattern_layers=p.pattern_layers)
+    if is_hetero(p):  # which decorated subunits carry B, and its size and linker
+        b = second_domain(p)[layer, pf]
+        block.update(second_domain={
+            "letter": SECOND_DOMAIN, "diameter": p.domain_b_diameter,
+            "linker": p.linker if p.linker_b is None else p.linker_b,
+            "subunits": [[int(k), int(j)] for k, j in zip(layer[b], pf[b])]})
     return block
 
 
@@ -219,11 +288,20 @@ def report_block(p, restarts: int) -> dict:
             "restarts": int(restarts)}
 
 
-def exit_bound(p) -> dict:
+def exit_bound(p, hetero: bool = False) -> dict:
     """The linker bound a mixed fibril keeps: only the buried exit's (no linker up to its
     residues leaves the core). The excluded-volume inequalities of model/bound.py count every
     subunit decorated, so below their bound a mixed fibril may still fit: they are not applied
-    (docs/model/occupancy.md#bound)."""
+    (docs/model/occupancy.md#bound). `hetero`: a mixed fibril of two domain sizes (A and B),
+    whose excluded-volume bound (the fraction's, with two sizes) is not built
+    (docs/model/bound.md#hetero)."""
+    if hetero:
+        return {"impossible_below": int(p.exit_residues) + 1,
+                "method": "the buried exit alone: no excluded-volume bound computed for a "
+                          "mixed fibril of two domain sizes (A and B; "
+                          "docs/model/bound.md#hetero)",
+                "over": "a mixed hetero-amyloid: the exit only", "fails_below": None,
+                "exit_residues": int(p.exit_residues)}
     return {"impossible_below": int(p.exit_residues) + 1,
             "method": "the buried exit alone (the excluded-volume bound counts every subunit "
                       "decorated: not applied to a mixed fibril, docs/model/occupancy.md#bound)",

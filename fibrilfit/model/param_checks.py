@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from . import chain, domains, helix, occupancy
+from . import chain, domains, helix, hetero, occupancy
 from .bent_layout import chain_clearance, domain_terminals, real_chain_layout
 from .param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST, MEMORY_PER_OBJECT_KIB, ParamError
 from .param_values import split_unit
@@ -49,6 +49,12 @@ def check_combination(p, force: bool) -> None:
         return
     _check_domains(p)
     p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
+    if occupancy.is_hetero(p):  # the B chains' too, laid out with B's size before any build
+        try:
+            hetero.b_params(p).chain_layout
+        except ParamError as exc:
+            raise ParamError("domain_b_diameter", f"the B chains ({p.domain_b_diameter:g} Å): "
+                                                  f"{exc}") from None
     check_anchors_apart(p)
     n = estimated_objects(p)
     if n > MAX_OBJECTS_UNFORCED and not force:

@@ -256,8 +256,21 @@ class Params:
                                choices=PATTERN_COUNTS, section="Globule", label="Period counts")
     pattern_layers: str = spec("A", None, None, "",
                                "layers: one letter per layer, repeated along the fibril: A "
-                               "carries the domain, '.' none (e.g. 'A.' every other layer)",
+                               "carries the domain, B the second domain (domain_b_diameter), "
+                               "'.' none (e.g. 'A.' every other layer, 'AB' a hetero-amyloid)",
                                kind=str, section="Globule")
+    # A hetero-amyloid's second domain (issue #44 item 1): the letter B of pattern_layers
+    # (docs/model/occupancy.md#hetero), a sphere on its own linker; A keeps the fields above.
+    domain_b_diameter: float | None = spec(None, 0.5, 500.0, "Å",
+                                           "layers: diameter of the second domain, a sphere, on "
+                                           "the layers lettered B in pattern_layers",
+                                           section="Globule", derived="no B domain",
+                                           label="Domain B diameter")
+    linker_b: int | None = spec(None, 1, 200, "residues",
+                                "layers: linker length of the B layers' chains in residues, "
+                                "counting the passive anchor (only linker's own length is "
+                                "built yet)", kind=int, section="Globule",
+                                derived="the same as linker", label="Linker B")
     bare_tail: int = spec(0, 0, 200, "residues",
                           "Undecorated subunits' own disordered tail, a bead chain of this many "
                           "residues from the anchor (0: no tail, nothing is built)", kind=int,
@@ -320,8 +333,9 @@ class Params:
     @property
     def widest_diameter(self) -> float:
         """The largest domain's diameter (one domain: globule_diameter): what a periodic cell
-        must exceed so that no globule meets its own image."""
-        return max([self.globule_diameter, *(self.domain_diameters or ())])
+        must exceed so that no globule meets its own image (a hetero-amyloid: B's too)."""
+        return max([self.globule_diameter, *(self.domain_diameters or ()),
+                    *((self.domain_b_diameter,) if occupancy.is_hetero(self) else ())])
 
     @property
     def free_linker(self) -> int:

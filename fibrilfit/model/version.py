@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "4197a455e67cd94c52bcd0345112d4d067cb7494bd63ac825f202a383f680517"
+MODEL_SOURCES_SHA256 = "836aad16ab8124a560c1a4286c2e863066d4144b1d081b3cae331a4066835bd5"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -166,7 +166,8 @@ def floor_of(base: P.Params, records: list | None = None) -> int:
     read from a run of it in `records` if there is one. A mixed fibril's is the bound at its
     fraction as drawn (impossible_below_at, docs/model/bound.md#fraction): a run's recorded
     bound is the fully decorated fibril's, higher, and not a bound on fewer domains."""
-    if occupancy.is_mixed(base):
+    if occupancy.is_mixed(base) and not occupancy.is_hetero(base):  # (a mixed hetero-amyloid:
+        # the exit's bound, linker_bound's below: docs/model/bound.md#hetero)
         return max(1, int(fraction_bound.impossible_below_at(base, occupancy.fraction(base))))
     for r in records or ():
         known = (r.get("bound") or {}).get("impossible_below") if r.get("status") == "ok" else None

@@ -252,6 +252,15 @@ def bracket_of(bound: dict | None, minimal_linker: int | None) -> dict | None:
             "open": [b, top] if top >= b else None}
 
 
+def domain_words(p) -> str:
+    """The domains the question asks of: A's size, and a hetero-amyloid's B with its letters
+    (docs/model/occupancy.md#hetero)."""
+    if not occupancy.is_hetero(p):
+        return f"{p.globule_diameter:g} Å"
+    return (f"{p.globule_diameter:g} Å (A) and {p.domain_b_diameter:g} Å (B, layers "
+            f"{p.pattern_layers!r})")
+
+
 def fraction_bracket_of(bound: dict | None, tally: dict) -> dict | None:
     """A mixed fibril's bracket on the fraction at the report's linker: impossible above f_B
     (proof), fits at its fraction when a restart found a layout, open between."""
@@ -289,7 +298,7 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
     where = (f"every {unit}" if not mixed else
              f"{100 * occupancy.fraction(p):.4g} % of the {unit}s ({occupancy.pattern_words(p)})")
     return {
-        "question": (f"Can domains of {p.globule_diameter:g} Å, tethered by {p.linker}-residue "
+        "question": (f"Can domains of {domain_words(p)}, tethered by {p.linker}-residue "
                      f"linkers to {where} of this fibril, all fit without clashing, and how "
                      f"long must the linker be?"),
         # a mixed fibril: what the answer speaks of (docs/model/occupancy.md#what-fits-at-f-means)

@@ -102,9 +102,11 @@ def shown_default(name: str):
     """What a derived parameter (default None: worked out from others) shows until the user
     turns its "use_" switch on (off means None): the value the model works out at the defaults,
     the anchor's (21.75, 0) Å, and pf_rotation's at two protofilaments, the fewest where a
-    turn between them means anything (π)."""
+    turn between them means anything (π); the second domain's, A's at the defaults (B as
+    large as A, on a linker as long)."""
     p = P.DEFAULTS if name != "pf_rotation" else P.make_params(protofilaments=2)
-    return {"pf_rotation": p.pf_angle, "anchor": p.anchor_xy}[name]
+    return {"pf_rotation": p.pf_angle, "anchor": p.anchor_xy,
+            "domain_b_diameter": p.globule_diameter, "linker_b": p.linker}[name]
 
 
 def switch_name(name: str) -> str:

@@ -104,7 +104,24 @@ def test_auto_cell_rounds_up_to_the_patterns_repeat():
     (dict(occupancy=0), "occupancy", "from"),
     (dict(occupancy=1.5), "occupancy", "from"),
     (dict(pattern="periodic", occupancy=0.5), "occupancy", "only with pattern random"),
-    (dict(pattern="layers", pattern_layers="AB"), "pattern_layers", "second domain"),
+    (dict(pattern="layers", pattern_layers="AB"), "domain_b_diameter", "is needed"),
+    (dict(domain_b_diameter=40.0), "domain_b_diameter", "pattern is random"),
+    (dict(pattern="layers", pattern_layers="A.", linker_b=6), "linker_b",
+     "pattern_layers has no B"),
+    (dict(pattern_layers="AB", domain_b_diameter=40.0), "domain_b_diameter",
+     "pattern is random"),
+    (dict(pattern_layers="AB"), "pattern_layers", "only with pattern layers"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, linker_b=7),
+     "linker_b", "not built yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, bare_tail=2),
+     "bare_tail", "not supported yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0,
+          domain_diameters=[20.0], domain_linker=[3]), "domain_diameters",
+     "not supported yet"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=0.1),
+     "domain_b_diameter", "from"),
+    (dict(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, periodic=15),
+     "pattern", "multiple of 2"),
     (dict(pattern="layers", pattern_layers="A-"), "pattern_layers", "only A"),
     (dict(pattern="layers", pattern_layers=".."), "pattern_layers", "no domain"),
     (dict(pattern="layers", pattern_layers="A..", periodic=16), "pattern", "multiple of 3"),
@@ -210,3 +227,134 @@ def test_bare_tails_are_built_in_a_periodic_cell():
     assert np.diff(reach) == pytest.approx(p.residue_spacing * (1 + p.stretch_tolerance))
     linker = chain.chain_reach(p)[:p.free_linker]  # the linker's beads: the same places
     assert reach[:len(linker)] == pytest.approx(linker)
+
+
+# ---- a hetero-amyloid: the letter B (docs/model/occupancy.md#hetero) -------------------------
+def test_b_layers_carry_the_second_domain_and_count_as_decorated():
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=6,
+                      protofilaments=2, pf_rotation=3.13, pf_rise=2.3)
+    assert O.is_hetero(p) and not O.is_mixed(p) and O.decorated(p).all()
+    assert O.second_domain(p)[:, 0].tolist() == [False, True] * 3
+    assert (O.second_domain(p)[:, 0] == O.second_domain(p)[:, 1]).all()  # a layer's letter
+    assert O.repeat_layers(p) == 2 and p.widest_diameter == 40.0
+    q = P.make_params(pattern="layers", pattern_layers="A.B.", domain_b_diameter=20.0, layers=8)
+    assert O.is_mixed(q) and O.decorated(q)[:, 0].tolist() == [True, False] * 4
+    assert O.second_domain(q)[:, 0].tolist() == [False, False, True, False] * 2
+    assert q.widest_diameter == 30.0  # A's is the wider
+    assert not O.is_hetero(P.make_params(pattern="layers", pattern_layers="A."))
+    assert P.DEFAULTS.domain_b_diameter is None and P.DEFAULTS.linker_b is None
+
+
+def test_a_hetero_cell_holds_whole_repeats_and_is_long_enough_for_b():
+    auto = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=60.0,
+                         periodic="auto")
+    assert auto.periodic % 2 == 0 and auto.periodic * auto.rise > 60.0
+    with pytest.raises(ParamError, match="periodic"):  # 8 layers: 38.4 Å, shorter than B
+        P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=60.0, periodic=8)
+
+
+def test_each_chain_has_its_own_last_bond_and_globule():
+    from fibrilfit.model import hetero
+    from fibrilfit.model.chain import rest_lengths
+    p = P.make_params(pattern="layers", pattern_layers="A.B", domain_b_diameter=40.0, layers=6,
+                      linker=4)
+    b = hetero.b_chains(p)  # the model's chains: the decorated subunits, layers 0, 2, 3, 5
+    assert b.tolist() == [False, True, False, True]
+    rest = hetero.rest_lengths_by_chain(p)
+    assert rest.shape == (4, 4)
+    assert rest[~b] == pytest.approx(np.tile(rest_lengths(p), (2, 1)))
+    assert rest[b, -1] == pytest.approx(20.0 + p.residue_radius)  # B's surface
+    assert rest[b, :-1] == pytest.approx(3.5)
+    assert hetero.globule_radii_by_chain(p).tolist() == [15.0, 20.0, 15.0, 20.0]
+    same = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=30.0, layers=4)
+    plain = P.make_params(pattern="layers", pattern_layers="AA", layers=4)
+    assert np.array_equal(hetero.rest_lengths_by_chain(same), hetero.rest_lengths_by_chain(plain))
+
+
+def test_the_occupancy_block_names_the_b_subunits_and_validates():
+    import json
+    import jsonschema
+    from helpers import ROOT
+    ref = ROOT / "docs" / "reference"
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=4)
+    block = O.occupancy_block(p)
+    assert block["second_domain"] == {"letter": "B", "diameter": 40.0, "linker": p.linker,
+                                      "subunits": [[1, 0], [3, 0]]}
+    r = json.loads((ref / "samples" / "run_result.json").read_text())
+    r = {**r, "params": p.to_dict(), "occupancy": block}
+    jsonschema.Draft202012Validator(json.loads((ref / "result.schema.json").read_text())
+                                    ).validate(r)
+    from fibrilfit.exports import run_text
+    assert "second domain: B, 40 Å (a sphere) on a 6-residue linker, on 2 of those subunits " \
+           "(pattern 'AB'); the others carry A, 30 Å" in run_text.text(r)
+
+
+def test_a_hetero_fibril_is_bounded_with_each_letter_at_its_own_size():
+    """Two domain sizes (docs/model/bound.md#hetero): B as large as A is bounded as the all-A
+    fibril to the number; a larger B is bounded at most as high as the fibril of that larger
+    domain on every layer (each of its inequalities is implied by one of that fibril's); a
+    mixed hetero-amyloid keeps the exit's bound alone, and the fraction bound is refused."""
+    from fibrilfit.model import bound, hetero
+    base = dict(periodic=22, pattern="layers")
+    aa = bound.linker_bound(P.make_params(**base, pattern_layers="AA"))
+    same = bound.linker_bound(P.make_params(**base, pattern_layers="AB", domain_b_diameter=30.0))
+    assert aa["impossible_below"] == same["impossible_below"] == 2
+    assert "A and B each at its own size" in same["method"]
+    for d in (40.0, 50.0):
+        ab = bound.linker_bound(P.make_params(**base, pattern_layers="AB", domain_b_diameter=d))
+        bb = bound.linker_bound(P.make_params(**base, pattern_layers="AA", globule_diameter=d))
+        assert 1 <= ab["impossible_below"] <= bb["impossible_below"]
+        assert ab["inner_volume_A3"][0] == aa["inner_volume_A3"][0]
+        assert ab["inner_volume_A3"][1] == bb["inner_volume_A3"][0]
+    # the shares each letter's volume is counted with: the scored layers' letters, or the
+    # pattern's per layer in a cell
+    def shares(**kw):
+        q = P.make_params(pattern="layers", **kw)
+        return hetero.letter_shares(q, q.score_layers, q.layers - q.score_layers)
+
+    assert shares(layers=12, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([8 / 12, 4 / 12])
+    assert shares(layers=12, score_layers=2, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([5 / 8, 3 / 8])  # layers 2-9: B on 2, 5, 8
+    assert shares(periodic=21, pattern_layers="AAB", domain_b_diameter=40.0) == \
+        pytest.approx([2 / 3, 1 / 3])
+    mixed = P.make_params(periodic=24, pattern="layers", pattern_layers="A.B.",
+                          domain_b_diameter=40.0)
+    b = bound.linker_bound(mixed)
+    assert b["impossible_below"] == 1 and "no excluded-volume bound" in b["method"]
+    with pytest.raises(ValueError, match="hetero"):
+        bound.setting(P.make_params(**base, pattern_layers="AB", domain_b_diameter=40.0))
+
+
+def test_a_case_file_carries_the_second_domain(tmp_path):
+    from fibrilfit.model import cases
+    case = tmp_path / "hetero.toml"
+    case.write_text('[params]\npattern = "layers"\npattern_layers = "AB"\n'
+                    'domain_b_diameter = 40.0\nlinker_b = 6\n', encoding="utf-8")
+    p = P.make_params(**cases.load(case).params)
+    assert (p.domain_b_diameter, p.linker_b, O.is_hetero(p)) == (40.0, 6, True)
+
+
+def test_the_core_entry_counts_each_globule_at_its_own_size():
+    """The bound's third assumption, measured on a layout (bound.core_entry): a B globule's
+    inner ball is B's, d_B / d_A times A's."""
+    from fibrilfit.model import bound
+    p = P.make_params(pattern="layers", pattern_layers="AB", domain_b_diameter=40.0, layers=4)
+    m = np.tile(np.eye(4), (1, p.linker + 1, 1, 1))
+    m[0, -1, :3, 3] = (30.0, 0.0, 0.0)  # layer 0's globule, 10 Å outside the 40 Å slab's face
+    f = bound.uv_fraction()
+    assert bound.core_entry(p, m) == pytest.approx(15.0 * f - 10.0, abs=1e-4)
+    assert bound.core_entry(p, m, [40.0 / 30.0]) == pytest.approx(20.0 * f - 10.0, abs=1e-4)
+
+
+def test_b_chains_that_cannot_leave_the_core_are_refused_before_a_build():
+    """In a slot 34 Å wide a 30 Å domain's chain leaves the core straight, a 40 Å one cannot:
+    a B of 40 Å beside that A is refused at validation, naming domain_b_diameter."""
+    slot = [[-50, -60], [90, -60], [90, -17], [10, -17], [10, 17], [90, 17], [90, 60], [-50, 60]]
+    base = dict(core_outline=slot, anchor=[11.75, 0.0], layers=4, linker=6)
+    P.make_params(**base)
+    P.make_params(**base, pattern="layers", pattern_layers="AB", domain_b_diameter=20.0)
+    with pytest.raises(ParamError) as exc:
+        P.make_params(**base, pattern="layers", pattern_layers="AB", domain_b_diameter=40.0)
+    assert exc.value.param == "domain_b_diameter" and "the B chains (40 Å)" in str(exc.value)
+    assert "\n" not in str(exc.value)

@@ -7,7 +7,7 @@ import dataclasses
 from ..exits import UsageError
 from ..model import params as P
 from ..model.param_checks import refuse_beside_periodic
-from ..structure import from_files
+from ..structure import from_files, termini
 
 
 @dataclasses.dataclass
@@ -29,6 +29,7 @@ def measured_values(structure, explicit: dict) -> tuple[dict, dict | None, objec
         return dict(explicit), None, None
     m = from_files.measure_files(structure)
     values, block = from_files.merged(m.fibril, m.domains, m.segmentation, explicit)
+    termini.check_copies(m.fibril_path, m.fibril, values, explicit)
     return values, block, m
 
 

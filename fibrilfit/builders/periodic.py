@@ -34,7 +34,7 @@ def plan(p, chain_layers, core_layers) -> dict:
     covers g; a static "anchor" image copies member 0 of a chain, "core" a core object.
     """
     # protofilaments rise from one to the next: the layer's chains spread over that much more
-    reach_cell = body_reach(p) + abs(p.pf_rise) * (p.protofilaments - 1)
+    reach_cell = body_reach(p) + p.pf_rise_step * (p.protofilaments - 1)
     member_reach = chain_reach(p)
     moving, static = [], []
     for m, k in helix.image_layers(p, reach_cell + float(member_reach.max())):
@@ -176,7 +176,7 @@ class ImageFollower:
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
                        (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
-                       + abs(self.p.pf_rise) * (self.p.protofilaments - 1))
+                       + self.p.pf_rise_step * (self.p.protofilaments - 1))
         self.current = None  # the places Blender holds, (n, 3)
         self.tagged: list[int] = []  # per frame: images moved for Bullet
         self.prev = None

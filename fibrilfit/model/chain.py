@@ -129,7 +129,7 @@ def chain_layout(p) -> ChainLayout:
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
     offsets = np.asarray(chain_x(p)) - p.anchor_x  # along the chain from the anchor
-    copies = [j * p.pf_angle for j in range(p.protofilaments)]
+    copies = [float(a) for a in p.pf_offsets()[0]]
     for j, a in enumerate(copies):
         xy = polygons.rotate(anchor, a)
         if polygons.inside(outline, xy[None])[0]:

@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "9a1b3838228d8a9a13866c0eb829b28ab8b72c5f4b53b78cf1a6e65a82229ffd"
+MODEL_SOURCES_SHA256 = "ce63d6e7f39d79897b4ee13255efa7cdb52059961a7d146c3731d48ab28efa34"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -20,18 +20,19 @@ import argparse
 import collections
 import csv
 import datetime
+import functools
 import pathlib
 import re
 import subprocess
 import sys
 import time
 
-from fibrilfit.api import inspect as api_inspect
+from fibrilfit.api import inspect as api_inspect, model as resolved_model
 from fibrilfit.exits import UsageError
 from fibrilfit.model import bound as B, params as P
 from fibrilfit.model.param_spec import ParamError
 from fibrilfit.model.version import MODEL_VERSION
-from fibrilfit.structure import from_files
+from fibrilfit.structure import fibril as F, from_files
 from fibrilfit.structure.errors import StructureError
 from fibrilfit.structure.request import StructureRequest
 
@@ -39,28 +40,31 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 BALL = 44.0  # Å: GFP as a ball (1GFL chain A: 43.9 Å, docs/model/buried-terminus.md#5oqv)
 RUN = {"globule_diameter": BALL, "linker": 12, "periodic": "auto"}
 REFUSED = (ParamError, StructureError, UsageError)
-COLUMNS = ("file", "read", "inspect_message", "built_C", "refusal_C", "built_N", "refusal_N",
-           "exit_C", "exit_N", "bound_C", "seconds")
+COLUMNS = ("file", "read", "inspect_message", "inspect_run", "built_C", "refusal_C", "built_C_pf1", "built_N",
+           "refusal_N", "exit_C", "exit_N", "bound_C", "seconds")
+# each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
+# measurement (the same function, the same arguments), as two commands would each make it
+F.measure = functools.lru_cache(maxsize=4)(F.measure)
 
 
 def one_line(exc: Exception) -> str:
     return " ".join(str(exc).split())
 
 
-def run_check(path: str, terminus: str) -> dict:
+def run_check(path: str, terminus: str, **more) -> dict:
     """What `run --fibril path --terminus T` does before it builds (api/model.resolve): the
     files measured, the values merged, the Params made and checked. The exit is the measured
     one (residues spent, 'no exit' when sealed), given whether or not the run is refused."""
     request = StructureRequest(fibril=path, terminus=terminus)
     try:
         m = from_files.measure_files(request)
-        values, _ = from_files.merged(m.fibril, m.domains, m.segmentation, dict(RUN))
+        values, _ = from_files.merged(m.fibril, m.domains, m.segmentation, {**RUN, **more})
     except REFUSED as exc:
         return {"built": False, "refusal": one_line(exc), "exit": "", "p": None}
     spent = int(values.get("exit_residues", 0))
     way = "no exit" if spent >= P.SEALED else str(spent)
-    try:
-        p = P.make_params(**values)
+    try:  # as `run` makes its model (api/model.resolve), the measurement above reused
+        p = P.make_params(**resolved_model.measured_values(request, {**RUN, **more})[0])
     except REFUSED as exc:
         return {"built": False, "refusal": one_line(exc), "exit": way, "p": None}
     return {"built": True, "refusal": "", "exit": way, "p": p}
@@ -71,8 +75,8 @@ def survey_file(path: pathlib.Path) -> dict:
     row = dict.fromkeys(COLUMNS, "")
     row["file"] = path.name
     try:
-        api_inspect(fibril=str(path))
-        row["read"] = True
+        said = api_inspect(fibril=str(path))["run"]  # what inspect says run will do
+        row.update(read=True, inspect_run="builds" if said["builds"] else "refuses")
     except REFUSED as exc:
         row.update(read=False, inspect_message=one_line(exc))
     for side in ("C", "N"):
@@ -81,13 +85,15 @@ def survey_file(path: pathlib.Path) -> dict:
         row[f"exit_{side}"] = got["exit"]
         if side == "C" and got["p"] is not None:
             row["bound_C"] = B.linker_bound(got["p"])["impossible_below"]
+        elif side == "C" and row["read"]:  # what the refusal offers: protofilament 0's chains
+            row["built_C_pf1"] = run_check(str(path), "C", protofilaments=1)["built"]
     row["seconds"] = round(time.perf_counter() - t, 1)
     return row
 
 
 def reason(message: str) -> str:
     """A refusal's kind: its parameter and its first words, numbers dropped."""
-    head = re.sub(r"\(.*", "", message)
+    head = re.sub(r"\(.*", "", re.sub(r"^--\w+: [^:]+: ", "", message))
     head = re.sub(r"[-\d.,]+ ?(Å|°)?", "…", head)
     return " ".join(head.split()[:9])
 
@@ -107,14 +113,19 @@ def summary(rows: list[dict]) -> str:
         return (f"{len(out)} of {len(known)} ({100 * len(out) / max(1, len(known)):.0f} %; "
                 f"on the surface {len(surface)}, buried with a way out {len(out) - len(surface)})")
     bounds = [int(r["bound_C"]) for r in built if str(r["bound_C"]) != ""]
+    told = sum(r["inspect_run"] == "refuses" for r in read)
     lines = [f"- files: {n}; `inspect` reads {len(read)}; `run` builds {len(built)} of them "
-             f"(C terminus); refused: {len(read) - len(built)}",
+             f"(C terminus); refused: {len(read) - len(built)}; `inspect` says `run` (the "
+             f"default domain) refuses: {told}",
              f"- a C-terminal exit: {share('C')}",
              f"- an N-terminal exit: {share('N')}",
              f"- bound for a {BALL:g} Å ball at the C terminus (built files): "
              f"{sum(b <= 12 for b in bounds)} at most 12, {sum(12 < b <= B.LONGEST for b in bounds)}"
              f" above 12, {sum(b > B.LONGEST for b in bounds)} no exit ({B.LONGEST + 1})"]
     lines += [f"- refused by `run` ({k}…): {v}" for k, v in refused.most_common()]
+    pf1 = [r for r in read if r["built_C_pf1"] != ""]
+    lines.append(f"- of the refused, built with `--protofilaments 1`: "
+                 f"{sum(r['built_C_pf1'] in (True, 'True') for r in pf1)} of {len(pf1)}")
     lines += [f"- not read by `inspect` ({k}…): {v}" for k, v in unread.most_common()]
     return "\n".join(lines)
 

@@ -110,6 +110,20 @@ def body_reach(p) -> float:
     return float(max(chain_reach(p).max(), p.slab[2] / 2.0))
 
 
+def _blocked_by_copies(p, outline, anchor, offsets) -> str:
+    """Why no direction is free, when it is the other protofilaments' copies of the chain that
+    block it (docs/guide/structures.md#interface-termini): what the user can do."""
+    if p.protofilaments < 2:
+        return ""
+    try:
+        polygons.linker_direction(outline, anchor, offsets, chain_radii(p), [0.0])
+    except polygons.GeometryError:
+        return ""  # protofilament 0's own chain is blocked: the message as it was
+    return (f" (protofilament 0's own chain has a free direction; the copies turned onto the "
+            f"other {p.protofilaments - 1} protofilament(s) block every one: give "
+            f"--protofilaments 1 to decorate protofilament 0 alone, or --anchor X Y)")
+
+
 @dataclass(frozen=True)
 class ChainLayout:
     """Protofilament 0's chain in the layer's frame: each member's centre (n, 2), the same in
@@ -142,7 +156,8 @@ def chain_layout(p) -> ChainLayout:
         direction, rule = polygons.linker_direction(outline, anchor, offsets, chain_radii(p),
                                                     copies)
     except polygons.GeometryError as exc:
-        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}") from None
+        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}"
+                                   f"{_blocked_by_copies(p, outline, anchor, offsets)}") from None
     if rule == "radial":
         radius = np.asarray(chain_x(p))
         angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))

@@ -116,3 +116,18 @@ def test_inspect_says_what_run_will_do():
     assert refused.text.splitlines()[-1].startswith("run: refuses")
     built = inspect(fibril=SEVEN_RL4)
     assert built["run"] == {"builds": True, "refusal": None}
+
+
+def test_a_direction_blocked_only_by_the_copies_says_so():
+    """A C-shaped core: protofilament 0's anchor on its closed side leaves radially; its copy
+    turned by 180° sits in the 8 Å notch, where no straight line gets a 44 Å globule out. The
+    refusal says the copies block it, and what to do; alone, protofilament 0's chain builds."""
+    outline = [[-60, -12], [20, -12], [20, 12], [-60, 12], [-60, 4], [-20, 4], [-20, -4],
+               [-60, -4]]
+    common = dict(core_outline=outline, anchor=[21.75, 0.0], globule_diameter=44.0, linker=2,
+                  pf_rise=2.4)
+    assert P.make_params(protofilaments=1, **common).chain_layout.rule == "radial"
+    with pytest.raises(ParamError, match=r"no straight direction.*copies turned onto the other "
+                                         r"1 protofilament\(s\) block every one: give "
+                                         r"--protofilaments 1"):
+        P.make_params(protofilaments=2, **common)

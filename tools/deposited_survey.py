@@ -42,9 +42,7 @@ RUN = {"globule_diameter": BALL, "linker": 12, "periodic": "auto"}
 REFUSED = (ParamError, StructureError, UsageError)
 COLUMNS = ("file", "read", "inspect_message", "inspect_run", "built_C", "refusal_C", "built_C_pf1", "built_N",
            "refusal_N", "exit_C", "exit_N", "bound_C", "seconds")
-# each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
-# measurement (the same function, the same arguments), as two commands would each make it
-F.measure = functools.lru_cache(maxsize=4)(F.measure)
+
 
 
 def one_line(exc: Exception) -> str:
@@ -139,6 +137,9 @@ def main(argv=None) -> int:
                     help="stop starting new files after this long")
     ap.add_argument("--only", nargs="*", default=None, help="these file names only")
     a = ap.parse_args(argv)
+    # each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
+    # measurement (the same function, the same arguments) that two commands would each make
+    F.measure = functools.lru_cache(maxsize=4)(F.measure)
     files = sorted(f for f in a.folder.iterdir()
                    if re.search(r"\.(pdb|cif|ent)(\.gz)?$", f.name, re.I))
     if a.only:

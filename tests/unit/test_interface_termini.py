@@ -131,3 +131,20 @@ def test_a_direction_blocked_only_by_the_copies_says_so():
                                          r"1 protofilament\(s\) block every one: give "
                                          r"--protofilaments 1"):
         P.make_params(protofilaments=2, **common)
+
+
+def test_the_survey_tool_tabulates_what_inspect_and_run_say(tmp_path):
+    """tools/deposited_survey.py on 6ZRR: read, refused by run (and inspect said so), built
+    with --protofilaments 1, the exits of both termini measured; the summary counts it."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "deposited_survey", DATA.parents[1] / "tools" / "deposited_survey.py")
+    survey = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(survey)
+    row = survey.survey_file(pathlib.Path(SIX_ZRR))
+    assert row["read"] is True and row["inspect_run"] == "refuses"
+    assert row["built_C"] is False and row["refusal_C"].startswith("anchor: protofilament 1's")
+    assert row["built_C_pf1"] is True and row["bound_C"] == ""
+    assert row["exit_C"] == "0" and row["exit_N"] != ""
+    text = survey.summary([row])
+    assert "`run` builds 0 of them" in text and "`--protofilaments 1`: 1 of 1" in text

@@ -37,6 +37,7 @@ def check_combination(p, force: bool) -> None:
         raise ParamError("residue_spacing", f"must be at least the residue radius "
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
+    _check_pf_turns(p)
     if p.periodic:
         _check_periodic(p)
     domains.check_shapes(p)
@@ -48,7 +49,6 @@ def check_combination(p, force: bool) -> None:
     if p.free_linker < 1:  # no exit: a verdict, settled without a model (model/terminus.py)
         return
     _check_domains(p)
-    _check_pf_turns(p)
     p.chain_layout  # the anchor outside the core, the chain clear of it (raises ParamError)
     check_anchors_apart(p)
     n = estimated_objects(p)

@@ -32,7 +32,7 @@ from fibrilfit.exits import UsageError
 from fibrilfit.model import bound as B, params as P
 from fibrilfit.model.param_spec import ParamError
 from fibrilfit.model.version import MODEL_VERSION
-from fibrilfit.structure import fibril as F, from_files
+from fibrilfit.structure import fibril as F, from_files, termini
 from fibrilfit.structure.errors import StructureError
 from fibrilfit.structure.request import StructureRequest
 
@@ -62,7 +62,9 @@ def run_check(path: str, terminus: str, **more) -> dict:
     spent = int(values.get("exit_residues", 0))
     way = "no exit" if spent >= P.SEALED else str(spent)
     try:  # as `run` makes its model (api/model.resolve), the measurement above reused
-        p = P.make_params(**resolved_model.measured_values(request, {**RUN, **more})[0])
+        given = {**RUN, **more}
+        values, _, measured = resolved_model.measured_values(request, given)
+        p = termini.make_params(values, measured, given)
     except REFUSED as exc:
         return {"built": False, "refusal": one_line(exc), "exit": way, "p": None}
     return {"built": True, "refusal": "", "exit": way, "p": p}

@@ -29,7 +29,6 @@ def measured_values(structure, explicit: dict) -> tuple[dict, dict | None, objec
         return dict(explicit), None, None
     m = from_files.measure_files(structure)
     values, block = from_files.merged(m.fibril, m.domains, m.segmentation, explicit)
-    termini.check_copies(m.fibril_path, m.fibril, values, explicit)
     return values, block, m
 
 
@@ -40,7 +39,8 @@ def resolve(plan, defaults: dict | None = None) -> ResolvedModel:
     refuse_beside_periodic(given)
     values, block, measured = measured_values(plan.structure, given)
     values = {**(defaults or {}), **values}
-    return ResolvedModel(P.make_params(force=plan.force, **values), values, block, measured)
+    p = termini.make_params(values, measured, given, force=plan.force)
+    return ResolvedModel(p, values, block, measured)
 
 
 def param_sources(given, p: P.Params, structure_block=None, *, case=None, restarts=None,

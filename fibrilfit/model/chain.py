@@ -110,6 +110,16 @@ def body_reach(p) -> float:
     return float(max(chain_reach(p).max(), p.slab[2] / 2.0))
 
 
+class AnchorInside(ParamError):
+    """The anchor, or protofilament j's copy of it (turned by `turn`, at `xy`), lies inside the
+    core: a structure file's caller can say what the file's own protofilament j measures
+    (structure/termini.py)."""
+
+    def __init__(self, message: str, protofilament: int, xy, turn: float):
+        super().__init__("anchor", message)
+        self.protofilament, self.xy, self.turn = protofilament, np.asarray(xy), float(turn)
+
+
 def _blocked_by_copies(p, outline, anchor, offsets) -> str:
     """Why no direction is free, when it is the other protofilaments' copies of the chain that
     block it (docs/guide/structures.md#interface-termini): what the user can do."""
@@ -149,9 +159,9 @@ def chain_layout(p) -> ChainLayout:
         if polygons.inside(outline, xy[None])[0]:
             where = "" if j == 0 else (f" (protofilament {j}'s copy, turned by "
                                        f"{math.degrees(a):.1f}°, at ({xy[0]:.2f}, {xy[1]:.2f}))")
-            raise ParamError("anchor", f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
-                                       f"{where}; the linker must start outside it: put the "
-                                       f"anchor on or outside the core's outline")
+            raise AnchorInside(f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
+                               f"{where}; the linker must start outside it: put the "
+                               f"anchor on or outside the core's outline", j, xy, a)
     try:
         direction, rule = polygons.linker_direction(outline, anchor, offsets, chain_radii(p),
                                                     copies)

@@ -27,7 +27,7 @@ MODEL_VERSION = 6  # 2: inflate deterministic and near-miss cycles (#25), domain
 # inflate takes a cell of whole lattice periods with a lattice start (docs/model/periodic-cell.md#auto-cell);
 # 6: under inflate a clear miss ends the run at its judgement (docs/model/search.md#clear-miss)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "8595f428334d691b2cc701f7461fc11e25f8ba43da3c5649a5724b73803dead7"
+MODEL_SOURCES_SHA256 = "a8931da759e5bfd31e8c3282b522ad4071d7494e2add3d2233e6cf9aea918589"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..geom import exit_path, polygons
 from ..model import params as P
+from ..model.chain import AnchorInside
 from ..model.param_spec import ParamError
 from . import exit as X, fibril as F, reading
 from .mapping import anchor_outside, clear_of
@@ -56,20 +57,6 @@ def own_termini(path, geometry, residue_radius: float = P.DEFAULTS.residue_radiu
     return out
 
 
-def copies_inside(anchor, outline, turns) -> list[tuple[int, np.ndarray, float]]:
-    """(protofilament, the copy's (x, y), its depth inside the outline) of every copy of the
-    anchor turned by turns[j] (j >= 1) that lands inside the outline."""
-    poly = np.asarray(outline, float)
-    out = []
-    for j, t in enumerate(turns):
-        if j == 0:
-            continue
-        xy = polygons.rotate(np.asarray(anchor, float), float(t))
-        if polygons.inside(poly, xy[None])[0]:
-            out.append((j, xy, float(polygons.edge_distance(poly, xy[None])[0][0])))
-    return out
-
-
 def _exit_words(t: dict) -> str:
     if not t["exit_found"]:
         return "sealed: no way out clear of the atoms"
@@ -78,28 +65,23 @@ def _exit_words(t: dict) -> str:
     return f"{t['exit_length']:g} Å to the surface, {t['exit_residues']} residue(s) spent"
 
 
-def check_copies(path, geometry, values: dict, explicit) -> None:
-    """Refuse, with what was measured, a fibril file whose protofilament 0's chain, repeated on
-    every protofilament at its measured turn, starts inside the core: the file's protofilaments
-    are not copies at their termini. Only the measured model is judged: an anchor, outline or
-    turn given by the user is checked by the model (model/chain.py) as given."""
-    if geometry is None or path is None or set(explicit) & set(CHOSEN):
-        return
-    k = int(values.get("protofilaments", 1))
-    if k < 2 or values.get("core_outline") is None or values.get("anchor") is None:
-        return
-    turns = ([row[0] for row in values["pf_turns"]] if values.get("pf_turns") is not None
-             else [j * float(values["pf_rotation"]) for j in range(k)])
-    inside = copies_inside(values["anchor"], values["core_outline"], turns)
-    if not inside:
-        return
-    j, xy, depth = inside[0]
-    termini = own_termini(path, geometry)
+def explained(exc: ParamError, measured, explicit) -> ParamError:
+    """The refusal to raise for `exc`: where the model refused protofilament j's copy of a
+    measured anchor inside the core (model/chain.AnchorInside, j >= 1), the same refusal with
+    what the file's own protofilaments measure and what the user can do; else `exc` itself
+    (an anchor, outline or turn the user chose is refused as given)."""
+    if (not isinstance(exc, AnchorInside) or exc.protofilament == 0 or measured is None
+            or measured.fibril is None or set(explicit) & set(CHOSEN)):
+        return exc
+    g, j, xy = measured.fibril, exc.protofilament, exc.xy
+    poly = np.asarray(g.core_outline, float)
+    depth = float(polygons.edge_distance(poly, xy[None])[0][0])
+    termini = own_termini(measured.fibril_path, g)
     own, first = termini[j], termini[0]
     apart = math.dist(xy, own["anchor"])
-    raise ParamError("anchor", (
+    return ParamError("anchor", (
         f"protofilament {j}'s copy of protofilament 0's chain (turned by "
-        f"{math.degrees(turns[j]):.1f}°) would start at ({xy[0]:.2f}, {xy[1]:.2f}) Å, "
+        f"{math.degrees(exc.turn):.1f}°) would start at ({xy[0]:.2f}, {xy[1]:.2f}) Å, "
         f"{depth:.2f} Å inside the core's outline, {apart:.1f} Å from where the file's own "
         f"protofilament {j} starts: its chain {own['chain']} {own['residue_name']}"
         f"{own['residue']} (CA at ({own['ca'][0]:.1f}, {own['ca'][1]:.1f}) Å; its way out, "
@@ -112,6 +94,14 @@ def check_copies(path, geometry, values: dict, explicit) -> None:
         f"copy (docs/guide/structures.md#interface-termini)"))
 
 
+def make_params(values: dict, measured, explicit, force: bool = False):
+    """P.make_params(**values), a refused copy of a measured anchor explained (`explained`)."""
+    try:
+        return P.make_params(force=force, **values)
+    except ParamError as exc:
+        raise explained(exc, measured, explicit) from None
+
+
 def run_check(measured) -> dict:
     """What `run` would do with the files `inspect` read (a from_files.Measured), nothing given
     beside them (the default domain when none is named): {"builds": True} or {"builds":
@@ -121,8 +111,7 @@ def run_check(measured) -> dict:
         return {"builds": None, "refusal": None}
     try:
         values, _ = merged(measured.fibril, measured.domains, measured.segmentation, {})
-        check_copies(measured.fibril_path, measured.fibril, values, {})
-        P.make_params(**values)
+        make_params(values, measured, {})
     except ParamError as exc:
         return {"builds": False, "refusal": str(exc)}
     return {"builds": True, "refusal": None}

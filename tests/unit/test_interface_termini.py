@@ -148,3 +148,15 @@ def test_the_survey_tool_tabulates_what_inspect_and_run_say(tmp_path):
     assert row["exit_C"] == "0" and row["exit_N"] != ""
     text = survey.summary([row])
     assert "`run` builds 0 of them" in text and "`--protofilaments 1`: 1 of 1" in text
+
+
+def test_a_sealed_exit_stays_no_exit_whatever_the_copies():
+    """The copies are judged only where the model is built: a sealed exit (the Amyloid
+    Explorer's 5OQV) is the answer `no exit` before any layout, as before; only the refusal of a
+    copy inside the core is explained."""
+    common = dict(protofilaments=2, pf_rotation=0.5)  # the copy at (19.09, 10.43): in the box
+    with pytest.raises(ParamError, match="protofilament 1's copy"):
+        P.make_params(**common)
+    assert P.make_params(exit_residues=P.SEALED, **common).free_linker < 1
+    exc = ParamError("anchor", "something else")
+    assert termini.explained(exc, None, {}) is exc

@@ -2,7 +2,8 @@
 from __future__ import annotations
 
 from ..exits import UsageError
-from ..structure.from_files import measure_all
+from ..structure import termini
+from ..structure.from_files import measure_files
 from .results import InspectResult
 
 
@@ -16,7 +17,8 @@ def inspect(plan) -> InspectResult:
     from ..structure.mapping import linker_source
     if not plan.structure.any:
         raise UsageError("inspect: give --fibril FILE, --domain FILE and/or --full-length FILE")
-    fib, doms, seg = measure_all(plan.structure, inspect=True)
+    m = measure_files(plan.structure, inspect=True)
+    fib, doms, seg = m.fibril, m.domains, m.segmentation
     dom = doms[0] if doms else None
     values = structure.model_values(fib, dom, more_domains=doms[1:])
     sources = ({"linker": linker_source(fib, dom, explicit=False)} if fib or dom else {})
@@ -27,4 +29,7 @@ def inspect(plan) -> InspectResult:
     if len(doms) > 1:
         doc["domains_measured"] = [d.to_dict() for d in doms]
     text = inspect_text.text(fib, dom, values, segmentation=seg, more_domains=doms[1:])
+    if fib is not None:  # what `run` will do with them (docs/guide/structures.md#deposited-survey)
+        doc["run"] = termini.run_check(m)
+        text += "\n" + termini.run_line(doc["run"])
     return InspectResult(doc, text=text)

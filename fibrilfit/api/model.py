@@ -7,7 +7,7 @@ import dataclasses
 from ..exits import UsageError
 from ..model import params as P
 from ..model.param_checks import refuse_beside_periodic
-from ..structure import from_files
+from ..structure import from_files, termini
 
 
 @dataclasses.dataclass
@@ -39,7 +39,8 @@ def resolve(plan, defaults: dict | None = None) -> ResolvedModel:
     refuse_beside_periodic(given)
     values, block, measured = measured_values(plan.structure, given)
     values = {**(defaults or {}), **values}
-    return ResolvedModel(P.make_params(force=plan.force, **values), values, block, measured)
+    p = termini.make_params(values, measured, given, force=plan.force)
+    return ResolvedModel(p, values, block, measured)
 
 
 def param_sources(given, p: P.Params, structure_block=None, *, case=None, restarts=None,

@@ -45,7 +45,7 @@ def plan(p, chain_layers, core_layers, tail_layers=()) -> dict:
     # (a hetero-amyloid: the wider reach of an A or a B chain, member by member)
     chains = widest_chain_reach(p)
     reach_cell = (max(float(chains.max()), p.slab[2] / 2.0, float(tails.max(initial=0.0)))
-                  + abs(p.pf_rise) * (p.protofilaments - 1))  # chain.body_reach's, and the tails'
+                  + p.pf_rise_step * (p.protofilaments - 1))  # chain.body_reach's, and the tails'
     moving, static, tail_moving = [], [], []
     for layers, member_reach, kind, beads in ((chain_layers, chains, "anchor", moving),
                                               (tail_layers, tails, "tail", tail_moving)):
@@ -211,7 +211,7 @@ class ImageFollower:
         self.reach = float(max(radii.max(), self.p.slab[2] / 2.0))  # the largest cell body's
         self.core_z = (-self.p.slab[2] / 2.0,  # the cell's cores, bottom to top
                        (self.p.layers - 1) * self.p.rise + self.p.slab[2] / 2.0
-                       + abs(self.p.pf_rise) * (self.p.protofilaments - 1))
+                       + self.p.pf_rise_step * (self.p.protofilaments - 1))
         self.current = None  # the places Blender holds, (n, 3)
         self.tagged: list[int] = []  # per frame: images moved for Bullet
         self.prev = None

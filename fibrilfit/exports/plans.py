@@ -135,7 +135,7 @@ class OutputPlan(Plan):
 
 def pdb_fits(p) -> None:
     """Refuse, before any work, a fibril taller than PDB's coordinate columns (9999.999 Å)."""
-    top = ((p.layers - 1) * p.rise + max(0.0, (p.protofilaments - 1) * p.pf_rise)
+    top = ((p.layers - 1) * p.rise + max(0.0, float(p.pf_offsets()[1].max()))
            + p.globule_diameter + p.residue_radius)
     if p.layers > 1 and top > 9999.999:
         most = int((9999.999 - p.globule_diameter - p.residue_radius) // p.rise) + 1

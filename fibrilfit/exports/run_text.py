@@ -72,6 +72,9 @@ def _model_lines(r: dict) -> list[str]:
     if k > 1:
         turn = (2 * math.pi / k) if p.get("pf_rotation") is None else p["pf_rotation"]
         pf = f" (each turned {math.degrees(turn):.1f}° and raised {p.get('pf_rise', 0):g} Å)"
+        if p.get("pf_turns"):  # three or more, each at its own measured turn
+            pf = " (turned " + ", ".join(f"{math.degrees(a):.1f}°" for a, _ in p["pf_turns"]) + \
+                 " and raised " + ", ".join(f"{b:g}" for _, b in p["pf_turns"]) + " Å)"
     detail = lambda name: (f" (from {src[name]})" if name in src  # noqa: E731
                            and src[name] not in ("default", "option", "case") else "")
     core = ("the slab's box" if p.get("core_outline") is None

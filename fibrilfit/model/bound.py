@@ -153,14 +153,14 @@ class Room:
         self.p = p
         anchor_r = math.hypot(*p.anchor_xy)
         half_xy = anchor_r + rho_max + 1.0  # every voxel that any anchor's ball can reach
-        reach_layers = int(math.ceil((rho_max + abs(p.pf_rise) * p.protofilaments) / p.rise)) + 2
+        reach_layers = int(math.ceil((rho_max + p.pf_rise_step * p.protofilaments) / p.rise)) + 2
         if periodic:  # one layer's height of the infinite fibril, every anchor that can reach it
             z0, z1 = -p.rise / 2.0, p.rise / 2.0
             layers = np.arange(-reach_layers, reach_layers + 1)
         else:
             layers = np.arange(lo, hi)
-            z0 = lo * p.rise - p.rise / 2.0 - rho_max - abs(p.pf_rise) * p.protofilaments
-            z1 = (hi - 1) * p.rise + p.rise / 2.0 + rho_max + abs(p.pf_rise) * p.protofilaments
+            z0 = lo * p.rise - p.rise / 2.0 - rho_max - p.pf_rise_step * p.protofilaments
+            z1 = (hi - 1) * p.rise + p.rise / 2.0 + rho_max + p.pf_rise_step * p.protofilaments
             # whole layers' heights, so every voxel lies in one layer's slice
             z0 = (math.floor(z0 / p.rise - 0.5) + 0.5) * p.rise
             z1 = (math.ceil(z1 / p.rise - 0.5) + 0.5) * p.rise
@@ -178,9 +178,10 @@ class Room:
         # anchors: (layer, protofilament) -> world position
         ax, ay = p.anchor_xy
         k = np.repeat(layers, p.protofilaments).astype(float)
-        j = np.tile(np.arange(p.protofilaments), len(layers)).astype(float)
-        angle = k * p.twist + j * p.pf_angle
-        height = k * p.rise + j * p.pf_rise
+        j = np.tile(np.arange(p.protofilaments), len(layers))
+        turns, rises = p.pf_offsets()
+        angle = k * p.twist + turns[j]
+        height = k * p.rise + rises[j]
         anchors = np.column_stack([np.cos(angle) * ax - np.sin(angle) * ay,
                                    np.sin(angle) * ax + np.cos(angle) * ay, height])
         self.anchors, self.pf = anchors, j.astype(int)
@@ -257,7 +258,7 @@ def constraints(p, room: Room, terms, volumes, linker: int, chains_per_pf: int) 
 def _settings_key(p) -> str:
     keep = ("slab", "residue_radius", "residue_spacing", "globule_diameter", "layers", "rise",
             "twist", "stretch_tolerance", "score_layers", "protofilaments", "pf_rotation",
-            "pf_rise", "core_outline", "anchor", "periodic", "domain_diameters",
+            "pf_rise", "pf_turns", "core_outline", "anchor", "periodic", "domain_diameters",
             "pattern", "pattern_layers", "domain_b_diameter", "linker_b",
             "domain_linker", "domain_shape", "domain_atoms", "domain_spheres", "domain_joint",
             "further_atoms", "further_spheres", "further_joints", "domain_exits",

@@ -132,6 +132,30 @@ def body_reach(p) -> float:
     return float(max(chain_reach(p).max(), p.slab[2] / 2.0))
 
 
+class AnchorInside(ParamError):
+    """The anchor, or protofilament j's copy of it (turned by `turn`, at `xy`), lies inside the
+    core: a structure file's caller can say what the file's own protofilament j measures
+    (structure/termini.py)."""
+
+    def __init__(self, message: str, protofilament: int, xy, turn: float):
+        super().__init__("anchor", message)
+        self.protofilament, self.xy, self.turn = protofilament, np.asarray(xy), float(turn)
+
+
+def _blocked_by_copies(p, outline, anchor, offsets) -> str:
+    """Why no direction is free, when it is the other protofilaments' copies of the chain that
+    block it (docs/guide/structures.md#interface-termini): what the user can do."""
+    if p.protofilaments < 2:
+        return ""
+    try:
+        polygons.linker_direction(outline, anchor, offsets, chain_radii(p), [0.0])
+    except polygons.GeometryError:
+        return ""  # protofilament 0's own chain is blocked: the message as it was
+    return (f" (protofilament 0's own chain has a free direction; the copies turned onto the "
+            f"other {p.protofilaments - 1} protofilament(s) block every one: give "
+            f"--protofilaments 1 to decorate protofilament 0 alone, or --anchor X Y)")
+
+
 @dataclass(frozen=True)
 class ChainLayout:
     """Protofilament 0's chain in the layer's frame: each member's centre (n, 2), the same in
@@ -151,20 +175,21 @@ def chain_layout(p) -> ChainLayout:
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
     offsets = np.asarray(chain_x(p)) - p.anchor_x  # along the chain from the anchor
-    copies = [j * p.pf_angle for j in range(p.protofilaments)]
+    copies = [float(a) for a in p.pf_offsets()[0]]
     for j, a in enumerate(copies):
         xy = polygons.rotate(anchor, a)
         if polygons.inside(outline, xy[None])[0]:
             where = "" if j == 0 else (f" (protofilament {j}'s copy, turned by "
                                        f"{math.degrees(a):.1f}°, at ({xy[0]:.2f}, {xy[1]:.2f}))")
-            raise ParamError("anchor", f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
-                                       f"{where}; the linker must start outside it: put the "
-                                       f"anchor on or outside the core's outline")
+            raise AnchorInside(f"({anchor[0]:g}, {anchor[1]:g}) Å lies inside the core"
+                               f"{where}; the linker must start outside it: put the "
+                               f"anchor on or outside the core's outline", j, xy, a)
     try:
         direction, rule = polygons.linker_direction(outline, anchor, offsets, chain_radii(p),
                                                     copies)
     except polygons.GeometryError as exc:
-        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}") from None
+        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}"
+                                   f"{_blocked_by_copies(p, outline, anchor, offsets)}") from None
     if rule == "radial":
         radius = np.asarray(chain_x(p))
         angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))

@@ -48,10 +48,12 @@ def chain_layers(p) -> tuple[np.ndarray, np.ndarray]:
 
 def chain_transforms(p) -> tuple[np.ndarray, np.ndarray]:
     """Turn (rad) and height (Å) of every chain: layer k's twist and rise, plus j times the
-    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0)."""
-    k, j = (a.astype(float) for a in chain_layers(p))
-    angle, height = layer_turn(p, k)
-    return angle + j * p.pf_angle, height + j * p.pf_rise
+    protofilaments' turn and rise for protofilament j (exactly the layer's for j = 0), or
+    protofilament j's own as measured (Params.pf_offsets)."""
+    k, j = chain_layers(p)
+    angle, height = layer_turn(p, k.astype(float))
+    turns, rises = p.pf_offsets()
+    return angle + turns[j], height + rises[j]
 
 
 def layer_frame_xy(p, positions) -> tuple[np.ndarray, np.ndarray]:

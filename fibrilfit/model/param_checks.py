@@ -37,6 +37,7 @@ def check_combination(p, force: bool) -> None:
         raise ParamError("residue_spacing", f"must be at least the residue radius "
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
+    _check_pf_turns(p)
     if p.periodic:
         _check_periodic(p)
     domains.check_shapes(p)
@@ -113,6 +114,18 @@ def _check_domains(p) -> None:
                                           f"domains: {more + 1} domain(s) per chain have {more} "
                                           f"gap(s), got {gaps} value(s)")
 
+def _check_pf_turns(p) -> None:
+    """pf_turns: one row per protofilament, protofilament 0's at no turn and no rise."""
+    if p.pf_turns is None:
+        return
+    if len(p.pf_turns) != p.protofilaments or any(abs(v) > 1e-9 for v in p.pf_turns[0]):
+        raise ParamError("pf_turns", f"needs one row [turn, rise] per protofilament "
+                                     f"({p.protofilaments}), the first [0, 0] (got "
+                                     f"{len(p.pf_turns)} rows, the first {list(p.pf_turns[0])})")
+    if any(abs(a) > 2 * math.pi for a, _ in p.pf_turns):
+        raise ParamError("pf_turns", "every turn must lie within ±2π rad")
+
+
 def _check_periodic(p) -> None:
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
@@ -133,7 +146,7 @@ def check_anchors_apart(p) -> None:
     over the first few layers: the model repeats layer by layer)."""
     if p.protofilaments < 2:
         return
-    k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * abs(p.pf_rise)
+    k_max = min(p.layers - 1, int(math.ceil((p.protofilaments * p.pf_rise_step
                                              + 2 * p.residue_radius) / p.rise)) + 1)
     q = dataclasses.replace(p, layers=k_max + 1)
     angle, height = helix.chain_transforms(q)

@@ -98,6 +98,14 @@ class Params:
                            "Rise along the fibril axis from one protofilament to the next "
                            "(a pseudo-2₁ fibril: about 2.3 Å)", section="Layers",
                            label="Protofilament rise")
+    # Three or more protofilaments that are not one turn apart each (7QJX's four at 0, 179.5,
+    # -118.1 and -13.5°): each one's own turn and rise from protofilament 0, as measured
+    # (docs/guide/structures.md#protofilament-turns); none: j × the turn and rise above.
+    pf_turns: tuple | None = rows_spec("Each protofilament's turn (rad) and rise (Å) from "
+                                       "protofilament 0, measured from --fibril with three or "
+                                       "more protofilaments: rows [turn, rise], protofilament 0's "
+                                       "first", 2, "j × pf_rotation, j × pf_rise",
+                                       section="Layers")
     core_outline: tuple | None = spec(None, -MAX_COORDINATE, MAX_COORDINATE, "Å",
                                        "The core's cross-section: a closed polygon of [x, y] "
                                        "points in the layer's frame (axis at the origin), "
@@ -297,6 +305,23 @@ class Params:
     def pf_angle(self) -> float:
         """The turn between protofilaments in rad: pf_rotation, or 2π/K by default."""
         return 2 * math.pi / self.protofilaments if self.pf_rotation is None else self.pf_rotation
+
+    def pf_offsets(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each protofilament's turn (rad) and rise (Å) from protofilament 0 (arrays of K):
+        pf_turns as measured, or j × pf_angle and j × pf_rise."""
+        if self.pf_turns is None:
+            j = np.arange(self.protofilaments, dtype=float)
+            return j * self.pf_angle, j * self.pf_rise
+        rows = np.asarray(self.pf_turns, dtype=float)
+        return rows[:, 0], rows[:, 1]
+
+    @property
+    def pf_rise_step(self) -> float:
+        """|pf_rise|, or with pf_turns the largest |rise| of any protofilament: (K - 1) times
+        it bounds how far a layer's chains spread along the axis."""
+        if self.pf_turns is None:
+            return abs(self.pf_rise)
+        return float(np.abs(self.pf_offsets()[1]).max())
 
     @property
     def chains(self) -> int:

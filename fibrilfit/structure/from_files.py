@@ -10,7 +10,7 @@ import sys
 from ..exits import UsageError
 from ..model import params as P
 from .request import StructureRequest
-from .mapping import EXIT_PARAMS, RESIDUE_RADIUS, linker_source, model_values
+from .mapping import EXIT_PARAMS, PF_PARAMS, RESIDUE_RADIUS, linker_source, model_values
 
 
 def block(fibril, domain, applied: dict, overridden: dict, not_in_model: list) -> dict:
@@ -52,6 +52,8 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
             "protofilaments": f"{f.file}: measured, {f.protofilaments} stacks of chains",
             "pf_rotation": f"{f.file}: measured between protofilaments 0 and 1",
             "pf_rise": f"{f.file}: measured between protofilaments 0 and 1",
+            "pf_turns": f"{f.file}: measured, each protofilament's turn and rise from "
+                        f"protofilament 0",
             "core_outline": f"{f.file}: measured, the section of core residues "
                             f"{f.core_residues[0]}-{f.core_residues[1]}",
             "anchor": f"{f.file}: measured, one bead outside chain {a['chain']} "
@@ -108,6 +110,8 @@ def split(fibril, domain, *, explicit: set, known: set, residue_radius: float = 
                           residue_spacing=residue_spacing)
     if "anchor" in explicit:  # the exit leads to the measured anchor, not to the one given
         explicit = explicit | {k for k in EXIT_PARAMS if k in values}
+    if explicit & set(PF_PARAMS) and "pf_turns" in values:  # the turns given, not measured
+        explicit = explicit | {"pf_turns"}
     applied = {k: v for k, v in values.items() if k in known and k not in explicit}
     overridden = {k: v for k, v in values.items() if k in explicit}
     missing = sorted(k for k in values if k not in known)

@@ -11,9 +11,11 @@ from .fibril import FibrilGeometry
 RESIDUE_RADIUS = P.DEFAULTS.residue_radius  # Å, 1.75: the model's anchor bead, said in params
 
 # The model parameters a structure fills (params.py names); an explicit option beside it wins.
-FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "core_outline",
-                 "anchor", "exit_residues", "exit_path", "linker")
+FIBRIL_PARAMS = ("rise", "twist", "protofilaments", "pf_rotation", "pf_rise", "pf_turns",
+                 "core_outline", "anchor", "exit_residues", "exit_path", "linker")
 EXIT_PARAMS = ("exit_residues", "exit_path")  # measured with the anchor: they follow it
+# each protofilament's measured turn goes with the protofilaments it describes
+PF_PARAMS = ("protofilaments", "pf_rotation", "pf_rise")
 DOMAIN_PARAMS = ("globule_diameter", "domain_diameters", "domain_linker", "domain_atoms",
                  "domain_spheres", "domain_joint", "further_atoms", "further_spheres",
                  "further_joints", "domain_exits")
@@ -98,6 +100,8 @@ def model_values(fibril: FibrilGeometry | None = None, domain: DomainSize | None
                       core_outline=[list(p) for p in fibril.core_outline],
                       anchor=anchor_outside(fibril.core_outline, fibril.anchors[0]["position"],
                                             residue_radius))
+        if fibril.protofilaments >= 3:  # each at its own turn (docs/guide/structures.md#protofilament-turns)
+            values["pf_turns"] = [list(o) for o in fibril.pf_offsets]
         values.update(exit_values(fibril, residue_radius, residue_spacing))
         tail = fibril.tail_residues
         if tail:

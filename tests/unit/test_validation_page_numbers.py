@@ -33,6 +33,10 @@ PROBES = docs_table(PAGE, "| linker (anchor counted) | free after the exit | see
 WALK = docs_table(PAGE, "| linker (anchor counted) | free after the exit | restarts (seeds) |")
 HULL = docs_table(PAGE, "| case | source | observed | P(fit) at the real linker |")
 SHAPES = docs_table(PAGE, "| case | minimal linker, sphere | minimal linker, hull |")
+# the Aβ42-GFP prediction (#abeta42-prediction): the largest fraction at a linker, the minimal
+# linker at a fraction
+PREDICT_F = docs_table(PAGE, "| linker (anchor counted) | subunits N | largest fraction found")
+PREDICT_L = docs_table(PAGE, "| fraction (decorated of 40) | bound at the fraction")
 INFINITE = EXAMPLES / "abeta42_5oqv_gfp_linker12.toml"
 
 
@@ -73,6 +77,7 @@ def number(cell: str) -> int:
 
 def test_the_pages_tables_are_read():
     assert len(GALLERY) == 13 and len(NEGATIVE) == 5 and len(HULL) == len(SHAPES) == 2
+    assert len(PREDICT_F) == 2 and len(PREDICT_L) == 4
     assert [number(r["linker (anchor counted)"]) for r in WALK] == [13, 14, 16, 20, 22, 23, 24, 28]
 
 
@@ -132,3 +137,39 @@ def test_the_shape_comparison_is_the_two_tables():
         name = names[row["case"][:4]]
         assert threshold(row["minimal linker, hull"]) == threshold(hull[name])
         assert threshold(row["minimal linker, sphere"]) == threshold(gallery[name])
+
+
+def test_the_predictions_subunits_and_bounds_are_todays(model):
+    """The Aβ42-GFP prediction's proven side and its counts, recomputed (the searches themselves
+    took 148-2,821 s each: docs/validation.md#abeta42-prediction): N = 40 subunits in the case's
+    auto cell at every linker; f_B and the bracket at linkers 13 and 15; the bound at 10, 25 and
+    50 % (6, 6, 7) and each row's bracket; a row's count is round(f·N)."""
+    from fibrilfit.model.fraction_bound import (fraction_bracket, fraction_limit,
+                                                impossible_below_at)
+    from fibrilfit.model.occupancy import decorated_count
+    from fibrilfit.search.table import bracket_line
+    assert [number(r["linker (anchor counted)"]) for r in PREDICT_F] == [13, 15]
+    for row in PREDICT_F:
+        linker = number(row["linker (anchor counted)"])
+        p = model(INFINITE, linker=linker)
+        limit = fraction_limit(p, linker)
+        assert limit["of"] == p.layers * p.protofilaments == number(row["subunits N"])
+        assert f"{limit['fraction_bound']:.3f}" == row["bound f_B"]
+        k, n = map(int, re.search(r"\((\d+)/(\d+)\)", row["largest fraction found (k/N)"]).groups())
+        assert row["largest fraction found (k/N)"].startswith(f"{k / n:.3f} ")
+        assert row["one more decorated"].startswith(f"{k + 1}/{n}: 0/")
+        assert fraction_bracket(limit["fraction_bound"], k / n) == row["bracket"]
+    assert [r["fraction (decorated of 40)"].split(" %")[0] for r in PREDICT_L[:3]] == [
+        "10", "25", "50"]
+    for row in PREDICT_L:
+        percent, count = re.match(r"(\d+) % \((\d+)\)", row["fraction (decorated of 40)"]).groups()
+        f = int(percent) / 100
+        p = model(INFINITE, occupancy=f) if f < 1 else model(INFINITE)
+        assert decorated_count(f, p.chains) == int(count) and p.chains == 40
+        floor = impossible_below_at(p, f)
+        assert floor == number(row["bound at the fraction: impossible below"])
+        minimal = number(row["minimal linker found"])
+        assert row["one below"].startswith(f"{minimal - 1}: 0/3")
+        said = bracket_line({"globule_diameter": p.globule_diameter, "floor": floor,
+                             "minimal_linker": minimal})
+        assert row["bracket"] == said.split(" Å: ", 1)[1].split(" (docs/")[0]

@@ -1,4 +1,6 @@
 """The screw-periodic cell's images: bodies that stand in for the rest of an infinite fibril.
+Over 400 lines because it is one room: which images a cell needs (chains, cores, bare tails)
+and the follower that keeps them at S^m of their originals, which must agree on the same list.
 
 Only images that can reach the cell are built (from the linker's length, not a fixed ±1 cell):
 static passive copies of the cores and anchors, and kinematic ("Animated") copies of the linker

@@ -194,7 +194,7 @@ def _exit_lines(r: dict) -> list[str]:
         return []
     if not way.get("found"):
         return [f"exit: none: no path from the anchor to the core's surface clears the core's "
-                f"atoms ({way['clearance']}); depth {way['depth']:.1f} Å"]
+                f"atoms ({way['clearance']}); depth {way['depth']:.1f} Å"] + _exit_range(way)
     if not way["residues"]:
         return [f"exit: the anchor is on the surface ({way['length']:.1f} Å from its CA out of "
                 f"the outline): no residues spent"]
@@ -202,7 +202,16 @@ def _exit_lines(r: dict) -> list[str]:
             else "the linker ends before it")
     return [f"exit: {way['residues']} linker residue(s) spent from the buried anchor to the "
             f"surface ({way['length']:.1f} Å path, anchor {way['depth']:.1f} Å deep, clearance "
-            f"{way['clearance']}); {left}"]
+            f"{way['clearance']}); {left}"] + _exit_range(way)
+
+
+def _exit_range(way: dict) -> list[str]:
+    """The rule that decided the exit and its range over layers and atoms, when measured so."""
+    from ..structure.exit import sensitivity_words
+    if not way.get("sensitivity"):
+        return []
+    return [f"  by the rule: {way['rule']}; range: {sensitivity_words(way)} "
+            f"(docs/model/buried-terminus.md#rule)"]
 
 
 def _linker_lines(r: dict) -> list[str]:

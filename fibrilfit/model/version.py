@@ -20,7 +20,7 @@ import hashlib
 import pathlib
 import tomllib
 
-MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
+MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain shapes (#24);
 # 3: spheres under the tutorial protocol start spread (#24); 4: a real shape's joint bond is
 # measured at its terminal CA (docs/model/domain-shapes.md#joint-stretch); 5: a buried anchor's
 # exit spends linker residues (docs/model/buried-terminus.md#model), and `--periodic auto` under
@@ -29,8 +29,10 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 7: a bare tail longer than the free linker no longer gets a stray unbonded bead at the
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
+# 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
+# atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7e4a9bafec9baa055db58403786a1988f7091ca11c6d292bbf92379c4330b137"
+MODEL_SOURCES_SHA256 = "34649bb154a4db97b135598e434c2db6aafbe8e5742baf588b7bd19681de06c5"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -65,11 +65,13 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
         if "exit_residues" in applied:
             said["exit_residues"] = (
                 f"{f.file}: measured, a {way['length']:g} Å path from {a['residue_name']}"
-                f"{a['residue']}'s CA to the surface, clear of the core's atoms by the "
-                f"{way['clearance']} (docs/model/buried-terminus.md#method)"
+                f"{a['residue']}'s CA (layer {way.get('layer')}) to the surface, clear of the "
+                f"core's atoms by the {way['clearance']}, by the rule: {way.get('rule')} "
+                f"(docs/model/buried-terminus.md#rule)"
                 if way.get("found") else
                 f"{f.file}: measured, no path from {a['residue_name']}{a['residue']}'s CA to "
-                f"the surface clear of the core's atoms ({way.get('searched')}): no exit")
+                f"the surface clear of the core's atoms ({way.get('searched')}) from any "
+                f"measured layer, by the rule: {way.get('rule')}: no exit")
             said["exit_path"] = f"{f.file}: measured, the exit's path"
             if way.get("found"):
                 said["anchor"] = (f"{f.file}: measured, one bead outside the outline where "
@@ -177,7 +179,9 @@ def exit_block(p, block: dict | None) -> dict | None:
             "depth": way["depth"], "length": way["length"],
             "path": way["path"],
             "clearance": way["clearance"], "bead_radius": way["bead_radius"],
-            "free_linker": p.free_linker, "source": source}
+            "free_linker": p.free_linker, "source": source,
+            "rule": way.get("rule"), "layer": way.get("layer"),
+            "sensitivity": way.get("sensitivity", [])}
 
 
 # ---- the files named: a StructureRequest (request.py), from the command line, a case's

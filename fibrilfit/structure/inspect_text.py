@@ -4,6 +4,7 @@ from __future__ import annotations
 import math
 
 from ..model.helix import handedness
+from . import exit as X
 
 
 def _deg(rad: float) -> str:
@@ -35,10 +36,14 @@ def fibril_lines(g) -> list:
     way = g.exit or {}
     if way:  # protofilament 0's anchor to the surface (docs/model/buried-terminus.md#method)
         lines.append(f"  exit pf 0: {way['length']:.2f} Å to the surface, CA {way['depth']:.2f} Å "
-                     f"inside the outline (a {way['bead_radius']:g} Å bead clear of the atoms)"
+                     f"inside the outline (a {way['bead_radius']:g} Å bead clear of the atoms; "
+                     f"layer {way.get('layer')})"
                      if way["found"] else
                      f"  exit pf 0: sealed: no path to the surface for a {way['bead_radius']:g} "
                      f"Å bead clear of the atoms ({way['searched']})")
+        if "rule" in way:
+            lines.append(f"    by the rule: {way['rule']} (docs/model/buried-terminus.md#rule)")
+            lines.append(f"    range over layers and atoms: {X.sensitivity_words(way)}")
     lines += [f"  warning: {w}" for w in g.warnings]
     return lines
 

@@ -97,53 +97,106 @@ def oqv():
             structure.measure_domain(DATA / "1gfl.pdb.gz"))
 
 
-def test_5oqv_ala42_leaves_the_core_by_a_17_8_angstrom_path(oqv):
-    """Measured 2026-11-25: A42's CA is 8.02 Å inside the outline; the shortest path clear of
-    the core's heavy atoms by 1.75 Å + their radii is 17.82 Å (a 0.5 Å grid misses it), so the
-    exit costs ceil(17.82 / 3.5) - 1 = 5 residues."""
+@pytest.fixture(scope="module")
+def oqv_ae():
+    from fibrilfit import structure
+    return structure.measure_fibril(DATA / "5oqv_ae.pdb.gz")
+
+
+def test_5oqv_ala42s_exit_by_the_rule_is_the_same_from_both_copies(oqv, oqv_ae):
+    """Issue #50: the two copies of 5OQV (the tests' with hydrogens added, the Amyloid
+    Explorer's) share the backbone to 0.03 Å, and as deposited their ways out of Ala42 differ
+    (17.82 Å, 11.47 Å without OXT, sealed). By the rule (docs/model/buried-terminus.md#rule:
+    side chains cut to Cβ, no OXT, to the Cβ atoms' outline, the shortest of three layers),
+    measured 2026-11-27: 3.64 Å and 4.13 Å, one residue spent from both."""
+    from fibrilfit.structure import mapping
+    fib, _ = oqv
+    for g, length in ((fib, 3.64), (oqv_ae, 4.13)):
+        way = g.exit
+        assert way["found"] and way["length"] == pytest.approx(length, abs=0.01)
+        assert mapping.exit_values(g)["exit_residues"] == 1
+        fixed = [r for r in way["sensitivity"] if r["atoms"] == "fixed"]
+        assert len(fixed) == 3 and all(r["found"] and r["residues"] == 1 for r in fixed)
+    # as deposited, the range the rule removes: the tests' copy sealed in one measured layer,
+    # 10.02-17.82 Å (2-5 residues) in the others; the Explorer's sealed in two of three
+    dep = [r for r in fib.exit["sensitivity"] if r["atoms"] == "deposited"]
+    assert sorted(r["residues"] for r in dep if r["found"]) == [2, 5]
+    assert sum(not r["found"] for r in dep) == 1
+    dep_ae = [r for r in oqv_ae.exit["sensitivity"] if r["atoms"] == "deposited"]
+    assert sum(not r["found"] for r in dep_ae) == 2
+    no_oxt = [r for r in fib.exit["sensitivity"] if r["atoms"] == "deposited, no OXT"]
+    assert sorted(r["length"] for r in no_oxt if r["found"]) == pytest.approx([10.02, 11.47],
+                                                                             abs=0.01)
+
+
+def test_the_rules_path_keeps_its_clearance_and_ends_outside_the_fixed_outline(oqv):
+    from fibrilfit.geom import polygons
+    from fibrilfit.structure import exit as X, fibril as F, reading
     fib, _ = oqv
     way = fib.exit
-    assert way["found"] and way["length"] == pytest.approx(17.82, abs=0.01)
-    assert way["depth"] == pytest.approx(8.02, abs=0.01)
+    assert way["layer"] == fib.anchors[0]["chain"]  # the reference layer's own way here
     assert way["path"][0] == pytest.approx([*fib.anchors[0]["position"],
                                             fib.anchors[0]["height"]], abs=0.01)
-    from fibrilfit.structure import mapping
-    values = mapping.exit_values(fib)
-    assert values["exit_residues"] == 5
-    outline = np.array(fib.core_outline)
-    from fibrilfit.geom import polygons
-    assert not polygons.inside(outline, np.array([way["path"][-1][:2]]))[0]  # it ends outside
-    # the path keeps its clearance from every atom it was checked against
-    from fibrilfit.structure import exit as X, fibril as F, reading
     loaded = reading.load(DATA / "5oqv_addedH.pdb.gz", "--fibril")
     chains = F._stacked_core(loaded, loaded.path.name, "--fibril")[0]
-    ref = next(c for c in chains if c.name == fib.anchors[0]["chain"])
-    atoms, radii, _ = X.obstacles(chains, ref, 42, "C", *F.layer_frame(fib))
+    cut = [X.fixed(c) for c in chains]
+    ref = next(c for c in cut if c.name == way["layer"])
+    origin, frame = F.layer_frame(fib)
+    atoms, radii, _ = X.obstacles(cut, ref, 42, "C", origin, frame)
+    assert set(np.concatenate([c.heavy_name for c in cut])) <= set(X.FIXED)
     pts = np.array(way["path"])
-    t = np.linspace(0, 1, 40)[:, None]
-    samples = np.concatenate([a + t * (b - a) for a, b in zip(pts[1:-1], pts[2:])])
+    t = np.linspace(0, 1, 40)[1:, None]  # the start (the CA) is not checked: its own
+    samples = np.concatenate([a + t * (b - a) for a, b in zip(pts[:-1], pts[1:])])
     gap = np.linalg.norm(samples[:, None] - atoms[None], axis=-1) - radii[None] - 1.75
     assert gap.min() >= -0.01
+    layer = [next(c for c in chains if c.name == a["chain"]) for a in fib.anchors]
+    surface = X.fixed_outline(layer, fib.core_residues, origin, frame)
+    assert not polygons.inside(surface, pts[-1:, :2])[0]  # it ends outside the Cβ outline
+    assert polygons.inside(np.array(fib.core_outline), pts[-1:, :2])[0]  # inside the model's
+
+
+def _one_chain(atoms, names):
+    from fibrilfit.structure.reading import ChainAtoms
+    n = len(atoms)
+    return ChainAtoms("A", np.array([1]), ["GLY"], atoms[:1], atoms, np.ones(n, int),
+                      np.full(n, 1.7), heavy_name=np.array(names, dtype=object))
+
+
+def test_no_exit_needs_the_sealing_to_hold_with_the_movable_atoms_removed():
+    """Test 1's straight channel plugged halfway up by one atom: as deposited it is sealed
+    either way; by the rule (structure/exit.fixed) a side-chain atom (OE2) is moved aside and
+    the way is open, a backbone atom (CA) keeps it sealed (docs/model/buried-terminus.md#rule)."""
+    from fibrilfit.structure import exit as X
+    atoms, outline = block_core()
+    depth = 8.6
+    axis = np.hypot(atoms[:, 0], atoms[:, 2])
+    atoms = atoms[~((axis < 4.0) & (atoms[:, 1] > -depth - 4.0))]
+    start = [0.0, -depth, 0.0]
+    plug = np.array([[0.0, -4.0, 0.0]])
+    for name, sealed_by_rule in (("OE2", False), ("CA", True)):
+        chain = _one_chain(np.concatenate([atoms, plug]), [*["CA"] * len(atoms), name])
+        assert not find(chain.heavy, start, outline).found
+        assert find(X.fixed(chain).heavy, start, outline).found is not sealed_by_rule
 
 
 def test_5oqv_gfp_spends_the_exit_and_is_no_exit_below_it(oqv):
     from fibrilfit.structure import from_files
     fib, dom = oqv
-    for linker, free in ((12, 7), (14, 9), (7, 2)):
+    for linker, free in ((12, 11), (14, 13), (7, 6)):
         values, block = from_files.merged(fib, [dom], None, {"linker": linker, "layers": 6})
         p = P.make_params(**values)
         way = terminus.chain_exit(p)
-        assert (way.residues, way.left, p.free_linker) == (5, free, free)
+        assert (way.residues, way.left, p.free_linker) == (1, free, free)
         assert way.start == tuple(p.anchor) and not way.no_exit
         assert [d.member for d in p.domains] == [free]
-    for linker in (1, 5):  # the linker ends inside the core: a verdict, not a refusal
-        values, block = from_files.merged(fib, [dom], None, {"linker": linker, "layers": 6})
-        p = P.make_params(**values)
-        assert terminus.chain_exit(p).no_exit
-        r = terminus.no_exit_result(p)
-        assert r["answer"] == "no exit" and r["exit_needs"] == 6 and not r["accommodated"]
-        way = from_files.exit_block(p, block)
-        assert way["residues"] == 5 and way["length"] == pytest.approx(17.82, abs=0.01)
+    values, block = from_files.merged(fib, [dom], None, {"linker": 1, "layers": 6})
+    p = P.make_params(**values)  # the linker ends inside the core: a verdict, not a refusal
+    assert terminus.chain_exit(p).no_exit
+    r = terminus.no_exit_result(p)
+    assert r["answer"] == "no exit" and r["exit_needs"] == 2 and not r["accommodated"]
+    way = from_files.exit_block(p, block)
+    assert way["residues"] == 1 and way["length"] == pytest.approx(3.64, abs=0.01)
+    assert way["rule"] == fib.exit["rule"] and len(way["sensitivity"]) == 9
     # an explicit anchor takes the measured exit with it: the model is as the option says
     values, block = from_files.merged(fib, [dom], None, {"linker": 12, "anchor": [0.557, 19.11]})
     assert "exit_residues" not in values and "exit_residues" in block["overridden"]
@@ -155,7 +208,9 @@ def test_a_surface_anchor_has_no_exit_values():
     from fibrilfit import structure
     from fibrilfit.structure import mapping
     fib = structure.measure_fibril(DATA / "6cu7.pdb.gz")
-    assert fib.exit["found"] and fib.exit["length"] == pytest.approx(2.06, abs=0.01)
+    assert fib.exit["found"] and fib.exit["length"] == pytest.approx(2.15, abs=0.01)  # rule
+    assert [r["length"] for r in fib.exit["sensitivity"] if r["atoms"] == "deposited"][0] == \
+        pytest.approx(2.06, abs=0.01)  # as deposited, the reference layer (as measured before)
     assert mapping.exit_values(fib) == {}
     p = P.make_params(**{k: v for k, v in mapping.model_values(fib).items()})
     assert terminus.chain_exit(p) == terminus.ChainExit(0, tuple(p.anchor), p.linker, None)

@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7e4a9bafec9baa055db58403786a1988f7091ca11c6d292bbf92379c4330b137"
+MODEL_SOURCES_SHA256 = "0b0a326a27791320b2ae24e6b024e83a2840cd692b3de47e1736c3653436448b"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -153,3 +153,12 @@ def test_one_piece_cores_have_one_segment(S):
     for name, core in (("6cu7", [38, 97]), ("2n0a", [29, 97]), ("5oqv_addedH", [1, 42])):
         g = S.measure_fibril(DATA / f"{name}.pdb.gz")
         assert g.core_segments == [core] and g.core_residues == core and g.rungs == 1
+
+
+def test_an_anchor_inside_the_core_counts_no_later_segment_as_linker(S):
+    # --anchor-residue 65, the end of 9XBO's first segment: 102-132 are core, 66-101 inside
+    g = S.measure_fibril(DATA / "9xbo.pdb.gz", anchor_residue=65)
+    assert g.anchors[0]["residue"] == 65 and g.tail_residues == []
+    # 2KJ3's first rung's end: the tail is the modelled C-terminus beyond the second rung
+    g = S.measure_fibril(DATA / "2kj3.pdb.gz", anchor_residue=249)
+    assert g.anchors[0]["residue"] == 249 and g.tail_residues == [283, 295]

@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "0b0a326a27791320b2ae24e6b024e83a2840cd692b3de47e1736c3653436448b"
+MODEL_SOURCES_SHA256 = "3170ee4a0bb00a964005dfa63ecbe8fff8cb1ec367296dd3184682d6715c3cd0"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

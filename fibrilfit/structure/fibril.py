@@ -230,7 +230,12 @@ def _solenoid(chains, name: str, option: str):
         return None
     for n, window in S.windows(STACK):
         found = _stacking(chains, name, option, window)
-        if max(len(q) for q in found[-1]) >= 2:
+        longest = max(found[-1], key=len)
+        if len(longest) < 2:
+            continue
+        cen = found[2].mean(axis=1)  # the molecules' rungs must stack along their stack
+        along = cen[longest[-1]] - cen[longest[0]]
+        if S.along_share(ca, common, STACK, along / np.linalg.norm(along)) >= S.MIN_ALONG:
             return found, n
     return None
 

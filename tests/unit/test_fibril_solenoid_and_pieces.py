@@ -162,3 +162,9 @@ def test_an_anchor_inside_the_core_counts_no_later_segment_as_linker(S):
     # 2KJ3's first rung's end: the tail is the modelled C-terminus beyond the second rung
     g = S.measure_fibril(DATA / "2kj3.pdb.gz", anchor_residue=249)
     assert g.anchors[0]["residue"] == 249 and g.tail_residues == [283, 295]
+
+
+def test_a_globular_beta_sheet_is_not_a_solenoid(S):
+    # 1GFL's two GFP chains: strands 4.2-5.6 Å apart in each barrel, but not along a stack
+    with pytest.raises(S.StructureError, match="nor does a chain stack on itself as a β-solenoid"):
+        S.measure_fibril(DATA / "1gfl.pdb.gz")

@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "3170ee4a0bb00a964005dfa63ecbe8fff8cb1ec367296dd3184682d6715c3cd0"
+MODEL_SOURCES_SHA256 = "011d0c26f9f46b73535d0c9df528b024fd2951e23225f2e690416c78c9b1eb65"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

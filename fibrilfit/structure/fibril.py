@@ -155,13 +155,17 @@ def _stacking(chains, name, option, window=STACK):
 def longest_stack(loaded) -> int:
     """Chains in the longest stack of a loaded file (CA over the same residue's CA 4.2-5.6 Å
     apart, as a fibril's layers), its assembly or NCS copies included: 1 when none stack. A
-    globular domain's chains (1GFL's two) do not stack; 6CU7's ten make two stacks of five."""
+    globular domain's chains (1GFL's two) do not stack; 6CU7's ten make two stacks of five;
+    a β-solenoid's molecules stack rung on rung (2KJ3's ten: one stack)."""
     probe = copy.copy(loaded)  # expand_symmetry rebinds chains and notes: the file's stay
     probe.notes = []
     if len(probe.chains) < 2 and not reading.expand_symmetry(probe):
         return 1
     try:
         *_, paths = _stacking(probe.chains, probe.path.name, "--domain")
+        if max(len(q) for q in paths) < 2:  # docs/guide/structures.md#beta-solenoids
+            solenoid = _solenoid(probe.chains, probe.path.name, "--domain")
+            paths = solenoid[0][-1] if solenoid is not None else paths
     except StructureError:  # too few common residues, or a branching stack: no fibril's layers
         return 1
     return max(len(q) for q in paths)

@@ -168,3 +168,8 @@ def test_a_globular_beta_sheet_is_not_a_solenoid(S):
     # 1GFL's two GFP chains: strands 4.2-5.6 Å apart in each barrel, but not along a stack
     with pytest.raises(S.StructureError, match="nor does a chain stack on itself as a β-solenoid"):
         S.measure_fibril(DATA / "1gfl.pdb.gz")
+
+
+def test_a_solenoid_given_as_a_domain_is_refused(S):
+    with pytest.raises(S.StructureError, match="holds a stacked fibril \\(10 chains"):
+        S.measure_domain(DATA / "2kj3.pdb.gz")

@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "34649bb154a4db97b135598e434c2db6aafbe8e5742baf588b7bd19681de06c5"
+MODEL_SOURCES_SHA256 = "2094a49dec9e560e36a08230b2fdfaf0ae4dc0749e86b66cc3d2104521cae047"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -12,12 +12,13 @@ from functools import reduce
 import numpy as np
 
 from ..geom import rigid as G
-from . import exit as X, outline as O, reading
+from . import exit as X, outline as O, reading, solenoid as S
 from .errors import StructureError
 
 STACK = (4.2, 5.6)  # Å: a residue is stacked when its CA sits this far over the same residue
 MIN_STACKED = 4  # stacked residues two chains need to count as neighbouring layers
 CORE_GAP = 4  # unstacked residues (turns) allowed inside the core
+MIN_SEGMENT = 5  # stacked residues a further ordered segment needs to join the core (a strand)
 EXACT_COPIES_RMSD = 0.5  # Å: below it a one-protofilament stack defines a screw axis
 BURIED_DEPTH = 6.0  # Å: atoms this much farther out in the anchor's sector bury it
 SECTOR = math.radians(15.0)
@@ -64,14 +65,21 @@ class FibrilGeometry:
     exit: dict = field(default_factory=dict)  # protofilament 0's anchor to the surface (exit.py)
     notes: list = field(default_factory=list)
     warnings: list = field(default_factory=list)
+    # every ordered segment of the core, [[first, last], ...] (docs/guide/structures.md#cores-in-pieces)
+    core_segments: list = field(default_factory=list)
+    # a β-solenoid's rungs per molecule and their spacing along the axis (1 and the rise for a
+    # one-rung fibril); a layer is a molecule (docs/guide/structures.md#beta-solenoids)
+    rungs: int = 1
+    rung_rise: float = 0.0
+    rung_rise_sd: float = 0.0
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def _stacked(a, b):
+def _stacked(a, b, window=STACK):
     d = np.linalg.norm(a - b, axis=-1)
-    return (d >= STACK[0]) & (d <= STACK[1])
+    return (d >= window[0]) & (d <= window[1])
 
 
 def _paths(n_chains, edges, option):
@@ -104,8 +112,10 @@ def _paths(n_chains, edges, option):
     return paths
 
 
-def _core_range(stacked_numbers):
-    """[first, last] of the longest run of stacked residues, gaps of up to CORE_GAP bridged."""
+def _core_segments(stacked_numbers):
+    """[[first, last], ...] of the runs of stacked residues (gaps of up to CORE_GAP bridged):
+    the longest, and every other of at least MIN_SEGMENT stacked residues (9XBO's 5-65 and
+    102-132: docs/guide/structures.md#cores-in-pieces), in chain order."""
     runs, run = [], [stacked_numbers[0]]
     for r in stacked_numbers[1:]:
         if r - run[-1] <= CORE_GAP + 1:
@@ -115,12 +125,19 @@ def _core_range(stacked_numbers):
             run = [r]
     runs.append(run)
     best = max(runs, key=len)
-    return [int(best[0]), int(best[-1])]
+    return [[int(q[0]), int(q[-1])] for q in runs if q is best or len(q) >= MIN_SEGMENT]
 
 
-def _stacking(chains, name, option):
+def _in_core(numbers, segments) -> np.ndarray:
+    """Which residue numbers lie in a core segment."""
+    numbers = np.asarray(numbers)
+    return np.logical_or.reduce([(numbers >= a) & (numbers <= b) for a, b in segments])
+
+
+def _stacking(chains, name, option, window=STACK):
     """Common residues, their CA (chains, residues, 3), the stacked residues of each stacking
-    pair of chains, and the protofilaments as paths of chain indices."""
+    pair of chains (the same residue's CAs `window` Å apart), and the protofilaments as paths
+    of chain indices."""
     common = reduce(np.intersect1d, [c.residues for c in chains])
     if len(common) < MIN_STACKED:
         raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
@@ -129,7 +146,7 @@ def _stacking(chains, name, option):
     pairs = {}
     for i in range(len(chains)):
         for j in range(i + 1, len(chains)):
-            s = _stacked(ca[i], ca[j])
+            s = _stacked(ca[i], ca[j], window)
             if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
                 pairs[(i, j)] = s
     return chains, common, ca, pairs, _paths(len(chains), pairs, option)
@@ -138,13 +155,17 @@ def _stacking(chains, name, option):
 def longest_stack(loaded) -> int:
     """Chains in the longest stack of a loaded file (CA over the same residue's CA 4.2-5.6 Å
     apart, as a fibril's layers), its assembly or NCS copies included: 1 when none stack. A
-    globular domain's chains (1GFL's two) do not stack; 6CU7's ten make two stacks of five."""
+    globular domain's chains (1GFL's two) do not stack; 6CU7's ten make two stacks of five;
+    a β-solenoid's molecules stack rung on rung (2KJ3's ten: one stack)."""
     probe = copy.copy(loaded)  # expand_symmetry rebinds chains and notes: the file's stay
     probe.notes = []
     if len(probe.chains) < 2 and not reading.expand_symmetry(probe):
         return 1
     try:
         *_, paths = _stacking(probe.chains, probe.path.name, "--domain")
+        if max(len(q) for q in paths) < 2:  # docs/guide/structures.md#beta-solenoids
+            solenoid = _solenoid(probe.chains, probe.path.name, "--domain")
+            paths = solenoid[0][-1] if solenoid is not None else paths
     except StructureError:  # too few common residues, or a branching stack: no fibril's layers
         return 1
     return max(len(q) for q in paths)
@@ -154,7 +175,7 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             option: str = "--fibril") -> FibrilGeometry:
     loaded = reading.load(path, option)
     name = loaded.path.name
-    chains, paths, core, cca, cen = _stacked_core(loaded, name, option)
+    chains, paths, segments, cca, cen, rungs, core_numbers = _stacked_core(loaded, name, option)
     notes, warnings = list(loaded.notes), []
     u, p, exact = _axis(paths, cca, cen, name, option, warnings)
     # order every protofilament along the axis; protofilament 0 holds the lowest layer
@@ -164,10 +185,13 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     frame0 = G.frame(u)
     rises, twists = _rise_twist(paths, cca, cen, u, p, frame0, name, option)
     rise, twist = float(np.mean(rises)), float(np.mean(twists))
+    steps = S.rung_rise(cca, core_numbers, STACK, u) if rungs > 1 else [rise]
+    if rungs > 1 and S.check(rungs, rise, steps):
+        raise StructureError(option, f"{name}: not a β-solenoid: {S.check(rungs, rise, steps)}")
     paths, offsets = _protofilament_offsets(paths, cca, cen, u, p, frame0, rise, twist)
-    refs, origin, frame, poly = _reference_layer(chains, paths, core, cen, u, p, frame0, height,
-                                                 rise, warnings)
-    anchors = _anchors(chains, refs, core, origin, frame, rise, terminus, anchor_residue, name,
+    refs, origin, frame, poly = _reference_layer(chains, paths, segments, cen, u, p, frame0,
+                                                 height, rise, warnings)
+    anchors = _anchors(chains, refs, segments, origin, frame, rise, terminus, anchor_residue, name,
                        warnings)
     sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
     way_out = X.way_out(chains, [chains[i].name for i in paths[0]], chains[refs[0]],
@@ -183,13 +207,14 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
         protofilaments=len(paths),
         pf_rotation=round(offsets[1][0], 6) if len(paths) > 1 else 0.0,
         pf_rise=round(offsets[1][1], 4) if len(paths) > 1 else 0.0,
-        layers=max(len(q) for q in paths), core_residues=core,
+        layers=max(len(q) for q in paths), core_residues=[segments[0][0], segments[-1][1]],
         core_outline=[[round(float(a), 2), round(float(b), 2)] for a, b in poly],
         anchors=[asdict(a) for a in anchors], tail_residues=anchors[0].tail_residues,
         terminus=f"residue {anchor_residue}" if anchor_residue is not None else terminus,
         layer_chains=[[chains[i].name for i in q] for q in paths], axis_exact=exact,
         pf_offsets=[[round(a, 6), round(b, 4)] for a, b in offsets], exit=way_out, notes=notes,
-        warnings=warnings)
+        warnings=warnings, core_segments=segments, rungs=rungs,
+        rung_rise=round(float(np.mean(steps)), 4), rung_rise_sd=round(sd(steps), 4))
 
 
 def _planar(xyz, p, frame0):
@@ -198,32 +223,66 @@ def _planar(xyz, p, frame0):
     return rel[..., :2]
 
 
+def _solenoid(chains, name: str, option: str):
+    """A β-solenoid's stacking (docs/guide/structures.md#beta-solenoids): when every chain
+    stacks on itself (rung on rung), the fewest rungs per molecule n for which the molecules
+    stack (the same residue n rungs apart); (_stacking's tuple, n) or None."""
+    common = reduce(np.intersect1d, [c.residues for c in chains])
+    if len(chains) < 2 or len(common) < MIN_STACKED:
+        return None
+    ca = np.array([c.ca_of(common) for c in chains])
+    if not S.self_stacked(ca, common, STACK, MIN_STACKED):
+        return None
+    for n, window in S.windows(STACK):
+        found = _stacking(chains, name, option, window)
+        longest = max(found[-1], key=len)
+        if len(longest) < 2:
+            continue
+        cen = found[2].mean(axis=1)  # the molecules' rungs must stack along their stack
+        along = cen[longest[-1]] - cen[longest[0]]
+        if S.along_share(ca, common, STACK, along / np.linalg.norm(along)) >= S.MIN_ALONG:
+            return found, n
+    return None
+
+
 def _stacked_core(loaded, name: str, option: str) -> tuple:
     """The chains, their stacks (paths of chain indices, one per protofilament, longest first),
-    the core's residue range, and each chain's core CA (chains, residues, 3) and centroid."""
+    the core's segments [[first, last], ...], each chain's core CA (chains, residues, 3) and
+    centroid, the rungs per molecule (1, or a β-solenoid's) and the core's residue numbers."""
     if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
         raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
                                      "give --rise and --twist instead")
     chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
-    if max(len(q) for q in paths) < 2:  # no two chains stack: a symmetry may build the layers
-        if not reading.expand_symmetry(loaded):
+    rungs, solenoid = 1, None
+    if max(len(q) for q in paths) < 2:  # no two chains stack: a solenoid, or a symmetry's layers
+        solenoid = _solenoid(loaded.chains, name, option)
+        if solenoid is None and not reading.expand_symmetry(loaded):
             raise StructureError(option, f"{name}: no two chains stack {STACK[0]}-{STACK[1]} Å "
-                                         "apart, the layers do not stack (fewer than 2 layers): "
-                                         "give --rise and --twist")
-        chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
-        if max(len(q) for q in paths) < 2:
-            raise StructureError(option, f"{name}: even with its symmetry operators no two "
-                                         "chains stack: the layers do not stack")
-    stacked_all = np.logical_and.reduce([pairs[tuple(sorted((p[k], p[k + 1])))]
-                                         for p in paths for k in range(len(p) - 1)])
+                                         "apart, nor does a chain stack on itself as a "
+                                         "β-solenoid's rungs: the layers do not stack (fewer "
+                                         "than 2 layers): give --rise and --twist")
+        if solenoid is None:
+            chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+            if max(len(q) for q in paths) < 2:
+                solenoid = _solenoid(loaded.chains, name, option)
+                if solenoid is None:
+                    raise StructureError(option, f"{name}: even with its symmetry operators no "
+                                                 "two chains stack: the layers do not stack")
+        if solenoid is not None:
+            (chains, common, ca, pairs, paths), rungs = solenoid
+    if rungs > 1:  # the rungs' residues: stacked on their own chain in every chain
+        stacked_all = S.rung_mask(ca, common, STACK)
+    else:
+        stacked_all = np.logical_and.reduce([pairs[tuple(sorted((p[k], p[k + 1])))]
+                                             for p in paths for k in range(len(p) - 1)])
     if stacked_all.sum() < MIN_STACKED:
         raise StructureError(option, f"{name}: fewer than {MIN_STACKED} residues stack in every "
                                      "layer: the layers do not stack")
-    core = _core_range(common[stacked_all])
-    in_core = (common >= core[0]) & (common <= core[1])
+    segments = _core_segments(common[stacked_all])
+    in_core = _in_core(common, segments)
     cca = ca[:, in_core]  # core CA
     paths.sort(key=len, reverse=True)
-    return chains, paths, core, cca, cca.mean(axis=1)
+    return chains, paths, segments, cca, cca.mean(axis=1), rungs, common[in_core]
 
 
 def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
@@ -303,7 +362,7 @@ def _protofilament_offsets(paths, cca, cen, u, p, frame0, rise: float, twist: fl
     return [paths[k] for k in order], [offsets[k] for k in order]
 
 
-def _reference_layer(chains, paths, core, cen, u, p, frame0, height, rise: float,
+def _reference_layer(chains, paths, segments, cen, u, p, frame0, height, rise: float,
                      warnings: list) -> tuple:
     """The reference layer (one chain per protofilament), the model's frame at it (origin on
     the axis, x along the core's long principal axis) and the core section's outline."""
@@ -315,7 +374,7 @@ def _reference_layer(chains, paths, core, cen, u, p, frame0, height, rise: float
     core_heavy = []
     for i in refs:
         c = chains[i]
-        keep = (c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])
+        keep = _in_core(c.heavy_residue, segments)
         core_heavy.append((c.heavy[keep], c.heavy_radius[keep]))
     xyz = np.concatenate([h for h, _ in core_heavy])
     radii = np.concatenate([r for _, r in core_heavy])
@@ -334,15 +393,14 @@ def _reference_layer(chains, paths, core, cen, u, p, frame0, height, rise: float
     return refs, origin, frame, poly
 
 
-def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
+def _anchors(chains, refs, segments, origin, frame, rise: float, terminus: str,
              anchor_residue: int | None, name: str, warnings: list) -> list:
     """Each protofilament's anchor residue in the model's frame, with its depth below the
     core's surface in its sector (warned when buried) and the tail beyond it."""
     def layer(xyz):
         return (xyz - origin) @ frame.T
 
-    all_core = np.concatenate([c.heavy[(c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])]
-                               for c in chains])
+    all_core = np.concatenate([c.heavy[_in_core(c.heavy_residue, segments)] for c in chains])
     all_core = layer(all_core)
     all_r = np.hypot(all_core[:, 0], all_core[:, 1])
     all_phi = np.arctan2(all_core[:, 1], all_core[:, 0])
@@ -356,7 +414,7 @@ def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
                                      f"{c.residues[-1]})")
             res = int(anchor_residue)
         else:
-            present = c.residues[(c.residues >= core[0]) & (c.residues <= core[1])]
+            present = c.residues[_in_core(c.residues, segments)]  # every segment's
             res = int(present[-1] if terminus == "C" else present[0])
         x, y, z = layer(c.ca_of([res]))[0]
         r = math.hypot(x, y)
@@ -365,9 +423,9 @@ def _anchors(chains, refs, core, origin, frame, rise: float, terminus: str,
                (np.abs(np.angle(np.exp(1j * (all_phi - phi)))) <= SECTOR)
         depth = max(0.0, float(all_r[near].max() - r)) if near.any() else 0.0
         if terminus == "N" and anchor_residue is None:
-            tail = c.residues[(c.residues < res) & (c.residues < core[0])]
-        else:
-            tail = c.residues[(c.residues > res) & (c.residues > core[1])]
+            tail = c.residues[(c.residues < res) & (c.residues < segments[0][0])]
+        else:  # an unordered stretch between segments is inside the fibril, not linker
+            tail = c.residues[(c.residues > res) & (c.residues > segments[-1][1])]
         anchor = Anchor(k, c.name, res, c.names[int(np.searchsorted(c.residues, res))],
                         round(r, 3), [round(float(x), 3), round(float(y), 3)],
                         round(float(z), 3), round(depth, 2), depth > BURIED_DEPTH,

@@ -46,16 +46,18 @@ def sources(fibril, domain, applied, more_domains=()) -> dict:
         axis = "" if f.axis_exact else ", axis approximate"
         pairs = sum(max(0, len(q) - 1) for q in f.layer_chains)
         a = f.anchors[0]
+        # a β-solenoid's layer is a molecule (docs/guide/structures.md#beta-solenoids)
+        per = (f", one layer per molecule of {f.rungs} rungs (β-solenoid)" if f.rungs > 1 else "")
+        pieces = ", ".join(f"{lo}-{hi}" for lo, hi in (f.core_segments or [f.core_residues]))
         said = {
-            "rise": f"{f.file}: measured over {pairs} layer pairs, sd {f.rise_sd:g} Å{axis}",
+            "rise": f"{f.file}: measured over {pairs} layer pairs, sd {f.rise_sd:g} Å{axis}{per}",
             "twist": f"{f.file}: measured over {pairs} layer pairs, sd {f.twist_sd:g} rad{axis}",
             "protofilaments": f"{f.file}: measured, {f.protofilaments} stacks of chains",
             "pf_rotation": f"{f.file}: measured between protofilaments 0 and 1",
             "pf_rise": f"{f.file}: measured between protofilaments 0 and 1",
             "pf_turns": f"{f.file}: measured, each protofilament's turn and rise from "
                         f"protofilament 0",
-            "core_outline": f"{f.file}: measured, the section of core residues "
-                            f"{f.core_residues[0]}-{f.core_residues[1]}",
+            "core_outline": f"{f.file}: measured, the section of core residues {pieces}",
             "anchor": f"{f.file}: measured, one bead outside chain {a['chain']} "
                       f"{a['residue_name']}{a['residue']}, the core's {f.terminus}"
                       f"{'-terminal residue' if f.terminus in ('N', 'C') else ''}"

@@ -11,6 +11,17 @@ def _deg(rad: float) -> str:
     return f"{math.degrees(rad):+.3f}°"
 
 
+def core_text(g) -> str:
+    """'5-65, 102-132 (66-101 between them: inside the fibril, not linker)' for a core in
+    pieces (docs/guide/structures.md#cores-in-pieces); '38-97' for one."""
+    pieces = g.core_segments or [g.core_residues]
+    text = ", ".join(f"{a}-{b}" for a, b in pieces)
+    if len(pieces) > 1:
+        gaps = ", ".join(f"{b + 1}-{c - 1}" for (_, b), (c, _) in zip(pieces, pieces[1:]))
+        text += f" ({gaps} between them: inside the fibril, not linker)"
+    return text
+
+
 def fibril_lines(g) -> list:
     hand = handedness(g.twist)
     lines = [f"fibril {g.file} (sha256 {g.sha256[:12]}…)"]
@@ -25,8 +36,11 @@ def fibril_lines(g) -> list:
           f"{g.pf_rise:.3f} Å" if g.protofilaments > 1 else "")
     lines.append(f"  protofilaments {g.protofilaments}{pf}; layers {g.layers} "
                  f"({' | '.join(' '.join(q) for q in g.layer_chains)})")
-    lines.append(f"  core residues {g.core_residues[0]}-{g.core_residues[1]}; outline "
-                 f"{len(g.core_outline)} points")
+    if g.rungs > 1:  # docs/guide/structures.md#beta-solenoids
+        lines.append(f"  β-solenoid, {g.rungs} rungs per molecule, one molecule per {g.rise:.1f} Å "
+                     f"(rungs {g.rung_rise:.2f} ± {g.rung_rise_sd:.2f} Å apart along the axis); "
+                     "a layer is a molecule: one domain and one anchor each")
+    lines.append(f"  core residues {core_text(g)}; outline {len(g.core_outline)} points")
     for a in g.anchors:
         tail = (f", tail {a['tail_residues'][0]}-{a['tail_residues'][1]} (linker)"
                 if a["tail_residues"] else "")

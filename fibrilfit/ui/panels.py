@@ -141,8 +141,11 @@ def structure_lines(measured: dict) -> list:
         lines.append(f"Fibril {f['file']}")
         lines.append(f"rise {f['rise']:.3f} Å, twist {math.degrees(f['twist']):+.3f}°")
         lines.append(f"{helix.handedness(f['twist'])}, {f['protofilaments']} protofilament(s)")
-        lines.append(f"core {f['core_residues'][0]}-{f['core_residues'][1]}, "
-                     f"{f['layers']} layers in the file")
+        pieces = f.get("core_segments") or [f["core_residues"]]
+        lines.append("core " + ", ".join(f"{a}-{b}" for a, b in pieces)
+                     + f", {f['layers']} layers in the file")
+        if f.get("rungs", 1) > 1:  # docs/guide/structures.md#beta-solenoids
+            lines.append(f"β-solenoid: {f['rungs']} rungs per molecule (layer)")
         for a in f["anchors"]:
             lines.append(f"anchor {a['chain']} {a['residue_name']}{a['residue']}: r "
                          f"{a['radius']:.1f} Å" + (", buried" if a["buried"] else ""))

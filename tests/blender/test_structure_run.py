@@ -84,3 +84,26 @@ def test_sweep_from_files_records_the_structure(tmp_path):
         assert r["structure"]["fibril"]["file"] == "8a9l.pdb.gz"
         assert r["params"]["twist"] == r["structure"]["fibril"]["measured"]["twist"] > 0
         assert r["params"]["globule_diameter"] == 30.276  # 1UBQ measured (not the default 30.0)
+
+
+def test_a_beta_solenoid_builds_one_domain_per_molecule(ff, scene, tmp_path):
+    """2KJ3 (HET-s, two rungs per molecule): one layer of the model per molecule, so one domain
+    and one core prism per molecule rise, not per rung (docs/guide/structures.md#beta-solenoids)."""
+    out = tmp_path / "r.json"
+    # the exit search finds no way out for G282's CA, sandwiched between rungs (a sealed exit
+    # builds nothing): the measured anchor's bead is given, which takes no exit with it
+    S = importlib.import_module("fibrilfit.structure")
+    x, y = S.model_values(S.measure_fibril(DATA / "2kj3.pdb.gz"))["anchor"]
+    assert ff.cli.main(["run", "--fibril", str(DATA / "2kj3.pdb.gz"), *FAST, "--anchor", str(x),
+                        str(y), "--stop-after", "build", "--json", str(out)]) == 0
+    r = json.loads(out.read_text())
+    measured = r["structure"]["fibril"]["measured"]
+    assert measured["rungs"] == 2 and r["params"]["rise"] == measured["rise"] > 8.0
+    import bpy
+    model = ff.builders.find_model(bpy.context.scene)
+    assert len(model.slabs) == len(model.globules) == len(model.chain) == 4  # one per molecule
+    # the layers (anchors) stand one molecule rise apart along the axis, each core prism as tall
+    z = sorted(np.array(c[0].matrix_world)[2, 3] for c in model.chain)
+    assert np.diff(z) == pytest.approx([measured["rise"]] * 3, abs=1e-3)
+    heights = {round(float(np.ptp([v.co.z for v in s.data.vertices])), 3) for s in model.slabs}
+    assert heights == {round(measured["rise"], 3)}

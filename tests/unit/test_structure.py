@@ -59,7 +59,8 @@ def measured(S):
 def test_every_data_file_is_read_by_a_test():
     names = {p.name.split(".")[0] for p in DATA.glob("*.pdb.gz")}
     # 6zrr, 7rl4: tests/unit/test_interface_termini.py (tests/data/README.md, issue #50)
-    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4"}
+    # 2kj3, 9xbo: tests/unit/test_fibril_solenoid_and_pieces.py (issue #47)
+    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4", "2kj3", "9xbo"}
 
 
 def test_importing_structure_needs_no_gemmi_and_no_bpy():

@@ -79,13 +79,19 @@ def _kept(chain, keep):
     return dataclasses.replace(chain, **sub)
 
 
-def fixed_outline(layer, core, origin, frame) -> np.ndarray:
-    """The outline (k, 2) of the reference layer's core residues' FIXED atoms: the surface the
-    rule's way out must reach."""
+def in_core(numbers, segments) -> np.ndarray:
+    """Which residue `numbers` lie in the core's segments ([[first, last], ...])."""
+    numbers = np.asarray(numbers)
+    return np.logical_or.reduce([(numbers >= a) & (numbers <= b) for a, b in segments])
+
+
+def fixed_outline(layer, segments, origin, frame) -> np.ndarray:
+    """The outline (k, 2) of the reference layer's core residues' FIXED atoms (the core's
+    segments, [[first, last], ...]): the surface the rule's way out must reach."""
     xyz, radii = [], []
     for c in layer:
         c = fixed(c)
-        keep = (c.heavy_residue >= core[0]) & (c.heavy_residue <= core[1])
+        keep = in_core(c.heavy_residue, segments)
         xyz.append(c.heavy[keep])
         radii.append(c.heavy_radius[keep])
     section = ((np.concatenate(xyz) - origin) @ frame.T)[:, :2]
@@ -104,7 +110,7 @@ def measured_layers(stack: list, ref: str) -> list:
 
 
 def way_out(chains, stack: list, ref, residue: int, side: str, origin, frame, outline, rise,
-            core, layer, spacing: float = P.DEFAULTS.residue_spacing) -> dict:
+            segments, layer, spacing: float = P.DEFAULTS.residue_spacing) -> dict:
     """Protofilament 0's exit by the rule (RULE; docs/model/buried-terminus.md#rule), as the
     fibril's measurement records it: `measure`'s keys for the shortest of the measured layers'
     ways out through the FIXED atoms to the FIXED atoms' outline, with `rule`, the `layer`
@@ -116,12 +122,12 @@ def way_out(chains, stack: list, ref, residue: int, side: str, origin, frame, ou
     cut_by = {c.name: c for c in cut}
     no_oxt = [without_oxt(c) for c in chains]
     has_oxt = sum(len(c.heavy) for c in no_oxt) < sum(len(c.heavy) for c in chains)
-    surface = fixed_outline(layer, core, origin, frame)
-    common = np.arange(core[0], core[1] + 1)
+    surface = fixed_outline(layer, segments, origin, frame)
+    common = ref.residues[in_core(ref.residues, segments)]
     rows, ways = [], []
     for name in measured_layers(stack, ref.name):
         here = by_name[name]
-        shared = common[np.isin(common, ref.residues) & np.isin(common, here.residues)]
+        shared = common[np.isin(common, here.residues)]
         rot, shift, _ = G.superpose(ref.ca_of(shared), here.ca_of(shared))
         o, f = origin @ rot.T + shift, frame @ rot.T  # the layer frame carried to this layer
         sets = [("fixed", cut, cut_by[name], surface), ("deposited", chains, here, outline)]

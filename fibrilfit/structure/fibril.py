@@ -196,7 +196,7 @@ def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
     sd = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
     way_out = X.way_out(chains, [chains[i].name for i in paths[0]], chains[refs[0]],
                         anchors[0].residue, "N" if terminus == "N" else "C", origin, frame,
-                        np.round(poly, 2), rise, core, [chains[i] for i in refs])
+                        np.round(poly, 2), rise, segments, [chains[i] for i in refs])
     return FibrilGeometry(
         file=name, sha256=loaded.sha256,
         axis={"point": [round(float(v), 3) for v in origin],

@@ -150,7 +150,7 @@ def test_the_rules_path_keeps_its_clearance_and_ends_outside_the_fixed_outline(o
     gap = np.linalg.norm(samples[:, None] - atoms[None], axis=-1) - radii[None] - 1.75
     assert gap.min() >= -0.01
     layer = [next(c for c in chains if c.name == a["chain"]) for a in fib.anchors]
-    surface = X.fixed_outline(layer, fib.core_residues, origin, frame)
+    surface = X.fixed_outline(layer, fib.core_segments, origin, frame)
     assert not polygons.inside(surface, pts[-1:, :2])[0]  # it ends outside the Cβ outline
     assert polygons.inside(np.array(fib.core_outline), pts[-1:, :2])[0]  # inside the model's
 

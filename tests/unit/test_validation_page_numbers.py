@@ -4,9 +4,8 @@ a published number that is edited, or that the code stops giving, fails here (is
 test of every docs physics table; tests/unit/test_docs_tables.py names them from the page).
 
 - the gallery (#gallery): every case's real linker and its bound, "impossible below B";
-- the negative control (#negative-control): the residues the buried Ala42's exit spends and the
-  bound of each case (its MODEL_VERSION 4 free linkers, 7 and 9, are of an older model: today's
-  linker 13 leaves 8 free, as #infinite-walk says);
+- the negative control (#negative-control): the residues the buried Ala42's exit spends by the
+  rule (docs/model/buried-terminus.md#rule), the free linker and the bound of each case;
 - the walks on the infinite fibril (#infinite-walk): each length's free linker after the exit,
   the 20-layer cell, and the walk's start at the bound;
 - the real shapes (#real-shapes): the real linkers the hull runs took, and the comparison table's
@@ -29,7 +28,6 @@ EXAMPLES = ROOT / "examples"
 PAGE = "validation.md"
 GALLERY = docs_table(PAGE, "| case | experiment says |")
 NEGATIVE = docs_table(PAGE, "| case | fibril | linker | exit: residues spent, free linker |")
-PROBES = docs_table(PAGE, "| linker (anchor counted) | free after the exit | seed |")
 WALK = docs_table(PAGE, "| linker (anchor counted) | free after the exit | restarts (seeds) |")
 HULL = docs_table(PAGE, "| case | source | observed | P(fit) at the real linker |")
 SHAPES = docs_table(PAGE, "| case | minimal linker, sphere | minimal linker, hull |")
@@ -76,7 +74,7 @@ def number(cell: str) -> int:
 
 
 def test_the_pages_tables_are_read():
-    assert len(GALLERY) == 13 and len(NEGATIVE) == 5 and len(HULL) == len(SHAPES) == 2
+    assert len(GALLERY) == 13 and len(NEGATIVE) == 4 and len(HULL) == len(SHAPES) == 2
     assert len(PREDICT_F) == 2 and len(PREDICT_L) == 4
     assert [number(r["linker (anchor counted)"]) for r in WALK] == [13, 14, 16, 20, 22, 23, 24, 28]
 
@@ -93,27 +91,24 @@ def test_the_gallerys_real_linker_and_bound_are_todays(model, row):
 
 @pytest.mark.parametrize("row", NEGATIVE, ids=lambda r: case_of(r["case"]).stem)
 def test_the_negative_controls_exit_and_bound_are_todays(model, row):
-    """Ala42's exit spends 5 residues (none for 2N0A's surface anchor); the bound is 13 on the
-    infinite fibril, 7 on 20 layers, 1 for the near-threshold case."""
+    """Ala42's exit spends 1 residue by the rule (5 as deposited until MODEL_VERSION 7); the
+    free linker is the rest; the bound is 9 on the infinite fibril, 3 on 20 layers."""
     p = model(case_of(row["case"]))
     assert p.linker == int(re.search(r"(\d+)(?: \(|$)", row["linker"])[1])
-    exit_cell = row["exit: residues spent, free linker"]
-    spent = 0 if exit_cell.startswith("none") else int(exit_cell.split(",")[0])
-    assert p.exit_residues == spent
+    spent, free = (int(v) for v in row["exit: residues spent, free linker"].split(","))
+    assert (p.exit_residues, p.free_linker) == (spent, free)
     assert bound.linker_bound(p)["impossible_below"] == number(row["bound: impossible below"])
 
 
-@pytest.mark.parametrize("table", [PROBES, WALK], ids=["probes", "walk"])
-def test_the_infinite_walks_free_linkers_and_cell_are_todays(model, table):
-    """Every length probed or walked leaves `linker - 5` free after the exit, in a 20-layer
-    cell; the walk starts at the bound (13)."""
-    for row in table:
+def test_the_infinite_walks_free_linkers_and_cell_are_todays(model):
+    """Every length walked leaves `linker - 1` free after the exit, in a 20-layer cell; the walk
+    starts at the bound."""
+    for row in WALK:
         p = model(INFINITE, linker=number(row["linker (anchor counted)"]))
         assert (p.free_linker, p.layers, p.periodic) == (
             number(row["free after the exit"]), 20, 20), row
-    if table is WALK:
-        start = number(table[0]["linker (anchor counted)"])
-        assert start == bound.linker_bound(model(INFINITE))["impossible_below"]
+    start = number(WALK[0]["linker (anchor counted)"])
+    assert start == bound.linker_bound(model(INFINITE))["impossible_below"]
 
 
 @pytest.mark.parametrize("row", HULL, ids=lambda r: case_of(r["case"]).stem)

@@ -1,6 +1,7 @@
 """A buried anchor's exit drawn: one curve object in the model's root collection, a polyline
 per chain along its exit's path (the measured path of protofilament 0's chain, turned and raised
-by each chain's pose), beveled to the residue's radius. Not a body: nothing collides with it
+by each chain's pose; with interface termini each protofilament's own measured path, turned and
+raised by its layer), beveled to the residue's radius. Not a body: nothing collides with it
 (docs/model/buried-terminus.md#model)."""
 from __future__ import annotations
 

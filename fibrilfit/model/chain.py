@@ -143,6 +143,11 @@ class AnchorInside(ParamError):
         self.protofilament, self.xy, self.turn = protofilament, np.asarray(xy), float(turn)
 
 
+class CopiesBlocked(ParamError):
+    """Protofilament 0's own chain has a straight way clear of the core, its copies turned onto
+    the other protofilaments have none (structure/termini.py measures their own termini)."""
+
+
 def _blocked_by_copies(p, outline, anchor, offsets) -> str:
     """Why no direction is free, when it is the other protofilaments' copies of the chain that
     block it (docs/guide/structures.md#interface-termini): what the user can do."""
@@ -191,8 +196,9 @@ def chain_layout(p) -> ChainLayout:
         direction, rule = polygons.linker_direction(outline, anchor, offsets, chain_radii(p),
                                                     copies)
     except polygons.GeometryError as exc:
-        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}"
-                                   f"{_blocked_by_copies(p, outline, anchor, offsets)}") from None
+        copies = _blocked_by_copies(p, outline, anchor, offsets)
+        raise (CopiesBlocked if copies else ParamError)(
+            "anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}{copies}") from None
     if rule == "radial":
         radius = np.asarray(chain_x(p))
         angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))

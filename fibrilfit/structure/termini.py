@@ -19,7 +19,7 @@ import numpy as np
 
 from ..geom import exit_path, polygons
 from ..model import params as P
-from ..model.chain import AnchorInside
+from ..model.chain import AnchorInside, CopiesBlocked
 from ..model.param_checks import AnchorsTogether
 from ..model.param_spec import ParamError
 from . import exit as X, fibril as F, reading
@@ -100,11 +100,12 @@ def explained(exc: ParamError, measured, explicit) -> ParamError:
 
 def _copies_refused(values: dict) -> bool:
     """Whether the model refuses protofilament 0's chain turned onto the others: a copy's
-    anchor inside the core (AnchorInside, j >= 1) or on another's (AnchorsTogether). Any
-    other refusal is left to make_params to say."""
+    anchor inside the core (AnchorInside, j >= 1) or on another's (AnchorsTogether), or the
+    copies block every straight way out that protofilament 0's own chain has (CopiesBlocked).
+    Any other refusal is left to make_params to say."""
     try:
         P.make_params(force=True, **values)
-    except (AnchorInside, AnchorsTogether) as exc:
+    except (AnchorInside, AnchorsTogether, CopiesBlocked) as exc:
         return not isinstance(exc, AnchorInside) or exc.protofilament > 0
     except (ParamError, ValueError, TypeError):
         return False
@@ -114,7 +115,8 @@ def _copies_refused(values: dict) -> bool:
 def as_they_are(values: dict, measured, explicit, block: dict | None = None):
     """(values, block) with each protofilament's own terminus (pf_anchors, pf_exit_paths) where
     the file's protofilaments are not copies at their termini: protofilament 0's chain turned
-    onto protofilament j would start inside the core or on another's anchor, nothing of the
+    onto protofilament j would start inside the core or on another's anchor, or the copies
+    block every way out (_copies_refused), nothing of the
     geometry chosen by the user (CHOSEN). Where the copies build (most files), `values` as
     they are: nothing changes. `block` (the result's structure block) gets the values applied
     and their sources. Raises ParamError when an own exit is sealed (with the measurement)."""
@@ -154,7 +156,8 @@ def as_they_are(values: dict, measured, explicit, block: dict | None = None):
                                            f"terminus and its way out through every "
                                            f"protofilament's atoms ({said}): protofilament "
                                            f"0's chain turned onto the others would start "
-                                           f"inside the core or on another's anchor "
+                                           f"inside the core or on another's anchor, or "
+                                           f"find no way out "
                                            f"(docs/guide/structures.md#interface-termini)"}}
         if paths:
             block["applied"]["pf_exit_paths"] = f"[... {len(paths)} rows]"

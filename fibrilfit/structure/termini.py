@@ -206,6 +206,9 @@ def run_check(measured) -> dict:
         make_params(values, measured, {})
     except ParamError as exc:
         return {"builds": False, "refusal": str(exc)}
+    if values.get("pf_anchors") is not None:  # each protofilament's own terminus
+        return {"builds": True, "refusal": None,
+                "own_exits": [int(r[2]) for r in values["pf_anchors"]]}
     return {"builds": True, "refusal": None}
 
 
@@ -213,5 +216,10 @@ def run_line(check: dict) -> str | None:
     """`inspect`'s line for run_check."""
     if check["builds"] is None:
         return None
+    if check["builds"] and check.get("own_exits") is not None:
+        spent = ", ".join(map(str, check["own_exits"]))
+        return (f"run: builds (these files, nothing else given), each protofilament from its own "
+                f"terminus (its exit spends {spent} residue(s); docs/guide/structures.md"
+                f"#interface-termini)")
     return ("run: builds (these files, nothing else given)" if check["builds"] else
             f"run: refuses these files as they are: {check['refusal']}")

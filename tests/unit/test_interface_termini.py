@@ -208,9 +208,12 @@ def test_inspect_says_what_run_will_do():
     """`inspect` and `run` agree: a fibril `inspect` reads, `run` builds, or `inspect` says why
     it will not, in run's own words."""
     said = inspect(fibril=SIX_ZRR)
-    assert said["run"] == {"builds": True, "refusal": None}
-    assert resolve(fibril=SIX_ZRR).p.pf_anchors is not None
-    assert said.text.splitlines()[-1].startswith("run: builds")
+    assert said["run"] == {"builds": True, "refusal": None, "own_exits": [0, 2, 0]}
+    assert resolve(fibril=SIX_ZRR).p.pf_exit_residues().tolist() == [0, 2, 0]
+    assert said.text.splitlines()[-1] == (
+        "run: builds (these files, nothing else given), each protofilament from its own "
+        "terminus (its exit spends 0, 2, 0 residue(s); "
+        "docs/guide/structures.md#interface-termini)")
     built = inspect(fibril=SEVEN_RL4)
     assert built["run"] == {"builds": True, "refusal": None}
     assert resolve(fibril=SEVEN_RL4).p.pf_anchors is None  # copies that build: as before

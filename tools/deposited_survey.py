@@ -174,7 +174,8 @@ def table(rows: list[dict]) -> str:
         for side in ("C", "N"):
             built = is_true(r[f"built_{side}"])
             cells += ["yes" + (" (own termini)" if is_true(r[f"interface_{side}"]) else "")
-                      if built else "refused: " + reason(r[f"refusal_{side}"]) + "…",
+                      if built else "refused: " + r[f"refusal_{side}"].split(" (")[0][:90]
+                      + " …",
                       r[f"exit_{side}"] or "-", str(r[f"bound_{side}"] or "-")]
         out.append("| " + " | ".join(cells) + " |")
     return "\n".join(out)
@@ -202,11 +203,11 @@ def main(argv=None) -> int:
     files = files[:a.limit]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
-    started, rows = time.perf_counter(), []
+    started, rows, kept = time.perf_counter(), [], 0
     if a.resume and a.csv.exists():
         with open(a.csv, newline="") as fh:
             rows = [r for r in csv.DictReader(fh) if r["file"]]
-        done = {r["file"] for r in rows}
+        done, kept = {r["file"] for r in rows}, len(rows)
         files = [f for f in files if f.name not in done]
     with open(a.csv, "a" if rows else "w", newline="") as fh:
         out = csv.DictWriter(fh, COLUMNS)
@@ -224,8 +225,10 @@ def main(argv=None) -> int:
                   f"({row['seconds']} s) {row['refusal_C'][:90]}{row['error'][:90]}",
                   file=sys.stderr, flush=True)
     print(f"Measured {datetime.date.today()} at commit {commit}, MODEL_VERSION {MODEL_VERSION}, "
-          f"{len(rows)} files of {a.folder.name} ({len(files)} surveyed this time, in "
-          f"{time.perf_counter() - started:.0f} s):\n")
+          f"{len(rows)} files of {a.folder.name} ({len(rows) - kept} surveyed this time, in "
+          f"{time.perf_counter() - started:.0f} s" + (f"; {kept} rows kept from {a.csv.name}, "
+                                                       f"measured by an earlier run" if kept else "")
+          + "):\n")
     print(summary(rows))
     if a.table:
         print("\n" + table(rows))

@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "49d3361a52cb3f0b331855686bbc67efd059a872bc8403ac4480dce7e344c882"
+MODEL_SOURCES_SHA256 = "c31a7f472e88c17a5857167fd7225c934873d56e9b16cf6665aafb586bcfc63f"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -118,6 +118,10 @@ def test_6zrr_interface_terminus_builds_as_it_is(zrr):
     assert zrr.block["sources"]["pf_anchors"].startswith("6zrr.pdb.gz: measured")
     src = M.param_sources({}, p, zrr.block)
     assert src["pf_anchors"].startswith("6zrr.pdb.gz: measured")
+    # the result's exit: protofilament 0's, and each protofilament's own with the free linker
+    from fibrilfit.structure.from_files import exit_block
+    way = exit_block(p, zrr.block)
+    assert way["residues"] == 0 and way["pf_residues"] == [0, 2, 0] and way["free_linker"] == 10
     # what was refused before is refused without the measured rows (the copies as they were)
     with pytest.raises(ParamError, match="protofilament 1's copy"):
         p.replace(pf_anchors=None, pf_exit_paths=None)

@@ -1,16 +1,18 @@
 """`inspect` and `run` over a folder of deposited fibril models: for each file, whether
-`inspect` reads it, whether `run` builds it (its parameters pass every check: what `run` checks
-before it builds anything; no bpy, no bake), the refusal's message, the exit of each terminus
-(the residues its way out spends, or 'no exit') and the proven linker bound for a GFP-sized ball
-at the C terminus (docs/guide/structures.md#deposited-survey).
+`inspect` reads it, what `inspect` says `run` will do, whether `run` builds it (its parameters
+pass every check: what `run` checks before it builds anything; no bpy, no bake), the refusal's
+message, the exit of each terminus (the residues its way out spends, 'no exit' when sealed;
+with interface termini each protofilament's own, e.g. '0/2/0') and the proven linker bound for
+a GFP-sized ball at each terminus (docs/guide/structures.md#deposited-survey).
 
 The run's model is the issue #50 pilot's: a 44 Å ball (GFP, 1GFL's 43.9 Å), linker 12, the
-infinite fibril (`--periodic auto`), the C terminus (and the N terminus for its exit and check).
-Writes a CSV (one row per file) and prints the Markdown summary with its date, commit and
-MODEL_VERSION.
+infinite fibril (`--periodic auto`), at the C and at the N terminus. Writes a CSV (one row per
+file, flushed after each, so a long run can be followed and resumed with --resume) and prints
+the Markdown summary with its date, commit and MODEL_VERSION. A file that raises anything else
+than a refusal is recorded as an error and the survey goes on.
 
     nice -n 10 .venv/bin/python tools/deposited_survey.py FOLDER --csv out.csv [--limit N]
-        [--seconds S]
+        [--seconds S] [--only NAME ...] [--resume]
 
 (the venv's fibrilfit; a worktree's with PYTHONPATH=.)
 """
@@ -40,34 +42,46 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 BALL = 44.0  # Å: GFP as a ball (1GFL chain A: 43.9 Å, docs/model/buried-terminus.md#5oqv)
 RUN = {"globule_diameter": BALL, "linker": 12, "periodic": "auto"}
 REFUSED = (ParamError, StructureError, UsageError)
-COLUMNS = ("file", "read", "inspect_message", "inspect_run", "built_C", "refusal_C", "built_C_pf1", "built_N",
-           "refusal_N", "exit_C", "exit_N", "bound_C", "seconds")
-
+COLUMNS = ("file", "read", "inspect_message", "inspect_run", "built_C", "refusal_C",
+           "built_C_pf1", "built_N", "refusal_N", "interface_C", "interface_N", "exit_C",
+           "exit_N", "bound_C", "bound_N", "error", "seconds")
 
 
 def one_line(exc: Exception) -> str:
     return " ".join(str(exc).split())
 
 
+def exit_words(spent) -> str:
+    return "no exit" if spent >= P.SEALED else str(int(spent))
+
+
 def run_check(path: str, terminus: str, **more) -> dict:
     """What `run --fibril path --terminus T` does before it builds (api/model.resolve): the
-    files measured, the values merged, the Params made and checked. The exit is the measured
-    one (residues spent, 'no exit' when sealed), given whether or not the run is refused."""
+    files measured, the values merged, each protofilament's own terminus where the copies
+    would not build (termini.as_they_are), the Params made and checked. The exit is the
+    measured one (residues spent, 'no exit' when sealed; each protofilament's own, joined by
+    '/', when the model takes them), given whether or not the run is refused."""
     request = StructureRequest(fibril=path, terminus=terminus)
-    try:
-        m = from_files.measure_files(request)
-        values, _ = from_files.merged(m.fibril, m.domains, m.segmentation, {**RUN, **more})
+    given = {**RUN, **more}
+    try:  # as `run` makes its model (api/model.resolve)
+        values, block, measured = resolved_model.measured_values(request, given)
     except REFUSED as exc:
-        return {"built": False, "refusal": one_line(exc), "exit": "", "p": None}
-    spent = int(values.get("exit_residues", 0))
-    way = "no exit" if spent >= P.SEALED else str(spent)
-    try:  # as `run` makes its model (api/model.resolve), the measurement above reused
-        given = {**RUN, **more}
-        values, _, measured = resolved_model.measured_values(request, given)
+        return {"built": False, "refusal": one_line(exc), "exit": "", "p": None,
+                "interface": False}
+    way = exit_words(int(values.get("exit_residues", 0)))
+    try:
+        values, _ = termini.as_they_are(values, measured, given, block)
+        interface = values.get("pf_anchors") is not None
+        if interface:
+            way = "/".join(exit_words(r[2]) for r in values["pf_anchors"])
         p = termini.make_params(values, measured, given)
     except REFUSED as exc:
-        return {"built": False, "refusal": one_line(exc), "exit": way, "p": None}
-    return {"built": True, "refusal": "", "exit": way, "p": p}
+        sealed = re.match(r"anchor: protofilament (\d+)'s own terminus, .* is sealed", str(exc))
+        if sealed:  # an own exit sealed (termini.as_they_are): that terminus has none
+            way = f"no exit (protofilament {sealed.group(1)})"
+        return {"built": False, "refusal": one_line(exc), "exit": way, "p": None,
+                "interface": "pf_anchors" in values or bool(sealed)}
+    return {"built": True, "refusal": "", "exit": way, "p": p, "interface": interface}
 
 
 def survey_file(path: pathlib.Path) -> dict:
@@ -75,18 +89,23 @@ def survey_file(path: pathlib.Path) -> dict:
     row = dict.fromkeys(COLUMNS, "")
     row["file"] = path.name
     try:
-        said = api_inspect(fibril=str(path))["run"]  # what inspect says run will do
-        row.update(read=True, inspect_run="builds" if said["builds"] else "refuses")
-    except REFUSED as exc:
-        row.update(read=False, inspect_message=one_line(exc))
-    for side in ("C", "N"):
-        got = run_check(str(path), side)
-        row[f"built_{side}"], row[f"refusal_{side}"] = got["built"], got["refusal"]
-        row[f"exit_{side}"] = got["exit"]
-        if side == "C" and got["p"] is not None:
-            row["bound_C"] = B.linker_bound(got["p"])["impossible_below"]
-        elif side == "C" and row["read"]:  # what the refusal offers: protofilament 0's chains
-            row["built_C_pf1"] = run_check(str(path), "C", protofilaments=1)["built"]
+        try:
+            said = api_inspect(fibril=str(path))["run"]  # what inspect says run will do
+            row.update(read=True, inspect_run="builds" if said["builds"] else "refuses")
+        except REFUSED as exc:
+            row.update(read=False, inspect_message=one_line(exc))
+        for side in ("C", "N"):
+            got = run_check(str(path), side)
+            row[f"built_{side}"], row[f"refusal_{side}"] = got["built"], got["refusal"]
+            row[f"exit_{side}"], row[f"interface_{side}"] = got["exit"], got["interface"]
+            if got["p"] is not None:
+                row[f"bound_{side}"] = B.linker_bound(got["p"])["impossible_below"]
+            elif side == "C" and row["read"]:  # what the refusal offers: pf 0's chains
+                row["built_C_pf1"] = run_check(str(path), "C", protofilaments=1)["built"]
+    except Exception as exc:  # noqa: BLE001 - recorded, and the survey goes on
+        row["error"] = f"{type(exc).__name__}: {one_line(exc)}"[:300]
+    finally:
+        B._CACHE.clear()  # each file's voxel rooms: tens of MB each, never asked for again
     row["seconds"] = round(time.perf_counter() - t, 1)
     return row
 
@@ -98,36 +117,68 @@ def reason(message: str) -> str:
     return " ".join(head.split()[:9])
 
 
+def is_true(v) -> bool:
+    return v in (True, "True")
+
+
 def summary(rows: list[dict]) -> str:
+    """The survey's Markdown lines: what was read and built at each terminus, how many through
+    each protofilament's own terminus, the share of fibrils with an exit at each terminus, the
+    bounds and the refusals by kind."""
     n = len(rows)
-    read = [r for r in rows if r["read"] in (True, "True")]
-    built = [r for r in read if r["built_C"] in (True, "True")]
-    refused = collections.Counter(reason(r["refusal_C"]) for r in read
-                                  if r["built_C"] not in (True, "True"))
-    unread = collections.Counter(reason(r["inspect_message"]) for r in rows if r not in read)
+    read = [r for r in rows if is_true(r["read"])]
+    unread = collections.Counter(reason(r["inspect_message"]) for r in rows
+                                 if not is_true(r["read"]) and not r.get("error"))
+    errors = [r for r in rows if r.get("error")]
 
     def share(side):
         known = [r for r in read if r[f"exit_{side}"] != ""]
-        out = [r for r in known if r[f"exit_{side}"] != "no exit"]
-        surface = [r for r in out if r[f"exit_{side}"] == "0"]
+        out = [r for r in known if "no exit" not in r[f"exit_{side}"]]
+        surface = [r for r in out if set(r[f"exit_{side}"].split("/")) == {"0"}]
         return (f"{len(out)} of {len(known)} ({100 * len(out) / max(1, len(known)):.0f} %; "
                 f"on the surface {len(surface)}, buried with a way out {len(out) - len(surface)})")
-    bounds = [int(r["bound_C"]) for r in built if str(r["bound_C"]) != ""]
+
+    def bounds(side):
+        b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
+        return (f"{sum(v <= 12 for v in b)} at most 12, {sum(12 < v <= B.LONGEST for v in b)} "
+                f"above 12, {sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
     told = sum(r["inspect_run"] == "refuses" for r in read)
-    lines = [f"- files: {n}; `inspect` reads {len(read)}; `run` builds {len(built)} of them "
-             f"(C terminus); refused: {len(read) - len(built)}; `inspect` says `run` (the "
-             f"default domain) refuses: {told}",
-             f"- a C-terminal exit: {share('C')}",
-             f"- an N-terminal exit: {share('N')}",
-             f"- bound for a {BALL:g} Å ball at the C terminus (built files): "
-             f"{sum(b <= 12 for b in bounds)} at most 12, {sum(12 < b <= B.LONGEST for b in bounds)}"
-             f" above 12, {sum(b > B.LONGEST for b in bounds)} no exit ({B.LONGEST + 1})"]
-    lines += [f"- refused by `run` ({k}…): {v}" for k, v in refused.most_common()]
+    lines = [f"- files: {n}; `inspect` reads {len(read)}; `inspect` says `run` (the default "
+             f"domain) refuses {told}; errors (neither a result nor a refusal): {len(errors)}"]
+    for side in ("C", "N"):
+        built = [r for r in read if is_true(r[f"built_{side}"])]
+        own = [r for r in built if is_true(r[f"interface_{side}"])]
+        lines += [f"- {side} terminus: `run` builds {len(built)} of {len(read)} read "
+                  f"({len(own)} with each protofilament's own terminus); refused "
+                  f"{len(read) - len(built)}",
+                  f"- a {side}-terminal exit: {share(side)}",
+                  f"- bound for a {BALL:g} Å ball at the {side} terminus (built files): "
+                  f"{bounds(side)}"]
+        refused = collections.Counter(reason(r[f"refusal_{side}"]) for r in read
+                                      if not is_true(r[f"built_{side}"]))
+        lines += [f"  - refused at {side} ({k}…): {v}" for k, v in refused.most_common()]
     pf1 = [r for r in read if r["built_C_pf1"] != ""]
-    lines.append(f"- of the refused, built with `--protofilaments 1`: "
-                 f"{sum(r['built_C_pf1'] in (True, 'True') for r in pf1)} of {len(pf1)}")
+    lines.append(f"- of those refused at C, built with `--protofilaments 1`: "
+                 f"{sum(is_true(r['built_C_pf1']) for r in pf1)} of {len(pf1)}")
     lines += [f"- not read by `inspect` ({k}…): {v}" for k, v in unread.most_common()]
+    lines += [f"- error: {r['file']}: {r['error']}" for r in errors]
     return "\n".join(lines)
+
+
+def table(rows: list[dict]) -> str:
+    """One Markdown row per file: read, built and exit at each terminus, the bounds."""
+    out = ["| file | read | C: built | C: exit | C: bound | N: built | N: exit | N: bound |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        cells = [r["file"], "yes" if is_true(r["read"]) else "no"]
+        for side in ("C", "N"):
+            built = is_true(r[f"built_{side}"])
+            cells += ["yes" + (" (own termini)" if is_true(r[f"interface_{side}"]) else "")
+                      if built else "refused: " + r[f"refusal_{side}"].split(" (")[0][:90]
+                      + " …",
+                      r[f"exit_{side}"] or "-", str(r[f"bound_{side}"] or "-")]
+        out.append("| " + " | ".join(cells) + " |")
+    return "\n".join(out)
 
 
 def main(argv=None) -> int:
@@ -138,6 +189,9 @@ def main(argv=None) -> int:
     ap.add_argument("--seconds", type=float, default=None,
                     help="stop starting new files after this long")
     ap.add_argument("--only", nargs="*", default=None, help="these file names only")
+    ap.add_argument("--resume", action="store_true",
+                    help="keep the rows already in --csv and survey only the files not in it")
+    ap.add_argument("--table", action="store_true", help="also print one row per file")
     a = ap.parse_args(argv)
     # each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
     # measurement (the same function, the same arguments) that two commands would each make
@@ -149,10 +203,16 @@ def main(argv=None) -> int:
     files = files[:a.limit]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
-    started, rows = time.perf_counter(), []
-    with open(a.csv, "w", newline="") as fh:
+    started, rows, kept = time.perf_counter(), [], 0
+    if a.resume and a.csv.exists():
+        with open(a.csv, newline="") as fh:
+            rows = [r for r in csv.DictReader(fh) if r["file"]]
+        done, kept = {r["file"] for r in rows}, len(rows)
+        files = [f for f in files if f.name not in done]
+    with open(a.csv, "a" if rows else "w", newline="") as fh:
         out = csv.DictWriter(fh, COLUMNS)
-        out.writeheader()
+        if not rows:
+            out.writeheader()
         for f in files:
             if a.seconds is not None and time.perf_counter() - started > a.seconds:
                 break
@@ -162,10 +222,16 @@ def main(argv=None) -> int:
             fh.flush()
             print(f"{f.name}: read {row['read']} built C {row['built_C']} exit C "
                   f"{row['exit_C']} N {row['exit_N']} bound {row['bound_C']} "
-                  f"({row['seconds']} s) {row['refusal_C'][:90]}", file=sys.stderr, flush=True)
+                  f"({row['seconds']} s) {row['refusal_C'][:90]}{row['error'][:90]}",
+                  file=sys.stderr, flush=True)
     print(f"Measured {datetime.date.today()} at commit {commit}, MODEL_VERSION {MODEL_VERSION}, "
-          f"{len(rows)} files of {a.folder.name} in {time.perf_counter() - started:.0f} s:\n")
+          f"{len(rows)} files of {a.folder.name} ({len(rows) - kept} surveyed this time, in "
+          f"{time.perf_counter() - started:.0f} s" + (f"; {kept} rows kept from {a.csv.name}, "
+                                                       f"measured by an earlier run" if kept else "")
+          + "):\n")
     print(summary(rows))
+    if a.table:
+        print("\n" + table(rows))
     return 0
 
 

@@ -39,6 +39,7 @@ def resolve(plan, defaults: dict | None = None) -> ResolvedModel:
     refuse_beside_periodic(given)
     values, block, measured = measured_values(plan.structure, given)
     values = {**(defaults or {}), **values}
+    values, block = termini.as_they_are(values, measured, given, block)
     p = termini.make_params(values, measured, given, force=plan.force)
     return ResolvedModel(p, values, block, measured)
 

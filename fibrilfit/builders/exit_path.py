@@ -1,6 +1,7 @@
 """A buried anchor's exit drawn: one curve object in the model's root collection, a polyline
 per chain along its exit's path (the measured path of protofilament 0's chain, turned and raised
-by each chain's pose), beveled to the residue's radius. Not a body: nothing collides with it
+by each chain's pose; with interface termini each protofilament's own measured path, turned and
+raised by its layer), beveled to the residue's radius. Not a body: nothing collides with it
 (docs/model/buried-terminus.md#model)."""
 from __future__ import annotations
 
@@ -14,9 +15,22 @@ NAME = "FibrilFit exit path"
 ROLE = "exit_path"
 
 
-def chain_paths(p) -> np.ndarray:
+def chain_paths(p) -> list:
     """Every chain's exit path (chains, points, 3): p.exit_path turned and raised by the
-    chain's pose (helix.chain_transforms), as rest_positions places the chain's members."""
+    chain's pose (helix.chain_transforms), as rest_positions places the chain's members; with
+    interface termini (pf_exit_paths) each protofilament's own path, measured in the layer's
+    frame, turned and raised by its layer alone (none for a protofilament on the surface)."""
+    if p.pf_exit_paths is not None:
+        rows = np.asarray(p.pf_exit_paths, dtype=float)
+        angle, height = helix.layer_transforms(p)
+        out = []
+        for k in range(p.layers):
+            for j in range(p.protofilaments):
+                path = rows[rows[:, 0] == j, 1:]
+                if len(path):
+                    xy = helix.turn_xy(path[:, 0], path[:, 1], angle[k])
+                    out.append(np.column_stack([xy, path[:, 2] + height[k]]))
+        return out
     path = np.asarray(p.exit_path, dtype=float)
     angle, height = helix.chain_transforms(p)
     c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
@@ -30,7 +44,7 @@ def chain_paths(p) -> np.ndarray:
 def build_exit_path(model) -> bpy.types.Object | None:
     """The exit's curve in the model's root collection, or None on a surface anchor."""
     p = model.params
-    if p.exit_path is None or p.free_linker < 1:
+    if (p.exit_path is None and p.pf_exit_paths is None) or p.free_linker < 1:
         return None
     curve = tag(bpy.data.curves.new(NAME, "CURVE"), ROLE)
     curve.dimensions = "3D"

@@ -137,7 +137,7 @@ def decorated_atoms(p, positions: np.ndarray, domain_matrices: np.ndarray, sourc
         step = -1 if sources.side == "N" else 1
         for d, member in enumerate(domain_members):
             beads = np.arange(start, member)
-            numbers = (sources.linker_numbers(len(beads), p.exit_residues) if number is None else
+            numbers = (sources.linker_numbers(len(beads), p.exit_spent) if number is None else
                        number + step * np.arange(1, len(beads) + 1))
             # the beads before domain 0 join the core's chain; later ones the previous domain's
             owner = (cname, 1) if d == 0 else (chain_name(int(layer[c]), int(pf[c]), d - 1),

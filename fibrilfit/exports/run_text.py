@@ -188,10 +188,21 @@ def _clash_lines(r: dict) -> list[str]:
 
 
 def _exit_lines(r: dict) -> list[str]:
-    """A measured anchor's exit in one line (the result's `exit`), when there is one."""
+    """A measured anchor's exit in one line (the result's `exit`), when there is one; with
+    interface termini a second line: each protofilament's own exit."""
     way = r.get("exit")
     if not way:
         return []
+    own = [] if way.get("pf_residues") is None else [
+        f"exit per protofilament (each from its own terminus, "
+        f"docs/guide/structures.md#interface-termini): "
+        f"{', '.join(map(str, way['pf_residues']))} residue(s) spent; every chain simulates "
+        f"the smallest free linker, {way['free_linker']}"]
+    return _first_exit_line(way) + own
+
+
+def _first_exit_line(way: dict) -> list[str]:
+    """Protofilament 0's exit in one line."""
     if not way.get("found"):
         return [f"exit: none: no path from the anchor to the core's surface clears the core's "
                 f"atoms ({way['clearance']}); depth {way['depth']:.1f} Å"] + _exit_range(way)

@@ -131,6 +131,15 @@ def reach(p, terms, linker: int) -> list[float]:
             for c, e in terms]
 
 
+def pf_reach(p, terms, linker: int) -> np.ndarray:
+    """ρ of each domain (K, D) per protofilament, from its own anchor with its own free linker:
+    `reach` with the residues protofilament j's own exit spends less than the model's chains
+    (exit_spent) given back (interface termini, docs/model/bound.md#interface-termini; without
+    them every row is `reach`'s, the same floats)."""
+    back = p.exit_spent - p.pf_exit_residues()
+    return np.array([reach(p, terms, linker + int(b)) for b in back])
+
+
 # ---- 3, 4. the room the anchors leave -------------------------------------------------------
 def core_thickness(p) -> float:
     """The height of a layer's core prism (Å): an outline's is the rise, the box's slab[2]."""
@@ -151,7 +160,8 @@ class Room:
     def __init__(self, p, rho_max: float, periodic: bool, lo: int, hi: int,
                  budget: float = 2.0e7):
         self.p = p
-        anchor_r = math.hypot(*p.anchor_xy)
+        own = p.pf_anchor_xy()  # each protofilament's anchor in its frame (K, 2)
+        anchor_r = float(np.hypot(own[:, 0], own[:, 1]).max())
         half_xy = anchor_r + rho_max + 1.0  # every voxel that any anchor's ball can reach
         reach_layers = int(math.ceil((rho_max + p.pf_rise_step * p.protofilaments) / p.rise)) + 2
         if periodic:  # one layer's height of the infinite fibril, every anchor that can reach it
@@ -176,9 +186,9 @@ class Room:
         xy2 = (xy32 * xy32).sum(1)
         zs = np.arange(z0 + h / 2, z1 - h / 4, h)
         # anchors: (layer, protofilament) -> world position
-        ax, ay = p.anchor_xy
         k = np.repeat(layers, p.protofilaments).astype(float)
         j = np.tile(np.arange(p.protofilaments), len(layers))
+        ax, ay = own[j, 0], own[j, 1]
         turns, rises = p.pf_offsets()
         angle = k * p.twist + turns[j]
         height = k * p.rise + rises[j]
@@ -229,11 +239,18 @@ class Room:
             ok[idx[~inside]] = False
         return ok
 
-    def volume(self, pfs, rho: float) -> float:
+    def volume(self, pfs, rho) -> float:
         """An upper bound (Å³) of the room: voxels within ρ of an anchor of these protofilaments
-        that are not certainly inside the eroded core."""
-        d = self.dist[list(pfs)].min(axis=0)
-        return float(((d <= rho + self.half) & ~self.core).sum()) * self.h ** 3
+        that are not certainly inside the eroded core. `rho`: one for all, or one per
+        protofilament of `pfs` (each its own free linker: interface termini)."""
+        pfs = list(pfs)
+        if np.ndim(rho) == 0:
+            d = self.dist[pfs].min(axis=0)
+            return float(((d <= rho + self.half) & ~self.core).sum()) * self.h ** 3
+        near = np.zeros(self.core.shape, dtype=bool)
+        for pf, r in zip(pfs, rho):
+            near |= self.dist[pf] <= r + self.half
+        return float((near & ~self.core).sum()) * self.h ** 3
 
 
 # ---- the bound ------------------------------------------------------------------------------
@@ -246,11 +263,13 @@ def constraints(p, room: Room, terms, volumes, linker: int, chains_per_pf: int) 
     """Every inequality at this linker: a subset of protofilaments and of the chain's domains,
     the inner volume its domains need and the room they have (Å³)."""
     rho = reach(p, terms, linker)
+    own = None if p.pf_anchors is None else pf_reach(p, terms, linker)
     out = []
     for pfs in _subsets(p.protofilaments):
         for ds in _subsets(len(terms)):
             need = len(pfs) * chains_per_pf * sum(volumes[k] for k in ds)
-            have = room.volume(pfs, max(rho[k] for k in ds))
+            have = room.volume(pfs, max(rho[k] for k in ds) if own is None else
+                               [own[j, ds].max() for j in pfs])
             out.append({"protofilaments": pfs, "domains": ds, "need": need, "have": have})
     return out
 
@@ -262,7 +281,7 @@ def _settings_key(p) -> str:
             "pattern", "pattern_layers", "domain_b_diameter", "linker_b",
             "domain_linker", "domain_shape", "domain_atoms", "domain_spheres", "domain_joint",
             "further_atoms", "further_spheres", "further_joints", "domain_exits",
-            "exit_residues")
+            "exit_residues", "pf_anchors")
     d = p.to_dict()
     return json.dumps({k: d.get(k) for k in keep}, sort_keys=True, default=str)
 
@@ -326,7 +345,8 @@ def _linker_bound(key: str, p, budget: float) -> dict:
     letters = hetero.letter_shares(p, lo, hi) if occupancy.is_hetero(p) else None
     # a buried anchor's exit spends its residues first: no linker up to them leaves the core
     # (docs/model/buried-terminus.md#model); the model's anchor is where the free linker starts
-    first = int(p.exit_residues) + 1
+    # (with interface termini each protofilament's own: the most any spends, Params.exit_spent)
+    first = int(p.exit_spent) + 1
     if first > LONGEST:  # sealed: no path leaves the anchor
         result = {"impossible_below": LONGEST + 1, "method": "no exit: no path clear of the "
                   "core's atoms leaves the anchor (docs/model/buried-terminus.md#model)",
@@ -346,7 +366,7 @@ def _linker_bound(key: str, p, budget: float) -> dict:
         volumes = [v * share for v, share in zip(shown, letters)]
     top = max(8, first)  # not the linker asked: the bound is the geometry's, whatever ran first
     while True:
-        rho_top = reach(p, terms, top)
+        rho_top = pf_reach(p, terms, top).ravel()
         room = Room(p, max(rho_top), periodic, lo, hi, budget)
         found = None
         for L in range(first, top + 1):  # monotone: the first length where all hold
@@ -375,6 +395,8 @@ def _linker_bound(key: str, p, budget: float) -> dict:
         "voxel": round(room.h, 4),
         "exit_residues": int(p.exit_residues),
     }
+    if p.pf_anchors is not None:  # each protofilament's own exit, its own free linker
+        result["pf_exit_residues"] = [int(v) for v in p.pf_exit_residues()]
     _CACHE[key] = (result, Setting(p, terms, volumes, periodic, lo, hi, chains_per_pf, first,
                                    room, result["impossible_below"]))
     return result

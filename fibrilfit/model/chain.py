@@ -1,7 +1,8 @@
 """A chain at rest, from its parameters: where each member (anchor, linker residues, domains)
 sits along it (`chain_x`), each member's radius (`chain_radii`) and how far its body reaches
 (`body_radii`, `chain_reach`), the bonds' rest lengths, and protofilament 0's chain laid out in
-the layer's frame (`ChainLayout`, `chain_layout`). Plain numpy, no bpy.
+the layer's frame (`ChainLayout`, `chain_layout`; each protofilament's own with interface
+termini, `pf_layouts`). Plain numpy, no bpy.
 
 A chain is an anchor, `free_linker - 1` residues, then each domain (domains.py: a `Domain`
 knows its place along the chain, `member`) with the residues between them. Every room asks
@@ -109,13 +110,13 @@ def chain_reach(p) -> np.ndarray:
 def tail_members(p) -> int:
     """Members of an undecorated subunit's bare tail the model builds (its buried anchor first):
     `bare_tail` less the residues its exit spends, as for the linker (0: none)."""
-    return max(0, p.bare_tail - p.exit_residues) if p.bare_tail else 0
+    return max(0, p.bare_tail - p.exit_spent) if p.bare_tail else 0
 
 
 def tail_chain(p):
     """The Params of a bare tail's chain: a one-sphere chain longer than the tail, whose first
     tail_members(p) members (anchor and beads) are the tail's (builders.layers lays it out)."""
-    return dataclasses.replace(p, linker=p.exit_residues + tail_members(p) + 1,
+    return dataclasses.replace(p, linker=p.exit_spent + tail_members(p) + 1,
                                domain_shape="sphere", domain_diameters=None, domain_linker=None)
 
 
@@ -140,6 +141,11 @@ class AnchorInside(ParamError):
     def __init__(self, message: str, protofilament: int, xy, turn: float):
         super().__init__("anchor", message)
         self.protofilament, self.xy, self.turn = protofilament, np.asarray(xy), float(turn)
+
+
+class CopiesBlocked(ParamError):
+    """Protofilament 0's own chain has a straight way clear of the core, its copies turned onto
+    the other protofilaments have none (structure/termini.py measures their own termini)."""
 
 
 def _blocked_by_copies(p, outline, anchor, offsets) -> str:
@@ -172,6 +178,8 @@ class ChainLayout:
 def chain_layout(p) -> ChainLayout:
     """Protofilament 0's chain in the layer's frame (Params.chain_layout keeps it). Raises
     ParamError: an anchor inside the core, or no direction that takes the chain clear of it."""
+    if p.pf_anchors is not None:  # each protofilament its own (pf_layouts): protofilament 0's
+        return pf_layouts(p)[0]
     outline = p.outline()
     anchor = np.array(p.anchor_xy, dtype=float)
     offsets = np.asarray(chain_x(p)) - p.anchor_x  # along the chain from the anchor
@@ -188,8 +196,9 @@ def chain_layout(p) -> ChainLayout:
         direction, rule = polygons.linker_direction(outline, anchor, offsets, chain_radii(p),
                                                     copies)
     except polygons.GeometryError as exc:
-        raise ParamError("anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}"
-                                   f"{_blocked_by_copies(p, outline, anchor, offsets)}") from None
+        copies = _blocked_by_copies(p, outline, anchor, offsets)
+        raise (CopiesBlocked if copies else ParamError)(
+            "anchor", f"at ({anchor[0]:g}, {anchor[1]:g}) Å: {exc}{copies}") from None
     if rule == "radial":
         radius = np.asarray(chain_x(p))
         angle = np.full(radius.size, math.atan2(anchor[1], anchor[0]))
@@ -198,3 +207,37 @@ def chain_layout(p) -> ChainLayout:
         xy = anchor[None] + offsets[:, None] * direction[None]
         radius, angle = np.hypot(xy[:, 0], xy[:, 1]), np.arctan2(xy[:, 1], xy[:, 0])
     return ChainLayout(xy, radius, angle, direction, rule)
+
+
+def pf_layouts(p) -> list[ChainLayout]:
+    """Each protofilament's chain in its own frame, before its turn (Params.pf_layouts keeps
+    them): protofilament 0's layout for every one, or with pf_anchors (interface termini,
+    docs/guide/structures.md#interface-termini) each from its own measured anchor, its chain
+    straight out by the rule chain_layout uses, clear of the core at its turn. Raises
+    ParamError: an own anchor inside the core, or no direction that takes its chain clear."""
+    if p.pf_anchors is None:
+        return [p.chain_layout] * p.protofilaments
+    outline = p.outline()
+    offsets = np.asarray(chain_x(p)) - p.anchor_x  # along the chain from the anchor
+    out = []
+    for j, (local, turn) in enumerate(zip(p.pf_anchor_xy(), p.pf_offsets()[0])):
+        xy = polygons.rotate(local, float(turn))
+        if polygons.inside(outline, xy[None])[0]:
+            raise ParamError("pf_anchors", f"protofilament {j}'s own anchor ({xy[0]:.2f}, "
+                                           f"{xy[1]:.2f}) Å lies inside the core; the linker "
+                                           f"must start outside it")
+        try:
+            direction, rule = polygons.linker_direction(outline, local, offsets,
+                                                        chain_radii(p), [float(turn)])
+        except polygons.GeometryError as exc:
+            raise ParamError("pf_anchors", f"protofilament {j}'s own anchor at ({xy[0]:.2f}, "
+                                           f"{xy[1]:.2f}) Å: {exc}") from None
+        if rule == "radial":
+            radius = offsets + math.hypot(*local)
+            angle = np.full(radius.size, math.atan2(local[1], local[0]))
+            pts = np.stack([np.cos(angle) * radius, np.sin(angle) * radius], axis=1)
+        else:
+            pts = local[None] + offsets[:, None] * direction[None]
+            radius, angle = np.hypot(pts[:, 0], pts[:, 1]), np.arctan2(pts[:, 1], pts[:, 0])
+        out.append(ChainLayout(pts, radius, angle, direction, rule))
+    return out

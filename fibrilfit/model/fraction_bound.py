@@ -79,10 +79,12 @@ def caps(s: bound.Setting, linker: int) -> dict:
             out[tuple(pfs)] = (full, None)
         else:
             rho = bound.reach(p, s.terms, linker)
+            own = None if p.pf_anchors is None else bound.pf_reach(p, s.terms, linker)
             cap, why = full, None
             for ds in bound._subsets(len(s.terms)):
                 need = sum(s.volumes[k] for k in ds)  # one decorated subunit's
-                have = s.room.volume(pfs, max(rho[k] for k in ds))
+                have = s.room.volume(pfs, max(rho[k] for k in ds) if own is None else
+                                     [own[j, ds].max() for j in pfs])
                 if full * need <= have:
                     continue
                 room = have / need if s.periodic else math.floor(have / need)

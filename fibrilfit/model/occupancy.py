@@ -294,15 +294,16 @@ def exit_bound(p, hetero: bool = False) -> dict:
     subunit decorated, so below their bound a mixed fibril may still fit: they are not applied
     (docs/model/occupancy.md#bound). `hetero`: a mixed fibril of two domain sizes (A and B),
     whose excluded-volume bound (the fraction's, with two sizes) is not built
-    (docs/model/bound.md#hetero)."""
+    (docs/model/bound.md#hetero). With interface termini, the shortest of the protofilaments'
+    own exits (a mixed fibril may decorate that protofilament alone)."""
     if hetero:
-        return {"impossible_below": int(p.exit_residues) + 1,
+        return {"impossible_below": int(p.pf_exit_residues().min()) + 1,
                 "method": "the buried exit alone: no excluded-volume bound computed for a "
                           "mixed fibril of two domain sizes (A and B; "
                           "docs/model/bound.md#hetero)",
                 "over": "a mixed hetero-amyloid: the exit only", "fails_below": None,
                 "exit_residues": int(p.exit_residues)}
-    return {"impossible_below": int(p.exit_residues) + 1,
+    return {"impossible_below": int(p.pf_exit_residues().min()) + 1,
             "method": "the buried exit alone (the excluded-volume bound counts every subunit "
                       "decorated: not applied to a mixed fibril, docs/model/occupancy.md#bound)",
             "over": "a mixed fibril: the exit only", "fails_below": None,

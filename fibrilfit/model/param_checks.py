@@ -38,6 +38,7 @@ def check_combination(p, force: bool) -> None:
                                             f"({p.residue_radius:g} Å) so that beads cannot pass "
                                             f"through each other (got {p.residue_spacing:g})")
     _check_pf_turns(p)
+    _check_pf_anchors(p)
     if p.periodic:
         _check_periodic(p)
     domains.check_shapes(p)
@@ -126,6 +127,33 @@ def _check_pf_turns(p) -> None:
         raise ParamError("pf_turns", "every turn must lie within ±2π rad")
 
 
+def _check_pf_anchors(p) -> None:
+    """pf_anchors (interface termini): one row [x, y, residues] per protofilament, protofilament
+    0's the anchor and exit_residues; pf_exit_paths' rows name a protofilament."""
+    if p.pf_anchors is None:
+        if p.pf_exit_paths is not None:
+            raise ParamError("pf_exit_paths", "needs pf_anchors (each protofilament's own "
+                                              "anchor and exit)")
+        return
+    rows = np.asarray(p.pf_anchors, dtype=float)
+    if len(rows) != p.protofilaments:
+        raise ParamError("pf_anchors", f"needs one row [x, y, exit residues] per protofilament "
+                                       f"({p.protofilaments}), got {len(rows)}")
+    if (np.abs(rows[0, :2] - np.asarray(p.anchor_xy)).max() > 1e-6
+            or round(rows[0, 2]) != p.exit_residues):
+        raise ParamError("pf_anchors", f"the first row is protofilament 0's: the anchor "
+                                       f"{list(p.anchor_xy)} and its exit_residues "
+                                       f"{p.exit_residues} (got {list(rows[0])}); an anchor "
+                                       f"given takes the measured rows away")
+    if (rows[:, 2] < 0).any() or (rows[:, 2] != rows[:, 2].round()).any():
+        raise ParamError("pf_anchors", "exit residues must be whole numbers, 0 or more")
+    if p.pf_exit_paths is not None:
+        js = np.asarray(p.pf_exit_paths, dtype=float)[:, 0]
+        if ((js < 0) | (js >= p.protofilaments) | (js != js.round())).any():
+            raise ParamError("pf_exit_paths", f"each row starts with its protofilament, 0 to "
+                                              f"{p.protofilaments - 1}")
+
+
 def _check_periodic(p) -> None:
     if p.score_layers:
         raise ParamError("score_layers", "cannot be used with periodic: a periodic cell has no "
@@ -141,6 +169,15 @@ def _check_periodic(p) -> None:
                                      f"at least {least} layers (cell × rise must exceed the "
                                      f"widest globule's diameter), or 'auto'")
 
+class AnchorsTogether(ParamError):
+    """Protofilaments a and b would start with their anchors on top of each other: a structure
+    file's caller can say what the file's own protofilaments measure (structure/termini.py)."""
+
+    def __init__(self, a: int, b: int, apart: float, message: str):
+        super().__init__("pf_rotation", message)
+        self.protofilaments, self.apart = (a, b), apart
+
+
 def check_anchors_apart(p) -> None:
     """Anchors of different protofilaments must not start on top of each other (in 3-D,
     over the first few layers: the model repeats layer by layer)."""
@@ -150,18 +187,20 @@ def check_anchors_apart(p) -> None:
                                              + 2 * p.residue_radius) / p.rise)) + 1)
     q = dataclasses.replace(p, layers=k_max + 1)
     angle, height = helix.chain_transforms(q)
-    lay = q.chain_layout
-    xy = np.stack([np.cos(angle + lay.angle[0]), np.sin(angle + lay.angle[0])], 1) * lay.radius[0]
-    pts = np.column_stack([xy, height])
     _, pf = helix.chain_layers(q)
+    first = np.array([[lay.angle[0], lay.radius[0]] for lay in q.pf_layouts])[pf]
+    xy = (np.stack([np.cos(angle + first[:, 0]), np.sin(angle + first[:, 0])], 1)
+          * first[:, 1:])
+    pts = np.column_stack([xy, height])
     d = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
     clash = (d < 2 * p.residue_radius - 1e-9) & (pf[:, None] != pf[None, :])
     if clash.any():
         a, b = np.argwhere(clash)[0]
-        raise ParamError("pf_rotation", f"protofilaments {pf[a]} and {pf[b]} would start with "
-                                        f"their anchors {d[a, b]:.2f} Å apart, less than two "
-                                        f"residue radii ({2 * p.residue_radius:g} Å): change "
-                                        f"--pf-rotation, --pf-rise or --anchor")
+        raise AnchorsTogether(int(pf[a]), int(pf[b]), float(d[a, b]),
+                              f"protofilaments {pf[a]} and {pf[b]} would start with "
+                              f"their anchors {d[a, b]:.2f} Å apart, less than two "
+                              f"residue radii ({2 * p.residue_radius:g} Å): change "
+                              f"--pf-rotation, --pf-rise or --anchor")
 
 
 # Options that make no sense beside a periodic cell, and why (one line each, for the CLI and sweeps).

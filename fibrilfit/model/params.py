@@ -127,6 +127,20 @@ class Params:
     exit_path: tuple | None = rows_spec("The exit's path from the buried anchor's CA to the "
                                         "surface, rows [x, y, z] in the layer's frame", 3,
                                         "none: the anchor on the surface", section="Anchor")
+    # Interface termini (docs/guide/structures.md#interface-termini): where protofilament 0's
+    # chain turned onto protofilament j would start inside the core or on another's anchor,
+    # each protofilament's own terminus as measured from --fibril: its anchor (where its own
+    # way out, through every protofilament's atoms, leaves the outline) in the layer's frame
+    # and the residues that way spends; none: protofilament 0's anchor and exit turned onto each.
+    pf_anchors: tuple | None = rows_spec("Each protofilament's own anchor and exit, measured "
+                                         "from --fibril: rows [x, y, exit residues] in the "
+                                         "layer's frame, protofilament 0's first", 3,
+                                         "protofilament 0's turned onto each", section="Anchor")
+    pf_exit_paths: tuple | None = rows_spec("Each protofilament's own exit path from its "
+                                            "anchor's CA to the surface: rows [protofilament, x, "
+                                            "y, z] in the layer's frame", 4,
+                                            "protofilament 0's turned onto each",
+                                            section="Anchor")
 
     # Search protocol (docs/model/search.md#search). `tutorial`
     # starts every globule at full size on a straight chain and lets Bullet push them apart;
@@ -323,6 +337,37 @@ class Params:
             return abs(self.pf_rise)
         return float(np.abs(self.pf_offsets()[1]).max())
 
+    def pf_exit_residues(self) -> np.ndarray:
+        """The residues each protofilament's exit spends (K ints): pf_anchors' own, or
+        exit_residues for every protofilament (its copies)."""
+        if self.pf_anchors is None:
+            return np.full(self.protofilaments, int(self.exit_residues))
+        return np.asarray(self.pf_anchors, dtype=float)[:, 2].round().astype(int)
+
+    @property
+    def exit_spent(self) -> int:
+        """The most residues any protofilament's exit spends: the model's chains all start
+        their free linker after this many (the smallest free linker governs the simulation;
+        docs/model/bound.md#interface-termini); exit_residues without pf_anchors."""
+        if self.pf_anchors is None:
+            return int(self.exit_residues)
+        return int(max(int(self.exit_residues), self.pf_exit_residues().max()))
+
+    def pf_anchor_xy(self) -> np.ndarray:
+        """Each protofilament's anchor in its own frame (K, 2), before its turn
+        (pf_offsets): pf_anchors' own turned back by the protofilament's turn, or
+        protofilament 0's anchor for every one."""
+        if self.pf_anchors is None:
+            return np.tile(np.asarray(self.anchor_xy, dtype=float), (self.protofilaments, 1))
+        rows = np.asarray(self.pf_anchors, dtype=float)[:, :2]
+        return np.array([polygons.rotate(xy, -a) for xy, a in zip(rows, self.pf_offsets()[0])])
+
+    @functools.cached_property
+    def pf_layouts(self) -> list[chain.ChainLayout]:
+        """Each protofilament's chain in its own frame (chain.pf_layouts): protofilament 0's
+        layout for every one without pf_anchors. Raises ParamError."""
+        return chain.pf_layouts(self)
+
     @property
     def chains(self) -> int:
         """Chains in the model: layers × protofilaments."""
@@ -365,9 +410,10 @@ class Params:
     @property
     def free_linker(self) -> int:
         """The linker the model simulates: `linker` less the residues spent on a buried
-        anchor's exit (exit_residues; 0 on the surface), counting the bead at the exit as
-        its passive anchor (docs/model/buried-terminus.md#model). Below 1: no exit."""
-        return self.linker - self.exit_residues
+        anchor's exit (exit_spent: exit_residues, or the most any protofilament's own exit
+        spends; 0 on the surface), counting the bead at the exit as its passive anchor
+        (docs/model/buried-terminus.md#model). Below 1: no exit."""
+        return self.linker - self.exit_spent
 
     def bake_frames(self) -> int:
         """The bake's frame cap: `frames` for the tutorial, the whole schedule for inflate."""

@@ -25,15 +25,18 @@ SEED_SALT = 0x1F1A7E  # keeps this stream apart from any other use of the seed
 def rest_positions(p) -> np.ndarray:
     """Rest positions of every chain member, shape (layers × protofilaments, linker + 1, 3).
 
-    Protofilament 0's chain (chain.ChainLayout, in polar form) turned and raised per chain
+    Each protofilament's chain (chain.ChainLayout, in polar form: protofilament 0's for every
+    one, or its own with interface termini, Params.pf_layouts) turned and raised per chain
     (helix.chain_transforms); for the tutorial's model the same floats as one chain per layer.
     """
     angle, height = helix.chain_transforms(p)
-    layout = p.chain_layout
-    turn = angle[:, None] + layout.angle[None]
-    pos = np.empty((p.chains, layout.radius.size, 3))
-    pos[..., 0] = np.cos(turn) * layout.radius[None]
-    pos[..., 1] = np.sin(turn) * layout.radius[None]
+    layouts = p.pf_layouts
+    _, pf = helix.chain_layers(p)
+    radius = np.stack([lay.radius for lay in layouts])[pf]
+    turn = angle[:, None] + np.stack([lay.angle for lay in layouts])[pf]
+    pos = np.empty((p.chains, radius.shape[1], 3))
+    pos[..., 0] = np.cos(turn) * radius
+    pos[..., 1] = np.sin(turn) * radius
     pos[..., 2] = height[:, None]
     return pos
 

@@ -34,9 +34,10 @@ class ChainExit:
 
 def chain_exit(p) -> ChainExit:
     """What a Params' chain spends on its exit and where its free linker starts: for a bound
-    on the linker, the residues left after the exit (`left`) from `start`."""
+    on the linker, the residues left after the exit (`left`) from `start` (protofilament 0's;
+    with interface termini the most any protofilament spends, Params.exit_spent)."""
     path = None if p.exit_path is None else np.asarray(p.exit_path, dtype=float)
-    return ChainExit(int(p.exit_residues), tuple(p.anchor_xy), int(p.free_linker), path)
+    return ChainExit(int(p.exit_spent), tuple(p.anchor_xy), int(p.free_linker), path)
 
 
 def no_exit_result(p) -> dict:

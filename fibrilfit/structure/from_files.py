@@ -177,13 +177,16 @@ def exit_block(p, block: dict | None) -> dict | None:
         "measured; the run's anchor and exit are its explicit values (--anchor, a case's "
         "params)" if "exit_residues" in block["overridden"]
         else "measured: the anchor is on the surface, its path costs no residue")
-    return {"residues": None if sealed else int(p.exit_residues), "found": way["found"],
-            "depth": way["depth"], "length": way["length"],
-            "path": way["path"],
-            "clearance": way["clearance"], "bead_radius": way["bead_radius"],
-            "free_linker": p.free_linker, "source": source,
-            "rule": way.get("rule"), "layer": way.get("layer"),
-            "sensitivity": way.get("sensitivity", [])}
+    out = {"residues": None if sealed else int(p.exit_residues), "found": way["found"],
+           "depth": way["depth"], "length": way["length"],
+           "path": way["path"],
+           "clearance": way["clearance"], "bead_radius": way["bead_radius"],
+           "free_linker": p.free_linker, "source": source}
+    if p.pf_anchors is not None:  # interface termini: each protofilament's own exit, and the
+        # free linker every chain simulates (the smallest; docs/model/bound.md#interface-termini)
+        out["pf_residues"] = [int(v) for v in p.pf_exit_residues()]
+        out["pf_anchors"] = [list(r[:2]) for r in p.pf_anchors]
+    return out
 
 
 # ---- the files named: a StructureRequest (request.py), from the command line, a case's

@@ -12,7 +12,7 @@ from functools import reduce
 import numpy as np
 
 from ..geom import rigid as G
-from . import exit as X, outline as O, reading
+from . import chain_kinds, exit as X, one_screw, outline as O, reading, side_contacts
 from .errors import StructureError
 
 STACK = (4.2, 5.6)  # Å: a residue is stacked when its CA sits this far over the same residue
@@ -118,13 +118,12 @@ def _core_range(stacked_numbers):
     return [int(best[0]), int(best[-1])]
 
 
-def _stacking(chains, name, option):
+def _stacking(chains, name, option, notes=None):
     """Common residues, their CA (chains, residues, 3), the stacked residues of each stacking
     pair of chains, and the protofilaments as paths of chain indices."""
     common = reduce(np.intersect1d, [c.residues for c in chains])
-    if len(common) < MIN_STACKED:
-        raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
-                                     "residues: the layers do not stack")
+    if len(common) < MIN_STACKED:  # fewer than MIN_STACKED: which kinds of chain, if several
+        raise StructureError(option, f"{name}: {chain_kinds.why(chains, len(common))}")
     ca = np.array([c.ca_of(common) for c in chains])
     pairs = {}
     for i in range(len(chains)):
@@ -132,6 +131,7 @@ def _stacking(chains, name, option):
             s = _stacked(ca[i], ca[j])
             if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
                 pairs[(i, j)] = s
+    pairs = side_contacts.layers_only(pairs, [c.name for c in chains], name, option, notes)
     return chains, common, ca, pairs, _paths(len(chains), pairs, option)
 
 
@@ -152,11 +152,11 @@ def longest_stack(loaded) -> int:
 
 def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             option: str = "--fibril") -> FibrilGeometry:
-    loaded = reading.load(path, option)
+    loaded = reading.load(path, option, peptides=True)
     name = loaded.path.name
     chains, paths, core, cca, cen = _stacked_core(loaded, name, option)
     notes, warnings = list(loaded.notes), []
-    u, p, exact = _axis(paths, cca, cen, name, option, warnings)
+    u, p, exact = _axis(paths, cca, cen, name, option, warnings, [c.name for c in chains])
     # order every protofilament along the axis; protofilament 0 holds the lowest layer
     height = (cen - p) @ u
     paths = [sorted(q, key=lambda i: height[i]) for q in paths]
@@ -203,13 +203,13 @@ def _stacked_core(loaded, name: str, option: str) -> tuple:
     if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
         raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
                                      "give --rise and --twist instead")
-    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option, loaded.notes)
     if max(len(q) for q in paths) < 2:  # no two chains stack: a symmetry may build the layers
         if not reading.expand_symmetry(loaded):
             raise StructureError(option, f"{name}: no two chains stack {STACK[0]}-{STACK[1]} Å "
                                          "apart, the layers do not stack (fewer than 2 layers): "
                                          "give --rise and --twist")
-        chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+        chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option, loaded.notes)
         if max(len(q) for q in paths) < 2:
             raise StructureError(option, f"{name}: even with its symmetry operators no two "
                                          "chains stack: the layers do not stack")
@@ -225,9 +225,10 @@ def _stacked_core(loaded, name: str, option: str) -> tuple:
     return chains, paths, core, cca, cca.mean(axis=1)
 
 
-def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
+def _axis(paths, cca, cen, name: str, option: str, warnings: list, names=()) -> tuple:
     """The helical axis: its direction u (pointing up the file's dominant axis), a point p on
-    it, and whether it is exact (a screw of the layers) or only approximate (warned)."""
+    it, and whether it is exact (a screw of the layers) or only approximate (warned). When the
+    protofilament pairs' axes disagree, the one screw of every layer (one_screw.py)."""
     first = paths[0]
     along = cen[first[-1]] - cen[first[0]]
     exact = True
@@ -246,10 +247,9 @@ def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
         p = np.mean(on_plane, axis=0)
         spread = max(math.degrees(math.acos(min(1.0, d @ u))) for d in dirs)
         off = max(np.linalg.norm(q - p) for q in on_plane)
-        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:
-            raise StructureError(option, f"{name}: the protofilaments share no common axis (the "
-                                         f"layer pairs' axes differ by up to {spread:.1f}° and "
-                                         f"{off:.1f} Å)")
+        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:  # not copies of each other
+            u, p, exact = one_screw.axis(paths, cca, cen, along, (spread, off), list(names),
+                                         name, option, warnings)
     else:
         a = np.concatenate([cca[i] for i in first[:-1]])
         b = np.concatenate([cca[i] for i in first[1:]])
@@ -390,7 +390,7 @@ def layer_frame(geometry: FibrilGeometry) -> tuple[np.ndarray, np.ndarray]:
 def reference_chains(path, geometry: FibrilGeometry, option: str = "--fibril") -> list:
     """Each protofilament's reference chain (reading.ChainAtoms, file coordinates), as `measure`
     chose it (the chains of a one-chain file built from its symmetry as `measure` built them)."""
-    loaded = reading.load(path, option)
+    loaded = reading.load(path, option, peptides=True)
     chains = _stacked_core(loaded, loaded.path.name, option)[0]
     by_name = {c.name: c for c in chains}
     return [by_name[a["chain"]] for a in geometry.anchors]

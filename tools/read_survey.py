@@ -1,0 +1,145 @@
+"""`inspect` over a folder of fibril models: which it reads and which it refuses, and why
+(docs/guide/structures.md#read-survey).
+
+For each file, `fibrilfit.api.inspect(fibril=FILE)` in this process, stopped after a per-file
+time limit: read or refused, the one-line reason (a refusal's message; for a file read, its
+warnings, such as protofilaments whose axes differ), the chains used, the layers of the longest
+protofilament, the protofilaments and the core's residues. Writes a CSV (one row per file) and
+prints a Markdown summary (date, commit, MODEL_VERSION, the reasons grouped with their counts).
+
+    nice -n 10 .venv/bin/python tools/read_survey.py FOLDER --csv out.csv [--limit N]
+        [--only NAME ...] [--timeout S]
+
+(the venv's fibrilfit; a worktree's with PYTHONPATH=.)
+"""
+from __future__ import annotations
+
+import argparse
+import collections
+import csv
+import datetime
+import pathlib
+import re
+import signal
+import subprocess
+import sys
+import time
+
+from fibrilfit.api import inspect as api_inspect
+from fibrilfit.exits import UsageError
+from fibrilfit.model.param_spec import ParamError
+from fibrilfit.model.version import MODEL_VERSION
+from fibrilfit.structure.errors import StructureError
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+REFUSED = (ParamError, StructureError, UsageError)
+COLUMNS = ("file", "read", "reason", "chains", "layers", "protofilaments", "core_residues",
+           "seconds")
+AXIS_NOTE = re.compile(r"\baxis|\baxes", re.I)  # a read file's warnings about its axis
+FILES = re.compile(r"\.(pdb|cif|mmcif|ent)(\.gz)?$", re.I)
+
+
+class TimeLimit(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise TimeLimit()
+
+
+def one_line(text) -> str:
+    return " ".join(str(text).split())
+
+
+def read_file(path: pathlib.Path, timeout: float) -> dict:
+    """One file's row: `inspect` in this process, stopped after `timeout` seconds."""
+    row = dict.fromkeys(COLUMNS, "")
+    row["file"] = path.name
+    t = time.perf_counter()
+    old = signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, timeout)
+    try:
+        fib = api_inspect(fibril=str(path)).data["fibril"]
+        row.update(read="read", reason="; ".join(one_line(w) for w in fib["warnings"]),
+                   chains=sum(len(q) for q in fib["layer_chains"]), layers=fib["layers"],
+                   protofilaments=fib["protofilaments"],
+                   core_residues="-".join(str(r) for r in fib["core_residues"]))
+    except REFUSED as exc:
+        row.update(read="refused", reason=one_line(exc))
+    except TimeLimit:
+        row.update(read="refused", reason=f"time limit: not read in {timeout:g} s")
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+    row["seconds"] = round(time.perf_counter() - t, 2)
+    return row
+
+
+def kind(message: str) -> str:
+    """A reason's kind: its parameter, the file name and the numbers dropped, up to the first
+    parenthesis or colon after the file's name."""
+    head = re.sub(r"^--[\w-]+: [^:]+: ", "", message)
+    head = re.split(r" \(|: ", head)[0]
+    head = re.sub(r"\d+(\.\d+)?([-–]\d+(\.\d+)?)?( ?(Å|°|%))?", "N", head)
+    return " ".join(head.split())
+
+
+def summary(rows: list[dict], folder: str, commit: str, seconds: float) -> str:
+    n = len(rows)
+    read = [r for r in rows if r["read"] == "read"]
+    refused = [r for r in rows if r["read"] != "read"]
+    lines = [f"`inspect` over {n} files of `{folder}`, measured {datetime.date.today()} at "
+             f"commit {commit}, MODEL_VERSION {MODEL_VERSION}, in {seconds:.0f} s: read "
+             f"{len(read)} ({100 * len(read) / max(1, n):.1f} %), refused {len(refused)}.", "",
+             "<!-- not results: counts of files, no physics -->",
+             "| outcome | reason (numbers dropped) | files | examples |", "|---|---|---|---|"]
+
+    def group(subset, outcome):
+        by = collections.defaultdict(list)
+        for r in subset:
+            parts = [r["reason"]]
+            if outcome == "read":  # a file read is grouped by what its warnings say of its axis
+                parts = [p for p in r["reason"].split("; ") if AXIS_NOTE.search(p)] or \
+                        ["one common axis"]
+            for k in dict.fromkeys(kind(p) for p in parts):
+                by[k].append(r["file"])
+        for k, files in sorted(by.items(), key=lambda kv: (-len(kv[1]), kv[0])):
+            names = ", ".join(f.split(".")[0].upper() for f in files[:6])
+            lines.append(f"| {outcome} | {k} | {len(files)} | {names}"
+                         f"{', …' if len(files) > 6 else ''} |")
+    group(read, "read")
+    group(refused, "refused")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("folder", type=pathlib.Path)
+    ap.add_argument("--csv", type=pathlib.Path, required=True)
+    ap.add_argument("--limit", type=int, default=None, help="the first N files (sorted)")
+    ap.add_argument("--only", nargs="*", default=None, help="these file names only")
+    ap.add_argument("--timeout", type=float, default=120.0, help="seconds per file (120)")
+    a = ap.parse_args(argv)
+    files = sorted(f for f in a.folder.iterdir() if FILES.search(f.name))
+    if a.only:
+        files = [f for f in files if f.name in set(a.only)]
+    files = files[:a.limit]
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()
+    started, rows = time.perf_counter(), []
+    with open(a.csv, "w", newline="") as fh:
+        out = csv.DictWriter(fh, COLUMNS)
+        out.writeheader()
+        for f in files:
+            row = read_file(f, a.timeout)
+            rows.append(row)
+            out.writerow(row)
+            fh.flush()
+            print(f"{f.name}: {row['read']} ({row['seconds']} s) {row['reason'][:110]}",
+                  file=sys.stderr, flush=True)
+    print(summary(rows, a.folder.name, commit, time.perf_counter() - started))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

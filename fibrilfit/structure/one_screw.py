@@ -7,7 +7,10 @@ layer, the two protofilaments are not copies of each other (different folds, or 
 pair), yet the deposited layers may still be exact helical copies of the layers below them: the
 helical symmetry imposed in the reconstruction. That screw is the fibril's axis. It is accepted
 when its copies of each protofilament's middle layer land on the file's layers within
-MAX_DEVIATION; otherwise the file is refused with what was measured.
+MAX_DEVIATION; otherwise the file is refused with what was measured. Where the layers barely
+twist, the screw's axis may land outside the fibril (2M5N: 127 Å from a core 24 Å across at
+0.7° a layer): then the axis is taken along the screw through the core's centroid, approximate,
+as for one protofilament whose layers are not exact copies (fibril._axis).
 """
 from __future__ import annotations
 
@@ -66,17 +69,31 @@ def axis(paths, cca, cen, along, pair_spread: tuple, chain_names: list, name: st
                                      f"{chain_names[q[0]]}-{chain_names[q[-1]]}; the others "
                                      f"within {others:.2f} Å; at most {MAX_DEVIATION:g} Å "
                                      "read)")
-    exact = dev[worst] <= EXACT and angle >= UNTWISTED
     how = f"within {dev[worst]:.2f} Å CA RMSD of the file's layers"
-    if angle < UNTWISTED:  # an untwisted stack: the step's direction, through the core
-        u = t / np.linalg.norm(t)
-        p = cca.reshape(-1, 3).mean(axis=0)
-        warnings.append(f"the protofilaments are not copies of each other ({spread}) and the "
-                        f"layers do not twist (one translation takes every layer onto the next, "
-                        f"{how}): axis approximate, along it through the core's centroid")
-    else:
-        warnings.append(f"the protofilaments are not copies of each other ({spread}): the axis "
-                        f"is the one screw that takes every layer onto the next, {how}"
-                        + ("" if exact else ": axis approximate"))
+    xyz = cca.reshape(-1, 3)
+    centre = xyz.mean(axis=0)
+    off = float(np.linalg.norm(_across(centre - p, u)))
+    extent = float(np.max(np.linalg.norm(_across(xyz - centre, u), axis=-1)))
+    if angle < UNTWISTED or off > extent:  # no axis to place: the mean step, through the core
+        why = ("the layers do not twist (one translation takes every layer onto the next, "
+               f"{how})" if angle < UNTWISTED else
+               f"the one screw that takes every layer onto the next ({how}, "
+               f"{math.degrees(angle):.2f}° a layer) has its axis {off:.1f} Å from the core's "
+               f"centroid, outside the {extent:.1f} Å that holds every core CA")
+        warnings.append(f"the protofilaments are not copies of each other ({spread}) and {why}: "
+                        "axis approximate, along the layers' mean step through the core's "
+                        "centroid")
+        step = (b - a).mean(axis=0)
+        u = step / np.linalg.norm(step)
+        return (u if u @ along >= 0 else -u), centre, False
+    exact = dev[worst] <= EXACT
+    warnings.append(f"the protofilaments are not copies of each other ({spread}): the axis "
+                    f"is the one screw that takes every layer onto the next, {how}"
+                    + ("" if exact else ": axis approximate"))
     u = u if u @ along >= 0 else -u
     return u, p, exact
+
+
+def _across(v, u):
+    """The part of v (a vector or rows of vectors) across the direction u."""
+    return v - np.multiply.outer(v @ u, u)

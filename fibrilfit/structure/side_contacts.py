@@ -28,8 +28,8 @@ def layers_only(pairs: dict, names: list, name: str, option: str, notes: list | 
     strongest = {i: max(v)[0] for i, v in partners.items()}
     side = {k for k, n in count.items() if n < WEAK * min(strongest[k[0]], strongest[k[1]])}
     kept = {k: s for k, s in pairs.items() if k not in side}
-    left = {i: sorted(((n, j) for n, j in v if tuple(sorted((i, j))) not in side), reverse=True)
-            for i, v in partners.items()}
+    left = {i: sorted(((n, j) for n, j in v if tuple(sorted((i, j))) not in side),
+                      key=lambda nj: (-nj[0], nj[1])) for i, v in partners.items()}
     for i, v in left.items():
         if len(v) > 2:
             listed = ", ".join(f"{names[j]} ({n} residues)" for n, j in v)

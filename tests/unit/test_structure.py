@@ -59,7 +59,8 @@ def measured(S):
 def test_every_data_file_is_read_by_a_test():
     names = {p.name.split(".")[0] for p in DATA.glob("*.pdb.gz")}
     # 6zrr, 7rl4: tests/unit/test_interface_termini.py (tests/data/README.md, issue #50)
-    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4"}
+    # 2m5n, 7m61, 9cz3: tests/unit/test_deposited_reading.py (issue #47 item 7)
+    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4", "2m5n", "7m61", "9cz3"}
 
 
 def test_importing_structure_needs_no_gemmi_and_no_bpy():

@@ -84,31 +84,37 @@ def kind(message: str) -> str:
     return " ".join(head.split())
 
 
-def summary(rows: list[dict], folder: str, commit: str, seconds: float) -> str:
-    n = len(rows)
-    read = [r for r in rows if r["read"] == "read"]
-    refused = [r for r in rows if r["read"] != "read"]
-    lines = [f"`inspect` over {n} files of `{folder}`, measured {datetime.date.today()} at "
-             f"commit {commit}, MODEL_VERSION {MODEL_VERSION}, in {seconds:.0f} s: read "
-             f"{len(read)} ({100 * len(read) / max(1, n):.1f} %), refused {len(refused)}.", "",
-             "<!-- not results: counts of files, no physics -->",
-             "| outcome | reason (numbers dropped) | files | examples |", "|---|---|---|---|"]
-
-    def group(subset, outcome):
+def groups(rows: list[dict]) -> list[tuple]:
+    """[(outcome, kind, files)]: the files read by what their warnings say of the axis, those
+    refused by their reason's kind, largest groups first."""
+    out = []
+    for outcome in ("read", "refused"):
         by = collections.defaultdict(list)
-        for r in subset:
+        for r in rows:
+            if (r["read"] == "read") != (outcome == "read"):
+                continue
             parts = [r["reason"]]
-            if outcome == "read":  # a file read is grouped by what its warnings say of its axis
+            if outcome == "read":
                 parts = [p for p in r["reason"].split("; ") if AXIS_NOTE.search(p)] or \
                         ["one common axis"]
             for k in dict.fromkeys(kind(p) for p in parts):
                 by[k].append(r["file"])
-        for k, files in sorted(by.items(), key=lambda kv: (-len(kv[1]), kv[0])):
-            names = ", ".join(f.split(".")[0].upper() for f in files[:6])
-            lines.append(f"| {outcome} | {k} | {len(files)} | {names}"
-                         f"{', …' if len(files) > 6 else ''} |")
-    group(read, "read")
-    group(refused, "refused")
+        out += [(outcome, k, files) for k, files in sorted(by.items(),
+                                                           key=lambda kv: (-len(kv[1]), kv[0]))]
+    return out
+
+
+def summary(rows: list[dict], folder: str, commit: str, seconds: float) -> str:
+    n = len(rows)
+    read = sum(r["read"] == "read" for r in rows)
+    lines = [f"`inspect` over {n} files of `{folder}`, measured {datetime.date.today()} at "
+             f"commit {commit}, MODEL_VERSION {MODEL_VERSION}, in {seconds:.0f} s: read "
+             f"{read} ({100 * read / max(1, n):.1f} %), refused {n - read}.", "",
+             "| outcome | reason (numbers dropped) | files | examples |", "|---|---|---|---|"]
+    for outcome, k, files in groups(rows):
+        names = ", ".join(f.split(".")[0].upper() for f in files[:6])
+        lines.append(f"| {outcome} | {k} | {len(files)} | {names}"
+                     f"{', …' if len(files) > 6 else ''} |")
     return "\n".join(lines)
 
 
@@ -124,8 +130,12 @@ def main(argv=None) -> int:
     if a.only:
         files = [f for f in files if f.name in set(a.only)]
     files = files[:a.limit]
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
+    git = ["git", "-C", str(ROOT)]
+    commit = subprocess.run(git + ["rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    if subprocess.run(git + ["status", "--porcelain", "fibrilfit", "tools"], capture_output=True,
+                      text=True).stdout.strip():
+        commit += " (with uncommitted changes)"
     started, rows = time.perf_counter(), []
     with open(a.csv, "w", newline="") as fh:
         out = csv.DictWriter(fh, COLUMNS)

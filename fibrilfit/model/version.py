@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7e4a9bafec9baa055db58403786a1988f7091ca11c6d292bbf92379c4330b137"
+MODEL_SOURCES_SHA256 = "c85f3d7abcda1ed76ebf4aed54d8a4166fe44c0979458ef7985943b3506fdd55"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -8,7 +8,7 @@ protofilament, the protofilaments and the core's residues. Writes a CSV (one row
 prints a Markdown summary (date, commit, MODEL_VERSION, the reasons grouped with their counts).
 
     nice -n 10 .venv/bin/python tools/read_survey.py FOLDER --csv out.csv [--limit N]
-        [--only NAME ...] [--timeout S]
+        [--only NAME ...] [--timeout S] [--jobs J]
 
 (the venv's fibrilfit; a worktree's with PYTHONPATH=.)
 """
@@ -18,6 +18,8 @@ import argparse
 import collections
 import csv
 import datetime
+import functools
+import multiprocessing
 import pathlib
 import re
 import signal
@@ -125,6 +127,8 @@ def main(argv=None) -> int:
     ap.add_argument("--limit", type=int, default=None, help="the first N files (sorted)")
     ap.add_argument("--only", nargs="*", default=None, help="these file names only")
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per file (120)")
+    ap.add_argument("--jobs", type=int, default=1, help="files read at once, each in its own "
+                    "process (1)")
     a = ap.parse_args(argv)
     files = sorted(f for f in a.folder.iterdir() if FILES.search(f.name))
     if a.only:
@@ -137,11 +141,11 @@ def main(argv=None) -> int:
                       text=True).stdout.strip():
         commit += " (with uncommitted changes)"
     started, rows = time.perf_counter(), []
-    with open(a.csv, "w", newline="") as fh:
+    with open(a.csv, "w", newline="") as fh, multiprocessing.Pool(a.jobs) as pool:
         out = csv.DictWriter(fh, COLUMNS)
         out.writeheader()
-        for f in files:
-            row = read_file(f, a.timeout)
+        read = functools.partial(read_file, timeout=a.timeout)
+        for f, row in zip(files, pool.imap(read, files) if a.jobs > 1 else map(read, files)):
             rows.append(row)
             out.writerow(row)
             fh.flush()

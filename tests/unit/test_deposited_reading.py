@@ -6,6 +6,7 @@ several kinds; and tools/read_survey.py. Files: tests/data/README.md "Reading th
 import csv
 import importlib.util
 import math
+import pathlib
 import re
 import shutil
 import types
@@ -21,6 +22,8 @@ from fibrilfit.structure.errors import StructureError
 gemmi = pytest.importorskip("gemmi")
 DATA = ROOT / "tests" / "data"
 PEPTIDE, NOT_COPIES, MISSES = (str(DATA / f"{n}.pdb.gz") for n in ("2m5n", "7m61", "9cz3"))
+
+PAGE, SURVEY = ROOT / "docs" / "guide" / "structures.md", ROOT / "docs" / "read_survey.csv"
 
 spec = importlib.util.spec_from_file_location("read_survey", ROOT / "tools" / "read_survey.py")
 read_survey = importlib.util.module_from_spec(spec)
@@ -148,3 +151,27 @@ def test_the_read_survey_tool_writes_each_file_and_groups_the_reasons(tmp_path, 
     assert "read 2 (66.7 %), refused 1" in printed
     assert re.search(r"\| refused \| the protofilaments share no common axis \| 1 \| 9CZ3 \|",
                      printed)
+
+
+def test_the_read_survey_page_agrees_with_its_csv_and_todays_code():
+    """docs/guide/structures.md#read-survey: its counts and its table are those of
+    docs/read_survey.csv (grouped as the tool groups them), and today's `inspect` reads the
+    three files copied here (2M5N, 7M61, 9CZ3: the set's own bytes) as that CSV says, with the
+    same reason, chains, layers, protofilaments and core."""
+    text = PAGE.read_text()
+    start = text.index("{#read-survey}")
+    section = text[start:text.index("\n### ", start)]
+    rows = list(csv.DictReader(open(SURVEY)))
+    n, read = len(rows), sum(r["read"] == "read" for r in rows)
+    assert f"`inspect` over {n} files" in section
+    assert f"read {read} ({100 * read / n:.1f} %), refused {n - read}" in section
+    table = [(o, k, int(c)) for o, k, c in
+             re.findall(r"^\| (read|refused) \| (.+?) \| (\d+) \|", section, re.M)]
+    assert table == [(o, k, len(files)) for o, k, files in read_survey.groups(rows)]
+    for path in (PEPTIDE, NOT_COPIES, MISSES):
+        name = pathlib.Path(path).name.removesuffix(".gz")
+        page = next(r for r in rows if r["file"] == name)
+        today = {k: str(v).replace(".pdb.gz", ".pdb")
+                 for k, v in read_survey.read_file(pathlib.Path(path), 120).items()}
+        assert {k: today[k] for k in read_survey.COLUMNS if k not in ("file", "seconds")} == \
+               {k: page[k] for k in read_survey.COLUMNS if k not in ("file", "seconds")}

@@ -12,7 +12,8 @@ from functools import reduce
 import numpy as np
 
 from ..geom import rigid as G
-from . import exit as X, outline as O, reading, solenoid as S
+from . import (chain_kinds, exit as X, one_screw, outline as O, reading, side_contacts,
+               solenoid as S)
 from .errors import StructureError
 
 STACK = (4.2, 5.6)  # Å: a residue is stacked when its CA sits this far over the same residue
@@ -134,14 +135,13 @@ def _in_core(numbers, segments) -> np.ndarray:
     return np.logical_or.reduce([(numbers >= a) & (numbers <= b) for a, b in segments])
 
 
-def _stacking(chains, name, option, window=STACK):
+def _stacking(chains, name, option, window=STACK, notes=None):
     """Common residues, their CA (chains, residues, 3), the stacked residues of each stacking
     pair of chains (the same residue's CAs `window` Å apart), and the protofilaments as paths
     of chain indices."""
     common = reduce(np.intersect1d, [c.residues for c in chains])
-    if len(common) < MIN_STACKED:
-        raise StructureError(option, f"{name}: the chains share fewer than {MIN_STACKED} "
-                                     "residues: the layers do not stack")
+    if len(common) < MIN_STACKED:  # fewer than MIN_STACKED: which kinds of chain, if several
+        raise StructureError(option, f"{name}: {chain_kinds.why(chains, len(common))}")
     ca = np.array([c.ca_of(common) for c in chains])
     pairs = {}
     for i in range(len(chains)):
@@ -149,6 +149,7 @@ def _stacking(chains, name, option, window=STACK):
             s = _stacked(ca[i], ca[j], window)
             if s.sum() >= max(MIN_STACKED, 0.1 * len(common)):
                 pairs[(i, j)] = s
+    pairs = side_contacts.layers_only(pairs, [c.name for c in chains], name, option, notes)
     return chains, common, ca, pairs, _paths(len(chains), pairs, option)
 
 
@@ -173,11 +174,11 @@ def longest_stack(loaded) -> int:
 
 def measure(path, *, terminus: str = "C", anchor_residue: int | None = None,
             option: str = "--fibril") -> FibrilGeometry:
-    loaded = reading.load(path, option)
+    loaded = reading.load(path, option, peptides=True)
     name = loaded.path.name
     chains, paths, segments, cca, cen, rungs, core_numbers = _stacked_core(loaded, name, option)
     notes, warnings = list(loaded.notes), []
-    u, p, exact = _axis(paths, cca, cen, name, option, warnings)
+    u, p, exact = _axis(paths, cca, cen, name, option, warnings, [c.name for c in chains])
     # order every protofilament along the axis; protofilament 0 holds the lowest layer
     height = (cen - p) @ u
     paths = [sorted(q, key=lambda i: height[i]) for q in paths]
@@ -252,7 +253,8 @@ def _stacked_core(loaded, name: str, option: str) -> tuple:
     if len(loaded.chains) < 2 and not reading.expand_symmetry(loaded):
         raise StructureError(option, f"{name}: one layer (chain) and no symmetry operators: "
                                      "give --rise and --twist instead")
-    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+    chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option,
+                                                 notes=loaded.notes)
     rungs, solenoid = 1, None
     if max(len(q) for q in paths) < 2:  # no two chains stack: a solenoid, or a symmetry's layers
         solenoid = _solenoid(loaded.chains, name, option)
@@ -262,7 +264,8 @@ def _stacked_core(loaded, name: str, option: str) -> tuple:
                                          "β-solenoid's rungs: the layers do not stack (fewer "
                                          "than 2 layers): give --rise and --twist")
         if solenoid is None:
-            chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option)
+            chains, common, ca, pairs, paths = _stacking(loaded.chains, name, option,
+                                                 notes=loaded.notes)
             if max(len(q) for q in paths) < 2:
                 solenoid = _solenoid(loaded.chains, name, option)
                 if solenoid is None:
@@ -285,9 +288,10 @@ def _stacked_core(loaded, name: str, option: str) -> tuple:
     return chains, paths, segments, cca, cca.mean(axis=1), rungs, common[in_core]
 
 
-def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
+def _axis(paths, cca, cen, name: str, option: str, warnings: list, names=()) -> tuple:
     """The helical axis: its direction u (pointing up the file's dominant axis), a point p on
-    it, and whether it is exact (a screw of the layers) or only approximate (warned)."""
+    it, and whether it is exact (a screw of the layers) or only approximate (warned). When the
+    protofilament pairs' axes disagree, the one screw of every layer (one_screw.py)."""
     first = paths[0]
     along = cen[first[-1]] - cen[first[0]]
     exact = True
@@ -306,10 +310,9 @@ def _axis(paths, cca, cen, name: str, option: str, warnings: list) -> tuple:
         p = np.mean(on_plane, axis=0)
         spread = max(math.degrees(math.acos(min(1.0, d @ u))) for d in dirs)
         off = max(np.linalg.norm(q - p) for q in on_plane)
-        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:
-            raise StructureError(option, f"{name}: the protofilaments share no common axis (the "
-                                         f"layer pairs' axes differ by up to {spread:.1f}° and "
-                                         f"{off:.1f} Å)")
+        if spread > MAX_AXIS_SPREAD[0] or off > MAX_AXIS_SPREAD[1]:  # not copies of each other
+            u, p, exact = one_screw.axis(paths, cca, cen, along, (spread, off), list(names),
+                                         name, option, warnings)
     else:
         a = np.concatenate([cca[i] for i in first[:-1]])
         b = np.concatenate([cca[i] for i in first[1:]])
@@ -449,7 +452,7 @@ def layer_frame(geometry: FibrilGeometry) -> tuple[np.ndarray, np.ndarray]:
 def reference_chains(path, geometry: FibrilGeometry, option: str = "--fibril") -> list:
     """Each protofilament's reference chain (reading.ChainAtoms, file coordinates), as `measure`
     chose it (the chains of a one-chain file built from its symmetry as `measure` built them)."""
-    loaded = reading.load(path, option)
+    loaded = reading.load(path, option, peptides=True)
     chains = _stacked_core(loaded, loaded.path.name, option)[0]
     by_name = {c.name: c for c in chains}
     return [by_name[a["chain"]] for a in geometry.anchors]

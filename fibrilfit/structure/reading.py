@@ -15,6 +15,12 @@ from .errors import StructureError
 
 SUFFIXES = (".pdb", ".ent", ".cif", ".mmcif", ".mcif")
 MIN_CHAIN_RESIDUES = 20  # shorter chains (peptides, unidentified densities) are ignored
+# a fibril file with no chain of MIN_CHAIN_RESIDUES is read as a short-peptide fibril: chains of
+# at least 6 residues, the shortest segments that form amyloid cross-β spines on their own (the
+# six-residue steric zippers, Sawaya et al. 2007, Nature 447:453; e.g. 9CZ3's 6-residue chains).
+# Its chains must still stack as layers (fibril.py) to be read as a fibril
+# (docs/guide/structures.md#read-survey).
+MIN_PEPTIDE_RESIDUES = 6
 
 
 @dataclass
@@ -50,6 +56,7 @@ class Loaded:
     models: int  # models in the file (an NMR ensemble has several; model 1 is used)
     notes: list = field(default_factory=list)
     structure: object = None  # the gemmi.Structure (model 1 kept), for symmetry expansion
+    min_residues: int = MIN_CHAIN_RESIDUES  # the shortest chain kept (also for symmetry copies)
 
 
 def sha256(path: pathlib.Path) -> str:
@@ -85,8 +92,10 @@ def check_path(path, option: str) -> pathlib.Path:
     return path
 
 
-def load(path, option: str = "--fibril") -> Loaded:
-    """Model 1 of the file, hydrogens, waters and ligands removed, protein chains only."""
+def load(path, option: str = "--fibril", *, peptides: bool = False) -> Loaded:
+    """Model 1 of the file, hydrogens, waters and ligands removed, protein chains only (of at
+    least MIN_CHAIN_RESIDUES; with `peptides`, a fibril's, when no chain is that long, of at
+    least MIN_PEPTIDE_RESIDUES)."""
     path = check_path(path, option)
     gemmi = _gemmi(option)
     try:
@@ -104,15 +113,28 @@ def load(path, option: str = "--fibril") -> Loaded:
     st.setup_entities()
     st.remove_hydrogens()
     st.remove_ligands_and_waters()
-    chains = chains_of(st[0])
+    least = MIN_PEPTIDE_RESIDUES if peptides else MIN_CHAIN_RESIDUES
+    found = chains_of(st[0], least)
+    chains = [c for c in found if len(c.residues) >= MIN_CHAIN_RESIDUES]
+    shortest = MIN_CHAIN_RESIDUES
+    if found and not chains:  # a short-peptide fibril
+        chains, shortest = found, least
+        notes.append(f"no chain of {MIN_CHAIN_RESIDUES} residues or more: read as a "
+                     f"short-peptide fibril (chains of {least} residues or more)")
+    elif len(chains) < len(found):  # the long chains are the fibril
+        short = [c.name for c in found if len(c.residues) < MIN_CHAIN_RESIDUES]
+        notes.append(f"{len(short)} chains of {least}-{MIN_CHAIN_RESIDUES - 1} residues not "
+                     f"read ({', '.join(short[:4])}{', …' if len(short) > 4 else ''}): the "
+                     f"fibril is read from its chains of {MIN_CHAIN_RESIDUES} residues or more")
     if not chains:
-        raise StructureError(option, f"{path.name}: no protein chain of at least "
-                                     f"{MIN_CHAIN_RESIDUES} residues")
-    return Loaded(path, sha256(path), chains, models, notes, st)
+        raise StructureError(option, f"{path.name}: no protein chain of at least {least} "
+                                     "residues")
+    return Loaded(path, sha256(path), chains, models, notes, st, shortest)
 
 
-def chains_of(model) -> list:
-    """The protein chains of a gemmi.Model as ChainAtoms (short or unidentified chains dropped)."""
+def chains_of(model, min_residues: int = MIN_CHAIN_RESIDUES) -> list:
+    """The protein chains of a gemmi.Model as ChainAtoms (chains of fewer than `min_residues`
+    residues, and unidentified ones, dropped)."""
     import gemmi
     out = []
     for chain in model:
@@ -142,7 +164,7 @@ def chains_of(model) -> list:
                 elements.append(a.element.name)
                 resnames.append(res.name)
                 bfac.append(a.b_iso)
-        if len(residues) < MIN_CHAIN_RESIDUES:
+        if len(residues) < min_residues:
             continue
         order = np.argsort(residues, kind="stable")
         out.append(ChainAtoms(chain.name, np.asarray(residues)[order], [names[i] for i in order],
@@ -165,7 +187,7 @@ def expand_symmetry(loaded: Loaded) -> bool:
         if n_ops < 2:
             continue
         model = gemmi.make_assembly(assembly, st[0], gemmi.HowToNameCopiedChain.Short)
-        chains = chains_of(model)
+        chains = chains_of(model, loaded.min_residues)
         if len(chains) > 1:
             loaded.chains = chains
             loaded.notes.append(f"one chain in the file: {len(chains)} layers built from its "
@@ -174,7 +196,7 @@ def expand_symmetry(loaded: Loaded) -> bool:
     if len(st.ncs) > 1 and not all(op.given for op in st.ncs):
         copy = st.clone()
         copy.expand_ncs(gemmi.HowToNameCopiedChain.Short)
-        chains = chains_of(copy[0])
+        chains = chains_of(copy[0], loaded.min_residues)
         if len(chains) > 1:
             loaded.chains = chains
             loaded.notes.append(f"one chain in the file: {len(chains)} layers built from its "

@@ -35,7 +35,7 @@ def own_termini(path, geometry, residue_radius: float = P.DEFAULTS.residue_radiu
     every protofilament's atoms by the exit's rule (structure/exit.way_out: found, length, the
     residues it spends at the model's spacing)
     and the model's anchor for it (where that way leaves the outline, one bead out)."""
-    loaded = reading.load(path, "--fibril")
+    loaded = reading.load(path, "--fibril", peptides=True)
     chains = F._stacked_core(loaded, loaded.path.name, "--fibril")[0]
     by_name = {c.name: c for c in chains}
     origin, frame = F.layer_frame(geometry)

@@ -18,7 +18,7 @@ def layer_frame(fibril: FibrilGeometry) -> tuple:
 def ca_trace(path, fibril: FibrilGeometry, option: str = "--fibril") -> list:
     """[(chain, residue numbers, CA (n, 3) in the layer frame)] for every layer of the file,
     bottom to top per protofilament (symmetry copies built as for the measurement)."""
-    loaded = reading.load(path, option)
+    loaded = reading.load(path, option, peptides=True)
     if len(loaded.chains) < 2:
         reading.expand_symmetry(loaded)
     origin, frame = layer_frame(fibril)

@@ -60,7 +60,10 @@ def test_every_data_file_is_read_by_a_test():
     names = {p.name.split(".")[0] for p in DATA.glob("*.pdb.gz")}
     # 6zrr, 7rl4: tests/unit/test_interface_termini.py (tests/data/README.md, issue #50)
     # 2kj3, 9xbo: tests/unit/test_fibril_solenoid_and_pieces.py (issue #47)
-    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4", "2kj3", "9xbo"}
+    # 2m5n, 7m61, 9cz3: tests/unit/test_deposited_reading.py (issue #47 item 7)
+    # 5oqv_ae: tests/unit/test_exit_path.py (issue #50: the exit rule from both copies)
+    assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4", "2kj3", "9xbo", "2m5n",
+                                    "7m61", "9cz3", "5oqv_ae"}
 
 
 def test_importing_structure_needs_no_gemmi_and_no_bpy():

@@ -193,3 +193,18 @@ def test_radial_density_of_one_sphere():
     shells = math.pi * (edges[1:] ** 2 - edges[:-1] ** 2) * 10.0
     assert (phi * shells).sum() == pytest.approx(4 / 3 * math.pi * 125)
     assert phi[(edges[1:] <= 15.0) | (edges[:-1] >= 25.0)].sum() == 0.0
+
+
+def test_bond_angle_of_hard_beads():
+    """Three beads of radius b/2 on bonds b (touching neighbours, the linker's own geometry):
+    only the outer two exclude each other, |b1 + b2| >= b, so the bond angle's cosine is
+    uniform on [-1/2, 1]."""
+    bond = 3.5
+    chain = system.HardCore(np.full(3, bond / 2), np.full(2, bond), domains=(2,))
+    ens = sampler.sample(chain, straight(2, bond), seed=9, replicas=3000, sweeps=30, thin=30,
+                         burn_in=20)
+    x = ens.final[:, 0]
+    b1, b2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 1]
+    cos = (b1 * b2).sum(-1) / bond ** 2
+    assert cos.min() >= -0.5 - 1e-9
+    assert stats.kstest(cos, stats.uniform(-0.5, 1.5).cdf).pvalue > ALPHA

@@ -86,3 +86,34 @@ def radial_density(domains: np.ndarray, radius: float, length: float, edges: np.
     volume = counts * (4.0 / 3.0 * math.pi * radius ** 3 / len(ball))
     shells = math.pi * (edges[1:] ** 2 - edges[:-1] ** 2) * length
     return volume / shells / layouts
+
+
+RADIAL_BIN = 2.0  # Å: the radial density's shells
+
+
+def report(ens, p, scored: np.ndarray) -> dict:
+    """The JSON-ready account of an ensemble of Params p's model (sphere domains): how it was
+    sampled, the outer diameter's distribution over kept layouts (scored chains' domains: bool
+    per chain), its autocorrelation time, effective sample size and two halves (the first and
+    second half of the replicas), and the radial density of domain mass."""
+    d = ens.domains[:, :, np.asarray(scored, bool)]  # (S, R, C', D, 3)
+    d = d.reshape(*d.shape[:2], -1, 3)
+    widths = outer_diameters(d, p.widest_diameter / 2.0)
+    tau = integrated_time(widths)
+    half = widths.shape[1] // 2
+    edges = np.arange(0.0, float(np.hypot(d[..., 0], d[..., 1]).max()) + p.widest_diameter
+                      + RADIAL_BIN, RADIAL_BIN)
+    length = int(np.count_nonzero(scored)) / p.protofilaments * p.rise
+    phi = radial_density(d, p.widest_diameter / 2.0, length, edges)
+    return {
+        "method": "hard-core Monte Carlo, pivot and crankshaft moves (docs/model/ensemble.md)",
+        "seed": ens.seed, "replicas": int(ens.final.shape[0]), "sweeps": ens.sweeps,
+        "thin": ens.thin, "burn_in_sweeps": ens.burn_in_sweeps,
+        "acceptance": ens.acceptance, "seconds": round(ens.seconds, 2),
+        "outer_diameter": {**summary(widths, tau), "tau_samples": round(tau, 2),
+                           **({"halves": halves(widths[:, :half], widths[:, half:])}
+                              if half else {})},
+        "radial_density": {"r": (0.5 * (edges[1:] + edges[:-1])).round(2).tolist(),
+                           "volume_fraction": phi.round(5).tolist(),
+                           "mass_density_da_per_a3": (phi * PROTEIN_DENSITY).round(5).tolist()},
+    }

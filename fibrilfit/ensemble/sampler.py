@@ -182,7 +182,8 @@ class Sampler:
 def sample(system: HardCore, start: np.ndarray, *, seed: int, replicas: int = 32,
            sweeps: int = 200, thin: int = 1, burn_in: int = 50, max_repair: int = 2000,
            ) -> Ensemble:
-    """Sample `system` from `start` (C, n, 3) (bonds made rest length first): `replicas` chains
+    """Sample `system` from `start` (C, n, 3), or K starts (K, C, n, 3) taken in turn by the
+    replicas (bonds made rest length first): `replicas` Markov chains
     of `burn_in` sweeps (Δ tuned; longer while any replica still overlaps, up to `max_repair`),
     then `sweeps` sweeps with Δ fixed, keeping the domain centres every `thin` sweeps. A sweep:
     C·(n-1) moves per replica. Raises ValueError when a replica still overlaps after
@@ -190,7 +191,8 @@ def sample(system: HardCore, start: np.ndarray, *, seed: int, replicas: int = 32
     t0 = time.perf_counter()
     rng = np.random.default_rng([SEED_SALT, int(seed)])
     start = system.with_rest_bonds(np.asarray(start, dtype=float))
-    x = np.broadcast_to(start, (replicas, *start.shape)).copy()
+    starts = start[None] if start.ndim == 3 else start
+    x = starts[np.arange(replicas) % len(starts)].copy()  # replica r starts from r mod K
     k = Sampler(system, x, rng)
     per_sweep = k.C * (k.n - 1)
     dirty = k.total_violation() > 0

@@ -92,7 +92,8 @@ def main() -> None:
                                for k in range(a.starts)]
         print(f"half {h}: Bullet {r['bullet_seconds']} s (outer diameters "
               f"{r['bullet_outer_diameter']} Å, {r['bullet_answer']}), sampling {r['seconds']} s "
-              f"(per start: {r['per_start_mean']} Å), burn-in {r['burn_in_sweeps']} sweeps, acceptance {r['acceptance']['overall']}, "
+              f"(per start: {r['per_start_mean']} Å), burn-in {r['burn_in_sweeps']} sweeps, "
+              f"acceptance {r['acceptance']['overall']}, "
               f"peak {r['peak_rss_mb']} MB; outer diameter {od['mean']} Å "
               f"[{od['interval_95'][0]}, {od['interval_95'][1]}], τ {od['tau_samples']} sweeps, "
               f"ESS {od['ess']}")

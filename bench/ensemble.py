@@ -25,6 +25,14 @@ import time
 import numpy as np
 
 
+def core_of(p):
+    """The core's prism over every layer (the map's window is one helical turn, longer than
+    the model): the model's CorePrism with no end."""
+    import dataclasses
+    from fibrilfit.ensemble import system
+    return dataclasses.replace(system.from_params(p).obstacle, layers=None)
+
+
 def half(h: int, starts: int, replicas: int, sweeps: int, burn_in: int, out: str) -> None:
     """Half h: Bullet's relaxed default model at seeds h·starts .. (h+1)·starts - 1, then their
     ensemble (the replicas taking the starts in turn, seed h)."""
@@ -32,7 +40,7 @@ def half(h: int, starts: int, replicas: int, sweeps: int, burn_in: int, out: str
     from fibrilfit import pipeline
     from fibrilfit.analysis import scored_chains
     from fibrilfit.analysis.verdict import chain_positions
-    from fibrilfit.ensemble import observables, sampler, system
+    from fibrilfit.ensemble import density, observables, sampler, system
     from fibrilfit.model import params as P
 
     t = time.perf_counter()
@@ -49,6 +57,13 @@ def half(h: int, starts: int, replicas: int, sweeps: int, burn_in: int, out: str
     rep = observables.report(ens, p, scored_chains(p))
     widths = observables.outer_diameters(ens.domains[..., 0, :], p.globule_radius)
     np.save(out + ".npy", widths)
+    np.save(out + ".centres.npy", ens.domains[..., 0, :])
+    t = time.perf_counter()
+    dmap = density.density_map(p, ens.domains[..., 0, :], p.globule_radius,
+                               core=core_of(p))
+    rep.update(map_width=round(density.width(dmap), 2),
+               map_seconds=round(time.perf_counter() - t, 2),
+               cpu_seconds=round(time.process_time(), 1))
     rep.update(bullet_seconds=round(bullet, 2), bullet_outer_diameter=bullet_widths,
                bullet_answer=answers,
                peak_rss_mb=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1))
@@ -59,9 +74,11 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--starts", type=int, default=4, help="Bullet layouts per half")
     ap.add_argument("--replicas", type=int, default=16)
-    ap.add_argument("--sweeps", type=int, default=150)
+    ap.add_argument("--sweeps", type=int, default=100)
     ap.add_argument("--burn-in", type=int, default=30)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--out-dir", default="out/bench_ensemble",
+                    help="the pooled map (map.mrc) and its projection (projection.png)")
     ap.add_argument("--half", type=int, default=None, help=argparse.SUPPRESS)
     ap.add_argument("--out", default=None, help=argparse.SUPPRESS)
     a = ap.parse_args()
@@ -77,12 +94,36 @@ def main() -> None:
     if any(pr.wait() for pr in procs):
         sys.exit("a half failed")
     wall = time.perf_counter() - t
-    from fibrilfit.ensemble import observables
+    from fibrilfit.ensemble import density, observables
+    from fibrilfit.model import params as P
     reps = [json.loads(pathlib.Path(o).read_text()) for o in outs]
+    p = P.DEFAULTS
+    t = time.perf_counter()
+    dmap = density.density_map(p, np.concatenate([np.load(o + ".centres.npy") for o in outs],
+                                                 axis=1), p.globule_radius, core=core_of(p))
+    map_seconds = time.perf_counter() - t
+    out_dir = pathlib.Path(a.out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    density.write_mrc(out_dir / "map.mrc", dmap)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    image = density.projection(dmap)
+    x0, z0 = dmap.origin[0], dmap.origin[2]
+    fig, ax = plt.subplots(figsize=(3, 8))
+    ax.imshow(image, origin="lower", cmap="gray_r", extent=(x0, x0 + image.shape[1] * dmap.voxel,
+                                                           z0, z0 + image.shape[0] * dmap.voxel))
+    ax.set_xlabel("x (Å)")
+    ax.set_ylabel("fibril axis z (Å)")
+    ax.set_title(f"width {density.width(dmap):.0f} Å", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out_dir / "projection.png", dpi=100)
     widths = [np.load(o + ".npy") for o in outs]
     both = np.concatenate(widths, axis=1)
     tau = max(observables.integrated_time(w) for w in widths)
     summary = {"wall_seconds": round(wall, 1), "halves": observables.halves(*widths),
+               "map_width": round(density.width(dmap), 2), "map_seconds": round(map_seconds, 2),
+               "map_width_halves": [r["map_width"] for r in reps],
                "outer_diameter": observables.summary(both, tau),
                "args": vars(a), "runs": reps}
     for h, r in enumerate(reps):
@@ -98,6 +139,8 @@ def main() -> None:
               f"[{od['interval_95'][0]}, {od['interval_95'][1]}], τ {od['tau_samples']} sweeps, "
               f"ESS {od['ess']}")
     print(f"both: {summary['outer_diameter']}; halves {summary['halves']}; wall {wall:.1f} s")
+    print(f"map: width {summary['map_width']} Å (halves {summary['map_width_halves']}), "
+          f"{map_seconds:.1f} s; CPU per half {[r['cpu_seconds'] for r in reps]} s")
     if a.json:
         pathlib.Path(a.json).parent.mkdir(parents=True, exist_ok=True)
         pathlib.Path(a.json).write_text(json.dumps(summary, indent=1))

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy import special, stats
 
-from fibrilfit.ensemble import observables, sampler, system
+from fibrilfit.ensemble import density, observables, sampler, system
 from fibrilfit.model import helix, params as P, start_layout
 from fibrilfit.model.param_spec import ParamError
 
@@ -208,3 +208,37 @@ def test_bond_angle_of_hard_beads():
     cos = (b1 * b2).sum(-1) / bond ** 2
     assert cos.min() >= -0.5 - 1e-9
     assert stats.kstest(cos, stats.uniform(-0.5, 1.5).cdf).pvalue > ALPHA
+
+
+def test_density_map_keeps_the_domains_volume_and_writes_its_header(tmp_path):
+    """Centres of one domain per layer (a helix, each layer's own twist): the map of a 12-layer
+    window holds one sphere's volume per rise of its length (to 1 %: the voxelised sphere, the
+    window's ends on the voxel grid), and the MRC file reads back with its voxel size and
+    origin."""
+    mrcfile = pytest.importorskip("mrcfile")
+    p = P.DEFAULTS
+    angle, height = helix.layer_turn(p, np.arange(40, dtype=float))
+    xy = helix.turn_xy(np.full(40, 40.0), np.zeros(40), angle)
+    centres = np.column_stack([xy, height])[None]  # one layout, one domain per layer
+    dmap = density.density_map(p, centres, 15.0, voxel=2.0, layers=12)
+    length = dmap.data.shape[0] * 2.0
+    assert length == pytest.approx(12 * p.rise, abs=2 * 2.0)
+    assert dmap.data.sum() * 8.0 == pytest.approx(length / p.rise * 4 / 3 * math.pi * 15 ** 3,
+                                                  rel=0.01)
+    density.write_mrc(tmp_path / "m.mrc", dmap)
+    with mrcfile.open(tmp_path / "m.mrc") as f:
+        assert float(f.voxel_size.x) == pytest.approx(2.0)
+        assert float(f.header.origin.x) == pytest.approx(dmap.origin[0])
+        assert float(f.header.origin.z) == pytest.approx(dmap.origin[2])
+        assert f.data.shape == dmap.data.shape
+
+
+def test_width_of_a_solid_cylinder():
+    """A solid cylinder of radius a projects to 2·sqrt(a² - x²): at 10 % of its peak the width
+    is 2a·sqrt(0.99)."""
+    voxel, a = 0.5, 30.0
+    x = (np.arange(160) + 0.5) * voxel - 40.0
+    inside = (x[None, :, None] ** 2 + x[None, None, :] ** 2) <= a * a
+    dmap = density.DensityMap(np.repeat(inside, 4, axis=0).astype(np.float32), voxel,
+                              (-40.0, -40.0, 0.0), 1)
+    assert density.width(dmap) == pytest.approx(2 * a * math.sqrt(0.99), abs=voxel)

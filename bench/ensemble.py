@@ -1,8 +1,8 @@
 """The ensemble's cost on the default model (issue #48's target): an ensemble good enough for a
 width, its two halves agreeing within 5 %, of the default 20-layer model in <= 60 s on two cores.
 
-    nice -n 10 .venv/bin/python bench/ensemble.py [--replicas 16] [--sweeps 150] [--burn-in 30]
-                                                 [--json out/bench_ensemble.json]
+    nice -n 10 .venv/bin/python bench/ensemble.py [--starts 4] [--replicas 16] [--sweeps 100]
+                                                 [--burn-in 30] [--json out/bench_ensemble.json]
 
 Each half is its own process (one core each, both at once): it relaxes the default model with
 Bullet at `starts` seeds of its own (half 0: 0 .. K-1, half 1: K .. 2K-1), then samples from those

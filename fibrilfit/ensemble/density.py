@@ -83,7 +83,9 @@ def density_map(p, centres: np.ndarray, radius: float, *, voxel: float = 3.0,
     hist, _ = np.histogramdd(pts[:, ::-1], bins=(edges_z, edges_xy, edges_xy))
     ball = _ball(radius, voxel)
     shape = [a + b - 1 for a, b in zip(hist.shape, ball.shape)]
-    conv = np.fft.irfftn(np.fft.rfftn(hist, shape) * np.fft.rfftn(ball, shape), shape)
+    axes = (0, 1, 2)
+    conv = np.fft.irfftn(np.fft.rfftn(hist, shape, axes) * np.fft.rfftn(ball, shape, axes),
+                         shape, axes)
     h = [b // 2 for b in ball.shape]
     data = conv[h[0]:h[0] + nz, h[1]:h[1] + nxy, h[2]:h[2] + nxy] / slices
     # keep the window's layers only (the pad layers' own centres are cut off at their ends)
@@ -117,7 +119,7 @@ def projection(dmap: DensityMap) -> np.ndarray:
 def width(dmap: DensityMap, fraction: float = WIDTH_FRACTION) -> float:
     """The width (Å) read from the projection: its profile across the axis (averaged along the
     axis) and the distance between its outermost points at `fraction` of the profile's peak,
-    interpolated linearly between voxel centres (docs/model/ensemble.md#width)."""
+    interpolated linearly between voxel centres (docs/model/ensemble.md#density-map)."""
     profile = projection(dmap).mean(axis=0)
     x = dmap.origin[0] + dmap.voxel * (np.arange(profile.size) + 0.5)
     level = fraction * float(profile.max())

@@ -176,6 +176,15 @@ def test_two_independent_halves_agree():
     taus = [observables.integrated_time(w) for w in widths]
     assert min(w.size / t for w, t in zip(widths, taus)) >= 50
     assert observables.halves(*widths)["relative_difference"] < 0.03
+    # the report of one run: its outer diameter is the widths', and its radial density holds
+    # every domain's volume (6 per layout over 6 layers' length)
+    rep = observables.report(runs[0], p, np.ones(p.chains, bool))
+    assert rep["outer_diameter"]["mean"] == pytest.approx(widths[0].mean(), abs=0.01)
+    assert rep["outer_diameter"]["ess"] == pytest.approx(widths[0].size / taus[0], abs=0.1)
+    r = np.asarray(rep["radial_density"]["r"])
+    shells = math.pi * ((r + 1.0) ** 2 - (r - 1.0) ** 2) * 6 * p.rise
+    volume = (np.asarray(rep["radial_density"]["volume_fraction"]) * shells).sum()
+    assert volume == pytest.approx(6 * 4 / 3 * math.pi * 5.0 ** 3, rel=1e-3)
 
 
 def test_what_the_sampler_does_not_model_is_refused():

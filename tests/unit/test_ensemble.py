@@ -146,15 +146,15 @@ def test_core_prism_depth():
     assert core.depth(np.array([[0.0, 0.0, top]]), 2.5)[0] == pytest.approx(0.5)
 
 
-@pytest.mark.parametrize("periodic", [0, 6])
-def test_model_layouts_overlap_nowhere(periodic):
-    """A small model (finite, and a periodic cell with its screw images) from its overlapping rest
-    layout: once burn-in has repaired it, no replica overlaps anywhere (brute force), and every
-    bond keeps its rest length."""
-    p = (P.make_params(periodic=periodic, globule_diameter=10.0) if periodic
-         else P.make_params(layers=6, globule_diameter=10.0))
+@pytest.mark.parametrize("values", [{"layers": 6}, {"periodic": 6},
+                                    {"layers": 4, "protofilaments": 2}])
+def test_model_layouts_overlap_nowhere(values):
+    """A small model (finite, a periodic cell with its screw images, two protofilaments) from
+    its overlapping rest layout: once burn-in has repaired it, no replica overlaps anywhere
+    (brute force), and every bond keeps its rest length."""
+    p = P.make_params(globule_diameter=10.0, **values)
     chain = system.from_params(p)
-    assert bool(chain.images) == bool(periodic)
+    assert bool(chain.images) == ("periodic" in values)
     start = start_layout.rest_positions(p)
     assert _overlaps(chain, start) > 1.0  # the rest layout overlaps: burn-in must repair it
     ens = sampler.sample(chain, start, seed=4, replicas=4, sweeps=10, burn_in=5)

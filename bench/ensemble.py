@@ -78,7 +78,8 @@ def main() -> None:
     ap.add_argument("--burn-in", type=int, default=30)
     ap.add_argument("--json", default=None)
     ap.add_argument("--out-dir", default="out/bench_ensemble",
-                    help="the pooled map (map.mrc) and its projection (projection.png)")
+                    help="the pooled map (map.mrc), its projection (projection.png) and "
+                         "each half's radial density of domain mass (radial_density.png)")
     ap.add_argument("--half", type=int, default=None, help=argparse.SUPPRESS)
     ap.add_argument("--out", default=None, help=argparse.SUPPRESS)
     a = ap.parse_args()
@@ -118,6 +119,17 @@ def main() -> None:
     ax.set_title(f"width {density.width(dmap):.0f} Å", fontsize=9)
     fig.tight_layout()
     fig.savefig(out_dir / "projection.png", dpi=100)
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(5, 3))
+    for h, r in enumerate(reps):
+        rd = r["radial_density"]
+        ax.plot(rd["r"], rd["mass_density_da_per_a3"], label=f"half {h}")
+    ax.set_xlabel("distance from the fibril axis (Å)")
+    ax.set_ylabel("domain mass (Da/Å³)")
+    ax.legend(frameon=False)
+    fig.tight_layout()
+    fig.savefig(out_dir / "radial_density.png", dpi=100)
+    plt.close(fig)
     widths = [np.load(o + ".npy") for o in outs]
     both = np.concatenate(widths, axis=1)
     tau = max(observables.integrated_time(w) for w in widths)

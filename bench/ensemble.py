@@ -64,7 +64,7 @@ def half(h: int, starts: int, replicas: int, sweeps: int, burn_in: int, out: str
     rep.update(map_width=round(density.width(dmap), 2),
                map_seconds=round(time.perf_counter() - t, 2),
                cpu_seconds=round(time.process_time(), 1))
-    rep.update(bullet_seconds=round(bullet, 2), bullet_outer_diameter=bullet_widths,
+    rep.update(repair_sweeps=ens.notes["repair_sweeps"], bullet_seconds=round(bullet, 2), bullet_outer_diameter=bullet_widths,
                bullet_answer=answers,
                peak_rss_mb=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1))
     pathlib.Path(out).write_text(json.dumps(rep))
@@ -145,7 +145,8 @@ def main() -> None:
                                for k in range(a.starts)]
         print(f"half {h}: Bullet {r['bullet_seconds']} s (outer diameters "
               f"{r['bullet_outer_diameter']} Å, {r['bullet_answer']}), sampling {r['seconds']} s "
-              f"(per start: {r['per_start_mean']} Å), burn-in {r['burn_in_sweeps']} sweeps, "
+              f"(per start: {r['per_start_mean']} Å), repair {r['repair_sweeps']} and burn-in "
+              f"{r['burn_in_sweeps']} sweeps in all, "
               f"acceptance {r['acceptance']['overall']}, "
               f"peak {r['peak_rss_mb']} MB; outer diameter {od['mean']} Å "
               f"[{od['interval_95'][0]}, {od['interval_95'][1]}], τ {od['tau_samples']} sweeps, "

@@ -183,11 +183,11 @@ def sample(system: HardCore, start: np.ndarray, *, seed: int, replicas: int = 32
            sweeps: int = 200, thin: int = 1, burn_in: int = 50, max_repair: int = 2000,
            ) -> Ensemble:
     """Sample `system` from `start` (C, n, 3), or K starts (K, C, n, 3) taken in turn by the
-    replicas (bonds made rest length first): `replicas` Markov chains
-    of `burn_in` sweeps (Δ tuned; longer while any replica still overlaps, up to `max_repair`),
-    then `sweeps` sweeps with Δ fixed, keeping the domain centres every `thin` sweeps. A sweep:
-    C·(n-1) moves per replica. Raises ValueError when a replica still overlaps after
-    max_repair sweeps (the start is too far from a valid layout)."""
+    replicas (bonds made rest length first): `replicas` Markov chains, first repaired while any
+    replica overlaps (up to `max_repair` sweeps), then `burn_in` sweeps with no overlap
+    anywhere (Δ tuned throughout), then `sweeps` sweeps with Δ fixed, keeping the domain centres
+    every `thin` sweeps. A sweep: C·(n-1) moves per replica. Raises ValueError when a replica
+    still overlaps after max_repair sweeps (the start is too far from a valid layout)."""
     t0 = time.perf_counter()
     rng = np.random.default_rng([SEED_SALT, int(seed)])
     start = system.with_rest_bonds(np.asarray(start, dtype=float))
@@ -196,17 +196,21 @@ def sample(system: HardCore, start: np.ndarray, *, seed: int, replicas: int = 32
     k = Sampler(system, x, rng)
     per_sweep = k.C * (k.n - 1)
     dirty = k.total_violation() > 0
-    done = 0
-    while done < burn_in or dirty.any():
-        if done >= max_repair:
+    done = clean = repair = 0  # sweeps in all, since every replica overlaps nothing, repairing
+    while clean < burn_in:
+        if repair >= max_repair:
             raise ValueError(f"{int(dirty.sum())} of {replicas} replicas still overlap after "
                              f"{max_repair} sweeps: the start is too far from a valid layout")
+        was_dirty = bool(dirty.any())
         for _ in range(per_sweep):
-            k.step(dirty)
+            k.step(dirty if was_dirty else None)
         done += 1
-        if dirty.any():
+        if was_dirty:
+            repair += 1
             dirty = k.total_violation() > 0
-        if done % 5 == 0 or done == burn_in:
+        else:
+            clean += 1
+        if done % 5 == 0:
             k.tune()
     k.tried[:] = 0
     k.taken[:] = 0
@@ -220,4 +224,4 @@ def sample(system: HardCore, start: np.ndarray, *, seed: int, replicas: int = 32
     acceptance = {"pivot": rates[0].round(3).tolist(), "crankshaft": rates[1].round(3).tolist(),
                   "overall": round(float(k.taken.sum() / max(k.tried.sum(), 1)), 3)}
     return Ensemble(np.asarray(kept), k.x.copy(), int(seed), sweeps, thin, done, acceptance,
-                    k.delta.copy(), time.perf_counter() - t0)
+                    k.delta.copy(), time.perf_counter() - t0, {"repair_sweeps": repair})

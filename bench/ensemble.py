@@ -64,8 +64,8 @@ def half(h: int, starts: int, replicas: int, sweeps: int, burn_in: int, out: str
     rep.update(map_width=round(density.width(dmap), 2),
                map_seconds=round(time.perf_counter() - t, 2),
                cpu_seconds=round(time.process_time(), 1))
-    rep.update(repair_sweeps=ens.notes["repair_sweeps"], bullet_seconds=round(bullet, 2), bullet_outer_diameter=bullet_widths,
-               bullet_answer=answers,
+    rep.update(repair_sweeps=ens.notes["repair_sweeps"], bullet_seconds=round(bullet, 2),
+               bullet_outer_diameter=bullet_widths, bullet_answer=answers,
                peak_rss_mb=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1))
     pathlib.Path(out).write_text(json.dumps(rep))
 

@@ -95,7 +95,7 @@ class Sampler:
         q (R, n, 3) (the whole chain), with every other sphere of the cell and its images, with
         its own chain's members (bonded neighbours excluded) and images, and with the obstacle;
         anchor-anchor pairs excluded (both fixed)."""
-        s, R, n = self.s, self.R, self.n
+        s, n = self.s, self.n
         qr = q[:, rows]  # (R, m, 3)
         ri = s.radii[rows]
         anchor_row = (rows == 0)[None, :, None]

@@ -251,3 +251,12 @@ def test_width_of_a_solid_cylinder():
     dmap = density.DensityMap(np.repeat(inside, 4, axis=0).astype(np.float32), voxel,
                               (-40.0, -40.0, 0.0), 1)
     assert density.width(dmap) == pytest.approx(2 * a * math.sqrt(0.99), abs=voxel)
+
+
+def test_a_seed_gives_the_same_ensemble():
+    """The same seed twice: the same kept layouts, bit for bit; another seed: others."""
+    chain, start = _tethered_pair()
+    runs = [sampler.sample(chain, start, seed=s, replicas=8, sweeps=5, burn_in=5)
+            for s in (3, 3, 4)]
+    assert np.array_equal(runs[0].domains, runs[1].domains)
+    assert not np.array_equal(runs[0].domains, runs[2].domains)

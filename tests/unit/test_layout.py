@@ -8,8 +8,8 @@ from helpers import ROOT
 
 PACKAGE = ROOT / "fibrilfit"
 # The rooms, lowest first: a module may import its own room and the rooms before it.
-ROOMS = ["exits", "files", "plans", "blender_check", "geom", "model", "structure", "builders",
-         "analysis", "pipeline", "exports", "batch", "sweep", "search", "api", "cli", "ui",
+ROOMS = ["exits", "files", "plans", "blender_check", "geom", "model", "ensemble", "structure",
+         "builders", "analysis", "pipeline", "exports", "batch", "sweep", "search", "api", "cli", "ui",
          "__init__", "__main__"]
 
 

@@ -312,17 +312,18 @@ def negative_control():
     return P.make_params(**values)
 
 
-def test_the_negative_control_is_impossible_below_13(negative_control):
+def test_the_negative_control_is_impossible_below_9(negative_control):
     # docs/model/bound.md#bracket and docs/validation.md#negative-control: two protofilaments,
-    # a buried exit of 5 residues; at 12, 86,304 Å³ of GFP balls against 85,023 Å³ of room
+    # a buried exit of 1 residue by the rule (docs/model/buried-terminus.md#rule); at 8,
+    # 86,304 Å³ of GFP balls against 85,399 Å³ of room
     p = negative_control
-    assert (p.protofilaments, p.exit_residues) == (2, 5)
+    assert (p.protofilaments, p.exit_residues) == (2, 1)
     got = B.linker_bound(p)
-    assert got["impossible_below"] == 13
+    assert got["impossible_below"] == 9
     fails = got["fails_below"]
-    assert fails["linker"] == 12 and fails["protofilaments"] == [0, 1]
+    assert fails["linker"] == 8 and fails["protofilaments"] == [0, 1]
     assert fails["needed_A3"] == pytest.approx(86304.2, abs=0.2)
-    assert fails["room_A3"] == pytest.approx(85022.6, abs=1.0)
+    assert fails["room_A3"] == pytest.approx(85399.1, abs=1.0)
 
 
 # ---- a case known by hand ---------------------------------------------------------------------

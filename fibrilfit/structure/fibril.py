@@ -1,6 +1,12 @@
 """Measure a fibril: layers, protofilaments, helical axis, rise and twist, core, outline, anchors.
 
 Everything from the coordinates; chain IDs and file order are never trusted.
+
+Over 400 lines: one pipeline, `measure`, whose steps (stacking, axis, rise and twist,
+protofilaments, reference layer, anchors) hand each other the same arrays; the parts with a
+question of their own are rooms beside it (solenoid.py, one_screw.py, side_contacts.py,
+chain_kinds.py, outline.py, exit.py). Splitting the anchors and the layer frame out is the next
+step (termini.py and atoms.py read them).
 """
 from __future__ import annotations
 

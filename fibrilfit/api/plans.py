@@ -6,7 +6,8 @@ of the rooms that do the work (plans.py has how a plan is declared and checked).
     MinimalLinkerPlan  minimal-linker (the walk for one or more domain diameters)
     LargestFractionPlan largest-fraction (the walk over the decorated count, per diameter and
                        linker)
-    ReportPlan         report (restarts at the linker, the walk, the best layout, the page)
+    ReportPlan         report (restarts at the linker, the walk, the best layout and, with
+                       --ensemble, its ensemble, the page)
     SweepPlan          sweep (a grid of models, the model's values as lists or ranges)
     InspectPlan        inspect (structure files measured, nothing built)
 
@@ -161,6 +162,7 @@ class ReportPlan(_CommandPlan):
     output: BatchOutput = _nested(REPORT_OUTPUT)
     look: RenderLook = _nested(RenderLook())
     executor: ExecutorPlan = _nested(ExecutorPlan())
+    sampling: EnsemblePlan = _nested(EnsemblePlan())
     force: bool = option(False, FORCE_HELP)
 
     def check(self) -> None:

@@ -12,6 +12,8 @@ import math
 import pathlib
 import shlex
 
+from . import ensemble_words
+
 STYLE = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1100px;margin:24px auto;
 padding:0 16px;color:#1d232a;line-height:1.45}
@@ -183,7 +185,8 @@ def envelope_text(doc: dict) -> str:
     e = doc["envelope"]
     best = e.get("best_layout") or {}
     over = e.get("outer_diameter_over_restarts")
-    cells = [("best layout: outer diameter", f"{best['outer_diameter']:.0f} Å"
+    cells = [*ensemble_words.cells(doc.get("ensemble")),
+             ("best layout: outer diameter", f"{best['outer_diameter']:.0f} Å"
               if best.get("outer_diameter") is not None else "–")]
     if over:
         cells.append(("over the restarts", f"median {over['median']:.0f} Å "

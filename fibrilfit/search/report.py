@@ -328,6 +328,8 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
         # the bracket: impossible below the bound (a proof), fits at the minimal linker (a
         # layout), open between (docs/model/bound.md#bracket)
         "bound": best.get("bound"),
+        # --ensemble: the best layout's ensemble (docs/model/ensemble.md#use)
+        **({"ensemble": best["ensemble"]} if best.get("ensemble") else {}),
         "bracket": bracket_of(best.get("bound"), m),
         # --fraction-plot: P(fit) at each fraction asked, at this linker (fraction_plot.png)
         **({"fraction_plot": fractions} if fractions else {}),

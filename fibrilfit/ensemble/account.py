@@ -21,6 +21,10 @@ OUTER_DEFINITION = ("each kept layout's 2 · (r95 + R): r95 the 95th percentile 
                     "domain centres' distances from the axis, R the widest domain's radius "
                     "(docs/model/envelope.md#envelope)")
 VOXEL = 3.0  # Å, the map's
+ONE_START = ("sampled from one layout: the sampler keeps the domains' packing around the fibril "
+             "within a run, so this is that packing's ensemble, and its halves (replicas of one "
+             "start) agree more closely than halves from separate starts would "
+             "(docs/model/ensemble.md#starts-matter)")
 
 
 def not_sampled(reason: str) -> dict:
@@ -60,6 +64,7 @@ def sampled_block(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int,
                          sweeps=plan.ensemble, burn_in=plan.ensemble_burn_in)
     scored = np.asarray(scored, bool)
     block = {"sampled": True, "start": "the run's relaxed layout (bonds made rest length)",
+             "starts": 1, "starts_note": ONE_START,
              **observables.report(ens, p, scored)}
     block["repair_sweeps"] = int(ens.notes["repair_sweeps"])
     block["outer_diameter"]["definition"] = OUTER_DEFINITION

@@ -122,3 +122,15 @@ def test_the_printed_result_shows_the_ensemble_and_labels_the_layout():
     assert "ensemble" not in bare and "envelope: domain centres" in bare
     assert ensemble_words.lines({"sampled": False, "reason": "why"}) == \
         ["ensemble: not sampled: why"]
+
+
+def test_the_report_shows_the_ensemble_above_the_best_layout():
+    from fibrilfit.exports import report_page
+    doc = {"envelope": {"best_layout": {"outer_diameter": 128.4}}, "ensemble": SAMPLE["ensemble"]}
+    page = report_page.envelope_text(doc)
+    od = SAMPLE["ensemble"]["outer_diameter"]
+    rows = page.split("</tr>")
+    assert "ensemble: outer diameter" in rows[0] and f"{od['median']:.0f} Å (median" in rows[0]
+    assert "ensemble: width" in rows[1]
+    assert "best layout: outer diameter" in page
+    assert "ensemble" not in report_page.envelope_text({"envelope": doc["envelope"]})

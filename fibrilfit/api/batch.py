@@ -82,7 +82,9 @@ def report(plan, *, case=None, reproduce=(), run_here=None) -> ReportResult | Jo
     def run_best(q):
         best = build_bake_check(q, force=plan.force)
         if plan.sampling.on:  # the ensemble of the best layout (docs/model/ensemble.md#use)
-            best["ensemble"] = ensemble_run.block_from_scene(q, best, plan.sampling, map_path)
+            best["ensemble"] = ensemble_run.block_from_scene(
+                q, best, plan.sampling, map_path,
+                picture=pathlib.Path(plan.output.out) / search_report.ENSEMBLE)
         return best
     doc = search_report.make_report(plan, p, resolved.values, structure_block=resolved.block,
                                     case=resolved_case, sources=sources,

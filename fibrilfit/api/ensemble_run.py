@@ -28,9 +28,11 @@ def check(plan, p):
     return files.check_writable(flag("ensemble_map"), plan.ensemble_map, MAP_SUFFIXES)
 
 
-def block_from_scene(p, result: dict, plan, map_path=None, scene=None) -> dict:
+def block_from_scene(p, result: dict, plan, map_path=None, scene=None, picture=None) -> dict:
     """The `ensemble` block of `result`, the run of Params p whose layout is in `scene` (this
-    process's): sampled from that layout seeded by p.seed, or why it was not."""
+    process's): sampled from that layout seeded by p.seed, or why it was not; the map written
+    to `map_path` and the picture (exports/ensemble_plot.py) to `picture` if given (a picture
+    that fails is recorded as {"error": ...}, never fatal)."""
     from ..ensemble import account
     reason = account.why_not(result)
     if reason is not None:
@@ -42,10 +44,18 @@ def block_from_scene(p, result: dict, plan, map_path=None, scene=None) -> dict:
         return account.not_sampled("the scene holds no FibrilFit model to start from")
     start = chain_positions(model)
     try:
-        return account.sampled_block(p, start, scored_chains(p), plan, seed=p.seed,
-                                     map_path=map_path)
+        block, dmap = account.sample(p, start, scored_chains(p), plan, seed=p.seed)
     except ValueError as exc:  # the start could not be repaired (sampler.sample says how far)
         return account.not_sampled(str(exc))
+    if map_path is not None:
+        account.write_map(block, dmap, map_path)
+    if picture is not None:
+        from ..exports import ensemble_plot
+        try:
+            block["picture"] = ensemble_plot.write(block, dmap, picture)
+        except Exception as exc:  # noqa: BLE001 - reported in the block; the run stands
+            block["picture"] = {"error": " ".join(str(exc).split()) or type(exc).__name__}
+    return block
 
 
 def ensemble(result=None, *, sweeps: int = 100, replicas: int | None = None,

@@ -52,12 +52,11 @@ def core_prism(p, hard: system.HardCore):
     return dataclasses.replace(hard.obstacle, layers=None)
 
 
-def sampled_block(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int,
-                  map_path=None) -> dict:
+def sample(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int) -> tuple:
     """Sample Params p's model from `start` (C, n, 3: every member of every chain, the relaxed
-    layout) under `plan` (EnsemblePlan), seeded by `seed` (the run's); the block: how it was
-    sampled, the outer diameter's distribution and convergence (observables.report), the width
-    from the map, and the map written to `map_path` if given. Raises ValueError when the start
+    layout) under `plan` (EnsemblePlan), seeded by `seed` (the run's). Returns (the block: how
+    it was sampled, the outer diameter's distribution and convergence (observables.report),
+    the width from the map; the map, density.DensityMap). Raises ValueError when the start
     cannot be repaired into a valid layout (sampler.sample)."""
     hard = system.from_params(p)
     ens = sampler.sample(hard, start, seed=seed, replicas=plan.ensemble_replicas,
@@ -79,10 +78,22 @@ def sampled_block(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int,
     if len(p.domains) > 1:
         block["width"]["note"] = ("several domains per chain: each drawn in the map as a sphere "
                                   "of the widest domain's radius")
+    return block, dmap
+
+
+def write_map(block: dict, dmap, path) -> None:
+    """The map as MRC (mrcfile) at `path`, recorded in the block's `map`."""
+    density.write_mrc(path, dmap)
+    block["map"] = {"path": str(path), "voxel": VOXEL,
+                    "origin": [round(float(v), 3) for v in dmap.origin],
+                    "shape_zyx": list(dmap.data.shape),
+                    "units": "volume fraction of protein per voxel"}
+
+
+def sampled_block(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int,
+                  map_path=None) -> dict:
+    """sample()'s block alone, the map written to `map_path` if given."""
+    block, dmap = sample(p, start, scored, plan, seed=seed)
     if map_path is not None:
-        density.write_mrc(map_path, dmap)
-        block["map"] = {"path": str(map_path), "voxel": VOXEL,
-                        "origin": [round(float(v), 3) for v in dmap.origin],
-                        "shape_zyx": list(dmap.data.shape),
-                        "units": "volume fraction of protein per voxel"}
+        write_map(block, dmap, map_path)
     return block

@@ -228,6 +228,7 @@ only graze, worst linker stretch {100 * (b['max_bond_stretch'] or 0):.1f} %.</p>
 <h2>The best layout</h2>{embedded(folder, files.get('render'), 'best layout render')}
 <h2>The envelope</h2>{envelope_text(doc)}
 {embedded(folder, files.get('envelope_plot'), 'envelope plot')}
+{embedded(folder, files.get('ensemble_plot'), 'ensemble') if doc.get('ensemble') else ''}
 <h2>Warnings</h2>{warnings}
 <h2>The model and where each value came from</h2>{model_rows(doc)}
 <h2>To reproduce</h2><pre>{esc(command)}</pre>

@@ -29,6 +29,7 @@ from .plans import SearchPlan, plot_fractions, seed_range
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
                                       "envelope.png", "best_layout.json")
+ENSEMBLE = "ensemble.png"  # report --ensemble: the best layout's (exports/ensemble_plot.py)
 STAGES = ("restarts", "minimal linker", "fractions", "best layout", "pictures", "page")
 
 
@@ -206,6 +207,12 @@ def _pictures(best: dict, out, look: dict, fractions: dict | None = None) -> tup
             problems.append(problem)
         else:
             pictures[key] = path.name
+    drawn = (best.get("ensemble") or {}).get("picture")  # drawn when it was sampled
+    if drawn:
+        if "error" in drawn:
+            problems.append(f"ensemble picture failed: {drawn['error']}")
+        else:
+            pictures["ensemble_plot"] = ENSEMBLE
     return pictures, problems
 
 

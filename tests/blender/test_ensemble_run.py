@@ -78,3 +78,23 @@ def test_a_run_that_does_not_fit_says_why_no_ensemble(scene, ff, tmp_path):
     assert code == 0 and not r["accommodated"]
     assert r["ensemble"]["sampled"] is False
     assert "does not fit" in r["ensemble"]["reason"]
+
+
+def test_report_with_an_ensemble(scene, ff, tmp_path):
+    """`report --ensemble`: the best layout's ensemble in report.json (the report schema), its
+    picture (the projection and the radial density) embedded in the page, its rows in the
+    envelope table."""
+    out = tmp_path / "rep"
+    assert ff.cli.main(["report", "--layers", "3", "--grow-frames", "20", "--hold-frames", "20",
+                        "--regrow-cycles", "0", "--globule-diameter", "12", "--linker", "3",
+                        "--restarts", "2", "--max-linker", "4", "--workers", "1", "--quiet",
+                        "--ensemble", "4", "--ensemble-replicas", "4", "--out", str(out)]) == 0
+    doc = json.loads((out / "report.json").read_text())
+    e = doc["ensemble"]
+    assert e["sampled"] and e["seed"] == doc["best_layout"]["seed"]
+    assert doc["files"]["ensemble_plot"] == "ensemble.png" and (out / "ensemble.png").is_file()
+    schema = json.loads((ROOT / "docs/reference/report.schema.json").read_text(encoding="utf-8"))
+    assert list(jsonschema.Draft202012Validator(schema).iter_errors(doc)) == []
+    page = (out / "report.html").read_text()
+    assert 'alt="ensemble" src="data:image/png;base64,' in page
+    assert "ensemble: outer diameter" in page and "ensemble: width" in page

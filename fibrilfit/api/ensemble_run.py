@@ -23,8 +23,7 @@ def check(plan, p):
     try:
         import mrcfile  # noqa: F401
     except ImportError:
-        raise UsageError(f"{flag('ensemble_map')}: "
-                         f"{missing_packages(['mrcfile'], flag('ensemble_map'))}") from None
+        raise UsageError(missing_packages(["mrcfile"], flag("ensemble_map"))) from None
     return files.check_writable(flag("ensemble_map"), plan.ensemble_map, MAP_SUFFIXES)
 
 

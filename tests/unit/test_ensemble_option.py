@@ -134,3 +134,19 @@ def test_the_report_shows_the_ensemble_above_the_best_layout():
     assert "ensemble: width" in rows[1]
     assert "best layout: outer diameter" in page
     assert "ensemble" not in report_page.envelope_text({"envelope": doc["envelope"]})
+
+
+def test_a_missing_mrcfile_is_one_line_before_anything_runs(monkeypatch, tmp_path):
+    import sys
+    from fibrilfit.api import ensemble_run
+    from fibrilfit.exits import UsageError
+    plan = EnsemblePlan(ensemble=5, ensemble_map=str(tmp_path / "m.mrc"))
+    assert ensemble_run.check(plan, P.DEFAULTS) is not None  # mrcfile here: the path, checked
+    with pytest.raises(P.ParamError, match="^occupancy: the ensemble samples"):
+        ensemble_run.check(plan, P.make_params(occupancy=0.5))
+    monkeypatch.setitem(sys.modules, "mrcfile", None)  # as in a Blender without it
+    with pytest.raises(UsageError) as err:
+        ensemble_run.check(plan, P.DEFAULTS)
+    said = str(err.value)
+    assert said.startswith("--ensemble-map needs the Python package mrcfile") and "\n" not in said
+    assert not (tmp_path / "m.mrc").exists()

@@ -21,6 +21,7 @@ OUTER_DEFINITION = ("each kept layout's 2 · (r95 + R): r95 the 95th percentile 
                     "domain centres' distances from the axis, R the widest domain's radius "
                     "(docs/model/envelope.md#envelope)")
 VOXEL = 3.0  # Å, the map's
+TAU_RUNS = 50  # kept sweeps per τ for τ (and the ESS) to be trusted (emcee's guidance)
 ONE_START = ("sampled from one layout: the sampler keeps the domains' packing around the fibril "
              "within a run, so this is that packing's ensemble, and its halves (replicas of one "
              "start) agree more closely than halves from separate starts would "
@@ -67,6 +68,9 @@ def sample(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int) -> tupl
              **observables.report(ens, p, scored)}
     block["repair_sweeps"] = int(ens.notes["repair_sweeps"])
     block["outer_diameter"]["definition"] = OUTER_DEFINITION
+    # τ from a run shorter than TAU_RUNS τ is itself unreliable (emcee's rule), so the ESS too
+    tau = block["outer_diameter"]["tau_samples"]
+    block["outer_diameter"]["tau_reliable"] = bool(len(ens.domains) >= TAU_RUNS * tau)
     t = time.perf_counter()
     centres = ens.domains[:, :, scored].reshape(-1, 3)
     dmap = density.density_map(p, centres, p.widest_diameter / 2.0, voxel=VOXEL,

@@ -18,6 +18,7 @@ def convergence(block: dict) -> str:
     od = block["outer_diameter"]
     halves = od.get("halves")
     return (f"ESS {od['ess']:.0f}"
+            + ("" if od.get("tau_reliable", True) else " (a run under 50 τ: uncertain)")
             + (f", halves {100 * halves['relative_difference']:.1f} % apart" if halves else "")
             + f", {block['replicas']} replicas × {block['sweeps']} sweeps, seed {block['seed']}")
 

@@ -98,3 +98,15 @@ def test_report_with_an_ensemble(scene, ff, tmp_path):
     page = (out / "report.html").read_text()
     assert 'alt="ensemble" src="data:image/png;base64,' in page
     assert "ensemble: outer diameter" in page and "ensemble: width" in page
+
+
+def test_the_python_api_gives_the_commands_block(scene, ff, tmp_path):
+    """api.ensemble of a model's values, of a run still in the scene, and api.run's option:
+    the same block as `run --ensemble` for the same seed and options."""
+    from fibrilfit import api
+    _, r = run(ff, tmp_path, *SMALL)
+    options = dict(sweeps=6, replicas=4, burn_in=4)
+    assert stable(api.ensemble(layers=6, quiet=True, **options)) == stable(r["ensemble"])
+    done = api.run(layers=6, quiet=True)
+    assert stable(api.ensemble(done, **options)) == stable(r["ensemble"])
+    assert done.ensemble is not None  # kept in the result it was sampled for

@@ -4,6 +4,8 @@ it, the way the command line's options are, and returns a typed result with `.to
 
     run(...)             one model built, baked and checked (RunResult)
     restarts(...)        R seeds of one model on the executor, the best run here (RunResult)
+    ensemble(...)        the model's ensemble sampled from a run's layout (the result's
+                         `ensemble` block; docs/model/ensemble.md#use)
     minimal_linker(...)  the minimal-linker walk and map (MinimalLinkerResult)
     largest_fraction(...) the largest fraction of decorated subunits per diameter and linker
                          (LargestFractionResult)
@@ -20,7 +22,7 @@ from __future__ import annotations
 
 from .plans import (InspectPlan, LargestFractionPlan, MinimalLinkerPlan, ReportPlan, RunPlan,
                     SweepPlan, make_plan)
-__all__ = ["run", "restarts", "minimal_linker", "largest_fraction", "report", "sweep", "inspect",
+__all__ = ["run", "restarts", "ensemble", "minimal_linker", "largest_fraction", "report", "sweep", "inspect",
            "RunPlan", "MinimalLinkerPlan", "LargestFractionPlan", "ReportPlan", "SweepPlan",
            "InspectPlan", "make_plan"]
 
@@ -54,6 +56,16 @@ def restarts(restarts: int, plan: RunPlan | None = None, **values):
     from .one_run import run as _run
     plan, case = _plan(RunPlan, plan, {**values, "restarts": restarts})
     return _run(plan, case=case)
+
+
+def ensemble(result=None, *, sweeps: int = 100, **values):
+    """The model's ensemble (every valid layout equally likely), as `fibrilfit run --ensemble
+    SWEEPS` samples it: of `result` (a RunResult of this process, its model still in the scene),
+    or of a model given as `run`'s keyword values, run first (`ensemble(sweeps=100, linker=8)`).
+    `replicas`, `burn_in`, `ensemble_map` as the options --ensemble-replicas, ... Seeded by the
+    run's seed. Returns the result's `ensemble` block (a dict: docs/model/ensemble.md#use)."""
+    from .ensemble_run import ensemble as _ensemble
+    return _ensemble(result, sweeps=sweeps, **values)
 
 
 def minimal_linker(plan: MinimalLinkerPlan | None = None, **values):

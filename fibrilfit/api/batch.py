@@ -6,7 +6,7 @@ import pathlib
 
 from .. import files
 from ..structure.from_files import say_warnings
-from . import model as resolved_model
+from . import ensemble_run, model as resolved_model
 from .results import (JobScript, LargestFractionResult, MinimalLinkerResult, ReportResult,
                       SweepResult)
 
@@ -77,8 +77,15 @@ def report(plan, *, case=None, reproduce=(), run_here=None) -> ReportResult | Jo
     sources = resolved_model.param_sources(plan.model, p, resolved.block, case=case,
                                            command="report", defaults=REPORT_DEFAULTS)
 
+    map_path = ensemble_run.check(plan.sampling, p)
+
     def run_best(q):
-        return build_bake_check(q, force=plan.force)
+        best = build_bake_check(q, force=plan.force)
+        if plan.sampling.on:  # the ensemble of the best layout (docs/model/ensemble.md#use)
+            best["ensemble"] = ensemble_run.block_from_scene(
+                q, best, plan.sampling, map_path,
+                picture=pathlib.Path(plan.output.out) / search_report.ENSEMBLE)
+        return best
     doc = search_report.make_report(plan, p, resolved.values, structure_block=resolved.block,
                                     case=resolved_case, sources=sources,
                                     run_here=run_here or run_best, reproduce=reproduce)

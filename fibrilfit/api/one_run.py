@@ -1,5 +1,6 @@
 """One model built, baked and checked in this process (with restarts, its seeds first on the
-executor, the best run again here), its outputs written: `run` and the API's `run`/`restarts`.
+executor, the best run again here; with --ensemble, its ensemble sampled), its outputs written:
+`run` and the API's `run`/`restarts`/`ensemble`.
 """
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ from ..exports import plans as export_plans
 from ..model import cases, occupancy
 from ..plans import flag
 from ..structure.from_files import exit_block, say_warnings
-from . import model as resolved_model
+from . import ensemble_run, model as resolved_model
 from .results import JobScript, RunResult
 
 
@@ -59,6 +60,12 @@ def run(plan, *, case=None) -> RunResult | JobScript:
     result = build_bake_check(p, stop_after=plan.stop_after, force=plan.force,
                               progress=plan.progress)
     annotate(plan, p, result, resolved, tally, case)
+    if plan.sampling.on:
+        if not plan.quiet:
+            print(f"fibrilfit: sampling the ensemble ({plan.sampling.ensemble} sweeps, "
+                  f"{plan.sampling.ensemble_replicas} replicas)", file=sys.stderr, flush=True)
+        result["ensemble"] = ensemble_run.block_from_scene(p, result, plan.sampling,
+                                                       outputs["ensemble_map"])
     problems = write_outputs(plan, p, result, outputs, case)
     return RunResult(result, paths=outputs["paths"], problems=problems)
 
@@ -87,6 +94,7 @@ def checked_run(plan) -> tuple:
     if "movie" in outputs["paths"]:
         from ..exports import movie  # imports bpy: only when a movie is asked for
         movie.refuse_unsupported(outputs["paths"]["movie"], plan.stop_after)
+    outputs["ensemble_map"] = ensemble_run.check(plan.sampling, p)
     say_warnings(resolved.block)
     return resolved, outputs
 

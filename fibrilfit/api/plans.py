@@ -1,11 +1,13 @@
 """Each command's whole plan: the model's values as given, the structure request and the plans
 of the rooms that do the work (plans.py has how a plan is declared and checked).
 
-    RunPlan            run (with restarts: the seeds on the executor, the best kept)
+    RunPlan            run (with restarts: the seeds on the executor, the best kept; with
+                       --ensemble, the model's ensemble sampled from its layout)
     MinimalLinkerPlan  minimal-linker (the walk for one or more domain diameters)
     LargestFractionPlan largest-fraction (the walk over the decorated count, per diameter and
                        linker)
-    ReportPlan         report (restarts at the linker, the walk, the best layout, the page)
+    ReportPlan         report (restarts at the linker, the walk, the best layout and, with
+                       --ensemble, its ensemble, the page)
     SweepPlan          sweep (a grid of models, the model's values as lists or ranges)
     InspectPlan        inspect (structure files measured, nothing built)
 
@@ -23,6 +25,7 @@ import typing
 
 from ..batch.plans import ExecutorPlan
 from ..batch.slurm import given as slurm_given
+from ..ensemble.plans import EnsemblePlan
 from ..exports.plans import OutputPlan, RenderLook
 from ..model import cases, params as P
 from ..model.param_spec import MAX_OBJECTS_UNFORCED, MAX_TWIST
@@ -77,6 +80,7 @@ class RunPlan(_CommandPlan):
     look: RenderLook = _nested(RenderLook())
     restarts: RestartPlan = _nested(RestartPlan())
     executor: ExecutorPlan = _nested(ExecutorPlan())
+    sampling: EnsemblePlan = _nested(EnsemblePlan())
     stop_after: str = option("check", "stop after this step", choices=("build", "bake", "check"),
                              group=RUN)
     fail_on_intersection: bool = option(False, "exit 1 when the verdict is intersection",
@@ -102,6 +106,9 @@ class RunPlan(_CommandPlan):
     def check(self) -> None:
         if self.restarts.restarts is not None and self.stop_after != "check":
             raise PlanError("restarts", "judges every seed, so --stop-after must be check")
+        if self.sampling.on and self.stop_after != "check":
+            raise PlanError("ensemble", "starts from a checked layout, so --stop-after must be "
+                                        "check")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -155,6 +162,7 @@ class ReportPlan(_CommandPlan):
     output: BatchOutput = _nested(REPORT_OUTPUT)
     look: RenderLook = _nested(RenderLook())
     executor: ExecutorPlan = _nested(ExecutorPlan())
+    sampling: EnsemblePlan = _nested(EnsemblePlan())
     force: bool = option(False, FORCE_HELP)
 
     def check(self) -> None:

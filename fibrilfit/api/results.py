@@ -48,6 +48,11 @@ class RunResult(Result):
     def p_fit(self) -> float | None:
         return (self.restarts or {}).get("p_fit")
 
+    @property
+    def ensemble(self) -> dict | None:
+        """The ensemble block (`run --ensemble`), or None when none was asked for."""
+        return self.data.get("ensemble")
+
 
 @dataclasses.dataclass
 class MinimalLinkerResult(Result):

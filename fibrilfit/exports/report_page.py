@@ -12,6 +12,8 @@ import math
 import pathlib
 import shlex
 
+from . import ensemble_words
+
 STYLE = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1100px;margin:24px auto;
 padding:0 16px;color:#1d232a;line-height:1.45}
@@ -183,7 +185,8 @@ def envelope_text(doc: dict) -> str:
     e = doc["envelope"]
     best = e.get("best_layout") or {}
     over = e.get("outer_diameter_over_restarts")
-    cells = [("best layout: outer diameter", f"{best['outer_diameter']:.0f} Å"
+    cells = [*ensemble_words.cells(doc.get("ensemble")),
+             ("best layout: outer diameter", f"{best['outer_diameter']:.0f} Å"
               if best.get("outer_diameter") is not None else "–")]
     if over:
         cells.append(("over the restarts", f"median {over['median']:.0f} Å "
@@ -225,6 +228,7 @@ only graze, worst linker stretch {100 * (b['max_bond_stretch'] or 0):.1f} %.</p>
 <h2>The best layout</h2>{embedded(folder, files.get('render'), 'best layout render')}
 <h2>The envelope</h2>{envelope_text(doc)}
 {embedded(folder, files.get('envelope_plot'), 'envelope plot')}
+{embedded(folder, files.get('ensemble_plot'), 'ensemble') if doc.get('ensemble') else ''}
 <h2>Warnings</h2>{warnings}
 <h2>The model and where each value came from</h2>{model_rows(doc)}
 <h2>To reproduce</h2><pre>{esc(command)}</pre>

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from ..model.helix import handedness
+from . import ensemble_words
 from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, NO_EXIT, of_result
 
 
@@ -267,11 +268,14 @@ def _periodic_lines(r: dict) -> list[str]:
 
 
 def _envelope_lines(r: dict) -> list[str]:
-    """Where the domains ended up (analysis/envelope.py), when there are any."""
+    """Where the domains ended up (analysis/envelope.py), when there are any; with an
+    ensemble (run --ensemble), its outer diameter and width first, the layout's labelled."""
     env = r.get("envelope") or {}
     if not env.get("n"):
-        return []
-    return [f"envelope: domain centres {env['r_median']:.1f} Å from the axis (median; 95 % "
+        return ensemble_words.lines(r.get("ensemble"))
+    sampled = (r.get("ensemble") or {}).get("sampled")
+    return [*ensemble_words.lines(r.get("ensemble")),
+            f"envelope{' (this layout)' if sampled else ''}: domain centres {env['r_median']:.1f} Å from the axis (median; 95 % "
             f"within {env['r95']:.1f} Å), outer diameter {env['outer_diameter']:.0f} Å"]
 
 

@@ -29,6 +29,7 @@ from .plans import SearchPlan, plot_fractions, seed_range
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
                                       "envelope.png", "best_layout.json")
+ENSEMBLE = "ensemble.png"  # report --ensemble: the best layout's (exports/ensemble_plot.py)
 STAGES = ("restarts", "minimal linker", "fractions", "best layout", "pictures", "page")
 
 
@@ -206,6 +207,12 @@ def _pictures(best: dict, out, look: dict, fractions: dict | None = None) -> tup
             problems.append(problem)
         else:
             pictures[key] = path.name
+    drawn = (best.get("ensemble") or {}).get("picture")  # drawn when it was sampled
+    if drawn:
+        if "error" in drawn:
+            problems.append(f"ensemble picture failed: {drawn['error']}")
+        else:
+            pictures["ensemble_plot"] = ENSEMBLE
     return pictures, problems
 
 
@@ -328,6 +335,8 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
         # the bracket: impossible below the bound (a proof), fits at the minimal linker (a
         # layout), open between (docs/model/bound.md#bracket)
         "bound": best.get("bound"),
+        # --ensemble: the best layout's ensemble (docs/model/ensemble.md#use)
+        **({"ensemble": best["ensemble"]} if best.get("ensemble") else {}),
         "bracket": bracket_of(best.get("bound"), m),
         # --fraction-plot: P(fit) at each fraction asked, at this linker (fraction_plot.png)
         **({"fraction_plot": fractions} if fractions else {}),

@@ -9,6 +9,7 @@ import math
 
 import bpy
 
+from ..exports import ensemble_words
 from ..model import helix, occupancy, params as P
 from ..model.param_checks import NOT_WITH_PERIODIC
 from . import (fraction_summary, minimal_summary, panel_words, properties, report_summary,
@@ -204,7 +205,12 @@ def draw_run(col, context):
     if reached(stage, "layers"):
         _draw_changes(col, s, find_root(scene), stage)
     if stage == "checked" and s.verdict:
-        draw_result(col.box(), s, params_of(find_root(scene)))
+        box = col.box()
+        draw_result(box, s, params_of(find_root(scene)))
+        box.operator("fibrilfit.sample_ensemble", icon="OUTLINER_OB_POINTCLOUD")
+        if s.ensemble_summary:
+            for line in ensemble_words.lines(json.loads(s.ensemble_summary)):
+                wrapped(box, line, "INFO")
     if s.report_summary:
         draw_report(col.box(), s)
     for kept, summary_module in MAPS:

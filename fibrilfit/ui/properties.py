@@ -214,6 +214,11 @@ _SETTINGS = {
         name="Report", description="The last report's answer, P(fit), minimal linker and bound "
                                    "(JSON)", options={"HIDDEN"}),
     **_REPORT_OPTIONS,
+    # The checked layout's ensemble (Sample ensemble…; docs/model/ensemble.md#use), cleared by
+    # the next check: the result's `ensemble` block without its radial density.
+    "ensemble_summary": StringProperty(
+        name="Ensemble", description="The checked layout's ensemble the panel shows (JSON)",
+        options={"HIDDEN"}),
     # The last Minimal linker…'s map (ui/minimal_summary.py), or that it was cancelled.
     "minimal_map": StringProperty(
         name="Minimal linker", description="The last minimal-linker map the panel shows (JSON)",

@@ -449,7 +449,7 @@ def test_panels_draw_in_every_state(ui, scene):
     switches = [properties.switch_name(f.name) for f in properties.derived_fields()]
     everything = sorted([f.name for f in P.fields() if f.metadata.get("ui", True)] + switches
                         + ["use_periodic"])
-    for drawn in states.values():  # each setting once, where it applies; every step's button
+    for state, drawn in states.items():  # each setting once, where it applies; every step's button
         props = _props(drawn)
         assert len(props) == len(set(props))
         inapplicable = {"periodic", "image_updates", "grow_start", "grow_frames", "hold_frames",
@@ -464,7 +464,8 @@ def test_panels_draw_in_every_state(ui, scene):
                                                     "largest_fraction", "load_case", "save_case",
                                                     "run_all", "clear", "load_outline",
                                                     "clear_outline", "import_fibril",
-                                                    "import_domain", "import_full_length")}
+                                                    "import_domain", "import_full_length")} | (
+            {"fibrilfit.sample_ensemble"} if state == "checked" else set())  # under the result
     main = {state: [t for kind, t in drawn["FIBRILFIT_PT_main"] if kind == "label"]
             for state, drawn in states.items()}
     assert any("No model yet" in t for t in main[""])

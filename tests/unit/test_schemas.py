@@ -12,6 +12,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 REFERENCE = ROOT / "docs" / "reference"
 EXAMPLES = {"run_result.json": "result", "run_structure_restarts.json": "result",
+            "run_ensemble.json": "result",
             "report.json": "report"}
 
 

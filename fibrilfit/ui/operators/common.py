@@ -168,6 +168,7 @@ def record_check(context, model, result: dict) -> None:
     """After a check: the verdict in scene.fibrilfit, clashing globules red (grazing ones
     orange), the JSON kept."""
     properties.store_result(settings(context), result)
+    settings(context).ensemble_summary = ""  # an ensemble belongs to the layout it came from
     deep, grazing = clash_kinds(result)
     colour_globules(model, deep, grazing=grazing)
     show_colours(model)

@@ -1,0 +1,52 @@
+"""The ensemble's figures in words, for the printed result (run_text.py) and the report's page
+(report_page.py): the outer diameter as a distribution with its interval, the width from the
+projection, and the single layout's outer diameter labelled as such beside them
+(docs/model/ensemble.md#use)."""
+from __future__ import annotations
+
+
+def outer(block: dict) -> str:
+    """'134 Å (median; 95 % of layouts 125–139 Å), mean 133.9 ± 0.3 Å'."""
+    od = block["outer_diameter"]
+    lo, hi = od["interval_95"]
+    return (f"{od['median']:.0f} Å (median; 95 % of layouts {lo:.0f}–{hi:.0f} Å), mean "
+            f"{od['mean']:.1f} ± {od['sem']:.1f} Å")
+
+
+def convergence(block: dict) -> str:
+    """'ESS 292, halves 0.6 % apart, 16 replicas × 100 sweeps, seed 0'."""
+    od = block["outer_diameter"]
+    halves = od.get("halves")
+    return (f"ESS {od['ess']:.0f}"
+            + ("" if od.get("tau_reliable", True) else " (a run under 50 τ: uncertain)")
+            + (f", halves {100 * halves['relative_difference']:.1f} % apart" if halves else "")
+            + f", {block['replicas']} replicas × {block['sweeps']} sweeps, seed {block['seed']}")
+
+
+def width(block: dict) -> str:
+    """'110 Å (the projection's profile at 10 % of its peak)'."""
+    w = block["width"]
+    return f"{w['value']:.0f} Å (the projection's profile at {100 * w['fraction_of_peak']:.0f} % " \
+           f"of its peak)"
+
+
+def lines(block: dict | None) -> list[str]:
+    """The printed result's ensemble lines (none without an ensemble block)."""
+    if not block:
+        return []
+    if not block.get("sampled"):
+        return [f"ensemble: not sampled: {block['reason']}"]
+    return [f"ensemble: outer diameter {outer(block)}; {convergence(block)}",
+            f"ensemble: width {width(block)}"
+            + (f"; map {block['map']['path']}" if block.get("map") else "")]
+
+
+def cells(block: dict | None) -> list[tuple[str, str]]:
+    """The report's rows for the ensemble of its best layout (none without an ensemble)."""
+    if not block:
+        return []
+    if not block.get("sampled"):
+        return [("ensemble", f"not sampled: {block['reason']}")]
+    return [("ensemble: outer diameter", outer(block)),
+            ("ensemble: width", width(block)),
+            ("ensemble: convergence", convergence(block))]

@@ -181,7 +181,9 @@ def exit_block(p, block: dict | None) -> dict | None:
            "depth": way["depth"], "length": way["length"],
            "path": way["path"],
            "clearance": way["clearance"], "bead_radius": way["bead_radius"],
-           "free_linker": p.free_linker, "source": source}
+           "free_linker": p.free_linker, "source": source,
+           "rule": way.get("rule"), "layer": way.get("layer"),
+           "sensitivity": way.get("sensitivity", [])}
     if p.pf_anchors is not None:  # interface termini: each protofilament's own exit, and the
         # free linker every chain simulates (the smallest; docs/model/bound.md#interface-termini)
         out["pf_residues"] = [int(v) for v in p.pf_exit_residues()]

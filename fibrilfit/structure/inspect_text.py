@@ -50,7 +50,7 @@ def fibril_lines(g) -> list:
     way = g.exit or {}
     if way:  # protofilament 0's anchor to the surface (docs/model/buried-terminus.md#method)
         lines.append(f"  exit pf 0: {way['length']:.2f} Å to the surface, CA {way['depth']:.2f} Å "
-                     f"inside the outline (a {way['bead_radius']:g} Å bead clear of the atoms; "
+                     f"inside it (a {way['bead_radius']:g} Å bead clear of the atoms; "
                      f"layer {way.get('layer')})"
                      if way["found"] else
                      f"  exit pf 0: sealed: no path to the surface for a {way['bead_radius']:g} "

@@ -29,6 +29,7 @@ PAGE = "validation.md"
 GALLERY = docs_table(PAGE, "| case | experiment says |")
 NEGATIVE = docs_table(PAGE, "| case | fibril | linker | exit: residues spent, free linker |")
 WALK = docs_table(PAGE, "| linker (anchor counted) | free after the exit | restarts (seeds) |")
+WALK20 = docs_table(PAGE, "| linker (anchor counted), 20 layers | free after the exit |")
 HULL = docs_table(PAGE, "| case | source | observed | P(fit) at the real linker |")
 SHAPES = docs_table(PAGE, "| case | minimal linker, sphere | minimal linker, hull |")
 # the Aβ42-GFP prediction (#abeta42-prediction): the largest fraction at a linker, the minimal
@@ -76,7 +77,8 @@ def number(cell: str) -> int:
 def test_the_pages_tables_are_read():
     assert len(GALLERY) == 13 and len(NEGATIVE) == 4 and len(HULL) == len(SHAPES) == 2
     assert len(PREDICT_F) == 2 and len(PREDICT_L) == 4
-    assert [number(r["linker (anchor counted)"]) for r in WALK] == [13, 14, 16, 20, 22, 23, 24, 28]
+    assert [number(r["linker (anchor counted)"]) for r in WALK] == [9, 10, 12, 13]
+    assert [number(r["linker (anchor counted), 20 layers"]) for r in WALK20] == [8, 9, 11, 12, 13]
 
 
 @pytest.mark.parametrize("row", GALLERY, ids=lambda r: case_of(r["case"]).stem)
@@ -109,6 +111,18 @@ def test_the_infinite_walks_free_linkers_and_cell_are_todays(model):
             number(row["free after the exit"]), 20, 20), row
     start = number(WALK[0]["linker (anchor counted)"])
     assert start == bound.linker_bound(model(INFINITE))["impossible_below"]
+
+
+def test_the_20_layer_walks_free_linkers_are_todays(model):
+    """Every length walked on 20 layers leaves `linker - 1` free; no cell; the walk starts at or
+    above the bound (3: the walk's first length comes from the search's start, not the bound)."""
+    case = EXAMPLES / "abeta42_5oqv_gfp_linker12_20layers.toml"
+    for row in WALK20:
+        p = model(case, linker=number(row["linker (anchor counted), 20 layers"]))
+        assert (p.free_linker, p.layers, p.periodic) == (
+            number(row["free after the exit"]), 20, None), row
+    assert number(WALK20[0]["linker (anchor counted), 20 layers"]) >= bound.linker_bound(
+        model(case))["impossible_below"]
 
 
 @pytest.mark.parametrize("row", HULL, ids=lambda r: case_of(r["case"]).stem)

@@ -114,13 +114,13 @@ def test_the_infinite_walks_free_linkers_and_cell_are_todays(model):
 
 
 def test_the_20_layer_walks_free_linkers_are_todays(model):
-    """Every length walked on 20 layers leaves `linker - 1` free; no cell; the walk starts at or
+    """Every length walked on 20 layers leaves `linker - 1` free; no cell (periodic 0); the walk starts at or
     above the bound (3: the walk's first length comes from the search's start, not the bound)."""
     case = EXAMPLES / "abeta42_5oqv_gfp_linker12_20layers.toml"
     for row in WALK20:
         p = model(case, linker=number(row["linker (anchor counted), 20 layers"]))
         assert (p.free_linker, p.layers, p.periodic) == (
-            number(row["free after the exit"]), 20, None), row
+            number(row["free after the exit"]), 20, 0), row
     assert number(WALK20[0]["linker (anchor counted), 20 layers"]) >= bound.linker_bound(
         model(case))["impossible_below"]
 

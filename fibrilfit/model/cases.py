@@ -45,7 +45,8 @@ METADATA = {
     "envelope_width_source": (str, "where that width was measured"),
     "estimates": (list, "parameters whose values are estimates, not the paper's numbers"),
     "notes": (str, "anything else: how numbers were estimated, caveats"),
-    "changed": (str, "what changed against the case's earlier version, and why (the table says it)"),
+    "changed": (str, "what changed against the case's earlier version, and why (the "
+                     "validation table says it)"),
 }
 SEEDS = "seeds"
 # What a case says of its own model, stale once an option changes it (dropped from the case as run)

@@ -30,7 +30,7 @@ MODEL_VERSION = 7  # 2: inflate deterministic and near-miss cycles (#25), domain
 # globule's place (bare_tail 0 and shorter tails unchanged), and bare tails build in a periodic
 # cell (docs/model/occupancy.md#bare-tails)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "7e4a9bafec9baa055db58403786a1988f7091ca11c6d292bbf92379c4330b137"
+MODEL_SOURCES_SHA256 = "8da234b8cccc60c1e58899a8a878b05cb524c42b7518871c00703ae7c42b0671"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -199,7 +199,8 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-GLANCE_HEAD = "| system | what the experiment saw | what FibrilFit says at the real linker | agree? |"
+GLANCE_HEAD = ("| system | what the experiment saw | what FibrilFit says at the real linker | "
+               "agree? |")
 
 
 def _glance_says(row) -> str:

@@ -297,8 +297,10 @@ def page_text(rows: list[dict]) -> str:
 
 
 def glance_text(rows: list[dict]) -> str:
-    """What make validate writes at the page's top: the short table and its provenance."""
-    return glance(rows) + "\n\n" + provenance(rows)
+    """What make validate writes at the page's top: the short table, its provenance, and its
+    fibrils and runs (as under the wide table)."""
+    more = fibrils_and_runs(rows)
+    return glance(rows) + "\n\n" + provenance(rows) + ("\n\n" + more if more else "")
 
 
 def markers(shape: str | None) -> tuple:

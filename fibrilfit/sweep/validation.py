@@ -199,7 +199,7 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-GLANCE_HEAD = ("| system | what the experiment saw | what FibrilFit says at the real linker | "
+GLANCE_HEAD = ("| system | what the experiment saw | FibrilFit's answer at the real linker | "
                "agree? |")
 
 

@@ -28,7 +28,7 @@ PYTEST = -m pytest --durations=25 --junitxml=out/junit/$@.xml
 TEST_MARK ?= not slow
 
 .PHONY: run test test-unit test-latest test-lts test-52 test-alone test-slow test-cluster \
-	test-blender test-pip old-blender extension bench validate validate-shapes docs mutate clean
+	test-blender test-pip old-blender extension bench validate validate-walks validate-shapes docs mutate clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -207,9 +207,16 @@ else
 	$(VENV)/bin/python bench/run.py $(BENCH_ARGS)
 endif
 
-# The gallery (examples/*.toml): P(fit), minimal linker and envelope per case; rewrites the
-# table in docs/validation.md. Results stay in out/validate, so running it again resumes.
+# The gallery (examples/*.toml): each case's seeds at its real linker (the answer, P(fit), the
+# envelope) and its bound (the bracket's lower side); rewrites docs/validation.md's short table
+# and wide table. Results stay in out/validate, so running it again resumes. Its time:
+# docs/benchmarks.md#validate-47.
 validate: $(VENV)/.installed
+	$(VENV)/bin/python tools/validate.py --no-walk $(VALIDATE_ARGS)
+
+# The walks to each case's minimal linker (issue #13's walk, up to the real linker or 40), after
+# the real linker's runs (resumed from out/validate, so after make validate it runs the walks only).
+validate-walks: $(VENV)/.installed
 	$(VENV)/bin/python tools/validate.py $(VALIDATE_ARGS)
 
 # The gallery's cases that read a domain structure file again, with the domain's real shape

@@ -32,11 +32,14 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 from fibrilfit.model import cases, params as P  # noqa: E402
 from fibrilfit.model.chain import chain_x  # noqa: E402
 from fibrilfit.sweep import runner, stats, summary, validation  # noqa: E402
-from fibrilfit.sweep.validation import provenance, table  # noqa: E402,F401 (tests)
+from fibrilfit.sweep.validation import glance, provenance, table  # noqa: E402,F401 (tests)
 wilson = stats.wilson
 
 MAX_LINKER = 40  # minimal-linker gives up above this (or above the real linker)
 START, END = "<!-- validation table: written by make validate -->", "<!-- end of validation table -->"
+# the short table at the page's top (issue #47 item 5), from the same rows
+GLANCE = ("<!-- validation at a glance: written by make validate -->",
+          "<!-- end of validation at a glance -->")
 
 
 def sweep(case_path, out: pathlib.Path, workers: int, *extra) -> list[dict]:
@@ -173,11 +176,15 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
         row["error"] = str(exc).replace(str(case_path) + ": ", "")
         return row
     p = case.make_params()
-    row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict())
+    row.update(name=case.meta.get("name", case_path.stem), meta=case.meta, params=p.to_dict(),
+               case_sha256=case.sha256)  # a walk of another version of the case is not this one's
     if collect:  # the runs already there, however many seeds finished
         records = runner.read_lines(out / case_path.stem / "real" / "results.jsonl")[0]
     else:
-        records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
+        try:
+            records = sweep(case_path, out / case_path.stem / "real", workers, *extra)
+        except RuntimeError as exc:  # refused by this build (e.g. a file it cannot read yet)
+            return {"case": case_path.name, "error": f"cannot run in this build: {exc}"}
     if not records:
         return {"case": case_path.name, "error": "no seed finished (make validate runs it)"}
     if "params" in records[0]:  # as run: structure files may have filled some
@@ -200,8 +207,8 @@ def validate(case_path: pathlib.Path, out: pathlib.Path, workers: int, extra: tu
         row["exit"] = {k: records[0]["exit"].get(k) for k in ("residues", "length", "depth",
                                                                "free_linker")}
     row["measured"] = code_now(records)
-    row["minimal"] = {"status": "walk not run (--no-walk, or the time budget of --until); "
-                                "make validate resumes it"}
+    row["minimal"] = {"status": "walk not run (make validate runs none: make validate-walks "
+                                "does; or the time budget of --until)"}
     return row
 
 
@@ -289,6 +296,13 @@ def page_text(rows: list[dict]) -> str:
     return text + ("\n\n" + more if more else "")
 
 
+def glance_text(rows: list[dict]) -> str:
+    """What make validate writes at the page's top: the short table, its provenance, and its
+    fibrils and runs (as under the wide table)."""
+    more = fibrils_and_runs(rows)
+    return glance(rows) + "\n\n" + provenance(rows) + ("\n\n" + more if more else "")
+
+
 def markers(shape: str | None) -> tuple:
     """The page's markers around the table: the gallery's, or its re-run with a domain shape."""
     if shape is None:
@@ -304,8 +318,9 @@ def has_domain_file(case_path) -> bool:
         return False
 
 
-def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None) -> None:
-    start, end = markers(shape)
+def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None,
+               between: tuple | None = None) -> None:
+    start, end = between or markers(shape)
     body = page.read_text(encoding="utf-8")
     if start not in body or end not in body:
         raise SystemExit(f"{page.relative_to(ROOT)} has no {start} ... {end} markers")
@@ -440,7 +455,8 @@ def main(argv=None) -> int:
             old = stored.get(row["case"], {})
             if ("row" not in row.get("minimal", {}) and "row" in old.get("minimal", {})
                     and old.get("measured", {}).get("model_version")
-                    == row.get("measured", {}).get("model_version")):
+                    == row.get("measured", {}).get("model_version")
+                    and old.get("case_sha256") == row.get("case_sha256")):
                 row["minimal"] = old["minimal"]  # a walk this run did not redo stays
             stored[row["case"]] = kept(row)
     shown = gallery_rows(gallery, stored)
@@ -449,6 +465,8 @@ def main(argv=None) -> int:
     if not args.no_docs:
         save_stored(stored, args.domain_shape)
         write_page(text, shape=args.domain_shape)
+        if args.domain_shape is None:
+            write_page(glance_text(shown), between=GLANCE)
     return 0
 
 

@@ -45,6 +45,8 @@ METADATA = {
     "envelope_width_source": (str, "where that width was measured"),
     "estimates": (list, "parameters whose values are estimates, not the paper's numbers"),
     "notes": (str, "anything else: how numbers were estimated, caveats"),
+    "changed": (str, "what changed against the case's earlier version, and why (the "
+                     "validation table says it)"),
 }
 SEEDS = "seeds"
 # What a case says of its own model, stale once an option changes it (dropped from the case as run)
@@ -58,7 +60,7 @@ STRUCTURE_KEYS = {"fibril": "file", "domain": "file", "full_length": "file",
                   "domain_residues": str}
 LISTED = ("domain", "domain_chain", "domain_residues")
 ORDER = ("name", "description", "citation", "doi", "pdb", "source", "observed", "expected",
-         "envelope_width", "envelope_width_source", "estimates", "notes", SEEDS)
+         "envelope_width", "envelope_width_source", "estimates", "notes", "changed", SEEDS)
 
 
 class CaseError(P.ParamError):

@@ -189,11 +189,43 @@ def table(rows: list[dict]) -> str:
             continue
         agree, why = agreement(row)
         minimal, margin = _minimal_text(row)
+        changed = row["meta"].get("changed")
         lines.append("| " + " | ".join([
-            f"`{row['case']}` {row['name']}", experiment_text(row["meta"]),
+            f"`{row['case']}` {row['name']}" + (f" (changed: {changed})" if changed else ""),
+            experiment_text(row["meta"]),
             f"{says(row)}: {_fit_text(row)}", f"**{agree}**" + (f": {why}" if why else ""),
             str(row["params"]["linker"]), bracket(row), minimal, margin, _envelope_text(row),
             _width_text(row), _measured_text(row)]) + " |")
+    return "\n".join(lines)
+
+
+GLANCE_HEAD = ("| system | what the experiment saw | FibrilFit's answer at the real linker | "
+               "agree? |")
+
+
+def _glance_says(row) -> str:
+    """says() with its P(fit) and the bracket's two proofs, in a few words."""
+    f, B, (L, _) = row["fit"], _bound(row), _minimal(row)
+    if L is None and f["accommodated"]:
+        L = row["params"]["linker"]
+    text = f"{says(row)} ({f['accommodated']}/{f['n']}) at {row['params']['linker']}"
+    sides = ([f"impossible below {B}"] if B is not None and B > 1 else []) + (
+        [f"fits from {L}"] if L is not None else [])
+    return text + (f"; {', '.join(sides)}" if sides else "")
+
+
+def glance(rows: list[dict]) -> str:
+    """The page's short table (issue #47 item 5): one line per case, the system, what its
+    experiment saw, what FibrilFit says and whether they agree; from the same rows as table()."""
+    lines = [GLANCE_HEAD, "|---|---|---|---|"]
+    for row in rows:
+        if "error" in row:
+            lines.append(f"| `{row['case']}` | | not run: {row['error']} | |")
+            continue
+        agree, _ = agreement(row)
+        saw = row["meta"].get("observed", "") if row["meta"].get("expected", "unknown") != \
+            "unknown" else "no experiment"
+        lines.append(f"| {row['name']} | {saw} | {_glance_says(row)} | **{agree}** |")
     return "\n".join(lines)
 
 

@@ -29,7 +29,7 @@ from docs_rows import docs_table
 from helpers import ROOT
 
 EXAMPLES = ROOT / "examples"
-TDP43 = ("--case", str(EXAMPLES / "tdp43_8qx9.toml"), "--layers", "16", "--score-layers", "4")
+TDP43 = ("--case", str(EXAMPLES / "numbers" / "tdp43_8qx9.toml"), "--layers", "16", "--score-layers", "4")
 UBIQUITIN = ("--case", str(EXAMPLES / "asyn_6cu7_ubiquitin.toml"), "--layers", "10")
 GUIDE = "guide/atoms-and-domains.md"
 GALLERY = "| case | experiment says |"

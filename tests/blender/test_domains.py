@@ -86,7 +86,7 @@ def test_bad_full_length_models_are_refused_in_one_line(ff, scene, tmp_path, cap
 
 # A TDP-43-like chain: the core, 50 residues to RRM2, 23 to RRM1, 24 to the NTD (the issue's
 # numbers; spheres of given diameters: the repository has no TDP-43 domain files), two
-# molecules per layer as in 8QX9 (examples/tdp43_8qx9.toml's geometry).
+# molecules per layer as in 8QX9 (examples/numbers/tdp43_8qx9.toml's geometry).
 TDP43 = dict(protofilaments=2, slab=(56.5, 22.0, 4.78), rise=4.78, twist=-0.0309, layers=4,
              linker=51, globule_diameter=31.0, domain_diameters="31,30", domain_linker="23,24",
              frames=40)

@@ -25,7 +25,7 @@ EXAMPLES, DATA = ROOT / "examples", ROOT / "tests" / "data"
 HULL = ("--domain-shape", "hull", "--protocol", "inflate")
 UBIQUITIN = ("--case", str(EXAMPLES / "asyn_6cu7_ubiquitin.toml"))
 GFP = ("--case", str(EXAMPLES / "asyn_2n0a_gfp.toml"))
-TDP43 = ("--case", str(EXAMPLES / "tdp43_8qx9.toml"), *("--domain", str(DATA / "1ubq.pdb.gz")) * 3,
+TDP43 = ("--case", str(EXAMPLES / "numbers" / "tdp43_8qx9.toml"), *("--domain", str(DATA / "1ubq.pdb.gz")) * 3,
          "--domain-linker", "23,24", "--globule-diameter", "30.276", "--layers", "16",
          "--score-layers", "4")
 

@@ -63,7 +63,7 @@ class Labels:
 
 
 def test_a_case_loaded_and_run_in_the_panel_gives_the_command_lines_result(ui, tmp_path):
-    """examples/hnrnpdl2_7zir.toml (every value not the default: slab, linker 25, 36 Å, twist,
+    """examples/numbers/hnrnpdl2_7zir.toml (every value not the default: slab, linker 25, 36 Å, twist,
     score layers) on 6 layers with 2 scored, set the same way in both: Load case and Run all
     as their buttons call them, then `run --case` (8 s on bpy 5.0.1, 2026-11-26: fits)."""
     from fibrilfit import cli
@@ -71,7 +71,7 @@ def test_a_case_loaded_and_run_in_the_panel_gives_the_command_lines_result(ui, t
     from fibrilfit.builders import find_model
     from helpers import ROOT
     from test_reliability import _as_the_ui
-    case = ROOT / "examples" / "hnrnpdl2_7zir.toml"
+    case = ROOT / "examples" / "numbers" / "hnrnpdl2_7zir.toml"
     assert _as_the_ui("fibrilfit", "load_case", filepath=str(case)) == {"FINISHED"}
     assert (ui.linker, ui.globule_diameter) == (25, 36.0)
     ui.layers, ui.score_layers = 6, 2  # the override, as --layers 6 --score-layers 2 below
@@ -133,7 +133,7 @@ def test_a_case_naming_a_bad_structure_file_leaves_the_panel_unchanged(ui, scene
     src.write_text(f'[params]\nlinker = 12\n[structure]\nfibril = "fibril.pdb"\n'
                    f'domain = "{ROOT / "tests" / "data" / "1ubq.pdb.gz"}"\n', encoding="utf-8")
     assert bpy.ops.fibrilfit.load_case(
-        filepath=str(ROOT / "examples" / "hnrnpdl2_7zir.toml")) == {"FINISHED"}
+        filepath=str(ROOT / "examples" / "numbers" / "hnrnpdl2_7zir.toml")) == {"FINISHED"}
     before, meta, objects = properties.values(ui), ui.case_metadata, len(bpy.data.objects)
     said = ("structure.fibril: no file 'fibril.pdb'" if what == "missing"
             else re.escape("fibril.pdb: not a structure (no atoms)"))

@@ -62,8 +62,10 @@ def test_every_data_file_is_read_by_a_test():
     # 2kj3, 9xbo: tests/unit/test_fibril_solenoid_and_pieces.py (issue #47)
     # 2m5n, 7m61, 9cz3: tests/unit/test_deposited_reading.py (issue #47 item 7)
     # 5oqv_ae: tests/unit/test_exit_path.py (issue #50: the exit rule from both copies)
+    # the gallery's cores: tests/unit/test_gallery_files.py (issue #47)
     assert names == set(FIBRILS) | {"1ubq", "1gfl", "6zrr", "7rl4", "2kj3", "9xbo", "2m5n",
-                                    "7m61", "9cz3", "5oqv_ae"}
+                                    "7m61", "9cz3", "5oqv_ae"} | {
+        "6vps", "8qx9", "7zir", "7da4", "6qjh"}
 
 
 def test_importing_structure_needs_no_gemmi_and_no_bpy():

@@ -19,7 +19,7 @@ from fibrilfit.api import inspect
 from fibrilfit.structure import chain_kinds, fibril as F, one_screw, reading, side_contacts
 from fibrilfit.structure.errors import StructureError
 
-gemmi = pytest.importorskip("gemmi")
+import gemmi  # noqa: E402 (requirements-dev installs it)
 DATA = ROOT / "tests" / "data"
 PEPTIDE, NOT_COPIES, MISSES = (str(DATA / f"{n}.pdb.gz") for n in ("2m5n", "7m61", "9cz3"))
 

@@ -99,7 +99,7 @@ def test_two_tethered_spheres_contact_statistics():
 
 def test_integrated_time_of_a_known_process():
     """AR(1) x_t = φ x_(t-1) + noise has τ = (1 + φ)/(1 - φ); emcee's estimator agrees."""
-    emcee = pytest.importorskip("emcee")
+    import emcee
     rng = np.random.default_rng(2)
     phi, steps, walkers = 0.8, 20_000, 8
     x = np.zeros((steps, walkers))
@@ -224,7 +224,7 @@ def test_density_map_keeps_the_domains_volume_and_writes_its_header(tmp_path):
     window holds one sphere's volume per rise of its length (to 1 %: the voxelised sphere, the
     window's ends on the voxel grid), and the MRC file reads back with its voxel size and
     origin."""
-    mrcfile = pytest.importorskip("mrcfile")
+    import mrcfile
     p = P.DEFAULTS
     angle, height = helix.layer_turn(p, np.arange(40, dtype=float))
     xy = helix.turn_xy(np.full(40, 40.0), np.zeros(40), angle)

@@ -140,11 +140,14 @@ def test_taurd_is_on_the_tau_core_inside_its_construct():
     assert case.structure["domain"].endswith("1gfl.pdb.gz") and case.structure["terminus"] == "C"
 
 
-def test_the_het_s_case_waits_for_the_solenoid_reader_and_says_so():
-    """Its file loads and makes parameters; until 2KJ3 is read, make validate's row is the
-    refusal (tools/validate.py: a case this build cannot run gets a row saying why)."""
+def test_the_het_s_case_is_read_as_a_solenoid():
+    """Its file loads and makes parameters; 2KJ3 is read as a β-solenoid (two rungs a molecule,
+    docs/guide/structures.md#beta-solenoids), so the case runs (its row: docs/validation.md)."""
+    from fibrilfit import structure
     case = cases.load(EXAMPLES / "hets_2kj3_full_length.toml")
     p = case.make_params()
     assert p.linker == 1 and case.structure["terminus"] == "N"
-    assert "waiting" in case.meta["name"] and "Waits for β-solenoids" in case.meta["notes"]
+    assert "waiting" not in case.meta["name"] and "Waits for" not in case.meta["notes"]
     assert case.structure["fibril"].endswith("2kj3.pdb.gz")
+    g = structure.measure_fibril(EXAMPLES / case.structure["fibril"], terminus="N")
+    assert g.rungs == 2

@@ -13,19 +13,22 @@ PAIR = ("--fibril", str(DATA / "5oqv_addedH.pdb.gz"), "--domain", str(DATA / "1g
 
 
 def test_5oqv_gfp_at_linker_12_spends_its_exit_and_fits(tmp_path):
-    """Measured 2026-11-25 on bpy 5.0.1 (3 layers, 30 frames, tutorial, seed 0): fits, worst
-    stretch -0.1 %, no clashing pair."""
+    """3 layers, 30 frames, tutorial, seed 0: fits. The exit by the rule
+    (docs/model/buried-terminus.md#rule, MODEL_VERSION 8) spends 1 residue, 3.64 Å (5 and
+    17.82 Å through the atoms as deposited, until MODEL_VERSION 7)."""
     out = tmp_path / "r.json"
     cp = run_cli("run", *PAIR, "--linker", "12", "--layers", "3", "--frames", "30",
                  "--json", str(out))
     assert cp.returncode == 0, cp.stderr
     r = json.loads(out.read_text())
-    assert r["exit"]["residues"] == 5 and r["exit"]["free_linker"] == 7
-    assert r["exit"]["length"] == pytest.approx(17.82, abs=0.01)
-    assert r["params"]["exit_residues"] == 5 and r["params"]["linker"] == 12
+    assert r["exit"]["residues"] == 1 and r["exit"]["free_linker"] == 11
+    assert r["exit"]["length"] == pytest.approx(3.64, abs=0.01)
+    assert r["params"]["exit_residues"] == 1 and r["params"]["linker"] == 12
     assert r["answer"] == "fits" and r["accommodated"]
-    assert "exit: 5 linker residue(s) spent" in cp.stdout
-    assert r["sources"]["exit_residues"].startswith("5oqv_addedH.pdb.gz: measured, a 17.82 Å")
+    assert "exit: 1 linker residue(s) spent" in cp.stdout and "by the rule:" in cp.stdout
+    assert r["sources"]["exit_residues"].startswith("5oqv_addedH.pdb.gz: measured, a 3.64 Å")
+    assert {row["atoms"] for row in r["exit"]["sensitivity"]} == {
+        "fixed", "deposited", "deposited, no OXT"}
 
 
 def test_a_linker_shorter_than_the_exit_is_no_exit_not_an_error(tmp_path):
@@ -36,7 +39,7 @@ def test_a_linker_shorter_than_the_exit_is_no_exit_not_an_error(tmp_path):
     assert "Traceback" not in cp.stderr and "error" not in cp.stderr
     r = json.loads(out.read_text())
     assert r["answer"] == r["verdict"] == "no exit" and not r["accommodated"]
-    assert r["exit_needs"] == 6 and r["exit"]["residues"] == 5
+    assert r["exit_needs"] == 2 and r["exit"]["residues"] == 1
     assert r["frames_simulated"] == 0 and "bake" not in r["timings_s"]
     assert cp.stdout.strip().splitlines()[-1].startswith("answer: no exit. The exit from the "
                                                          "buried anchor")

@@ -22,7 +22,7 @@ class FIBRILFIT_OT_sample_ensemble(bpy.types.Operator):
     bl_label = "Sample ensemble…"
     bl_description = ("Sample the model's layouts (every valid layout equally likely) from the "
                       "checked one; the outer diameter with its interval and the width")
-    bl_options = {"REGISTER"}
+    bl_options = {"REGISTER", "UNDO"}  # it stores the block on the model (scene data)
 
     sweeps: plan_property(DEFAULT, "ensemble")
     replicas: plan_property(DEFAULT, "ensemble_replicas")

@@ -76,7 +76,7 @@ def number(cell: str) -> int:
 
 def test_the_pages_tables_are_read():
     assert len(GALLERY) == 16 and len(NEGATIVE) == 4 and len(HULL) == len(SHAPES) == 2
-    assert len(PREDICT_F) == 2 and 1 <= len(PREDICT_L) <= 3
+    assert len(PREDICT_F) == 1 and 1 <= len(PREDICT_L) <= 3
     assert [number(r["linker (anchor counted)"]) for r in WALK] == [9, 10, 12, 13]
     assert [number(r["linker (anchor counted), 20 layers"]) for r in WALK20] == [8, 9, 11, 12, 13]
 
@@ -161,13 +161,13 @@ def test_the_shape_comparison_is_the_two_tables():
 def test_the_predictions_subunits_and_bounds_are_todays(model):
     """The Aβ42-GFP prediction's proven side and its counts, recomputed (the searches themselves
     took 148-2,821 s each: docs/validation.md#abeta42-prediction): N = 40 subunits in the case's
-    auto cell at every linker; f_B and the bracket at linkers 13 and 15; the bound at each
+    auto cell at every linker; f_B and the bracket at linker 13; the bound at each
     fraction published (10 %: 2) and each row's bracket; a row's count is round(f·N)."""
     from fibrilfit.model.fraction_bound import (fraction_bracket, fraction_limit,
                                                 impossible_below_at)
     from fibrilfit.model.occupancy import decorated_count
     from fibrilfit.search.table import bracket_line
-    assert [number(r["linker (anchor counted)"]) for r in PREDICT_F] == [13, 15]
+    assert [number(r["linker (anchor counted)"]) for r in PREDICT_F] == [13]
     for row in PREDICT_F:
         linker = number(row["linker (anchor counted)"])
         p = model(INFINITE, linker=linker)

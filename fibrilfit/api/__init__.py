@@ -64,8 +64,13 @@ def ensemble(result=None, *, sweeps: int = 100, **values):
     or of a model given as `run`'s keyword values, run first (`ensemble(sweeps=100, linker=8)`).
     `replicas`, `burn_in`, `ensemble_map` as the options --ensemble-replicas, ... Seeded by the
     run's seed. Returns the result's `ensemble` block (a dict: docs/model/ensemble.md#use)."""
-    from .ensemble_run import ensemble as _ensemble
-    return _ensemble(result, sweeps=sweeps, **values)
+    from . import ensemble_run
+    options = {k: values.pop(k) for k in ("replicas", "burn_in", "ensemble_map") if k in values}
+    if result is None:
+        return run(**values, **ensemble_run.asked(sweeps, **options)).data["ensemble"]
+    if values:
+        raise TypeError("give a run's result or the model's values, not both")
+    return ensemble_run.ensemble(result, sweeps=sweeps, **options)
 
 
 def minimal_linker(plan: MinimalLinkerPlan | None = None, **values):

@@ -57,22 +57,21 @@ def block_from_scene(p, result: dict, plan, map_path=None, scene=None, picture=N
     return block
 
 
-def ensemble(result=None, *, sweeps: int = 100, replicas: int | None = None,
-             burn_in: int | None = None, ensemble_map: str | None = None, **values):
-    """The ensemble of a run (api.run's RunResult, its model still in this process's scene),
-    or of a model given as `run`'s keyword values, run first: `ensemble(sweeps=100, linker=8)`.
-    Returns the `ensemble` block (a dict, as the result JSON holds it)."""
-    from ..ensemble.plans import EnsemblePlan
-    asked = {"ensemble": sweeps, "ensemble_replicas": replicas, "ensemble_burn_in": burn_in,
+def asked(sweeps: int = 100, replicas: int | None = None, burn_in: int | None = None,
+          ensemble_map: str | None = None) -> dict:
+    """The ensemble's options as `run`'s keyword values (those given)."""
+    given = {"ensemble": sweeps, "ensemble_replicas": replicas, "ensemble_burn_in": burn_in,
              "ensemble_map": ensemble_map}
-    asked = {k: v for k, v in asked.items() if v is not None}
-    if result is None:
-        from . import run
-        return run(**values, **asked).data["ensemble"]
-    if values:
-        raise TypeError("give a run's result or the model's values, not both")
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def ensemble(result, **options):
+    """The ensemble of a run (api.run's RunResult, its model still in this process's scene),
+    `options` as `asked`'s. Returns the `ensemble` block (a dict, as the result JSON holds it);
+    api.ensemble runs the model first when given its values."""
+    from ..ensemble.plans import EnsemblePlan
     from .. import pipeline
-    plan = EnsemblePlan.make(**asked)
+    plan = EnsemblePlan.make(**asked(**options))
     model = pipeline.current_model()
     data = getattr(result, "data", result)
     if model is None or model.params.seed != data.get("seed"):

@@ -62,10 +62,11 @@ def ensemble(result=None, *, sweeps: int = 100, **values):
     """The model's ensemble (every valid layout equally likely), as `fibrilfit run --ensemble
     SWEEPS` samples it: of `result` (a RunResult of this process, its model still in the scene),
     or of a model given as `run`'s keyword values, run first (`ensemble(sweeps=100, linker=8)`).
-    `replicas`, `burn_in`, `ensemble_map` as the options --ensemble-replicas, ... Seeded by the
-    run's seed. Returns the result's `ensemble` block (a dict: docs/model/ensemble.md#use)."""
+    `replicas`, `burn_in`, `ensemble_map`, `ensemble_volume` as the options --ensemble-replicas,
+    ... Seeded by the run's seed. Returns the result's `ensemble` block (a dict: docs/model/ensemble.md#use)."""
     from . import ensemble_run
-    options = {k: values.pop(k) for k in ("replicas", "burn_in", "ensemble_map") if k in values}
+    options = {k: values.pop(k) for k in ("replicas", "burn_in", "ensemble_map",
+                                          "ensemble_volume") if k in values}
     if result is None:
         return run(**values, **ensemble_run.asked(sweeps, **options)).data["ensemble"]
     if values:

@@ -30,8 +30,9 @@ def check(plan, p):
 def block_from_scene(p, result: dict, plan, map_path=None, scene=None, picture=None) -> dict:
     """The `ensemble` block of `result`, the run of Params p whose layout is in `scene` (this
     process's): sampled from that layout seeded by p.seed, or why it was not; the map written
-    to `map_path` and the picture (exports/ensemble_plot.py) to `picture` if given (a picture
-    that fails is recorded as {"error": ...}, never fatal)."""
+    to `map_path`, the density put over the model as a Volume object (plan.ensemble_volume:
+    builders/density_volume.py) and the picture (exports/ensemble_plot.py) to `picture` if
+    given (a picture that fails is recorded as {"error": ...}, never fatal)."""
     from ..ensemble import account
     reason = account.why_not(result)
     if reason is not None:
@@ -43,11 +44,14 @@ def block_from_scene(p, result: dict, plan, map_path=None, scene=None, picture=N
         return account.not_sampled("the scene holds no FibrilFit model to start from")
     start = chain_positions(model)
     try:
-        block, dmap = account.sample(p, start, scored_chains(p), plan, seed=p.seed)
+        block, dmap, vmap = account.sample(p, start, scored_chains(p), plan, seed=p.seed)
     except ValueError as exc:  # the start could not be repaired (sampler.sample says how far)
         return account.not_sampled(str(exc))
     if map_path is not None:
         account.write_map(block, dmap, map_path)
+    if vmap is not None:  # --ensemble-volume: over the model in this scene
+        from ..builders import density_volume
+        block["volume"] = density_volume.build(scene, vmap)
     if picture is not None:
         from ..exports import ensemble_plot
         try:
@@ -58,10 +62,10 @@ def block_from_scene(p, result: dict, plan, map_path=None, scene=None, picture=N
 
 
 def asked(sweeps: int = 100, replicas: int | None = None, burn_in: int | None = None,
-          ensemble_map: str | None = None) -> dict:
+          ensemble_map: str | None = None, ensemble_volume: bool | None = None) -> dict:
     """The ensemble's options as `run`'s keyword values (those given)."""
     given = {"ensemble": sweeps, "ensemble_replicas": replicas, "ensemble_burn_in": burn_in,
-             "ensemble_map": ensemble_map}
+             "ensemble_map": ensemble_map, "ensemble_volume": ensemble_volume}
     return {k: v for k, v in given.items() if v is not None}
 
 

@@ -168,6 +168,9 @@ class ReportPlan(_CommandPlan):
     def check(self) -> None:
         if self.search.known_fit is not None:
             raise PlanError("known_fit", "not a report option (minimal-linker's)")
+        if self.sampling.ensemble_volume:
+            raise PlanError("ensemble_volume", "not a report option (the report keeps no scene: "
+                                               "run --ensemble N --ensemble-volume --blend F)")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -61,7 +61,7 @@ def clear_model(scene: bpy.types.Scene) -> int:
         scene.world = None
     # Meshes first: a material is an orphan only once the meshes using it are gone.
     for kinds in ((bpy.data.meshes, bpy.data.curves, bpy.data.cameras, bpy.data.lights,
-                   bpy.data.worlds),
+                   bpy.data.worlds, bpy.data.volumes, bpy.data.node_groups),
                   (bpy.data.materials,)):
         bpy.data.batch_remove([d for kind in kinds for d in kind if is_ours(d) and d.users == 0])
     return removed

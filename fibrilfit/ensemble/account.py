@@ -57,8 +57,9 @@ def sample(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int) -> tupl
     """Sample Params p's model from `start` (C, n, 3: every member of every chain, the relaxed
     layout) under `plan` (EnsemblePlan), seeded by `seed` (the run's). Returns (the block: how
     it was sampled, the outer diameter's distribution and convergence (observables.report),
-    the width from the map; the map, density.DensityMap). Raises ValueError when the start
-    cannot be repaired into a valid layout (sampler.sample)."""
+    the width from the map; the map, density.DensityMap; the volume's map). Raises ValueError when the start
+    cannot be repaired into a valid layout (sampler.sample). With plan.ensemble_volume, a third
+    item: the map over the model's own layers (volume_map), else None."""
     hard = system.from_params(p)
     ens = sampler.sample(hard, start, seed=seed, replicas=plan.ensemble_replicas,
                          sweeps=plan.ensemble, burn_in=plan.ensemble_burn_in)
@@ -82,7 +83,17 @@ def sample(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int) -> tupl
     if len(p.domains) > 1:
         block["width"]["note"] = ("several domains per chain: each drawn in the map as a sphere "
                                   "of the widest domain's radius")
-    return block, dmap
+    vmap = volume_map(p, hard, centres) if plan.ensemble_volume else None
+    return block, dmap, vmap
+
+
+def volume_map(p, hard: system.HardCore, centres: np.ndarray):
+    """The map shown over the fibril in Blender (builders/density_volume.py): the same
+    helically averaged map as the width's, but its window the model's own layers (a finite
+    fibril's, or a periodic cell's), so it lies over the built model in its frame
+    (docs/model/ensemble.md#volume)."""
+    return density.density_map(p, centres, p.widest_diameter / 2.0, voxel=VOXEL,
+                               layers=p.layers, core=core_prism(p, hard))
 
 
 def write_map(block: dict, dmap, path) -> None:
@@ -97,7 +108,7 @@ def write_map(block: dict, dmap, path) -> None:
 def sampled_block(p, start: np.ndarray, scored: np.ndarray, plan, *, seed: int,
                   map_path=None) -> dict:
     """sample()'s block alone, the map written to `map_path` if given."""
-    block, dmap = sample(p, start, scored, plan, seed=seed)
+    block, dmap, _ = sample(p, start, scored, plan, seed=seed)
     if map_path is not None:
         write_map(block, dmap, map_path)
     return block

@@ -2,6 +2,7 @@
 line, the sidebar and the Python API take it from here (docs/model/ensemble.md#use).
 
     --ensemble SWEEPS  [--ensemble-replicas R]  [--ensemble-burn-in B]  [--ensemble-map FILE.mrc]
+                       [--ensemble-volume]
 
 Plain Python: no bpy, no numpy.
 """
@@ -34,10 +35,17 @@ class EnsemblePlan(Plan):
     ensemble_map: str | None = option(None, "write the ensemble's helically averaged density "
                                             "map (MRC, needs mrcfile)", kind="path",
                                       metavar="FILE.mrc", group=GROUP, label="Map")
+    ensemble_volume: bool = option(False, "add the ensemble's density over the fibril to the "
+                                          "scene as a Volume object in the model's collection "
+                                          "(Blender's Geometry Nodes; saved with --blend, shown "
+                                          "by --render; docs/model/ensemble.md#volume)",
+                                   group=GROUP, label="Density volume")
 
     def check(self) -> None:
         if self.ensemble_map and not self.ensemble:
             raise PlanError("ensemble_map", "only with --ensemble SWEEPS (at least 1)")
+        if self.ensemble_volume and not self.ensemble:
+            raise PlanError("ensemble_volume", "only with --ensemble SWEEPS (at least 1)")
 
     @property
     def on(self) -> bool:

@@ -1,6 +1,7 @@
 """Sample ensemble…: the checked model's ensemble, sampled from its layout at the bake's last
 frame, as `run --ensemble` does (api/ensemble_run.py; docs/model/ensemble.md#use). Its numbers
-go into the model's result JSON and the panel (scene.fibrilfit.ensemble_summary)."""
+go into the model's result JSON and the panel (scene.fibrilfit.ensemble_summary); its density is
+put over the model as a Volume object (builders/density_volume.py), unless unticked."""
 import json
 
 import bpy
@@ -14,19 +15,21 @@ from ..plan_properties import plan_property
 from . import common
 
 WHY = "Check the model first: the ensemble starts from a checked layout that fits"
-DEFAULT = EnsemblePlan(ensemble=100)
+DEFAULT = EnsemblePlan(ensemble=100, ensemble_volume=True)
 
 
 class FIBRILFIT_OT_sample_ensemble(bpy.types.Operator):
     bl_idname = "fibrilfit.sample_ensemble"
     bl_label = "Sample ensemble…"
     bl_description = ("Sample the model's layouts (every valid layout equally likely) from the "
-                      "checked one; the outer diameter with its interval and the width")
+                      "checked one; the outer diameter with its interval and the width, and "
+                      "the density over the model as a Volume object")
     bl_options = {"REGISTER", "UNDO"}  # it stores the block on the model (scene data)
 
     sweeps: plan_property(DEFAULT, "ensemble")
     replicas: plan_property(DEFAULT, "ensemble_replicas")
     burn_in: plan_property(DEFAULT, "ensemble_burn_in")
+    volume: plan_property(DEFAULT, "ensemble_volume")
 
     @classmethod
     def poll(cls, context):
@@ -42,7 +45,7 @@ class FIBRILFIT_OT_sample_ensemble(bpy.types.Operator):
         scene = context.scene
         model = pipeline.current_model(scene)
         plan = EnsemblePlan.make(ensemble=self.sweeps, ensemble_replicas=self.replicas,
-                                 ensemble_burn_in=self.burn_in)
+                                 ensemble_burn_in=self.burn_in, ensemble_volume=self.volume)
         ensemble_run.check(plan, model.params)  # what the sampler does not model: one line
         frame = last_frame(model)
         if scene.frame_current != frame:

@@ -2,7 +2,8 @@
 docs/model/ensemble.md#volume), on every bpy: it lives in the model's collection, found by tag
 (a user's object of the same name is never touched), sampling again replaces it and a rebuild
 removes it; Blender's own grid holds the map's voxels above the threshold at the map's places
-(read back through Blender's Distribute Points in Volume), reaches over the relaxed layout's
+(read back through Blender's Distribute Points in Volume:
+tests/realblender/volume_probe.py), reaches over the relaxed layout's
 domains, and its radial profile, read from the grid alone, peaks where the sampler's radial
 density of domain mass peaks. `run --ensemble-volume --blend` saves it with the file."""
 import json
@@ -15,46 +16,12 @@ from fibrilfit import api, cli, pipeline
 from fibrilfit.analysis.verdict import chain_positions, scored_chains
 from fibrilfit.builders import density_volume, scene as owned
 from fibrilfit.ensemble import system
+from realblender.volume_probe import voxels_above
 
 SMALL = dict(layers=6, seed=0)
 OPTIONS = dict(sweeps=6, replicas=4, burn_in=4)
 STEP = 0.04  # the levels at which the grid is read back (volume fraction)
 LEVELS = 15  # STEP … 0.6: the domains' map stays below (the core, 1, is left out)
-
-
-def _probe(volume: bpy.types.Object, voxel: float):
-    """A test object whose Geometry Nodes turn `volume`'s grid into one vertex at each voxel
-    above a level (Distribute Points in Volume, grid mode, spacing one voxel); returns a
-    function level -> (n, 3) voxel centres."""
-    me = bpy.data.meshes.new("probe")
-    probe = bpy.data.objects.new("probe", me)
-    bpy.context.scene.collection.objects.link(probe)
-    ng = bpy.data.node_groups.new("probe", "GeometryNodeTree")
-    ng.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
-    ng.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
-    info = ng.nodes.new("GeometryNodeObjectInfo")
-    info.inputs["Object"].default_value = volume
-    info.transform_space = "ORIGINAL"
-    points = ng.nodes.new("GeometryNodeDistributePointsInVolume")
-    if hasattr(points, "mode"):  # 4.2; a menu socket from 5.0 on
-        points.mode = "DENSITY_GRID"
-    else:
-        points.inputs["Mode"].default_value = "Grid"
-    points.inputs["Spacing"].default_value = (voxel,) * 3
-    vertices = ng.nodes.new("GeometryNodePointsToVertices")
-    out = ng.nodes.new("NodeGroupOutput")
-    ng.links.new(info.outputs["Geometry"], points.inputs["Volume"])
-    ng.links.new(points.outputs[0], vertices.inputs[0])
-    ng.links.new(vertices.outputs[0], out.inputs[0])
-    probe.modifiers.new("probe", "NODES").node_group = ng
-
-    def above(level: float) -> np.ndarray:
-        points.inputs["Threshold"].default_value = level
-        ev = probe.evaluated_get(bpy.context.evaluated_depsgraph_get())
-        co = np.empty(3 * len(ev.data.vertices))
-        ev.data.vertices.foreach_get("co", co)
-        return co.reshape(-1, 3)
-    return above
 
 
 def _grid_values(volume):
@@ -97,7 +64,10 @@ def test_the_ensembles_density_as_a_volume_over_the_fibril(scene):
     # Blender's grid: a float grid named "density", not empty
     ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
     assert [(g.name, g.data_type) for g in ev.data.grids] == [("density", "FLOAT")]
-    read = _probe(ob, info["voxel"])
+    shader = next(n for n in ob.data.materials[0].node_tree.nodes
+                  if n.bl_idname == "ShaderNodeVolumePrincipled")
+    assert shader.inputs["Density Attribute"].default_value == density_volume.ATTRIBUTE
+    read = voxels_above(ob, info["voxel"])
     active = read(info["threshold"])
     assert len(active) == info["voxels_above_threshold"] > 100
     # exactly the map's voxels above a level, at the map's places
@@ -156,7 +126,7 @@ def test_run_ensemble_volume_is_saved_with_the_blend(scene, tmp_path):
     ob = density_volume.find(bpy.context.scene)
     ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
     assert [g.name for g in ev.data.grids] == ["density"]
-    assert len(_probe(ob, info["voxel"])(info["threshold"])) == info["voxels_above_threshold"]
+    assert len(voxels_above(ob, info["voxel"])(info["threshold"])) == info["voxels_above_threshold"]
 
 
 def test_a_volume_needs_an_ensemble(scene, capsys):

@@ -1,7 +1,7 @@
 """The ensemble's figures in words, for the printed result (run_text.py) and the report's page
 (report_page.py): the outer diameter as a distribution with its interval, the width from the
-projection, and the single layout's outer diameter labelled as such beside them
-(docs/model/ensemble.md#use)."""
+projection, the density's Volume object, and the single layout's outer diameter labelled as
+such beside them (docs/model/ensemble.md#use)."""
 from __future__ import annotations
 
 
@@ -38,7 +38,16 @@ def lines(block: dict | None) -> list[str]:
         return [f"ensemble: not sampled: {block['reason']}"]
     return [f"ensemble: outer diameter {outer(block)}; {convergence(block)}",
             f"ensemble: width {width(block)}"
-            + (f"; map {block['map']['path']}" if block.get("map") else "")]
+            + (f"; map {block['map']['path']}" if block.get("map") else ""),
+            *([volume(block)] if block.get("volume") else [])]
+
+
+def volume(block: dict) -> str:
+    """'ensemble: density over the model as the Volume object "ensemble density" (...)'."""
+    v = block["volume"]
+    return (f"ensemble: density over the model as the Volume object \"{v['object']}\" "
+            f"({v['window_layers']} layers, {v['voxel']:g} Å voxels, empty below a volume "
+            f"fraction of {v['threshold']:g})")
 
 
 def cells(block: dict | None) -> list[tuple[str, str]]:

@@ -36,6 +36,11 @@ def test_the_option_parses_into_the_run_and_report_plans():
     assert make_plan(ReportPlan, {"ensemble": 5})[0].sampling.ensemble == 5
     ns = build_parser().parse_args(["run", "--ensemble", "12", "--ensemble-map", "x.mrc"])
     assert (ns.ensemble, ns.ensemble_map) == ("12", "x.mrc")
+    ns = build_parser().parse_args(["run", "--ensemble", "12", "--ensemble-volume"])
+    assert make_plan(RunPlan, {"ensemble": 12, "ensemble_volume": ns.ensemble_volume})[0] \
+        .sampling.ensemble_volume is True
+    with pytest.raises(PlanError, match="^--ensemble-volume: not a report option"):
+        make_plan(ReportPlan, {"ensemble": 5, "ensemble_volume": True})
 
 
 @pytest.mark.parametrize("values, says", [
@@ -44,6 +49,7 @@ def test_the_option_parses_into_the_run_and_report_plans():
     ({"ensemble": 10, "ensemble_replicas": 1}, "--ensemble-replicas: must be an integer from 2"),
     ({"ensemble_map": "m.mrc"}, "--ensemble-map: only with --ensemble"),
     ({"ensemble": 10, "stop_after": "bake"}, "--ensemble: starts from a checked layout"),
+    ({"ensemble_volume": True}, "--ensemble-volume: only with --ensemble"),
 ])
 def test_bad_values_are_one_line_naming_the_option(values, says):
     with pytest.raises(PlanError) as err:
@@ -85,6 +91,40 @@ def test_the_block_of_a_small_model(small_block):
     assert errors({**SAMPLE, "ensemble": block}) == []
     assert stable(block) == stable(again)  # the seed fixes the ensemble
     assert stable(other)["outer_diameter"] != stable(block)["outer_diameter"]
+
+
+def test_the_volumes_map_is_the_widths_over_the_models_layers():
+    """The map put over the model in Blender (account.volume_map) is the width's map (one
+    helical turn) cut to the model's own layers: the same voxels, the same values."""
+    p = P.make_params(layers=6, globule_diameter=10.0)
+    plan = EnsemblePlan(ensemble=4, ensemble_replicas=4, ensemble_burn_in=4, ensemble_volume=True)
+    start, scored = start_layout.rest_positions(p), np.ones(p.chains, bool)
+    block, turn, vmap = account.sample(p, start, scored, plan, seed=3)
+    assert vmap.layers == p.layers < turn.layers and vmap.voxel == turn.voxel
+    assert vmap.origin == turn.origin and vmap.data.shape[1:] == turn.data.shape[1:]
+    assert vmap.data.shape[0] * vmap.voxel >= p.layers * p.rise
+    np.testing.assert_allclose(vmap.data, turn.data[:vmap.data.shape[0]], atol=1e-5)
+    assert vmap.data.max() > 0.1
+    assert account.sample(p, start, scored, EnsemblePlan(ensemble=4, ensemble_replicas=4,
+                                                         ensemble_burn_in=4), seed=3)[2] is None
+
+
+VOLUME = {"object": "ensemble density", "grid": "density", "threshold": 0.02,
+          "units": "volume fraction of protein per voxel", "voxel": 3.0,
+          "origin": [-76.5, -76.5, -2.4], "shape_zyx": [10, 51, 51], "window_layers": 6,
+          "peak": 2.19, "voxels_above_threshold": 4762, "material_density_per_fraction": 0.05}
+
+
+def test_the_volumes_block_in_the_schema_and_the_words():
+    block = {**SAMPLE["ensemble"], "volume": VOLUME}
+    assert errors({**SAMPLE, "ensemble": block}) == []
+    for key in ("threshold", "shape_zyx", "voxels_above_threshold"):
+        broken = {**block, "volume": {k: v for k, v in VOLUME.items() if k != key}}
+        assert errors({**SAMPLE, "ensemble": broken}), key
+    assert ensemble_words.lines(block)[-1] == (
+        'ensemble: density over the model as the Volume object "ensemble density" (6 layers, '
+        '3 Å voxels, empty below a volume fraction of 0.02)')
+    assert len(ensemble_words.lines(SAMPLE["ensemble"])) == 2
 
 
 def stable(block):

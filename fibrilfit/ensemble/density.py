@@ -116,16 +116,29 @@ def projection(dmap: DensityMap) -> np.ndarray:
     return dmap.data.sum(axis=1) * dmap.voxel
 
 
+def profile(dmap: DensityMap) -> tuple[np.ndarray, np.ndarray]:
+    """(x, profile): the projection's profile across the axis (Å of projected thickness,
+    averaged along the axis) at the voxel centres x (Å)."""
+    prof = projection(dmap).mean(axis=0)
+    return dmap.origin[0] + dmap.voxel * (np.arange(prof.size) + 0.5), prof
+
+
+def width_edges(dmap: DensityMap, fraction: float = WIDTH_FRACTION) -> tuple[float, float]:
+    """(left, right), Å: the profile's outermost points at `fraction` of its peak, interpolated
+    linearly between voxel centres; the width is right − left."""
+    x, prof = profile(dmap)
+    level = fraction * float(prof.max())
+    above = np.flatnonzero(prof >= level)
+    i, j = int(above[0]), int(above[-1])
+    left = x[i] if i == 0 else np.interp(level, [prof[i - 1], prof[i]], [x[i - 1], x[i]])
+    right = (x[j] if j == prof.size - 1 else
+             np.interp(level, [prof[j + 1], prof[j]], [x[j + 1], x[j]]))
+    return float(left), float(right)
+
+
 def width(dmap: DensityMap, fraction: float = WIDTH_FRACTION) -> float:
     """The width (Å) read from the projection: its profile across the axis (averaged along the
     axis) and the distance between its outermost points at `fraction` of the profile's peak,
     interpolated linearly between voxel centres (docs/model/ensemble.md#density-map)."""
-    profile = projection(dmap).mean(axis=0)
-    x = dmap.origin[0] + dmap.voxel * (np.arange(profile.size) + 0.5)
-    level = fraction * float(profile.max())
-    above = np.flatnonzero(profile >= level)
-    i, j = int(above[0]), int(above[-1])
-    left = x[i] if i == 0 else np.interp(level, [profile[i - 1], profile[i]], [x[i - 1], x[i]])
-    right = (x[j] if j == profile.size - 1 else
-             np.interp(level, [profile[j + 1], profile[j]], [x[j + 1], x[j]]))
-    return float(right - left)
+    left, right = width_edges(dmap, fraction)
+    return right - left

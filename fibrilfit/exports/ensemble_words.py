@@ -1,6 +1,6 @@
 """The ensemble's figures in words, for the printed result (run_text.py) and the report's page
 (report_page.py): the outer diameter as a distribution with its interval, the width from the
-projection, the density's Volume object, and the single layout's outer diameter labelled as
+projection, where the radial density of domain mass peaks, the density's Volume object, and the single layout's outer diameter labelled as
 such beside them (docs/model/ensemble.md#use)."""
 from __future__ import annotations
 
@@ -28,6 +28,20 @@ def width(block: dict) -> str:
     w = block["width"]
     return f"{w['value']:.0f} Å (the projection's profile at {100 * w['fraction_of_peak']:.0f} % " \
            f"of its peak)"
+
+
+def radial_peak(block: dict) -> tuple[float, float]:
+    """(r Å, Da/Å³): where the radial density of domain mass is highest, and its value."""
+    rd = block["radial_density"]
+    mass = rd["mass_density_da_per_a3"]
+    i = max(range(len(mass)), key=mass.__getitem__)
+    return float(rd["r"][i]), float(mass[i])
+
+
+def radial(block: dict) -> str:
+    """'highest 36 Å from the axis (0.35 Da/Å³)'."""
+    r, top = radial_peak(block)
+    return f"domain mass highest {r:.0f} Å from the axis ({top:.2f} Da/Å³)"
 
 
 def lines(block: dict | None) -> list[str]:
@@ -58,4 +72,5 @@ def cells(block: dict | None) -> list[tuple[str, str]]:
         return [("ensemble", f"not sampled: {block['reason']}")]
     return [("ensemble: outer diameter", outer(block)),
             ("ensemble: width", width(block)),
+            ("ensemble: radial density", radial(block)),
             ("ensemble: convergence", convergence(block))]

@@ -198,6 +198,25 @@ def envelope_text(doc: dict) -> str:
                                for a, b in cells) + "</table>"
 
 
+ENSEMBLE_CAPTION = ("The ensemble (docs/model/ensemble.md#density-map). Left: its helically "
+                    "averaged map (domains and core) projected perpendicular to the axis over one "
+                    "helical turn, the width's edges dashed. Middle: that projection's profile "
+                    "across the axis; the width is the distance between its outermost points at "
+                    "{pct:.0f} % of its peak. Right: the radial density of domain mass, its peak "
+                    "dashed, the outer radius's 95 % interval shaded.")
+
+
+def ensemble_picture(doc: dict, folder) -> str:
+    """The ensemble's picture (exports/ensemble_plot.py) with its caption, if sampled."""
+    e = doc.get("ensemble")
+    if not e:
+        return ""
+    caption = (ENSEMBLE_CAPTION.format(pct=100 * e["width"]["fraction_of_peak"])
+               if e.get("sampled") else "")
+    return (embedded(pathlib.Path(folder), doc["files"].get("ensemble_plot"), "ensemble")
+            + (f'<p class="small">{esc(caption)}</p>' if caption else ""))
+
+
 def html(doc: dict, folder) -> str:
     """The page."""
     folder = pathlib.Path(folder)
@@ -228,7 +247,7 @@ only graze, worst linker stretch {100 * (b['max_bond_stretch'] or 0):.1f} %.</p>
 <h2>The best layout</h2>{embedded(folder, files.get('render'), 'best layout render')}
 <h2>The envelope</h2>{envelope_text(doc)}
 {embedded(folder, files.get('envelope_plot'), 'envelope plot')}
-{embedded(folder, files.get('ensemble_plot'), 'ensemble') if doc.get('ensemble') else ''}
+{ensemble_picture(doc, folder)}
 <h2>Warnings</h2>{warnings}
 <h2>The model and where each value came from</h2>{model_rows(doc)}
 <h2>To reproduce</h2><pre>{esc(command)}</pre>

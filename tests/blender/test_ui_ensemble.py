@@ -1,7 +1,7 @@
 """The sidebar's Sample ensemble… (ui/operators/ensemble.py): after Run all, it samples the
 checked layout's ensemble as `run --ensemble` does (the same block for the same seed and
-options), keeps it in the model's result and shows its lines in the panel's result box; the
-next check clears it; a model the sampler does not model is refused in one report."""
+options), keeps it in the model's result and shows its lines in the panel's result box, puts
+its density over the model as a Volume object; the next check clears the lines; a model the sampler does not model is refused in one report."""
 import json
 
 import bpy
@@ -41,6 +41,11 @@ def test_the_panels_ensemble_is_the_commands(registered, tmp_path):
     assert kept["outer_diameter"] == command["outer_diameter"]
     labels = " ".join(_labels(bpy.context))
     assert "ensemble: outer diameter" in labels and "ensemble: width" in labels
+    # the density over the model, as the command's --ensemble-volume makes it
+    from fibrilfit.builders import density_volume
+    volume = density_volume.find(bpy.context.scene)
+    assert volume is not None and shown["volume"]["object"] == volume.name
+    assert "ensemble: density over the model as the Volume object" in labels
     assert bpy.ops.fibrilfit.check_intersections() == {"FINISHED"}  # a new check: cleared
     assert s.ensemble_summary == "" and "ensemble:" not in " ".join(_labels(bpy.context))
 

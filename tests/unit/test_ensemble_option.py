@@ -93,20 +93,61 @@ def test_the_block_of_a_small_model(small_block):
     assert stable(other)["outer_diameter"] != stable(block)["outer_diameter"]
 
 
-def test_the_volumes_map_is_the_widths_over_the_models_layers():
-    """The map put over the model in Blender (account.volume_map) is the width's map (one
-    helical turn) cut to the model's own layers: the same voxels, the same values."""
+@pytest.fixture(scope="module")
+def small_sample():
+    """A small model's block, its map (one helical turn) and the volume's map."""
     p = P.make_params(layers=6, globule_diameter=10.0)
     plan = EnsemblePlan(ensemble=4, ensemble_replicas=4, ensemble_burn_in=4, ensemble_volume=True)
     start, scored = start_layout.rest_positions(p), np.ones(p.chains, bool)
-    block, turn, vmap = account.sample(p, start, scored, plan, seed=3)
+    return (p, *account.sample(p, start, scored, plan, seed=3))
+
+
+def test_the_volumes_map_is_the_widths_over_the_models_layers(small_sample):
+    """The map put over the model in Blender (account.volume_map) is the width's map (one
+    helical turn) cut to the model's own layers: the same voxels, the same values."""
+    p, block, turn, vmap = small_sample
     assert vmap.layers == p.layers < turn.layers and vmap.voxel == turn.voxel
     assert vmap.origin == turn.origin and vmap.data.shape[1:] == turn.data.shape[1:]
     assert vmap.data.shape[0] * vmap.voxel >= p.layers * p.rise
     np.testing.assert_allclose(vmap.data, turn.data[:vmap.data.shape[0]], atol=1e-5)
     assert vmap.data.max() > 0.1
+    start, scored = start_layout.rest_positions(p), np.ones(p.chains, bool)
     assert account.sample(p, start, scored, EnsemblePlan(ensemble=4, ensemble_replicas=4,
                                                          ensemble_burn_in=4), seed=3)[2] is None
+
+
+def test_the_reports_picture_has_the_projection_its_profile_and_the_radial_density(
+        small_sample, tmp_path):
+    """ensemble.png: the projection with the width's edges, the profile across the axis with
+    its level at 10 % of the peak and the width between its crossings, the radial density with
+    its peak; the page embeds it with a caption and has the radial density's row."""
+    from fibrilfit.ensemble import density
+    from fibrilfit.exports import ensemble_plot, report_page
+    _, block, turn, _ = small_sample
+    fig = ensemble_plot.draw(block, turn)
+    projection, profile, radial = fig.axes[:3]
+    assert projection.images and "width" in projection.get_title()
+    x, prof = density.profile(turn)
+    level = 0.1 * prof.max()
+    flat = [ln.get_ydata()[0] for ln in profile.lines if len(set(ln.get_ydata())) == 1]
+    assert flat == pytest.approx([level])
+    upright = sorted(ln.get_xdata()[0] for ln in profile.lines if len(set(ln.get_xdata())) == 1)
+    assert len(upright) == 2 and upright[1] - upright[0] == pytest.approx(block["width"]["value"],
+                                                                          abs=0.01)
+    # the crossings are where the profile meets the level
+    assert np.interp(upright, x, prof) == pytest.approx([level, level], rel=0.02)
+    rd = block["radial_density"]
+    r_peak = rd["r"][int(np.argmax(rd["mass_density_da_per_a3"]))]
+    assert any(ln.get_xdata()[0] == r_peak for ln in radial.lines if len(set(ln.get_xdata())) == 1)
+    out = ensemble_plot.write(block, turn, tmp_path / "ensemble.png")
+    assert (tmp_path / "ensemble.png").stat().st_size > 10_000 and out["peak_projection"] > 0
+    doc = {"ensemble": block, "files": {"ensemble_plot": "ensemble.png"},
+           "envelope": {"best_layout": {"outer_diameter": 30.0}}}
+    page = report_page.ensemble_picture(doc, tmp_path)
+    assert 'alt="ensemble" src="data:image/png;base64,' in page and "Middle: " in page
+    assert "10 % of its peak" in page
+    assert f"ensemble: radial density</th><td>domain mass highest {r_peak:.0f} Å" in \
+        report_page.envelope_text(doc)
 
 
 VOLUME = {"object": "ensemble density", "grid": "density", "threshold": 0.02,

@@ -36,9 +36,9 @@ def remove(scene) -> None:
               if m.type == "NODES" and m.node_group is not None and is_ours(m.node_group)}
     bpy.data.batch_remove(objects)
     bpy.data.batch_remove(colls)
+    bpy.data.batch_remove([g for g in groups if g.users == 0])  # before their material
     for kinds in ((bpy.data.meshes, bpy.data.volumes), (bpy.data.materials,)):
         bpy.data.batch_remove([d for kind in kinds for d in kind if is_ours(d) and d.users == 0])
-    bpy.data.batch_remove([g for g in groups if g.users == 0])
 
 
 def voxel_centres(dmap) -> np.ndarray:
@@ -64,8 +64,10 @@ def _grid_object(dmap) -> bpy.types.Object:
     return ob
 
 
-def _node_group(grid: bpy.types.Object, dmap, threshold: float) -> bpy.types.NodeTree:
-    """Volume Cube over the map's voxel centres, each voxel the grid object's value at it."""
+def _node_group(grid: bpy.types.Object, dmap, threshold: float,
+                material: bpy.types.Material) -> bpy.types.NodeTree:
+    """Volume Cube over the map's voxel centres, each voxel the grid object's value at it, with
+    `material` (a volume made by nodes carries only the material a Set Material node gives)."""
     ng = tag(bpy.data.node_groups.new("FibrilFit ensemble density", "GeometryNodeTree"), ROLE)
     ng.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
     ng.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
@@ -105,7 +107,10 @@ def _node_group(grid: bpy.types.Object, dmap, threshold: float) -> bpy.types.Nod
     cube.inputs["Max"].default_value = tuple(first + dmap.voxel * (np.array([nx, ny, nz]) - 1))
     for axis, n in zip("XYZ", (nx, ny, nz)):
         cube.inputs[f"Resolution {axis}"].default_value = int(n)
-    link(cube.outputs[0], out.inputs[0])
+    dressed = nodes.new("GeometryNodeSetMaterial")
+    dressed.inputs["Material"].default_value = material
+    link(cube.outputs[0], dressed.inputs["Geometry"])
+    link(dressed.outputs[0], out.inputs[0])
     return ng
 
 
@@ -138,11 +143,12 @@ def build(scene, dmap, threshold: float = THRESHOLD) -> dict:
     remove(scene)
     coll = new_collection("ensemble density", ROLE, root)
     grid = _grid_object(dmap)
+    material = _material()
     volume = tag(bpy.data.volumes.new("ensemble density"), ROLE)
-    volume.materials.append(_material())
+    volume.materials.append(material)
     ob = tag(bpy.data.objects.new("ensemble density", volume), ROLE)
     modifier = ob.modifiers.new("ensemble density", "NODES")
-    modifier.node_group = _node_group(grid, dmap, threshold)
+    modifier.node_group = _node_group(grid, dmap, threshold, material)
     for o in (grid, ob):
         coll.objects.link(o)
     data = dmap.data

@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "aea751b113b02ef550f668a52fa0d1944e1585e771eb39e6f5fda8e9763d2762"
+MODEL_SOURCES_SHA256 = "7961ba5ca77a95afa34de7ba11a72d4077fb71a0571dab6b174c021366eedc3a"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -64,7 +64,10 @@ def test_the_ensembles_density_as_a_volume_over_the_fibril(scene):
     # Blender's grid: a float grid named "density", not empty
     ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
     assert [(g.name, g.data_type) for g in ev.data.grids] == [("density", "FLOAT")]
-    shader = next(n for n in ob.data.materials[0].node_tree.nodes
+    # the evaluated volume carries the material (a node-made volume has only what Set
+    # Material gives it), a Principled Volume reading the grid
+    assert [m.get(owned.TAG) for m in ev.data.materials] == [density_volume.ROLE]
+    shader = next(n for n in ev.data.materials[0].node_tree.nodes
                   if n.bl_idname == "ShaderNodeVolumePrincipled")
     assert shader.inputs["Density Attribute"].default_value == density_volume.ATTRIBUTE
     read = voxels_above(ob, info["voxel"])
@@ -113,6 +116,7 @@ def test_the_ensembles_density_as_a_volume_over_the_fibril(scene):
     assert not _ours(bpy.data.volumes, density_volume.ROLE)
     assert not _ours(bpy.data.node_groups, density_volume.ROLE)
     assert not _ours(bpy.data.meshes, density_volume.GRID_ROLE)
+    assert not _ours(bpy.data.materials, density_volume.ROLE)
     assert scene.objects.get("ensemble density") == mine
 
 

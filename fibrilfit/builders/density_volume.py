@@ -21,7 +21,7 @@ ROLE = "density"            # the collection (under the model's root) and the Vo
 GRID_ROLE = "density_grid"  # the hidden mesh holding the map's voxels
 ATTRIBUTE = "density"       # the point attribute and the grid's name (a .vdb's usual one)
 THRESHOLD = 0.02            # volume fraction below which a voxel is empty (the docs' #volume)
-DENSITY_SCALE = 0.02        # the material's density per volume fraction (per Å: 1 BU = 1 Å)
+DENSITY_SCALE = 0.08        # the material's density per volume fraction (per Å: 1 BU = 1 Å)
 COLOUR = (0.25, 0.45, 0.9, 1.0)
 
 

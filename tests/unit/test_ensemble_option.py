@@ -153,7 +153,7 @@ def test_the_reports_picture_has_the_projection_its_profile_and_the_radial_densi
 VOLUME = {"object": "ensemble density", "grid": "density", "threshold": 0.02,
           "units": "volume fraction of protein per voxel", "voxel": 3.0,
           "origin": [-76.5, -76.5, -2.4], "shape_zyx": [10, 51, 51], "window_layers": 6,
-          "peak": 2.19, "voxels_above_threshold": 4762, "material_density_per_fraction": 0.02}
+          "peak": 2.19, "voxels_above_threshold": 4762, "material_density_per_fraction": 0.08}
 
 
 def test_the_volumes_block_in_the_schema_and_the_words():

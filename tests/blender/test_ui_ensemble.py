@@ -1,7 +1,7 @@
 """The sidebar's Sample ensemble… (ui/operators/ensemble.py): after Run all, it samples the
 checked layout's ensemble as `run --ensemble` does (the same block for the same seed and
 options), keeps it in the model's result and shows its lines in the panel's result box, puts
-its density over the model as a Volume object; the next check clears the lines; a model the sampler does not model is refused in one report."""
+its density over the model as a Volume object; the next check clears both; a model the sampler does not model is refused in one report."""
 import json
 
 import bpy
@@ -48,6 +48,7 @@ def test_the_panels_ensemble_is_the_commands(registered, tmp_path):
     assert "ensemble: density over the model as the Volume object" in labels
     assert bpy.ops.fibrilfit.check_intersections() == {"FINISHED"}  # a new check: cleared
     assert s.ensemble_summary == "" and "ensemble:" not in " ".join(_labels(bpy.context))
+    assert density_volume.find(bpy.context.scene) is None  # its density too
 
 
 def test_a_model_the_sampler_does_not_model_is_refused(registered):

@@ -12,6 +12,7 @@ from ...model import params as P
 from ... import pipeline
 from .. import panel_words, properties, result_words, structure_trace
 from ...analysis import clash_kinds
+from ...builders import density_volume
 from ...builders.colours import colour_globules
 from ...builders.model import STAGES, find_model, model_stage, set_stage, update_params
 from ...builders.physics import SceneConflict
@@ -168,7 +169,8 @@ def record_check(context, model, result: dict) -> None:
     """After a check: the verdict in scene.fibrilfit, clashing globules red (grazing ones
     orange), the JSON kept."""
     properties.store_result(settings(context), result)
-    settings(context).ensemble_summary = ""  # an ensemble belongs to the layout it came from
+    settings(context).ensemble_summary = ""  # an ensemble belongs to the layout it came from,
+    density_volume.remove(context.scene)       # and so does its density over the model
     deep, grazing = clash_kinds(result)
     colour_globules(model, deep, grazing=grazing)
     show_colours(model)

@@ -6,6 +6,7 @@ import math
 
 from ..model.helix import handedness
 from . import ensemble_words
+from .span_words import span_words
 from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, NO_EXIT, of_result
 
 
@@ -248,6 +249,8 @@ def _linker_lines(r: dict) -> list[str]:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    if r.get("linker_stretch"):
+        lines.append(f"  end to end: {span_words(r['linker_stretch'])}")
     return lines
 
 

@@ -172,7 +172,8 @@ def linker_stretch(p, kept: np.ndarray, starts, ends, rest) -> dict | None:
         chain = int(np.flatnonzero(kept)[block["worst_linker"]["chain"]])
         layer, pf = occupancy.model_chain_layers(p)
         block["worst_linker"].update(chain=chain, layer=int(layer[chain]),
-                                     protofilament=int(pf[chain]))
+                                     **({"protofilament": int(pf[chain])}
+                                        if p.protofilaments > 1 else {}))
     return block
 
 

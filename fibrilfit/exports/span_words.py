@@ -15,5 +15,5 @@ def span_words(s: dict) -> str:
     return (f"the linkers span {100 * s['median']:.0f} % of their full length (median of "
             f"{s['linkers']}; full length {s['contour_A']:.1f} Å, 3.5 Å a residue spacing), "
             f"{100 * s['worst']:.0f} % at most ({where})"
-            + ("; nearly straight: this layout needs that linker at its full length"
+            + ("; nearly straight: this layout uses that linker at nearly its full length"
                if s["worst"] >= NEARLY_STRAIGHT else ""))

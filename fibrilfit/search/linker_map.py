@@ -14,6 +14,7 @@ import tempfile
 
 from .. import exits, files
 from ..model import bound, fraction_bound, occupancy, params as P
+from ..model.searches import search_words
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import outdir
@@ -70,7 +71,9 @@ def restarts_line(s: dict, protocol: str | None = None) -> str:
             + f"; best layout: seed {s['best_seed']}"
             + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
                f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "
-               f"seeds" if s.get("outer_diameter") else ""))
+               f"seeds" if s.get("outer_diameter") else "")
+            # the search behind this P(fit), and what it is worth (model/searches.py)
+            + (f". P(fit) by {search_words(protocol)}" if protocol else ""))
 
 
 # ---- minimal-linker ----------------------------------------------------------------------------

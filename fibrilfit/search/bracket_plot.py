@@ -33,11 +33,12 @@ def write(path, data: dict, restarts: int, protocol: str):
     it, the asked linker ringed."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
 
     b, fit = data["impossible_below"], data["fits_at"]
     tried = [x["linker"] for x in data["lengths"]]
     top = max([b, data["asked"], *(tried or [b]), *([fit] if fit else [])]) + 2
-    fig = Figure(figsize=(7.0, 2.8), dpi=120)
+    fig = Figure(figsize=(7.0, 3.4), dpi=120)
     FigureCanvasAgg(fig)
     ax = fig.add_subplot()
     if b > 1:
@@ -60,12 +61,13 @@ def write(path, data: dict, restarts: int, protocol: str):
                 markersize=12, markerfacecolor="none", color="#1f77b4",
                 label=f"the asked linker, {data['asked']}")
     ax.set_xlim(0.5, top + 0.5)
-    ax.set_ylim(-0.08, 1.25)
+    ax.set_ylim(-0.08, 1.2)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("linker (residues)")
     ax.set_ylabel("P(fit)")
     ax.set_yticks([0, 0.5, 1])
     ax.grid(True, axis="x", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left", ncol=2, frameon=False)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=3, frameon=False)
     fig.suptitle(f"FibrilFit: the bracket (up to {restarts} restarts a length, protocol "
                  f"{protocol})", fontsize=9)
     fig.tight_layout()

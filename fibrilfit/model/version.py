@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "eeb1e38073ab5cf2b9c3acd00cbf5429dc269216cd01bdfe8dd202dd619a81b5"
+MODEL_SOURCES_SHA256 = "7b13b321fc25069881c2ece038ab5fe9c68b8da73b27f2fc5fd34193d0d31e8d"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -37,3 +37,11 @@ def test_the_printed_result_shows_it_and_the_linker_span():
     s = sample["linker_stretch"]
     assert f"span {100 * s['median']:.0f} % of their full length" in span
     assert f"{100 * s['worst']:.0f} % at most (layer {s['worst_linker']['layer']})" in span
+
+
+def test_a_minimal_linker_map_of_a_finite_fibril_is_warned_too():
+    from fibrilfit.search.linker_map import free_end_lines
+    (line,) = free_end_lines({"layers": 8, "protocol": "inflate"})
+    assert line == f"warning: {free_end_warnings(P.make_params(layers=8))[0]}"
+    assert free_end_lines({"layers": 8, "periodic": "auto"}) == []
+    assert ["20 layers" in w for w in free_end_lines({"globule_diameter": [20, 30]})] == [True]

@@ -116,7 +116,8 @@ def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:
     if not plan.output.no_plot:
         write_plot(out / PNG, rows)
         paths["png"] = out / PNG
-    return {**document, "table": table(rows, values["protocol"], search.restarts, seeds),
+    return {**document, "table": "\n".join([table(rows, values["protocol"], search.restarts,
+                                                  seeds), *linker_map.free_end_lines(values)]),
             "paths": {k: str(v) for k, v in paths.items()}}
 
 

@@ -2,7 +2,6 @@
 from the report's own numbers: the proven bound, the minimal linker and P(fit) at each length
 the search tried, the asked linker's from all its restarts; the page embeds it and names the
 search behind its P(fit) and the best layout's linker span (no bpy)."""
-import pytest
 
 from fibrilfit.exports import report_page
 from fibrilfit.model.searches import search_words
@@ -35,7 +34,6 @@ def test_without_a_bound_nothing_is_drawn_and_the_asked_linker_alone_is_a_point(
 
 
 def test_the_png_is_written(tmp_path):
-    pytest.importorskip("matplotlib")
     path = tmp_path / bracket_plot.PNG
     bracket_plot.write(path, bracket_plot.points(*_doc()), 8, "inflate")
     assert path.read_bytes()[:4] == b"\x89PNG"

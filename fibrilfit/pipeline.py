@@ -12,6 +12,7 @@ import bpy
 
 from .model import bracket, hetero, occupancy, params as P
 from .model import terminus, version as model_version
+from .model.answer import free_end_warnings
 from .analysis import StretchLog, check_model, scored_chains
 from .builders import (BakeStats, bake_steps, build_model, draw_gravity, find_model, keep_bake,
                        set_stage)
@@ -106,6 +107,8 @@ def check(model, scene=None) -> dict:
     """Judge the model at the scene's current frame (the bake leaves it on its last frame), with
     the bracket's proven side: impossible below the bound (docs/model/bound.md#derivation)."""
     checked = check_model(model)
+    # a finite fibril's answer is the short fibril's (docs/model/end-effects.md#end-effects)
+    checked["warnings"] = free_end_warnings(model.params) + checked["warnings"]
     return {**checked, "bound": bracket.bound_block(model.params, checked.get("accommodated"))}
 
 

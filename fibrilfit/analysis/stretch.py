@@ -95,3 +95,73 @@ class StretchLog:
             "frames_over_tolerance": int(over.sum()),
             "intact_from_frame": intact_from,
         }
+
+
+def linker_spans(p, starts: np.ndarray, ends: np.ndarray, rest, exit_start=None,
+                 exit_length=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each domain's linker, as the model counts it, end to end and along its contour:
+    (distance, contour), each (chains, domains), from bond_ends's `starts`, `ends` and `rest`
+    (docs/model/linker-integrity.md#linker-span).
+
+    Domain k's linker runs from where its chain leaves the member before it (the anchor's bead;
+    a real domain's exit CA; a sphere's surface) to where it enters domain k (a real domain's
+    joint CA; a sphere's surface, facing the last bead), over the bonds between; its contour is
+    their rest lengths, each bond at full stretch (a residue spacing, 3.5 Å, bead to bead), less
+    a sphere's radius at either end. A buried anchor's exit (`exit_start`: the anchor residue's
+    CA, (chains, 3), NaN where a chain has none; `exit_length`: the fixed path from there to the
+    anchor's bead, (chains,)) starts the first linker at the CA and adds the path to its contour.
+    A linker laid out straight at rest length spans its contour exactly (1.0); one that folds,
+    less.
+    """
+    starts, ends = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
+    rest = np.broadcast_to(np.asarray(rest, dtype=float), starts.shape[:2])
+    members = [d.member for d in p.domains]
+    spheres = [d.joint is None for d in p.domains]
+    distance = np.empty((len(starts), len(members)))
+    contour = np.empty_like(distance)
+    for k, g in enumerate(members):
+        g0 = members[k - 1] if k else 0
+        a, b = starts[:, g0].copy(), ends[:, g - 1].copy()
+        length = rest[:, g0:g].sum(axis=1)
+        if spheres[k]:  # the bond ends at the centre: its radius is not linker
+            radius = rest[:, g - 1] - p.residue_radius
+            b += radius[:, None] * _unit(starts[:, g - 1] - b)
+            length -= radius
+        if k and spheres[k - 1]:  # the bond leaves from the centre before
+            radius = rest[:, g0] - p.residue_radius
+            a += radius[:, None] * _unit(ends[:, g0] - a)
+            length -= radius
+        if k == 0 and exit_start is not None:
+            buried = ~np.isnan(np.asarray(exit_start, dtype=float)).any(axis=1)
+            a[buried] = np.asarray(exit_start, dtype=float)[buried]
+            length = length + np.where(buried, np.nan_to_num(np.asarray(exit_length, float)), 0)
+        distance[:, k] = np.linalg.norm(b - a, axis=-1)
+        contour[:, k] = length
+    return distance, contour
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
+
+
+def linker_stretch_block(distance: np.ndarray, contour: np.ndarray) -> dict | None:
+    """The result's `linker_stretch`: every linker's end-to-end distance as a fraction of its
+    contour (linker_spans), their median and worst (the largest: the most stretched), which
+    chain and domain that is, and with several domains the same per domain (None: no linker
+    scored)."""
+    fraction = np.asarray(distance, dtype=float) / np.asarray(contour, dtype=float)
+    if fraction.size == 0:
+        return None
+    chain, domain = np.unravel_index(int(np.argmax(fraction)), fraction.shape)
+    out = {"median": round(float(np.median(fraction)), 4),
+           "worst": round(float(fraction.max()), 4),
+           "worst_linker": {"chain": int(chain), "domain": int(domain)},
+           "linkers": int(fraction.size),
+           "contour_A": round(float(np.median(contour)), 2)}
+    if fraction.shape[1] > 1:
+        out["by_domain"] = [{"domain": k, "median": round(float(np.median(f)), 4),
+                             "worst": round(float(f.max()), 4),
+                             "contour_A": round(float(np.median(c)), 2)}
+                            for k, (f, c) in enumerate(zip(fraction.T, np.asarray(contour).T))]
+    return out

@@ -19,7 +19,8 @@ from .clashes import bounding_radius, bvh_clashes, reach_from_axis, sphere_band
 from .exact import EXACT_CHECKS
 from .envelope import envelope
 from .leaks import members_inside_core
-from .stretch import bond_ends, ends_stretch
+from ..builders.exit_path import model_chain_paths
+from .stretch import bond_ends, ends_stretch, linker_spans, linker_stretch_block
 
 
 
@@ -83,7 +84,8 @@ def check_model(model) -> dict:
     clashes = _clash_checks(model)
     n, scored, clashing = clashes["n"], clashes["scored"], clashes["clashing"]
     warnings = list(clashes["warnings"])
-    stretch = ends_stretch(*bond_ends(p, matrices[kept], hetero.rest_lengths_by_chain(p)[kept]))
+    bonds = bond_ends(p, matrices[kept], hetero.rest_lengths_by_chain(p)[kept])
+    stretch = ends_stretch(*bonds)
     max_stretch = float(stretch.max()) if stretch.size else 0.0
     domains = len(p.domains)
     chain_clash, layer_clash = _clashes_by_chain_and_layer(p, clashing, scored[:n:domains], lo,
@@ -135,6 +137,8 @@ def check_model(model) -> dict:
         "max_bond_stretch": round(max_stretch, 6),
         "core_entry": entry,
         "linker_intact": bool(intact),
+        # how far each linker spans of its length (docs/model/linker-integrity.md#linker-span)
+        "linker_stretch": linker_stretch(p, kept, *bonds),
         "accommodated": accommodated(verdict, max_stretch, p.stretch_tolerance,
                                      tail_pairs=len((tails or {}).get("pairs", ()))),
         # fits, borderline or no layout found (docs/model/verdict.md#answer)
@@ -149,6 +153,28 @@ def check_model(model) -> dict:
         **periodic,
         **({"tail_clashes": tails} if tails is not None else {}),
     }
+
+
+def linker_stretch(p, kept: np.ndarray, starts, ends, rest) -> dict | None:
+    """The result's `linker_stretch` over the scored chains (`kept`, bond_ends's `starts`, `ends`
+    and `rest` of those): each domain's linker end to end over its contour, a buried anchor's
+    exit included from its CA; the worst linker named by its chain, layer and protofilament."""
+    paths = [path for path, k in zip(model_chain_paths(p), kept.tolist()) if k]
+    exit_start = np.full((len(paths), 3), np.nan)
+    exit_length = np.zeros(len(paths))
+    for c, path in enumerate(paths):
+        if path is not None:  # the fixed path, then on to the anchor's bead
+            exit_start[c] = path[0]
+            exit_length[c] = (np.linalg.norm(np.diff(path, axis=0), axis=1).sum()
+                              + np.linalg.norm(starts[c, 0] - path[-1]))
+    block = linker_stretch_block(*linker_spans(p, starts, ends, rest, exit_start, exit_length))
+    if block is not None:
+        chain = int(np.flatnonzero(kept)[block["worst_linker"]["chain"]])
+        layer, pf = occupancy.model_chain_layers(p)
+        block["worst_linker"].update(chain=chain, layer=int(layer[chain]),
+                                     **({"protofilament": int(pf[chain])}
+                                        if p.protofilaments > 1 else {}))
+    return block
 
 
 def tail_clashes(model, centres: np.ndarray, scored: np.ndarray) -> dict:

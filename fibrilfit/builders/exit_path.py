@@ -8,7 +8,7 @@ from __future__ import annotations
 import bpy
 import numpy as np
 
-from ..model import helix
+from ..model import helix, occupancy
 from .scene import tag
 
 NAME = "FibrilFit exit path"
@@ -38,6 +38,26 @@ def chain_paths(p) -> list:
     out[..., 0] = c * path[None, :, 0] - s * path[None, :, 1]
     out[..., 1] = s * path[None, :, 0] + c * path[None, :, 1]
     out[..., 2] = path[None, :, 2] + height[:, None]
+    return out
+
+
+def model_chain_paths(p) -> list:
+    """The exit path of each of the model's chains (points, 3) in the world, the anchor residue's
+    CA first, in model.chain's order (occupancy.model_chain_layers: a mixed fibril's decorated
+    subunits'); None for a chain whose anchor is on the surface (it spends no residues)."""
+    layer, pf = occupancy.model_chain_layers(p)
+    if (p.exit_path is None and p.pf_exit_paths is None) or p.free_linker < 1:
+        return [None] * len(layer)
+    if p.pf_exit_paths is None:
+        paths = chain_paths(p)  # every subunit's: chain c = layer * K + protofilament
+        return [paths[k * p.protofilaments + j] for k, j in zip(layer.tolist(), pf.tolist())]
+    rows = np.asarray(p.pf_exit_paths, dtype=float)
+    angle, height = helix.layer_transforms(p)
+    out = []
+    for k, j in zip(layer.tolist(), pf.tolist()):
+        path = rows[rows[:, 0] == j, 1:]
+        out.append(np.column_stack([helix.turn_xy(path[:, 0], path[:, 1], angle[k]),
+                                    path[:, 2] + height[k]]) if len(path) else None)
     return out
 
 

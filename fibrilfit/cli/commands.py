@@ -14,6 +14,7 @@ from ..api.results import JobScript
 from ..exits import (EXIT_INTERRUPTED, EXIT_INTERSECTION, EXIT_OK, EXIT_OUTPUT_FAILED,
                      EXIT_USAGE, UsageError)
 from ..model import params as P
+from ..model.searches import search_words
 from ..structure.errors import StructureError
 from .parser import build_parser
 
@@ -131,6 +132,7 @@ def command_report(plan, case, argv) -> int:
     print(f"report: {doc['answer']}; P(fit) {doc['p_fit']['fits']}/{doc['p_fit']['runs']} at "
           f"linker {doc['model']['linker']}; minimal linker {doc['minimal_linker']['linker']}; "
           f"{out / HTML}, {out / JSON}")
+    print(f"search: {search_words(doc['p_fit']['protocol'])}")
     return EXIT_OK
 
 

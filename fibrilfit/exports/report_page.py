@@ -12,7 +12,9 @@ import math
 import pathlib
 import shlex
 
+from ..model.searches import search_words
 from . import ensemble_words
+from .span_words import span_words
 
 STYLE = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1100px;margin:24px auto;
@@ -229,6 +231,8 @@ def html(doc: dict, folder) -> str:
     files = doc["files"]
     command = shlex.join(doc["command"]) if doc.get("command") else "(not recorded)"
     p = f"{pf['p']:.2f}" if pf.get("p") is not None else "n/a"
+    span = (f"; end to end, {esc(span_words(b['linker_stretch']))}"
+            if b.get("linker_stretch") else "")
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>FibrilFit report</title>
 <style>{STYLE}</style></head><body>
@@ -241,9 +245,11 @@ def html(doc: dict, folder) -> str:
 (95 % Wilson interval {pf['low']:.2f}–{pf['high']:.2f}){', ' + str(pf['failed']) +
 ' failed to run' if pf.get('failed') else ''}. Best layout: seed {b['seed']}, verdict
 {esc(b['verdict'])}, {b['clashing_pairs']} clashing pair(s) of which {b['grazing_pairs']}
-only graze, worst linker stretch {100 * (b['max_bond_stretch'] or 0):.1f} %.</p>
+only graze, worst linker stretch {100 * (b['max_bond_stretch'] or 0):.1f} %{span}.
+P(fit) by {esc(search_words(pf['protocol']))}.</p>
 {margin_text(doc)}
 <h2>Minimal linker</h2>{linker_rows(doc)}
+{embedded(folder, files.get('bracket_plot'), 'bracket figure') if doc.get('bracket_figure') else ''}
 <h2>The best layout</h2>{embedded(folder, files.get('render'), 'best layout render')}
 <h2>The envelope</h2>{envelope_text(doc)}
 {embedded(folder, files.get('envelope_plot'), 'envelope plot')}

@@ -5,7 +5,9 @@ from __future__ import annotations
 import math
 
 from ..model.helix import handedness
+from ..model.searches import DEFAULT_RESTARTS
 from . import ensemble_words
+from .span_words import span_words
 from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, NO_EXIT, of_result
 
 
@@ -248,6 +250,8 @@ def _linker_lines(r: dict) -> list[str]:
                f"{r['push_apart_end_frame']}); " if after is not None else
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
+    if r.get("linker_stretch"):
+        lines.append(f"  end to end: {span_words(r['linker_stretch'])}")
     return lines
 
 
@@ -279,9 +283,9 @@ def _envelope_lines(r: dict) -> list[str]:
             f"within {env['r95']:.1f} Å), outer diameter {env['outer_diameter']:.0f} Å"]
 
 
-NEXT = ("to know whether the domains fit, run --restarts 8 (P(fit) over seeds), "
-        "--protocol inflate --restarts 8 (globules grown from small), or minimal-linker for "
-        "the shortest linker that fits")
+NEXT = (f"to know whether the domains fit, run report (P(fit) over {DEFAULT_RESTARTS} restarts "
+        f"of inflate, the stronger search, and the shortest linker that fits), "
+        f"--protocol inflate --restarts {DEFAULT_RESTARTS}, or minimal-linker")
 
 
 def _answer_line(r: dict) -> str:

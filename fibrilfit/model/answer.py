@@ -54,3 +54,17 @@ def of_result(r: dict) -> str | None:
                   grazing=len(r.get("grazing_pairs") or []),
                   max_stretch=float(r["max_bond_stretch"]),
                   tolerance=float(r["params"]["stretch_tolerance"]))
+
+
+def free_end_warnings(p) -> list[str]:
+    """An answer on a finite fibril speaks of a short one with free ends, not of the mature
+    fibril (docs/model/end-effects.md#end-effects): the warning every such result carries, and
+    so its printed answer and its report ([] for a periodic cell, the infinite fibril)."""
+    if p.periodic:
+        return []
+    left_out = (f"; the {p.score_layers} layer(s) at each end are left out of the score, but "
+                f"their domains still make room" if p.score_layers else "")
+    return [f"a finite fibril of {p.layers} layers with free ends: the domains of its end "
+            f"layers have more room than a mature fibril's (docs/model/end-effects.md), so this "
+            f"answer is the short fibril's{left_out}; the mature fibril's answer is the "
+            f"periodic cell's (--periodic auto, in run or report)"]

@@ -50,6 +50,7 @@ def no_exit_result(p) -> dict:
              f"anchor): at least {way.residues + 1} are needed")
     return {"verdict": NO_EXIT, "answer": NO_EXIT, "accommodated": False, "linker_intact": False,
             "intersecting_faces": 0, "clashing_pairs": [], "grazing_pairs": [],
-            "max_overlap": 0.0, "max_bond_stretch": None, "frames_simulated": 0,
+            "max_overlap": 0.0, "max_bond_stretch": None, "linker_stretch": None,
+            "frames_simulated": 0,
             "cancelled": False, "no_exit": needs,
             "exit_needs": None if way.sealed else way.residues + 1, "warnings": []}

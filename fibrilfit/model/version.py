@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "317520626a01706106484735a9bfcacaec00bc7748bdc5f5d2eca8f0f974f7fb"
+MODEL_SOURCES_SHA256 = "1a07e5ebc183dc32862bd1d18d3a5516a9b35566fbf51933718b6bf91cda5ee3"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -14,6 +14,7 @@ import json
 
 from .. import exits, files
 from ..model import fraction_bound, params as P
+from ..model.searches import search_words
 from ..model.version import fibrilfit_version
 from ..sweep import grid
 from . import fraction, linker_map, minimal
@@ -115,7 +116,8 @@ def _write(plan, values: dict, seeds: range, rows: list, out) -> dict:
     if not plan.output.no_plot:
         write_plot(out / PNG, rows)
         paths["png"] = out / PNG
-    return {**document, "table": table(rows, values["protocol"], search.restarts, seeds),
+    return {**document, "table": "\n".join([table(rows, values["protocol"], search.restarts,
+                                                  seeds), *linker_map.free_end_lines(values)]),
             "paths": {k: str(v) for k, v in paths.items()}}
 
 
@@ -139,7 +141,7 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
         lines.append(f"largest fraction: the most decorated subunits (of the model's N, random "
                      f"nested pattern) at which at least one of {restarts} restarts (protocol "
                      f"{protocol}, seeds {seeds[0]}-{seeds[-1]}) found a layout, with none found "
-                     f"at one more")
+                     f"at one more; the search: {search_words(protocol)}")
     lines.append("diameter (Å)  linker  largest k/N (fraction)  P(fit) (runs)   one more")
     notes = []
     for r in rows:

@@ -14,6 +14,8 @@ import tempfile
 
 from .. import exits, files
 from ..model import bound, fraction_bound, occupancy, params as P
+from ..model.answer import free_end_warnings
+from ..model.searches import search_words
 from ..model.version import fibrilfit_version
 from ..sweep import grid, runner
 from ..batch import outdir
@@ -70,7 +72,9 @@ def restarts_line(s: dict, protocol: str | None = None) -> str:
             + f"; best layout: seed {s['best_seed']}"
             + (f"; envelope outer diameter {s['outer_diameter']['median']:.0f} Å "
                f"({s['outer_diameter']['min']:.0f}-{s['outer_diameter']['max']:.0f}) over the "
-               f"seeds" if s.get("outer_diameter") else ""))
+               f"seeds" if s.get("outer_diameter") else "")
+            # the search behind this P(fit), and what it is worth (model/searches.py)
+            + (f". P(fit) by {search_words(protocol)}" if protocol else ""))
 
 
 # ---- minimal-linker ----------------------------------------------------------------------------
@@ -325,8 +329,29 @@ def _write_minimal(plan, values: dict, seeds: range, rows: list, out) -> dict:
         from . import plot
         plot.write(out / PNG, rows)
         paths["png"] = out / PNG
-    return {**document, "table": table(rows, values["protocol"], search.restarts, seeds),
+    caveat = free_end_lines(values)
+    return {**document, "table": "\n".join([table(rows, values["protocol"], search.restarts,
+                                                  seeds), *caveat]),
             "paths": {k: str(v) for k, v in paths.items()}}
+
+
+def free_end_lines(values: dict) -> list[str]:
+    """The short fibril's caveat under a map of a finite fibril (model/answer.py
+    free_end_warnings), one "warning:" line per fibril size; none for a periodic cell."""
+    if values.get("periodic") not in (None, 0, "0", False):
+        return []
+    sizes = values.get("layers", P.DEFAULTS.layers)
+    score = values.get("score_layers", 0)
+    out = []
+    for layers in (sizes if isinstance(sizes, (list, tuple)) else [sizes]):
+        try:
+            p = P.DEFAULTS.replace(periodic=0, layers=int(layers),
+                                   score_layers=int(score) if not isinstance(score, (list, tuple))
+                                   else 0)
+        except (TypeError, ValueError):
+            continue
+        out += [f"warning: {w}" for w in free_end_warnings(p)]
+    return out
 
 
 def need_packages(plan) -> None:

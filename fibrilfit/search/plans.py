@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 
 from ..model import params as P
+from ..model.searches import DEFAULT_RESTARTS
 from ..plans import Plan, PlanError, option
 
 RESTARTS = "restarts (independent seeds of this one model)"
@@ -75,7 +76,8 @@ class SearchPlan(Plan):
     """Restarts at every linker length the minimal-linker walk tries (and, for the report, at
     the asked linker)."""
 
-    restarts: int = option(5, "seeds run at every linker length tried (SEED..SEED+R-1)",
+    restarts: int = option(DEFAULT_RESTARTS, "seeds run at every linker length tried "
+                                             "(SEED..SEED+R-1)",
                            lo=1, metavar="R", group=SEARCH, label="Restarts")
     max_linker: int = option(30, "the walk gives up on a diameter when no length up to N fits",
                              lo=1, hi=LINKER_MAX, unit="", metavar="N", group=SEARCH,
@@ -103,9 +105,8 @@ class SearchPlan(Plan):
                                 check=_fractions, group=SEARCH, label="Fraction plot")
 
 
-# The report's search: more restarts than the map's, since its P(fit) at the asked linker is
-# the page's headline (docs/guide/report.md#method)
-REPORT_SEARCH = SearchPlan(restarts=8)
+# The report's search: the same defaults as every search's (DEFAULT_RESTARTS)
+REPORT_SEARCH = SearchPlan()
 # What each command offers of the search plan
 MINIMAL_FIELDS = ("restarts", "max_linker", "known_fit", "all_restarts")
 REPORT_FIELDS = ("restarts", "interval_width", "all_restarts", "max_linker", "fraction_plot")

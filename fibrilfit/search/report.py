@@ -24,7 +24,7 @@ from ..batch.executors import SweepError, make_executor
 from ..model import fraction_bound, occupancy, params as P
 from ..model.version import fibrilfit_version
 from ..sweep import runner
-from . import fraction_plot, linker_map, minimal, restarts
+from . import bracket_plot, fraction_plot, linker_map, minimal, restarts
 from .plans import SearchPlan, plot_fractions, seed_range
 
 HTML, JSON, RENDER, ENVELOPE, BEST = ("report.html", "report.json", "best_layout.png",
@@ -148,7 +148,12 @@ def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dic
 
     stage("pictures")
     t = time.perf_counter()
-    pictures, problems = _pictures(best, out, plan.look.look(), searched.get("fractions"))
+    bracket = bracket_plot.points(
+        bracket_of(best.get("bound"), searched["row"]["minimal_linker"]),
+        searched["row"]["tried"], {"linker": p.linker, "fits": tally["accommodated"],
+                                   "runs": tally["restarts"]})
+    pictures, problems = _pictures(best, out, plan.look.look(), searched.get("fractions"),
+                                   (bracket, plan.search.restarts, p.protocol))
     files.write_json(out / BEST, best)
     timings["pictures"] = round(time.perf_counter() - t, 1)
 
@@ -156,7 +161,7 @@ def write(plan, p: P.Params, searched: dict, out, stage, *, structure_block: dic
     doc = document(plan.search, p, best, tally, searched["row"], sources=sources,
                    structure_block=structure_block, case=case, pictures=pictures,
                    problems=problems, version=fibrilfit_version(), reproduce=reproduce,
-                   fractions=searched.get("fractions"))
+                   fractions=searched.get("fractions"), bracket_figure=bracket)
     timings["total"] = round(time.perf_counter() - searched["t0"], 1)
     doc["timings_s"] = timings
     files.write_json(out / JSON, doc)
@@ -185,9 +190,11 @@ def _restarts(plan, p: P.Params, seeds: range, out, executor, reuse: bool = Fals
         raise exits.UsageError(str(exc)) from None
 
 
-def _pictures(best: dict, out, look: dict, fractions: dict | None = None) -> tuple[dict, list[str]]:
-    """The best layout rendered (legend, scale bar), the envelope plot and, when asked, P(fit)
-    against the fraction; failures reported, never fatal (the page says what is missing)."""
+def _pictures(best: dict, out, look: dict, fractions: dict | None = None,
+              bracket=(None, 0, "")) -> tuple[dict, list[str]]:
+    """The best layout rendered (legend, scale bar), the envelope plot, the bracket's number
+    line (`bracket`: its points, the restarts and protocol) and, when asked, P(fit) against the
+    fraction; failures reported, never fatal (the page says what is missing)."""
     import bpy
     from ..exports import writers
     pictures, problems = {}, []
@@ -198,6 +205,9 @@ def _pictures(best: dict, out, look: dict, fractions: dict | None = None) -> tup
              lambda: writers.write_render(scene, best, out / RENDER, look)),
             ("envelope_plot", "envelope plot", out / ENVELOPE,
              lambda: writers.envelope_plot.write(best, out / ENVELOPE)),
+            *([("bracket_plot", "bracket figure", out / bracket_plot.PNG,
+                lambda: bracket_plot.write(out / bracket_plot.PNG, *bracket))]
+              if bracket[0] else []),
             *([("fraction_plot", "fraction plot", out / fraction_plot.PNG,
                 lambda: fraction_plot.write(out / fraction_plot.PNG, fractions,
                                             (best.get("bound") or {}).get("fraction_bound")))]
@@ -293,7 +303,8 @@ def versions(version: str) -> dict:
 
 def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict, *,
              sources: dict, structure_block, case, pictures: dict, problems: list[str],
-             version: str, reproduce=(), fractions: dict | None = None) -> dict:
+             version: str, reproduce=(), fractions: dict | None = None,
+             bracket_figure: dict | None = None) -> dict:
     """report.json: the question, the model and its sources, the answer and what it rests on;
     `fractions`: P(fit) against the fraction (fraction_plot.block), when asked."""
     low, high = tally["p_fit_interval"]
@@ -338,6 +349,8 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
         # --ensemble: the best layout's ensemble (docs/model/ensemble.md#use)
         **({"ensemble": best["ensemble"]} if best.get("ensemble") else {}),
         "bracket": bracket_of(best.get("bound"), m),
+        # the bracket's number line: its numbers, drawn in bracket.png (search/bracket_plot.py)
+        **({"bracket_figure": bracket_figure} if bracket_figure else {}),
         # --fraction-plot: P(fit) at each fraction asked, at this linker (fraction_plot.png)
         **({"fraction_plot": fractions} if fractions else {}),
         "margin": {
@@ -348,7 +361,7 @@ def document(search: SearchPlan, p: P.Params, best: dict, tally: dict, row: dict
                                else round(tol - best["max_bond_stretch"], 6))},
         "best_layout": {k: best.get(k) for k in (
             "seed", "verdict", "accommodated", "max_bond_stretch", "max_overlap",
-            "frames_simulated", "settled_at")} | {
+            "frames_simulated", "settled_at", "linker_stretch")} | {
             "clashing_pairs": len(best.get("clashing_pairs") or []),
             "grazing_pairs": len(best.get("grazing_pairs") or [])},
         "envelope": {"best_layout": best.get("envelope"),

@@ -5,6 +5,8 @@ from __future__ import annotations
 import csv
 import io
 
+from ..model.searches import search_words
+
 COLUMNS = ("kind", "globule_diameter", "minimal_linker", "p_fit", "p_fit_low", "p_fit_high",
            "p_fit_below", "p_fit_below_high", "restarts", "linker_below", "protocol")
 
@@ -50,7 +52,8 @@ def table(rows: list[dict], protocol: str | None = None, restarts: int | None = 
     if protocol is not None:
         lines.append(f"minimal linker: the shortest length at which at least one of {restarts} "
                      f"restarts (protocol {protocol}, seeds {seeds[0]}-{seeds[-1]}) found a "
-                     f"layout, with none found one residue shorter")
+                     f"layout, with none found one residue shorter; the search: "
+                     f"{search_words(protocol)}")
     lines.append("diameter (Å)  minimal linker  P(fit) [95 % CI] (runs)     "
                  "P(fit) one below [95 % CI] (runs)")
     notes = []

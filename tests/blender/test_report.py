@@ -141,15 +141,30 @@ def test_report_writes_one_page_its_json_and_the_pictures(tmp_path):
     assert m["tried"]["1"] == {"accommodated": 1, "restarts": 1}
     for name in doc["files"].values():
         assert (out / name).is_file(), name
-    assert {"render", "envelope_plot"} <= set(doc["files"])
+    assert {"render", "envelope_plot", "bracket_plot"} <= set(doc["files"])
+    # the bracket's number line, drawn from the report's own numbers (search/bracket_plot.py)
+    fig = doc["bracket_figure"]
+    assert fig["impossible_below"] == doc["bracket"]["impossible_below"]
+    assert fig["fits_at"] == m["linker"] == 1 and fig["asked"] == 3
+    assert {x["linker"]: (x["fits"], x["runs"]) for x in fig["lengths"]} == {
+        **{int(L): (t["accommodated"], t["restarts"]) for L, t in m["tried"].items()},
+        3: (pf["fits"], pf["runs"])}
+    # the best layout's linkers span at most their length (+ the tolerance): it fits
+    span = doc["best_layout"]["linker_stretch"]
+    assert 0 < span["median"] <= span["worst"] <= 1 + doc["model"]["stretch_tolerance"]
+    # a 3-layer fibril: the short fibril's caveat among the warnings
+    assert any("finite fibril of 3 layers with free ends" in w for w in doc["warnings"])
     assert doc["command"][1:3] == ["report", "--layers"]
     page = (out / "report.html").read_text()
     # one self-contained page: every picture inside it, no outside file
     srcs = re.findall(r'src="([^"]*)"', page)
-    assert len(srcs) == 2 and all(s.startswith("data:image/png;base64,") for s in srcs)
-    assert base64.b64decode(srcs[0].split(",", 1)[1]) == (out / doc["files"]["render"]).read_bytes()
+    assert len(srcs) == 3 and all(s.startswith("data:image/png;base64,") for s in srcs)
+    inside = [base64.b64decode(s.split(",", 1)[1]) for s in srcs]
+    for key in ("render", "bracket_plot", "envelope_plot"):
+        assert (out / doc["files"][key]).read_bytes() in inside, key
     assert "<link" not in page and "<script" not in page
     for needle in ("P(fit)", "Minimal linker", "Wilson", "Warnings", "report --layers 3",
+                   "P(fit) by inflate", "end to end, the linkers span", "free ends",
                    "where each value came from", doc["versions"]["blender"]):
         assert needle in page, needle
     # every run is in results.jsonl; the walk reused the restarts at the linker (none twice)
@@ -210,7 +225,7 @@ def test_report_plots_p_fit_against_the_fraction(tmp_path):
                       f"({100 * r['fraction']:.4g} %)", f"{r['fits']}/{r['restarts']}",
                       f"{r['p_fit']:.2f}", f"{r['interval'][0]:.2f}–{r['interval'][1]:.2f}")
                      for r in rows]
-    assert len(re.findall(r'src="data:image/png;base64,', page)) == 3  # and the plot inside
+    assert len(re.findall(r'src="data:image/png;base64,', page)) == 4  # and the plot inside
 
 
 @pytest.mark.parametrize("bad, needle", [

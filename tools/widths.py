@@ -169,7 +169,8 @@ def run(args) -> int:
     from fibrilfit.model.version import MODEL_VERSION
 
     case = cases.load(args.case)
-    p = case.make_params(**({"linker": args.linker} if args.linker else {}))
+    given = {"linker": args.linker, "layers": args.layers, "score_layers": args.score_layers}
+    p = case.make_params(**{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
     halves = [half(p, h, args.starts, args.replicas, args.sweeps, args.burn_in, args.max_tries)
               for h in (0, 1)]
@@ -181,6 +182,8 @@ def run(args) -> int:
            "commit": git_commit(), "model_version": MODEL_VERSION,
            "bpy": ".".join(str(v) for v in bpy.app.version),
            "width_definition": account.WIDTH_DEFINITION,
+           "measured": {"measured_nm": args.measured, "technique": args.technique,
+                        "domain_kDa": args.domain_kda, "core_source": args.core_source},
            "halves": [{k: v for k, v in hv.items() if k not in ("centres", "outer")}
                       for hv in halves]}
     if any("error" in hv for hv in halves):
@@ -214,27 +217,39 @@ def run(args) -> int:
     (RUNS / f"{slug(args.system)}.json").write_text(json.dumps(out, indent=1) + "\n",
                                                     encoding="utf-8")
     print(json.dumps({k: v for k, v in out.items() if k != "halves"}, indent=1))
-    if "error" in out:
-        return 1
-    rows = read_rows() if CSV.exists() else []
-    row = next((r for r in rows if r["system"] == args.system), None)
-    if row is None:
-        if None in (args.measured, args.technique, args.domain_kda, args.core_source):
-            print("widths: a new system needs --measured, --technique, --domain-kda and "
-                  "--core-source", file=sys.stderr)
-            return 2
-        row = dict.fromkeys(COLUMNS, "")
-        row["system"] = args.system
-        rows.append(row)
-    for key, value in (("measured_nm", args.measured), ("technique", args.technique),
-                       ("domain_kDa", args.domain_kda), ("core_source", args.core_source)):
+    return 1 if "error" in out else 0
+
+
+def row_of(out: dict, old: dict | None) -> dict:
+    """The CSV row of a run's JSON (`out`), the measured columns from the JSON's `measured`
+    block, or kept from the row already in the CSV (`old`)."""
+    row = dict(old) if old else dict.fromkeys(COLUMNS, "")
+    row["system"] = out["system"]
+    for key, value in out.get("measured", {}).items():
         if value is not None:
             row[key] = value
     lo, hi = min(out["width_per_start"]), max(out["width_per_start"])
-    row.update(linker=str(p.linker), layers=str(p.layers),
+    row.update(linker=str(out["linker"]), layers=str(out["layers"]),
                predicted_width_nm=f"{out['width'] / 10:.2f}", interval_lo=f"{lo / 10:.2f}",
                interval_hi=f"{hi / 10:.2f}", ess=f"{out['outer_diameter']['ess']:.0f}",
-               date=out["date"], commit=out["commit"], model_version=str(MODEL_VERSION))
+               date=out["date"], commit=out["commit"], model_version=str(out["model_version"]))
+    return row
+
+
+def collect() -> int:
+    """The CSV's rows updated from every run's JSON in docs/data/widths/ (rows with no JSON,
+    such as a pending system's, kept as they are), then the page's table."""
+    rows = read_rows() if CSV.exists() else []
+    for path in sorted(RUNS.glob("*.json")):
+        out = json.loads(path.read_text(encoding="utf-8"))
+        if "error" in out or out.get("draft"):
+            continue
+        old = next((r for r in rows if r["system"] == out["system"]), None)
+        new = row_of(out, old)
+        if old is None:
+            rows.append(new)
+        else:
+            rows[rows.index(old)] = new
     write_rows(rows)
     write_page(rows)
     return 0
@@ -252,15 +267,20 @@ def main(argv=None) -> int:
     r.add_argument("--replicas", type=int, default=12, help="replicas per half")
     r.add_argument("--sweeps", type=int, default=60)
     r.add_argument("--burn-in", type=int, default=30)
+    r.add_argument("--layers", type=int, default=None)
+    r.add_argument("--score-layers", type=int, default=None)
     r.add_argument("--measured")
     r.add_argument("--technique")
     r.add_argument("--domain-kda")
     r.add_argument("--core-source")
     sub.add_parser("table")
+    sub.add_parser("collect")
     args = ap.parse_args(argv)
     if args.command == "table":
         write_page(read_rows())
         return 0
+    if args.command == "collect":
+        return collect()
     args.case = args.case.resolve()
     return run(args)
 

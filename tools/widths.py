@@ -108,8 +108,10 @@ def page_block(page: pathlib.Path = PAGE) -> str:
 
 def write_page(rows: list[dict], page: pathlib.Path = PAGE) -> None:
     text = page.read_text(encoding="utf-8")
-    new = re.sub(re.escape(START) + r"\n.*?\n" + re.escape(END),
+    new = re.sub(re.escape(START) + r"\n(?:.*?\n)?" + re.escape(END),
                  lambda _: f"{START}\n{table(rows)}\n{END}", text, count=1, flags=re.S)
+    if new == text and START + "\n" + table(rows) + "\n" + END not in text:
+        raise ValueError(f"{page}: no widths table between {START} and {END}")
     page.write_text(new, encoding="utf-8")
 
 
@@ -221,12 +223,12 @@ def run(args) -> int:
 
 
 def row_of(out: dict, old: dict | None) -> dict:
-    """The CSV row of a run's JSON (`out`), the measured columns from the JSON's `measured`
-    block, or kept from the row already in the CSV (`old`)."""
+    """The CSV row of a run's JSON (`out`): the measured columns kept from the row already in
+    the CSV (`old`), or for a new row from the JSON's `measured` block (the run's options)."""
     row = dict(old) if old else dict.fromkeys(COLUMNS, "")
     row["system"] = out["system"]
-    for key, value in out.get("measured", {}).items():
-        if value is not None:
+    for key, value in out.get("measured", {}).items():  # the CSV's own, where it has them
+        if value is not None and not row.get(key):
             row[key] = value
     lo, hi = min(out["width_per_start"]), max(out["width_per_start"])
     row.update(linker=str(out["linker"]), layers=str(out["layers"]),

@@ -86,7 +86,8 @@ def cell(row: dict) -> str:
 def table(rows: list[dict]) -> str:
     """The page's table: one line per CSV row, in the CSV's order."""
     lines = ["| system | core | domain, kDa | linker | layers | technique | measured, nm | "
-             "predicted width, nm [interval] | predicted − measured | ESS | date | commit | "
+             "predicted width, nm [interval] | predicted − measured | ESS (outer diameter) | date | "
+             "commit | "
              "MODEL_VERSION |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:

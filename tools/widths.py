@@ -79,8 +79,7 @@ def off_by(row: dict) -> str:
 def cell(row: dict) -> str:
     if not row["predicted_width_nm"]:
         return "pending"
-    return f"{float(row['predicted_width_nm']):.1f} [{float(row['interval_lo']):.1f}, " \
-           f"{float(row['interval_hi']):.1f}]"
+    return f"{row['predicted_width_nm']} [{row['interval_lo']}, {row['interval_hi']}]"
 
 
 def table(rows: list[dict]) -> str:

@@ -101,7 +101,8 @@ def test_the_linker_is_the_residues_from_the_domain_to_the_anchor(model, name):
     assert (b + 1 if case.structure.get("terminus") == "N" else a - 1) == anchor
 
 
-SIZED = ["tdp43_8qx9", "hnrnpdl2_7zir", "ripk3_7da4", "orb2_6vps", "hets_2kj3_full_length"]
+SIZED = ["tdp43_8qx9", "hnrnpdl2_7zir", "ripk3_7da4", "orb2_6vps", "hets_2kj3_full_length",
+         "ure2p_full_length", "ure2p_pd_barnase", "ure2p_pd_carbonic_anhydrase", "ure2p_pd_gst"]
 
 
 @pytest.mark.parametrize("name", SIZED)

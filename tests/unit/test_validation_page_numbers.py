@@ -75,7 +75,7 @@ def number(cell: str) -> int:
 
 
 def test_the_pages_tables_are_read():
-    assert len(GALLERY) == 16 and len(NEGATIVE) == 4 and len(HULL) == len(SHAPES) == 2
+    assert len(GALLERY) == 21 and len(NEGATIVE) == 4 and len(HULL) == len(SHAPES) == 2
     assert len(PREDICT_F) == 1 and 1 <= len(PREDICT_L) <= 3
     assert [number(r["linker (anchor counted)"]) for r in WALK] == [9, 10, 12, 13]
     assert [number(r["linker (anchor counted), 20 layers"]) for r in WALK20] == [8, 9, 11, 12, 13]

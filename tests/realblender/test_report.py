@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pytest
 
-from realblender.helpers import OUT, ROOT, chroot, inside, module, quote, read_json
+from realblender.helpers import OUT, ROOT, chroot, inside, module, picture_stamp, quote, read_json
 
 # the session (or the two reports) runs in the first test's set-up: minutes under a loaded
 # machine, beyond the suite's 300 s per test (pyproject's timeout)
@@ -121,3 +121,5 @@ window.addEventListener("load", () => { const im = [...document.images];
     assert colours > 200, colours  # text, tables and the two pictures, not a blank page
     if os.environ.get("FIBRILFIT_ACCEPT_SCREENS") == "1":  # make test-blender ACCEPT_SCREENS=1
         shutil.copyfile(shot, PAGE_SHOT)
+        picture_stamp().stamp(PAGE_SHOT, "make test-blender ACCEPT_SCREENS=1 "
+                              "(tests/realblender/test_report.py, Blender 4.3.2, Chromium)")

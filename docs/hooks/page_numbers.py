@@ -100,6 +100,32 @@ def report_stamp(name: str) -> str:
     return f"{s['date']}, commit {s['commit']}, MODEL_VERSION {s['model_version']}"
 
 
+def pfit(name: str) -> str:
+    """P(fit) at the report's asked linker: "8/8 at linker 8"."""
+    pf = reports()[name]["p_fit"]
+    return f"{pf['fits']}/{pf['runs']} at linker {pf['linker']}"
+
+
+def minimal(name: str) -> int:
+    return reports()[name]["minimal_linker"]["linker"]
+
+
+def tried(name: str) -> str:
+    """Every length the report's walk tried with its restarts: "0/8 at 5, 8/8 at 6"."""
+    t = reports()[name]["minimal_linker"]["tried"]
+    return ", ".join(f"{v['accommodated']}/{v['restarts']} at {k}"
+                     for k, v in sorted(t.items(), key=lambda kv: int(kv[0])))
+
+
+def wilson(k: int, n: int) -> str:
+    """The 95 % Wilson interval of k of n, as FibrilFit computes it (fibrilfit/sweep/stats.py)."""
+    import sys
+    sys.path.insert(0, str(ROOT)) if str(ROOT) not in sys.path else None
+    from fibrilfit.sweep.stats import wilson as interval
+    lo, hi = interval(k, n)
+    return f"{lo:.2f}–{hi:.2f}"
+
+
 def pct(x: float) -> str:
     return f"{100 * x:g} %"
 
@@ -121,7 +147,8 @@ def cost_table() -> str:
 
 
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,
-          "cost_table": cost_table}
+          "cost_table": cost_table, "pfit": pfit, "minimal": minimal, "tried": tried,
+          "wilson": wilson}
 
 
 def define_env(env):

@@ -3,7 +3,8 @@ for every term the README and the tutorial use; the README's first screen uses n
 before it links it; and no user page sends the reader to something only the developers can
 follow (an issue number, a branch, a commit named in prose: a commit is fine in a measurement's
 stamp, which names its date or MODEL_VERSION beside it, or in a table). docs/notebook/, the
-contributing pages and the changelog are the developers' record and may keep them."""
+contributing pages and the changelog are the developers' record and may keep them, and so do the
+tables `make validate` writes from the case files (examples/*.toml)."""
 import pathlib
 import re
 
@@ -84,23 +85,49 @@ BRANCH = re.compile(r"\bbranch(?:es)?\s+`?[a-z0-9][\w./-]*`?\s+at\b|\bbranch\s+`
                     r"|\bbranch\s+[a-z]+\d[\w-]*")
 SHA = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f]{7,40}\b")
 STAMP = re.compile(r"MODEL_VERSION|\b20\d\d-\d\d-\d\d\b")
+# a table `make validate` writes from the case files (examples/*.toml): their words, not a page's
+GENERATED = re.compile(r"^<!-- .*: written by make [\w-]+ -->$")
+END_GENERATED = re.compile(r"^<!-- end of .* -->$")
+SINCE = re.compile(r"\bsince [0-9a-f]{7,40}\b")
 DEVELOPERS = ("notebook/", "contributing", "changelog.md")
 
 
 def internal_references(text: str) -> list[tuple[int, str]]:
-    found, fence = [], False
+    """(line, text) of every issue number, branch and commit named in prose. A commit is a
+    measurement's stamp, and fine, in a table row or in a paragraph that names the
+    measurement's date or MODEL_VERSION; "since <commit>" never is."""
+    found, fence, para = [], False, []
+
+    def close():
+        stamped = any(STAMP.search(s) for _, s in para)
+        for i, s in para:
+            found.extend((i, m.group(0)) for m in SINCE.finditer(s))
+            if not stamped and not s.lstrip().startswith("|"):
+                found.extend((i, m.group(0)) for m in SHA.finditer(s)
+                             if not SINCE.search(s[max(0, m.start() - 6):m.end()])
+                             and not s[:m.start()].endswith("@ "))  # another repository's pin
+        para.clear()
+
+    generated = False
     for i, line in enumerate(text.splitlines(), 1):
+        if GENERATED.match(line) or END_GENERATED.match(line):
+            generated = bool(GENERATED.match(line))
+            continue
         if line.lstrip().startswith(("```", "~~~")):
             fence = not fence
+            close()
             continue
-        if fence:
+        if fence or generated:
+            continue
+        if not line.strip():
+            close()
             continue
         prose = re.sub(r"`[^`]*`", "``", line)
         found += [(i, m.group(0)) for m in ISSUE.finditer(prose)]
         found += [(i, m.group(0)) for m in BRANCH.finditer(line)]
-        if not line.lstrip().startswith("|") and not STAMP.search(prose):
-            found += [(i, m.group(0)) for m in SHA.finditer(prose)]
-    return found
+        para.append((i, prose))
+    close()
+    return sorted(found)
 
 
 USER_PAGES = [ROOT / "README.md"] + sorted(
@@ -120,4 +147,7 @@ def test_the_reference_check_finds_them():
             "a table stamp: 2026-11-26, commit 9817027, MODEL_VERSION 5\n| 9817027 | row |\n"
             "```\nsha256 86101cb3bf05\n```\nsee [the bound](model/bound.md#bracket)\n")
     found = [t for _, t in internal_references(text)]
-    assert found == ["issue #36", "branch i23a", "ca20ffb"], found
+    assert found == ["issue #36", "branch i23a", "since ca20ffb"], found
+    # a commit in a dated paragraph is a stamp; "since" is never one
+    assert internal_references("measured at 1a2b3c4d,\n2026-11-27, bpy 5.0.1") == []
+    assert internal_references("since 1a2b3c4 (2026-11-27)") == [(1, "since 1a2b3c4")]

@@ -21,6 +21,7 @@ Standard library and the package only (no bpy): the docs build and the unit test
 from __future__ import annotations
 
 import csv
+import functools
 import importlib.util
 import json
 import pathlib
@@ -35,6 +36,7 @@ def model_version() -> int:
     return int(re.search(r"^MODEL_VERSION = (\d+)", text, re.M).group(1))
 
 
+@functools.lru_cache(maxsize=None)
 def costs() -> dict[str, dict]:
     rows = {}
     with open(DATA / "costs.csv", encoding="utf-8") as f:
@@ -47,11 +49,13 @@ def costs() -> dict[str, dict]:
     return rows
 
 
+@functools.lru_cache(maxsize=None)
 def reports() -> dict[str, dict]:
     return {p.stem: json.loads(p.read_text(encoding="utf-8"))
             for p in sorted((DATA / "reports").glob("*.json"))}
 
 
+@functools.lru_cache(maxsize=None)
 def maps() -> dict[str, dict[int, int]]:
     spec = importlib.util.spec_from_file_location("docs_map", ROOT / "bench" / "docs_map.py")
     docs_map = importlib.util.module_from_spec(spec)
@@ -63,6 +67,7 @@ def maps() -> dict[str, dict[int, int]]:
     return {"cell": cell, "layers20": layers20}
 
 
+@functools.lru_cache(maxsize=None)
 def defaults() -> dict:
     import dataclasses
     import sys
@@ -97,7 +102,8 @@ def stamp(key: str) -> str:
 
 def report_stamp(name: str) -> str:
     s = reports()[name]["stamp"]
-    return f"{s['date']}, commit {s['commit']}, MODEL_VERSION {s['model_version']}"
+    return (f"{s['date']}, commit {s['commit']}, MODEL_VERSION {s['model_version']}, "
+            f"bpy {s['bpy']}")
 
 
 def pfit(name: str) -> str:
@@ -137,7 +143,7 @@ def cost_table() -> str:
             "(wall s) | answer | load | measured |\n|---|---|---|---|---|---|---|---|---|\n")
     lines = []
     for r in costs().values():
-        when = f"{r['date']}, {r['commit']}, MODEL_VERSION {r['model_version']}"
+        when = f"{r['date']}, {r['commit']}, MODEL_VERSION {r['model_version']}, bpy {r['bpy']}"
         if r["model_version"] != mv:
             when += " (**older than the code's**)"
         lines.append(f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} "
@@ -149,6 +155,32 @@ def cost_table() -> str:
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,
           "cost_table": cost_table, "pfit": pfit, "minimal": minimal, "tried": tried,
           "wilson": wilson}
+
+
+# The Jinja delimiters mkdocs.yml gives the plugin: `{#anchor}` (attr_list) is not a comment
+J2 = {"comment_start_string": "{##", "comment_end_string": "##}"}
+FRONT = re.compile(r"\A---\n(.*?)\n---\n", re.S)
+
+
+def environment():
+    """A Jinja environment as the plugin renders a page: strict, with the data and the macros."""
+    import jinja2
+    env = jinja2.Environment(undefined=jinja2.StrictUndefined, **J2)
+    env.globals.update(variables())
+    env.globals.update(MACROS)
+    return env
+
+
+def page_text(path: pathlib.Path) -> str:
+    """A page's Markdown as the site shows it: with `render_macros: true` in its front matter,
+    rendered from the data (the front matter left out); any other page as it is. The docs'
+    unit tests read pages through it, so they check what a reader sees."""
+    import yaml
+    text = pathlib.Path(path).read_text(encoding="utf-8")
+    m = FRONT.match(text)
+    if not (m and (yaml.safe_load(m.group(1)) or {}).get("render_macros")):
+        return text
+    return environment().from_string(text[m.end():]).render()
 
 
 def define_env(env):

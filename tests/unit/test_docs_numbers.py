@@ -32,14 +32,7 @@ def macros_config() -> dict:
 
 
 def environment() -> jinja2.Environment:
-    c = macros_config()
-    env = jinja2.Environment(
-        undefined=jinja2.StrictUndefined,
-        comment_start_string=c.get("j2_comment_start_string", "{#"),
-        comment_end_string=c.get("j2_comment_end_string", "#}"))
-    env.globals.update(page_numbers.variables())
-    env.globals.update(page_numbers.MACROS)
-    return env
+    return page_numbers.environment()
 
 
 def split(page: pathlib.Path) -> tuple[dict, str]:
@@ -62,6 +55,9 @@ def test_the_plugin_is_strict_and_reads_only_pages_that_ask():
     c = macros_config()
     assert c["on_undefined"] == "strict" and c["render_by_default"] is False
     assert c["module_name"] == "docs/hooks/page_numbers"
+    # the tests render with the delimiters the site uses
+    assert c["j2_comment_start_string"] == page_numbers.J2["comment_start_string"]
+    assert c["j2_comment_end_string"] == page_numbers.J2["comment_end_string"]
     assert "mkdocs-macros-plugin" in (ROOT / "requirements-docs.txt").read_text(encoding="utf-8")
     names = {p.relative_to(DOCS).as_posix() for p in RENDERED}
     assert set(CONVERTED) <= names, set(CONVERTED) - names

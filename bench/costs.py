@@ -96,7 +96,7 @@ def answer_of(key: str, argv: list[str], stdout: str) -> str:
         return "; ".join(f"{r.get('globule_diameter', r.get('diameter'))} Å: "
                          f"{r.get('minimal_linker')}" for r in rows)
     lines = [ln for ln in stdout.splitlines() if ln.startswith("answer:")]
-    return lines[-1][len("answer: "):].split(".")[0] if lines else ""
+    return re.split(r"[.:](?:\s|$)", lines[-1][len("answer: "):])[0] if lines else ""
 
 
 def row(key: str, wall: float, load0, load1, answer: str, bpy: str) -> dict:
@@ -178,10 +178,19 @@ def main() -> None:
     ap.add_argument("--only", help="keys, comma-separated (default: every case not long)")
     ap.add_argument("--adopt", action="append", default=[], metavar="KEY=DIR")
     ap.add_argument("--csv", type=pathlib.Path, default=ROOT / "docs" / "data" / "costs.csv")
+    ap.add_argument("--refresh-answers", action="store_true",
+                    help="re-read each `run` row's answer from its log in out/costs/")
     args = ap.parse_args()
     rows = {}
     if args.csv.exists():
         rows = {r["key"]: r for r in csv.DictReader(open(args.csv, encoding="utf-8"))}
+    if args.refresh_answers:
+        for key, r in rows.items():
+            log = ROOT / "out" / "costs" / f"{key}.log"
+            if CASES[key][-1][0] == "run" and log.exists():
+                r["answer"] = answer_of(key, CASES[key][-1], log.read_text(encoding="utf-8"))
+        write(args.csv, rows)
+        return
     keys = (args.only.split(",") if args.only else
             [] if args.adopt else [k for k, c in CASES.items() if not c[5]])
     for item in args.adopt:

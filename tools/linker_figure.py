@@ -11,6 +11,7 @@ exit - 1; every residue 3.5 Å (residue_spacing) from the next, fully stretched.
 """
 from __future__ import annotations
 
+import importlib.util
 import pathlib
 import sys
 
@@ -20,8 +21,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Circle, FancyBboxPatch  # noqa: E402
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-import picture_stamp  # noqa: E402
+
+def _picture_stamp():
+    """tools/picture_stamp.py, loaded by its path (tools/ is not a package)."""
+    spec = importlib.util.spec_from_file_location(
+        "picture_stamp", pathlib.Path(__file__).resolve().parent / "picture_stamp.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+picture_stamp = _picture_stamp()
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "images" / "linker-count.png"

@@ -21,14 +21,25 @@ ensemble (bench/ensemble.py).
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import pathlib
 import shutil
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-import picture_stamp  # noqa: E402
+
+
+def _picture_stamp():
+    """tools/picture_stamp.py, loaded by its path (tools/ is not a package)."""
+    spec = importlib.util.spec_from_file_location(
+        "picture_stamp", pathlib.Path(__file__).resolve().parent / "picture_stamp.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+picture_stamp = _picture_stamp()
 
 PY = sys.executable
 OUT = ROOT / "out" / "pictures"

@@ -70,8 +70,6 @@ def maps() -> dict[str, dict[int, int]]:
 @functools.lru_cache(maxsize=None)
 def defaults() -> dict:
     import dataclasses
-    import sys
-    sys.path.insert(0, str(ROOT)) if str(ROOT) not in sys.path else None
     from fibrilfit.api.plans import COMMAND_PLANS
     from fibrilfit.model.params import DEFAULTS
     return {"model": dataclasses.asdict(DEFAULTS) if dataclasses.is_dataclass(DEFAULTS)
@@ -125,8 +123,6 @@ def tried(name: str) -> str:
 
 def wilson(k: int, n: int) -> str:
     """The 95 % Wilson interval of k of n, as FibrilFit computes it (fibrilfit/sweep/stats.py)."""
-    import sys
-    sys.path.insert(0, str(ROOT)) if str(ROOT) not in sys.path else None
     from fibrilfit.sweep.stats import wilson as interval
     lo, hi = interval(k, n)
     return f"{lo:.2f}–{hi:.2f}"

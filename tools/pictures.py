@@ -15,8 +15,7 @@ honest:
 
 The report screenshot needs the trixie chroot's Chromium (`make test-blender` builds it; root);
 without it that picture fails with one line and the others are still made. Roughly 15 minutes
-on two quiet cores, most of it the 20-layer report (8 restarts and the walk) and the
-ensemble (bench/ensemble.py).
+on two quiet cores, most of it the 20-layer report (8 restarts and the walk).
 """
 from __future__ import annotations
 
@@ -103,19 +102,6 @@ def linker_count(report_dir) -> str:
     return "tools/linker_figure.py"
 
 
-def ensemble_pictures(report_dir) -> str:
-    """docs/model/ensemble_projection.png and ensemble_radial_density.png: bench/ensemble.py's
-    run of the default model (docs/model/ensemble.md#cost), its two pictures copied."""
-    out = OUT / "ensemble"
-    if not (out / "projection.png").exists():
-        subprocess.run([PY, str(ROOT / "bench" / "ensemble.py"), "--out-dir", str(out), "--json",
-                        str(out / "summary.json")], check=True, cwd=ROOT)
-    shutil.copyfile(out / "projection.png", ROOT / "docs" / "model" / "ensemble_projection.png")
-    shutil.copyfile(out / "radial_density.png",
-                    ROOT / "docs" / "model" / "ensemble_radial_density.png")
-    return "bench/ensemble.py (defaults: 4 starts a half, 16 replicas, 100 sweeps)"
-
-
 F6, U, F2, G = (f"{DATA}/6cu7.pdb.gz", f"{DATA}/1ubq.pdb.gz", f"{DATA}/2n0a.pdb.gz",
                 f"{DATA}/1gfl.pdb.gz")
 # picture (under docs/) -> its maker, which returns what made it (the stamp's made_by)
@@ -128,8 +114,6 @@ PICTURES = {
                                           "--domain", U, "--linker", "30"),
     "2n0a_gfp_linker44.png": render("docs/2n0a_gfp_linker44.png", "--fibril", F2, "--domain", G),
     "report_6cu7.png": report_shot,
-    "model/ensemble_projection.png": ensemble_pictures,
-    "model/ensemble_radial_density.png": ensemble_pictures,
 }
 
 

@@ -112,14 +112,14 @@ def row(key: str, wall: float, load0, load1, answer: str, bpy: str) -> dict:
             "argv": "fibrilfit " + " ".join(argv)}
 
 
-def keep_report(key: str, folder: pathlib.Path, r: dict,
+def keep_report(key: str, folder: pathlib.Path, r: dict, made_by: str | None = None,
                 dest: pathlib.Path = ROOT / "docs" / "data" / "reports") -> None:
     if key not in REPORTS:
         return
     doc = json.loads((folder / "report.json").read_text(encoding="utf-8"))
     doc["stamp"] = {"date": r["date"], "commit": r["commit"], "model_version": r["model_version"],
                     "bpy": r["bpy"], "wall_s": float(r["wall_s"]), "load": [r["load_before"],
-                    r["load_after"]], "command": r["argv"], "made_by": "bench/costs.py " + key}
+                    r["load_after"]], "command": r["argv"], "made_by": made_by or "bench/costs.py " + key}
     dest.mkdir(parents=True, exist_ok=True)
     (dest / f"{REPORTS[key]}.json").write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n",
                                                encoding="utf-8")
@@ -169,7 +169,9 @@ def adopt(key: str, folder: pathlib.Path) -> dict:
             doc["versions"]["blender"])
     r["date"] = (folder / "date").read_text().strip()
     r["commit"] = (folder / "commit").read_text().strip()
-    keep_report(key, folder, r)
+    r["argv"] = "fibrilfit " + " ".join(argv)
+    keep_report(key, folder, r, made_by=f"{r['argv']} under /usr/bin/time -v, adopted by "
+                f"bench/costs.py --adopt {key}=DIR")
     return r
 
 

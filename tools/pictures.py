@@ -6,7 +6,7 @@ tests/unit/test_pictures.py fails a picture whose stamp is older than the code's
 
 NAME is a picture's file name (`report_6cu7.png`). What is not made here, and how it is kept
 honest:
-- the sidebar's screens in the real Blender (docs/images/panel-*.png, result.png):
+- the sidebar's screens in the real Blender (in docs/images/: the panel's and result.png):
   `make test-blender ACCEPT_SCREENS=1` takes them in Blender 4.3.2 and stamps every screen it
   took or compared equal (tests/realblender/test_gui.py);
 - a dated notebook's pictures (docs/notebook/ pages only): a record of what was measured then,

@@ -1,5 +1,5 @@
 """Words a reader meets first are explained: the glossary (docs/reference/glossary.md) has an entry
-for every term the README and the tutorial use; the README's first screen uses none of the jargon
+for every term README.md and the tutorial use; README.md's first screen uses none of the jargon
 before it links it; and no user page sends the reader to something only the developers can
 follow (an issue number, a branch, a commit named in prose: a commit is fine in a measurement's
 stamp, which names its date or MODEL_VERSION beside it, or in a table). docs/notebook/, the
@@ -20,7 +20,7 @@ TERMS = ["anchor", "joint", "pf_rotation", "pf_rise", "protofilament", "layer", 
          "bracket", "envelope", "settled", "BVH", "Wilson", "MODEL_VERSION", "scored layers",
          "bound", "load", "P(fit)", "minimal linker", "verdict", "accommodated", "answer",
          "borderline", "cell", "exit", "report", "fast settings", "grazing"]
-# Jargon the README's first screen must not use before it links it
+# Jargon README.md's first screen must not use before it links it
 JARGON = ["protocol", "scored layers", "bound", "MODEL_VERSION", "load", "anchor", "joint",
           "pf_rotation", "restart", "seed", "walk", "bracket", "envelope", "settled", "BVH",
           "Wilson", "P(fit)", "verdict", "accommodated", "inflate", "cell"]
@@ -69,7 +69,7 @@ def first_unlinked(lines: list[str], term: str) -> str | None:
 def test_the_readme_first_screen_links_its_jargon_before_using_it():
     lines = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()[:FIRST_SCREEN]
     bad = {t: first_unlinked(lines, t) for t in JARGON if first_unlinked(lines, t)}
-    assert not bad, f"README's first {FIRST_SCREEN} lines use jargon before linking it: {bad}"
+    assert not bad, f"README.md's first {FIRST_SCREEN} lines use jargon before linking it: {bad}"
 
 
 def test_the_first_screen_check_catches_an_unlinked_word():

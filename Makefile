@@ -28,7 +28,7 @@ PYTEST = -m pytest --durations=25 --junitxml=out/junit/$@.xml
 TEST_MARK ?= not slow
 
 .PHONY: run test test-unit test-latest test-lts test-52 test-alone test-slow test-cluster \
-	test-blender test-pip old-blender extension bench validate validate-walks validate-shapes docs mutate clean
+	test-blender test-pip old-blender extension bench validate validate-walks validate-shapes docs pictures mutate clean
 
 # Each venv: bpy, the test tools, and this checkout in editable mode (`import fibrilfit` from
 # tests, tools/ and bench/, with no path set-up of their own).
@@ -232,6 +232,14 @@ $(VENV)/.docs-installed: $(VENV)/.installed requirements-docs.txt
 # anchor fails the build; the command-line reference is generated from the parser at build time.
 docs: $(VENV)/.docs-installed
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
+
+# Every picture the docs show that the model makes, made again from this checkout and stamped
+# with its MODEL_VERSION (tools/pictures.py; tests/unit/test_pictures.py fails an older stamp).
+# The report screenshot uses the trixie chroot's Chromium (root, as make test-blender); about
+# 15 min on two cores. PICTURES_ARGS="--only report_6cu7.png" makes one.
+PICTURES_ARGS ?=
+pictures: $(VENV)/.installed
+	$(VENV)/bin/python tools/pictures.py $(PICTURES_ARGS)
 
 # Mutation testing (docs/contributing/mutation.md): cosmic-ray, in its own venv, mutates each module
 # whose wrong number is a wrong science answer (tools/mutate/<module>.toml: the module and the

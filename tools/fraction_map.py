@@ -70,13 +70,14 @@ def run_cost(out: pathlib.Path) -> dict:
 
 
 def write_docs(out: pathlib.Path, docs: pathlib.Path) -> None:
-    """Every folder's rows as one CSV and one plot (the command's own csv_text and plot):
-    docs/largest_fraction.csv, docs/largest_fraction.png."""
+    """Every folder's rows as one CSV (docs/largest_fraction.csv) and one plot, kept beside the
+    runs (OUT/largest_fraction.png): the docs show only pictures of the current MODEL_VERSION
+    (tests/unit/test_pictures.py), and a map is re-measured far less often than the code moves."""
     from fibrilfit import files
     from fibrilfit.search import fraction_map
     rows = fraction_map.folder_rows(out)
     files.write_text(docs / "largest_fraction.csv", fraction_map.csv_text(rows))
-    fraction_map.write_plot(docs / "largest_fraction.png", rows)
+    fraction_map.write_plot(out / "largest_fraction.png", rows)
 
 
 def show(out: pathlib.Path) -> None:

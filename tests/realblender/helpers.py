@@ -48,3 +48,12 @@ def own_lines(stderr: str) -> list:
 
 def read_json(path: pathlib.Path) -> dict:
     return json.loads(path.read_text(encoding="utf-8"))
+
+
+def picture_stamp():
+    """tools/picture_stamp.py: stamps an accepted screen with this code's MODEL_VERSION."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("picture_stamp", ROOT / "tools" / "picture_stamp.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod

@@ -13,7 +13,7 @@ import struct
 
 import pytest
 
-from realblender.helpers import OUT, ROOT, chroot, inside, module, read_json
+from realblender.helpers import OUT, ROOT, chroot, inside, module, picture_stamp, read_json
 
 # the session (or the two reports) runs in the first test's set-up: minutes under a loaded
 # machine, beyond the suite's 300 s per test (pyproject's timeout)
@@ -115,6 +115,12 @@ def test_the_screens_are_the_docs_unless_a_change_is_accepted(session):
     if os.environ.get("FIBRILFIT_ACCEPT_SCREENS") == "1":
         for name in changed:
             shutil.copyfile(SCREENS / name, SHOTS / name)
+        # every screen, changed or compared equal, is now of this code: its stamp says so
+        # (tests/unit/test_pictures.py)
+        for name in session["screenshots"]:
+            if (SHOTS / name).exists():
+                picture_stamp().stamp(SHOTS / name, "make test-blender ACCEPT_SCREENS=1 "
+                                      "(tests/realblender/test_gui.py, Blender 4.3.2)")
         return
     assert not changed, (f"screens differ from docs/images/ (new shots and diff-*.png in "
                          f"{SCREENS}): {changed}; if the change is meant, accept it with "

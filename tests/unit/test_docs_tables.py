@@ -45,12 +45,18 @@ names a test that exists and sits above a table. An old table kept beside today'
 of the same claim says so, `<!-- superseded by the table below -->`, and the next table on its
 page must then name its fast test."""
 import ast
+import importlib.util
 import pathlib
 import re
 import shutil
 import subprocess
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+# A page that quotes its numbers from docs/data/ is checked as the site shows it, rendered
+_spec = importlib.util.spec_from_file_location("page_numbers",
+                                               ROOT / "docs" / "hooks" / "page_numbers.py")
+page_numbers = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(page_numbers)
 RESULT_WORDS = re.compile(r"P\(fit\)|minimal linker|clash|stretch|\btime\b|\bbake\b|answer|verdict|"
                           r"\bfits?\b|outer diameter|median|accommodated|seconds|frames|\bwall\b|"
                           r"\bCPU\b|memory", re.I)
@@ -108,7 +114,7 @@ def pending(name: str, heading: str, entries=None):
 
 def section(path: pathlib.Path, line: int) -> str:
     """The `## ` heading above line `line` (1-based) of `path` ('' if none)."""
-    lines = path.read_text(encoding="utf-8").splitlines()[:line]
+    lines = page_numbers.page_text(path).splitlines()[:line]
     return next((h for h in reversed(lines) if h.startswith("## ")), "")
 
 
@@ -128,7 +134,7 @@ def markers(lines: list[str], start: int) -> list[str]:
 def tables(path: pathlib.Path):
     """(line number, header, provenance text, whole table, the facts waived by a `no layers` /
     `no seeds` marker) of each results table of `path`."""
-    lines = path.read_text(encoding="utf-8").splitlines()
+    lines = page_numbers.page_text(path).splitlines()
     fenced, i = False, 0
     while i < len(lines):
         if lines[i].lstrip().startswith("```"):
@@ -229,7 +235,7 @@ def fast_problems(notes: list[str], header: str, context: str, table: str,
 
 def fast_markers(path: pathlib.Path, line: int) -> list[str]:
     """The markers above the table at line `line` (1-based) of `path`."""
-    return markers(path.read_text(encoding="utf-8").splitlines(), line - 1)
+    return markers(page_numbers.page_text(path).splitlines(), line - 1)
 
 
 def test_results_tables_are_found():
@@ -360,7 +366,7 @@ def test_every_physics_table_has_a_fast_test():
             bad.append(f"{name}:{superseded}: superseded, but no table follows")
     assert not bad, "\n".join(bad)
     everywhere = sum(line.startswith("<!-- fast test") for page in pages()
-                     for line in page.read_text(encoding="utf-8").splitlines())
+                     for line in page_numbers.page_text(page).splitlines())
     assert placed == everywhere, f"{everywhere - placed} fast-test marker(s) above no table"
     assert checked >= 20  # the model, guide and validation pages' physics tables, 2026-11-27
 

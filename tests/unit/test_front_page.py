@@ -12,6 +12,10 @@ LINK = re.compile(r"\]\((?!https?:|#)([^)\s]+)\)")
 def test_the_home_page_is_the_readme():
     stub = (ROOT / "docs" / "index.md").read_text(encoding="utf-8")
     assert "README.md" in stub and len([l for l in stub.splitlines() if l.startswith("#")]) == 1
+    # on GitHub the stub is what a reader of docs/ sees: it says what the project is and where
+    # to start, not only a title
+    assert "](tutorial.md)" in stub and "](../README.md)" in stub
+    assert len([l for l in stub.splitlines() if l.strip() and not l.startswith(("#", "<!--"))]) >= 5
     assert "docs/hooks/front_page.py" in (ROOT / "mkdocs.yml").read_text(encoding="utf-8")
 
 

@@ -1,0 +1,118 @@
+"""The numbers the user pages quote come from files (docs/hooks/page_numbers.py, the docs build's
+mkdocs-macros module): every `{{ ... }}` a page writes must name something the data holds (a page
+rendered here as the plugin renders it, with an undefined name an error), a page that quotes
+numbers this way must say so in its front matter (else its braces would be printed as they are),
+the pages converted to it quote no time by hand, and every measured time is of the code's own
+MODEL_VERSION."""
+import importlib.util
+import pathlib
+import re
+
+import jinja2
+import pytest
+import yaml
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+DOCS = ROOT / "docs"
+spec = importlib.util.spec_from_file_location("page_numbers", DOCS / "hooks" / "page_numbers.py")
+page_numbers = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(page_numbers)
+
+# The pages whose times come from docs/data/ only: a time written by hand in their prose fails.
+CONVERTED = ["tutorial.md", "faq.md", "limitations.md", "guide/report.md", "guide/construct.md"]
+# A time as prose writes it: "231.8 s", "20 minutes", "about 10 s", "4.2 min"
+BARE_TIME = re.compile(r"(?<![\w.{])\d+(?:[.,]\d+)?\s?(?:s|sec|seconds?|min|minutes?|h|hours?)\b")
+FRONT = re.compile(r"\A---\n(.*?)\n---\n", re.S)
+
+
+def macros_config() -> dict:
+    text = (ROOT / "mkdocs.yml").read_text(encoding="utf-8")
+    plugins = yaml.safe_load(text)["plugins"]
+    return next(p["macros"] for p in plugins if isinstance(p, dict) and "macros" in p)
+
+
+def environment() -> jinja2.Environment:
+    return page_numbers.environment()
+
+
+def split(page: pathlib.Path) -> tuple[dict, str]:
+    text = page.read_text(encoding="utf-8")
+    m = FRONT.match(text)
+    return (yaml.safe_load(m.group(1)) or {}, text[m.end():]) if m else ({}, text)
+
+
+def prose(text: str) -> str:
+    """The page without its fenced code blocks and inline code."""
+    text = re.sub(r"^(```|~~~).*?^\1\s*$", "", text, flags=re.S | re.M)
+    return re.sub(r"`[^`\n]*`", "", text)
+
+
+PAGES = sorted(p for p in DOCS.rglob("*.md"))
+RENDERED = [p for p in PAGES if split(p)[0].get("render_macros")]
+
+
+def test_the_plugin_is_strict_and_reads_only_pages_that_ask():
+    c = macros_config()
+    assert c["on_undefined"] == "strict" and c["render_by_default"] is False
+    assert c["module_name"] == (DOCS / "hooks" / "page_numbers.py").relative_to(ROOT).with_suffix(
+        "").as_posix()
+    # the tests render with the delimiters the site uses
+    assert c["j2_comment_start_string"] == page_numbers.J2["comment_start_string"]
+    assert c["j2_comment_end_string"] == page_numbers.J2["comment_end_string"]
+    assert "mkdocs-macros-plugin" in (ROOT / "requirements-docs.txt").read_text(encoding="utf-8")
+    names = {p.relative_to(DOCS).as_posix() for p in RENDERED}
+    assert set(CONVERTED) <= names, set(CONVERTED) - names
+
+
+@pytest.mark.parametrize("page", RENDERED, ids=[p.relative_to(DOCS).as_posix() for p in RENDERED])
+def test_a_page_quotes_only_what_the_data_holds(page):
+    _, body = split(page)
+    environment().from_string(body).render()
+
+
+def test_an_unknown_name_fails_the_page():
+    env = environment()
+    with pytest.raises(jinja2.UndefinedError):
+        env.from_string("took {{ costs.no_such_run.wall_s }}").render()
+    with pytest.raises(KeyError):
+        env.from_string("{{ took('no_such_run') }}").render()
+    # an attribute anchor is not a comment
+    assert env.from_string("# Title {#anchor}").render() == "# Title {#anchor}"
+
+
+def test_a_page_with_braces_asks_for_them_to_be_read():
+    unread = [p.relative_to(DOCS).as_posix() for p in PAGES
+              if "{{" in prose(split(p)[1]) and p not in RENDERED]
+    assert not unread, f"{{{{ ... }}}} in a page without render_macros: true: {unread}"
+
+
+@pytest.mark.parametrize("name", CONVERTED)
+def test_a_converted_page_writes_no_time_by_hand(name):
+    body = prose(split(DOCS / name)[1])
+    body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
+    bare = [m.group(0) for m in BARE_TIME.finditer(body)]
+    assert not bare, f"{name}: times written by hand (quote docs/data/costs.csv: {{{{ took(KEY) }}}}): {bare}"
+
+
+def test_the_time_check_finds_a_time():
+    assert BARE_TIME.search("it took 231.8 s on two cores")
+    assert BARE_TIME.search("about 20 minutes")
+    assert not BARE_TIME.search("a 30 Å ball, 250 frames, 8 restarts")
+
+
+def test_every_measured_time_and_report_is_at_the_codes_model_version():
+    mv = page_numbers.model_version()
+    costs = page_numbers.costs()
+    assert costs, "docs/data/costs.csv is empty"
+    old = {k: r["model_version"] for k, r in costs.items() if r["model_version"] != mv}
+    assert not old, f"measured at an older MODEL_VERSION than {mv}: re-run bench/costs.py: {old}"
+    for name, doc in page_numbers.reports().items():
+        assert doc["stamp"]["model_version"] == mv, name
+        assert doc["stamp"]["commit"] and doc["stamp"]["date"], name
+
+
+def test_the_cost_table_has_every_row():
+    table = page_numbers.cost_table()
+    rows = [ln for ln in table.splitlines() if ln.startswith("| `")]
+    assert len(rows) == len(page_numbers.costs())
+    assert "{{ cost_table() }}" in (DOCS / "benchmarks.md").read_text(encoding="utf-8")

@@ -1,0 +1,149 @@
+"""`make pictures`: every picture the docs show that the model makes, made again from this
+checkout's code and stamped with its MODEL_VERSION (tools/picture_stamp.py;
+tests/unit/test_pictures.py fails a picture whose stamp is older than the code's).
+
+    .venv/bin/python tools/pictures.py [--only NAME,NAME] [--report-dir DIR] [--list]
+
+NAME is a picture's file name (`report_6cu7.png`). What is not made here, and how it is kept
+honest:
+- the sidebar's screens in the real Blender (in docs/images/: the panel's and result.png):
+  `make test-blender ACCEPT_SCREENS=1` takes them in Blender 4.3.2 and stamps every screen it
+  took or compared equal (tests/realblender/test_gui.py);
+- a dated notebook's pictures (docs/notebook/ pages only): a record of what was measured then,
+  stamped with the MODEL_VERSION the page names (the test holds them to a stamp, not to today's
+  version).
+
+The report screenshot needs the trixie chroot's Chromium (`make test-blender` builds it; root);
+without it that picture fails with one line and the others are still made. Roughly 15 minutes
+on two quiet cores, most of it the 20-layer report (8 restarts and the walk).
+"""
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import pathlib
+import shutil
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def _picture_stamp():
+    """tools/picture_stamp.py, loaded by its path (tools/ is not a package)."""
+    spec = importlib.util.spec_from_file_location(
+        "picture_stamp", pathlib.Path(__file__).resolve().parent / "picture_stamp.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+picture_stamp = _picture_stamp()
+
+PY = sys.executable
+OUT = ROOT / "out" / "pictures"
+DATA = "tests/data"
+REPORT = ["report", "--fibril", f"{DATA}/6cu7.pdb.gz", "--domain", f"{DATA}/1ubq.pdb.gz",
+          "--linker", "8", "--restarts", "8", "--workers", "2", "--quiet"]
+
+
+def fibrilfit(*args: str) -> None:
+    cp = subprocess.run([PY, "-m", "fibrilfit", *args], cwd=ROOT, capture_output=True, text=True)
+    if cp.returncode != 0:
+        raise RuntimeError(f"fibrilfit {' '.join(args)}: exit {cp.returncode}: {cp.stderr[-400:]}")
+
+
+def render(dest: str, *args: str):
+    """A `run --render` picture, as the page that shows it gives the command."""
+    def make(report_dir):
+        fibrilfit("run", *args, "--render", dest)
+        return "fibrilfit run " + " ".join(args) + f" --render {dest}"
+    return make
+
+
+def report_shot(report_dir: pathlib.Path | None) -> str:
+    """docs/report_6cu7.png: the report of docs/guide/report.md's command, photographed by
+    headless Chromium (the trixie chroot of make test-blender; no network)."""
+    folder = report_dir or OUT / "report"
+    if report_dir is None:
+        shutil.rmtree(folder, ignore_errors=True)
+        fibrilfit(*REPORT, "--out", str(folder.relative_to(ROOT)))
+    shot = OUT / "report_6cu7.png"
+    shot.parent.mkdir(parents=True, exist_ok=True)
+    inside = lambda p: "/fibrilfit/" + p.resolve().relative_to(ROOT).as_posix()  # noqa: E731
+    flags = ("--headless --no-sandbox --disable-gpu --hide-scrollbars "
+             "--host-resolver-rules='MAP * ~NOTFOUND' --proxy-server=127.0.0.1:9 "
+             "--virtual-time-budget=5000 --window-size=1200,1600")
+    cp = subprocess.run(["sh", str(ROOT / ".ci" / "blender" / "chroot.sh"), "run",
+                         f"export HOME=/tmp/chromium-home && chromium {flags} "
+                         f"--screenshot={inside(shot)} file://{inside(folder / 'report.html')}"],
+                        capture_output=True, text=True, timeout=600)
+    if cp.returncode != 0 or not shot.exists():
+        raise RuntimeError(f"Chromium in the chroot: {cp.stderr.strip()[-300:]}")
+    shutil.copyfile(shot, ROOT / "docs" / "report_6cu7.png")
+    return ("fibrilfit " + " ".join(REPORT) + f" --out {folder.relative_to(ROOT)}; headless "
+            "Chromium 1200x1600 (tools/pictures.py)")
+
+
+def tutorial_atoms(report_dir) -> str:
+    cif = OUT / "tutorial" / "model.cif"
+    cif.parent.mkdir(parents=True, exist_ok=True)
+    args = ["run", "--fibril", f"{DATA}/6cu7.pdb.gz", "--domain", f"{DATA}/1ubq.pdb.gz",
+            "--linker", "8", "--layers", "4", "--domain-shape", "hull", "--pdb-atoms",
+            str(cif.relative_to(ROOT))]
+    fibrilfit(*args)
+    subprocess.run([PY, str(ROOT / "tools" / "atoms_picture.py"), str(cif),
+                    str(ROOT / "docs" / "images" / "tutorial-atoms.png")], check=True, cwd=ROOT)
+    return "fibrilfit " + " ".join(args) + "; tools/atoms_picture.py"
+
+
+def linker_count(report_dir) -> str:
+    subprocess.run([PY, str(ROOT / "tools" / "linker_figure.py")], check=True, cwd=ROOT)
+    return "tools/linker_figure.py"
+
+
+F6, U, F2, G = (f"{DATA}/6cu7.pdb.gz", f"{DATA}/1ubq.pdb.gz", f"{DATA}/2n0a.pdb.gz",
+                f"{DATA}/1gfl.pdb.gz")
+# picture (under docs/) -> its maker, which returns what made it (the stamp's made_by)
+PICTURES = {
+    "images/linker-count.png": linker_count,
+    "images/tutorial-atoms.png": tutorial_atoms,
+    "6cu7_ubiquitin_linker6.png": render("docs/6cu7_ubiquitin_linker6.png", "--fibril", F6,
+                                         "--domain", U),
+    "6cu7_ubiquitin_linker30.png": render("docs/6cu7_ubiquitin_linker30.png", "--fibril", F6,
+                                          "--domain", U, "--linker", "30"),
+    "2n0a_gfp_linker44.png": render("docs/2n0a_gfp_linker44.png", "--fibril", F2, "--domain", G),
+    "report_6cu7.png": report_shot,
+}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--only", help="picture names, comma-separated (default: all)")
+    ap.add_argument("--report-dir", type=pathlib.Path,
+                    help="photograph this report of the same command instead of running it")
+    ap.add_argument("--list", action="store_true")
+    args = ap.parse_args()
+    if args.list:
+        for name, make in PICTURES.items():
+            print(f"docs/{name}: {picture_stamp.read(ROOT / 'docs' / name) or 'no stamp'}")
+        return
+    names = args.only.split(",") if args.only else list(PICTURES)
+    unknown = [n for n in names if n not in PICTURES]
+    if unknown:
+        sys.exit(f"pictures: unknown {unknown}; known: {', '.join(PICTURES)}")
+    failed = []
+    for name in names:
+        try:
+            made_by = PICTURES[name](args.report_dir.resolve() if args.report_dir else None)
+        except (RuntimeError, subprocess.CalledProcessError, OSError) as e:
+            failed.append(name)
+            print(f"docs/{name}: not made: {e}", file=sys.stderr)
+            continue
+        print(f"docs/{name}: {picture_stamp.stamp(ROOT / 'docs' / name, made_by)}", flush=True)
+    if failed:
+        sys.exit(f"pictures: not made: {', '.join(failed)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -191,6 +191,8 @@ def main() -> None:
                "map_width_halves_relative_difference": round(abs(w0 - w1) / (0.5 * (w0 + w1)),
                                                              4),
                "map_width_per_start": per_start,
+               "core_alone_width": round(density.width(density.core_map(p, core_of(p),
+                                                                        voxel=a.voxel)), 2),
                "outer_diameter": observables.summary(both, tau),
                "load_average_before": [round(v, 2) for v in load_before],
                "load_average_after": [round(v, 2) for v in load_after],
@@ -218,7 +220,7 @@ def main() -> None:
           f"{per_start}), load {summary['load_average_before']} -> "
           f"{summary['load_average_after']}")
     print(f"map: width {summary['map_width']} Å (halves {summary['map_width_halves']}), "
-          f"{map_seconds:.1f} s; CPU per half {[r['cpu_seconds'] for r in reps]} s")
+          f"{map_seconds:.1f} s; the core alone {summary['core_alone_width']} Å; CPU per half {[r['cpu_seconds'] for r in reps]} s")
     if a.json:
         pathlib.Path(a.json).parent.mkdir(parents=True, exist_ok=True)
         pathlib.Path(a.json).write_text(json.dumps(summary, indent=1))

@@ -2,6 +2,7 @@
 freely jointed chain's end-to-end distribution, one sphere tethered beside a wall, two tethered
 spheres' contact statistics, the autocorrelation time of a process whose τ is known, and a
 model's two independent halves agreeing, with nothing overlapping anywhere (cell and images)."""
+import dataclasses
 import math
 
 import numpy as np
@@ -319,3 +320,15 @@ def test_the_overlap_search_is_the_brute_forces(values):
                 overlapping += int((ours > 0).sum())
         k.step(np.ones(k.R, bool))
     assert overlapping > 10  # the sums compared were not all zero
+
+
+def test_the_core_alone_is_its_outline_across():
+    """The map of the core alone (density.core_map): an untwisted 40 × 22 Å box seen along Y
+    projects to a flat profile 40 Å across (within a voxel); the same core inside a domain map
+    is the same voxels (density_map adds core_inside)."""
+    p = P.make_params(twist=0.0, layers=4)
+    core = dataclasses.replace(system.from_params(p).obstacle, layers=None)
+    m = density.core_map(p, core, voxel=1.0, layers=4)
+    assert density.width(m) == pytest.approx(40.0, abs=1.0)
+    assert m.data.max() == 1.0 and m.data.sum() * 1.0 == pytest.approx(40 * 22 * 4 * p.rise,
+                                                                        rel=0.05)

@@ -116,6 +116,8 @@ def main() -> None:
     ap.add_argument("--out-dir", default="out/bench_ensemble",
                     help="the pooled map (map.mrc), its projection (projection.png) and "
                          "each half's radial density of domain mass (radial_density.png)")
+    ap.add_argument("--core-only", action="store_true",
+                    help="print the width of the core alone (density.core_map) and stop")
     ap.add_argument("--half", type=int, default=None, help=argparse.SUPPRESS)
     ap.add_argument("--out", default=None, help=argparse.SUPPRESS)
     a = ap.parse_args()
@@ -123,6 +125,13 @@ def main() -> None:
         a.max_tries = a.starts + 2
     if a.half is not None:
         half(a.half, a, a.out)
+        return
+    if a.core_only:
+        from fibrilfit.ensemble import density
+        p = model_params(a.case)
+        m = density.core_map(p, core_of(p), voxel=a.voxel)
+        print(f"the core alone: width {density.width(m):.2f} Å (voxel {a.voxel} Å, "
+              f"{m.layers} layers: one helical turn)")
         return
     out_dir = pathlib.Path(a.out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -292,7 +292,8 @@ def _brute_violation(k: sampler.Sampler, q: np.ndarray, c: np.ndarray, rows: np.
                                     {"layers": 4, "protofilaments": 2, "linker": 12}])
 def test_the_overlap_search_is_the_brute_forces(values):
     """The kernel's pruned overlap (bounding spheres of SEGMENT members,
-    docs/model/ensemble.md#overlap-search) equals the sum over every pair, for every kind of
+    docs/model/ensemble.md#overlap-search), and its sum over every pair (the path of a cell of
+    up to PRUNE_ABOVE members), equal the sum over every pair, for every kind of
     move (pivot tails, crankshafts, the whole chain), on layouts that overlap everywhere: every
     chain a random walk of its bonds from its anchor, and after a few hundred repair steps;
     chains longer than a segment and not a multiple of it."""
@@ -302,6 +303,8 @@ def test_the_overlap_search_is_the_brute_forces(values):
     start = chain.with_rest_bonds(start_layout.rest_positions(p))
     k = sampler.Sampler(chain, np.repeat(start[None], 3, axis=0), rng)
     assert k.n > sampler.SEGMENT and k.n % sampler.SEGMENT
+    assert not k.prune  # a small cell sums every pair: the pruned search is forced here
+    k.prune = True
     overlapping = 0
     for step in range(200):
         if step % 20 == 0:
@@ -315,8 +318,11 @@ def test_the_overlap_search_is_the_brute_forces(values):
             for rows in (np.arange(k.n), np.arange(1, k.n), np.array([k.n // 2]),
                          np.arange(k.n - 3, k.n)):
                 ours = k.violation(q, c, rows)
-                assert ours == pytest.approx(_brute_violation(k, q, c, rows), rel=1e-9,
-                                             abs=1e-9)
+                brute = _brute_violation(k, q, c, rows)
+                assert ours == pytest.approx(brute, rel=1e-9, abs=1e-9)
+                k.prune = False  # and the kernel's own sum over every pair
+                assert k.violation(q, c, rows) == pytest.approx(brute, rel=1e-9, abs=1e-9)
+                k.prune = True
                 overlapping += int((ours > 0).sum())
         k.step(np.ones(k.R, bool))
     assert overlapping > 10  # the sums compared were not all zero

@@ -38,8 +38,11 @@ def test_the_page_table_is_the_csv():
         assert line is not None, row["system"]
         for key in ("measured_nm", "predicted_width_nm", "linker", "layers", "commit"):
             assert f" {row[key]} " in line.replace("|", " | "), (row["system"], key)
+        if row["predicted_width_nm"] == "":  # not obtained: the page says so in its row
+            assert "not obtained" in line and row["interval_lo"] == row["ess"] == ""
+            continue
         lo, hi = float(row["interval_lo"]), float(row["interval_hi"])
-        assert lo <= float(row["predicted_width_nm"]) + 0.5 and hi >= lo
+        assert lo <= float(row["predicted_width_nm"]) <= hi
 
 
 def test_the_core_alone_rows_are_todays():
@@ -54,7 +57,7 @@ def test_the_core_alone_rows_are_todays():
     p = resolve(plan).p
     core = dataclasses.replace(system.from_params(p).obstacle, layers=None)
     width_nm = density.width(density.core_map(p, core, voxel=6.0)) / 10.0
-    alone = [r for r in rows() if r["ess"] == ""]
+    alone = [r for r in rows() if "the core alone" in r["system"]]
     assert len(alone) == 2
     for r in alone:
         assert float(r["predicted_width_nm"]) == pytest.approx(width_nm, abs=0.006)

@@ -39,15 +39,18 @@ def core_of(p):
     return dataclasses.replace(system.from_params(p).obstacle, layers=None)
 
 
-def model_params(case: str | None, seed: int = 0):
+def model_params(case: str | None, seed: int = 0, layers: int | None = None,
+                 score_layers: int | None = None):
     """The default model's Params, or the case file's as `run --case` makes them (its structure
-    files measured), at `seed`."""
+    files measured), at `seed` (and `layers`, `score_layers` if given)."""
     from fibrilfit.model import params as P
+    given = {k: v for k, v in (("layers", layers), ("score_layers", score_layers))
+             if v is not None}
     if case is None:
-        return P.make_params(seed=seed)
+        return P.make_params(seed=seed, **given)
     from fibrilfit.api.model import resolve
     from fibrilfit.api.plans import RunPlan, make_plan
-    plan, _ = make_plan(RunPlan, {"seed": seed}, case=case, command="run")
+    plan, _ = make_plan(RunPlan, {"seed": seed, **given}, case=case, command="run")
     return resolve(plan).p
 
 
@@ -69,7 +72,7 @@ def half(h: int, a, out: str) -> None:
     t = time.perf_counter()
     begun, bullet_widths, answers = [], [], []
     for seed in range(h * a.max_tries, (h + 1) * a.max_tries):
-        result = pipeline.run_model(model_params(a.case, seed))
+        result = pipeline.run_model(model_params(a.case, seed, a.layers, a.score_layers))
         bullet_widths.append(result["envelope"]["outer_diameter"])
         answers.append(result["answer"])
         if result.get("accommodated") is True:
@@ -79,7 +82,7 @@ def half(h: int, a, out: str) -> None:
     bullet = time.perf_counter() - t
     if not begun:
         sys.exit(f"half {h}: no Bullet layout fitted ({answers}): nothing to sample")
-    p = model_params(a.case)
+    p = model_params(a.case, 0, a.layers, a.score_layers)
     radius = p.widest_diameter / 2.0
     cpu = time.process_time()
     ens = sampler.sample(system.from_params(p), np.stack(begun), seed=h, replicas=a.replicas,
@@ -109,6 +112,8 @@ def main() -> None:
     ap.add_argument("--max-tries", type=int, default=None,
                     help="Bullet seeds a half tries for its starts [default: starts + 2]")
     ap.add_argument("--voxel", type=float, default=3.0, help="the map's voxel (Å)")
+    ap.add_argument("--layers", type=int, default=None, help="instead of the model's")
+    ap.add_argument("--score-layers", type=int, default=None, help="instead of the model's")
     ap.add_argument("--replicas", type=int, default=16)
     ap.add_argument("--sweeps", type=int, default=100)
     ap.add_argument("--burn-in", type=int, default=30)
@@ -142,6 +147,9 @@ def main() -> None:
                                "--starts", str(a.starts), "--replicas", str(a.replicas),
                                "--sweeps", str(a.sweeps), "--burn-in", str(a.burn_in),
                                "--max-tries", str(a.max_tries), "--voxel", str(a.voxel),
+                               *(["--layers", str(a.layers)] if a.layers else []),
+                               *(["--score-layers", str(a.score_layers)]
+                                 if a.score_layers is not None else []),
                                *(["--case", a.case] if a.case else [])])
              for h, o in zip((0, 1), outs)]
     if any(pr.wait() for pr in procs):
@@ -151,7 +159,7 @@ def main() -> None:
     from fibrilfit.ensemble import density, observables
     from fibrilfit.model.version import MODEL_VERSION
     reps = [json.loads(pathlib.Path(o).read_text()) for o in outs]
-    p = model_params(a.case)
+    p = model_params(a.case, 0, a.layers, a.score_layers)
     radius = p.widest_diameter / 2.0
     centres = [np.load(o + ".centres.npy") for o in outs]
     t = time.perf_counter()

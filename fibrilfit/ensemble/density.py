@@ -94,10 +94,30 @@ def density_map(p, centres: np.ndarray, radius: float, *, voxel: float = 3.0,
     data = np.clip(data[lo:hi], 0.0, None)
     origin = (x0, x0, z0 + lo * voxel)
     if core is not None:
-        zc = origin[2] + voxel * (np.arange(data.shape[0]) + 0.5)
-        xc = x0 + voxel * (np.arange(nxy) + 0.5)
-        grid = np.stack(np.meshgrid(zc, xc, xc, indexing="ij")[::-1], -1)  # (z, y, x) of (x, y, z)
-        data = data + (core.depth(grid, 0.0) > 0)
+        data = data + core_inside(core, origin, data.shape, voxel)
+    return DensityMap(data.astype(np.float32), voxel, origin, layers)
+
+
+def core_inside(core, origin, shape, voxel: float) -> np.ndarray:
+    """1 where a voxel's centre lies inside `core` (an obstacle), else 0: (z, y, x) of `shape`,
+    the grid's corner at `origin` (x, y, z)."""
+    zc = origin[2] + voxel * (np.arange(shape[0]) + 0.5)
+    yc = origin[1] + voxel * (np.arange(shape[1]) + 0.5)
+    xc = origin[0] + voxel * (np.arange(shape[2]) + 0.5)
+    grid = np.stack(np.meshgrid(zc, yc, xc, indexing="ij")[::-1], -1)  # (z, y, x) of (x, y, z)
+    return (core.depth(grid, 0.0) > 0).astype(float)
+
+
+def core_map(p, core, *, voxel: float = 3.0, layers: int | None = None) -> DensityMap:
+    """The map of the core alone (no domains: a fibril with nothing tethered, or whose tails are
+    not in the map) over the same window as density_map's."""
+    layers = pitch_layers(p) if layers is None else layers
+    nxy = int(math.ceil(2 * (core.bound + 2 * voxel) / voxel))
+    x0 = -nxy * voxel / 2
+    z0 = -0.5 * p.rise
+    nz = int(math.ceil(layers * p.rise / voxel))
+    origin = (x0, x0, z0)
+    data = core_inside(core, origin, (nz, nxy, nxy), voxel)
     return DensityMap(data.astype(np.float32), voxel, origin, layers)
 
 

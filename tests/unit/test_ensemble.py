@@ -2,6 +2,7 @@
 freely jointed chain's end-to-end distribution, one sphere tethered beside a wall, two tethered
 spheres' contact statistics, the autocorrelation time of a process whose τ is known, and a
 model's two independent halves agreeing, with nothing overlapping anywhere (cell and images)."""
+import dataclasses
 import math
 
 import numpy as np
@@ -260,3 +261,80 @@ def test_a_seed_gives_the_same_ensemble():
             for s in (3, 3, 4)]
     assert np.array_equal(runs[0].domains, runs[1].domains)
     assert not np.array_equal(runs[0].domains, runs[2].domains)
+
+
+def _brute_violation(k: sampler.Sampler, q: np.ndarray, c: np.ndarray, rows: np.ndarray):
+    """Sampler.violation without its pruning: every moved member against every sphere of the
+    cell, its images and its own chain (the sampler's kernel before the overlap search)."""
+    s, n, R = k.s, k.n, k.R
+    x = k.x.copy()
+    x[np.arange(R), c] = q
+    total = np.zeros(R)
+    j = np.arange(n)
+    for r in range(R):
+        flat = x[r].reshape(-1, 3)
+        chain_of, member = np.arange(k.C * n) // n, np.arange(k.C * n) % n
+        radii = np.tile(s.radii, k.C)
+        for b, other in enumerate([flat] + [img(flat) for img in s.images]):
+            a = flat[c[r] * n + rows]
+            depth = s.radii[rows][:, None] + radii[None] - s.tolerance - np.linalg.norm(
+                a[:, None] - other[None], axis=-1)
+            skip = (rows[:, None] == 0) & (member[None] == 0)
+            if b == 0:
+                skip |= (chain_of[None] == c[r]) & (np.abs(rows[:, None] - member[None]) <= 1)
+            total[r] += np.where(skip, 0.0, np.maximum(depth, 0.0)).sum()
+    if s.obstacle is not None and (rows > 0).any():
+        total += s.obstacle.depth(q[:, rows[rows > 0]], s.radii[rows[rows > 0]]).sum(axis=1)
+    return total
+
+
+@pytest.mark.parametrize("values", [{"layers": 6, "linker": 20}, {"periodic": 6, "linker": 12},
+                                    {"layers": 4, "protofilaments": 2, "linker": 12}])
+def test_the_overlap_search_is_the_brute_forces(values):
+    """The kernel's pruned overlap (bounding spheres of SEGMENT members,
+    docs/model/ensemble.md#overlap-search), and its sum over every pair (the path of a cell of
+    up to PRUNE_ABOVE members), equal the sum over every pair, for every kind of
+    move (pivot tails, crankshafts, the whole chain), on layouts that overlap everywhere: every
+    chain a random walk of its bonds from its anchor, and after a few hundred repair steps;
+    chains longer than a segment and not a multiple of it."""
+    p = P.make_params(globule_diameter=10.0, **values)
+    chain = system.from_params(p)
+    rng = np.random.default_rng(5)
+    start = chain.with_rest_bonds(start_layout.rest_positions(p))
+    k = sampler.Sampler(chain, np.repeat(start[None], 3, axis=0), rng)
+    assert k.n > sampler.SEGMENT and k.n % sampler.SEGMENT
+    assert not k.prune  # a small cell sums every pair: the pruned search is forced here
+    k.prune = True
+    overlapping = 0
+    for step in range(200):
+        if step % 20 == 0:
+            if step % 40 == 0:  # random walks from the anchors
+                steps = sampler.random_axes(rng, k.R * k.C * (k.n - 1)).reshape(
+                    k.R, k.C, k.n - 1, 3) * chain.bonds[:, None]
+                k.x[:, :, 1:] = k.x[:, :, :1] + np.cumsum(steps, axis=2)
+                k.refresh()
+            c = rng.integers(0, k.C, k.R)
+            q = k.x[k.ar, c]
+            for rows in (np.arange(k.n), np.arange(1, k.n), np.array([k.n // 2]),
+                         np.arange(k.n - 3, k.n)):
+                ours = k.violation(q, c, rows)
+                brute = _brute_violation(k, q, c, rows)
+                assert ours == pytest.approx(brute, rel=1e-9, abs=1e-9)
+                k.prune = False  # and the kernel's own sum over every pair
+                assert k.violation(q, c, rows) == pytest.approx(brute, rel=1e-9, abs=1e-9)
+                k.prune = True
+                overlapping += int((ours > 0).sum())
+        k.step(np.ones(k.R, bool))
+    assert overlapping > 10  # the sums compared were not all zero
+
+
+def test_the_core_alone_is_its_outline_across():
+    """The map of the core alone (density.core_map): an untwisted 40 × 22 Å box seen along Y
+    projects to a flat profile 40 Å across (within a voxel); the same core inside a domain map
+    is the same voxels (density_map adds core_inside)."""
+    p = P.make_params(twist=0.0, layers=4)
+    core = dataclasses.replace(system.from_params(p).obstacle, layers=None)
+    m = density.core_map(p, core, voxel=1.0, layers=4)
+    assert density.width(m) == pytest.approx(40.0, abs=1.0)
+    assert m.data.max() == 1.0 and m.data.sum() * 1.0 == pytest.approx(40 * 22 * 4 * p.rise,
+                                                                        rel=0.05)

@@ -28,6 +28,7 @@ FROM_FILES = {
     "orb2_6vps": ("6vps", "C", 206, 3, 4.72, -1.54),
     "taurd_6qjh_gfp": ("6qjh", "C", 330, 1, None, None),
     "asyn_2n0a_yfp": ("2n0a", "C", 97, 1, 4.896, 1.761),
+    "sup35_9xbo": ("9xbo", "C", 132, 1, 4.81, -1.31),
 }
 # The independent values are given to 2 decimals (rounding 0.005); 6VPS's differ more: FibrilFit
 # averages every layer pair of the three protofilaments (4.752 ± 0.006 Å, -1.531°), the other
@@ -102,7 +103,8 @@ def test_the_linker_is_the_residues_from_the_domain_to_the_anchor(model, name):
 
 
 SIZED = ["tdp43_8qx9", "hnrnpdl2_7zir", "ripk3_7da4", "orb2_6vps", "hets_2kj3_full_length",
-         "ure2p_full_length", "ure2p_pd_barnase", "ure2p_pd_carbonic_anhydrase", "ure2p_pd_gst"]
+         "ure2p_full_length", "ure2p_pd_barnase", "ure2p_pd_carbonic_anhydrase", "ure2p_pd_gst",
+         "sup35_9xbo"]
 
 
 @pytest.mark.parametrize("name", SIZED)
@@ -152,3 +154,23 @@ def test_the_het_s_case_is_read_as_a_solenoid():
     assert case.structure["fibril"].endswith("2kj3.pdb.gz")
     g = structure.measure_fibril(EXAMPLES / case.structure["fibril"], terminus="N")
     assert g.rungs == 2
+
+
+def test_sup35_is_built_on_both_pieces_of_its_core(model):
+    """9XBO's chain is ordered in two segments, 5-65 and 102-132, both in the core: the case's
+    model has both in its outline, its anchor on Gln132 (the C-domain follows the M domain), and
+    its linker is the M domain after the core to the C-domain's start (Sup35 N 1-123, M 124-253,
+    C 254-685): residues 133-253 plus the anchor, 122; the unordered 66-101 are not linker. The
+    C-domain (254-685, 432 residues) is the sphere of its size."""
+    case, p, geometry = model("sup35_9xbo")
+    assert geometry.core_segments == [[5, 65], [102, 132]]
+    a = geometry.anchors[0]
+    assert (a["residue"], a["residue_name"], geometry.terminus) == (132, "GLN", "C")
+    m_end, c_start, c_end = 253, 254, 685
+    assert p.linker == (m_end - a["residue"]) + 1 == 122 and c_start == m_end + 1
+    assert p.globule_diameter == round(sphere_from_size(c_end - c_start + 1), 1) == 57.0
+    assert geometry.tail_residues == [] and p.protofilaments == 1
+    assert "examples/numbers/sup35_9xbo.toml" in (EXAMPLES / "sup35_9xbo.toml").read_text(
+        encoding="utf-8")
+    old = cases.load(EXAMPLES / "numbers" / "sup35_9xbo.toml")  # the numbers-only version
+    assert old.params["linker"] == 121 and "slab" in old.params and not old.structure

@@ -13,7 +13,7 @@ file's parameters (and, with --linker, another linker, recorded in the row) are 
 first K layouts that fit (a layout that does not fit is not one of the hard-core model's), then
 samples them with the replicas taking them in turn (sampler seed h). Written: the row of
 docs/data/widths.csv for NAME (its measured columns kept when the row exists) and
-docs/data/widths/NAME-slug.json (every number of the run: each half's and each start's width,
+a JSON in docs/data/widths/ named by NAME's slug (every number of the run: each half's and each start's width,
 the outer diameter's distribution, τ, ESS, the halves' agreement, times). The page's table is
 docs/data/widths.csv rendered (`table`; tests/unit/test_widths_table.py checks they agree).
 """

@@ -12,7 +12,11 @@ the Markdown summary with its date, commit and MODEL_VERSION. A file that raises
 than a refusal is recorded as an error and the survey goes on.
 
     nice -n 10 .venv/bin/python tools/deposited_survey.py FOLDER --csv out.csv [--limit N]
-        [--seconds S] [--only NAME ...] [--resume]
+        [--seconds S] [--only NAME ...] [--resume] [--seed S] [--shard I/N]
+
+--seed S surveys the files in a seeded random order (random.Random(S).shuffle of the sorted
+names), so that a run stopped early is a fair sample of the folder; --shard I/N takes every
+N-th file of that order from the I-th (0-based), for N processes each with its own --csv.
 
 (the venv's fibrilfit; a worktree's with PYTHONPATH=.)
 """
@@ -24,6 +28,7 @@ import csv
 import datetime
 import functools
 import pathlib
+import random
 import re
 import subprocess
 import sys
@@ -84,6 +89,21 @@ def run_check(path: str, terminus: str, **more) -> dict:
     return {"built": True, "refusal": "", "exit": way, "p": p, "interface": interface}
 
 
+_OWN: dict = {}  # (file, geometry's id) -> (geometry, its own termini): one file's, then cleared
+
+
+def own_termini_once(path, geometry, *args):
+    """termini.own_termini, measured once per file and geometry: `inspect`'s run line and
+    `run`'s check ask for the same measurement (the same function, the same arguments)."""
+    key = (str(path), id(geometry), args)
+    if key not in _OWN:
+        _OWN[key] = (geometry, _OWN_TERMINI(path, geometry, *args))
+    return _OWN[key][1]
+
+
+_OWN_TERMINI = termini.own_termini
+
+
 def survey_file(path: pathlib.Path) -> dict:
     t = time.perf_counter()
     row = dict.fromkeys(COLUMNS, "")
@@ -105,6 +125,7 @@ def survey_file(path: pathlib.Path) -> dict:
     except Exception as exc:  # noqa: BLE001 - recorded, and the survey goes on
         row["error"] = f"{type(exc).__name__}: {one_line(exc)}"[:300]
     finally:
+        _OWN.clear()
         B._CACHE.clear()  # each file's voxel rooms: tens of MB each, never asked for again
     row["seconds"] = round(time.perf_counter() - t, 1)
     return row
@@ -185,21 +206,30 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folder", type=pathlib.Path)
     ap.add_argument("--csv", type=pathlib.Path, required=True)
-    ap.add_argument("--limit", type=int, default=None, help="the first N files (sorted)")
+    ap.add_argument("--limit", type=int, default=None, help="the first N files of the order")
     ap.add_argument("--seconds", type=float, default=None,
                     help="stop starting new files after this long")
     ap.add_argument("--only", nargs="*", default=None, help="these file names only")
     ap.add_argument("--resume", action="store_true",
                     help="keep the rows already in --csv and survey only the files not in it")
     ap.add_argument("--table", action="store_true", help="also print one row per file")
+    ap.add_argument("--seed", type=int, default=None,
+                    help="survey in a seeded random order (a stopped run is a fair sample)")
+    ap.add_argument("--shard", default=None, help="I/N: every N-th file of the order from I")
     a = ap.parse_args(argv)
     # each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
     # measurement (the same function, the same arguments) that two commands would each make
     F.measure = functools.lru_cache(maxsize=4)(F.measure)
+    termini.own_termini = own_termini_once
     files = sorted(f for f in a.folder.iterdir()
                    if re.search(r"\.(pdb|cif|ent)(\.gz)?$", f.name, re.I))
     if a.only:
         files = [f for f in files if f.name in set(a.only)]
+    if a.seed is not None:
+        random.Random(a.seed).shuffle(files)
+    if a.shard:
+        i, n = (int(v) for v in a.shard.split("/"))
+        files = files[i::n]
     files = files[:a.limit]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()

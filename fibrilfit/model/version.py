@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "eeb1e38073ab5cf2b9c3acd00cbf5429dc269216cd01bdfe8dd202dd619a81b5"
+MODEL_SOURCES_SHA256 = "490cd664f183fc3379bc83b825c887179bfdd3c135f0d63a84dfa67a1d2adecc"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

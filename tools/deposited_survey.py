@@ -12,11 +12,14 @@ the Markdown summary with its date, commit and MODEL_VERSION. A file that raises
 than a refusal is recorded as an error and the survey goes on.
 
     nice -n 10 .venv/bin/python tools/deposited_survey.py FOLDER --csv out.csv [--limit N]
-        [--seconds S] [--only NAME ...] [--resume] [--seed S] [--shard I/N]
+        [--seconds S] [--only NAME ...] [--resume] [--seed S] [--shard I/N] [--no-bound]
 
 --seed S surveys the files in a seeded random order (random.Random(S).shuffle of the sorted
 names), so that a run stopped early is a fair sample of the folder; --shard I/N takes every
-N-th file of that order from the I-th (0-based), for N processes each with its own --csv.
+N-th file of that order from the I-th (0-based), for N processes each with its own --csv;
+--no-bound measures the exits only (the bound is most of a file's time where the exits lie on
+the surface): a run can measure the exits of every file and keep the bounds of the files
+surveyed before, a seeded random sample with --seed.
 
 (the venv's fibrilfit; a worktree's with PYTHONPATH=.)
 """
@@ -104,7 +107,7 @@ def own_termini_once(path, geometry, *args):
 _OWN_TERMINI = termini.own_termini
 
 
-def survey_file(path: pathlib.Path) -> dict:
+def survey_file(path: pathlib.Path, bound: bool = True) -> dict:
     t = time.perf_counter()
     row = dict.fromkeys(COLUMNS, "")
     row["file"] = path.name
@@ -119,7 +122,8 @@ def survey_file(path: pathlib.Path) -> dict:
             row[f"built_{side}"], row[f"refusal_{side}"] = got["built"], got["refusal"]
             row[f"exit_{side}"], row[f"interface_{side}"] = got["exit"], got["interface"]
             if got["p"] is not None:
-                row[f"bound_{side}"] = B.linker_bound(got["p"])["impossible_below"]
+                if bound:
+                    row[f"bound_{side}"] = B.linker_bound(got["p"])["impossible_below"]
             elif side == "C" and row["read"]:  # what the refusal offers: pf 0's chains
                 row["built_C_pf1"] = run_check(str(path), "C", protofilaments=1)["built"]
     except Exception as exc:  # noqa: BLE001 - recorded, and the survey goes on
@@ -161,7 +165,7 @@ def summary(rows: list[dict]) -> str:
 
     def bounds(side):
         b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
-        return (f"{sum(v <= 12 for v in b)} at most 12, {sum(12 < v <= B.LONGEST for v in b)} "
+        return (f"measured on {len(b)}: {sum(v <= 12 for v in b)} at most 12, {sum(12 < v <= B.LONGEST for v in b)} "
                 f"above 12, {sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
     told = sum(r["inspect_run"] == "refuses" for r in read)
     lines = [f"- files: {n}; `inspect` reads {len(read)}; `inspect` says `run` (the default "
@@ -215,6 +219,8 @@ def main(argv=None) -> int:
     ap.add_argument("--table", action="store_true", help="also print one row per file")
     ap.add_argument("--seed", type=int, default=None,
                     help="survey in a seeded random order (a stopped run is a fair sample)")
+    ap.add_argument("--no-bound", action="store_true",
+                    help="the exits only, no linker bound (its columns left empty)")
     ap.add_argument("--shard", default=None, help="I/N: every N-th file of the order from I")
     a = ap.parse_args(argv)
     # each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
@@ -246,7 +252,7 @@ def main(argv=None) -> int:
         for f in files:
             if a.seconds is not None and time.perf_counter() - started > a.seconds:
                 break
-            row = survey_file(f)
+            row = survey_file(f, bound=not a.no_bound)
             rows.append(row)
             out.writerow(row)
             fh.flush()

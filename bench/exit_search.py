@@ -7,6 +7,12 @@ git (geom/exit_path.py and geom/polygons.py at --old); each call is timed old an
 every point of the path; the bound's whole result), or the bench says which differ.
 
     PYTHONPATH=. .venv/bin/python bench/exit_search.py [FILES ...] [--old cbf562c] [--repeat 3]
+        [--survey]
+
+--survey times instead the survey's whole row for each file (tools/deposited_survey.survey_file:
+inspect, run's checks at C and N, the bound), once with the old geom modules in every module
+that uses them and each file's own termini measured twice (as before), once as today; the rows
+must be the same but for their seconds.
 
 Numbers in docs/guide/structures.md#survey-speed. The machine is shared and noisy: compare the
 medians' ratio, measured in turn on the same calls, not the absolute seconds.
@@ -66,13 +72,51 @@ def timed(f, *a, **k):
     return out, time.perf_counter() - t
 
 
+def swapped(pairs):
+    """Point every fibrilfit module's name for a module in `pairs` (new -> old) at the old."""
+    undo = []
+    for mod in list(sys.modules.values()):
+        if getattr(mod, "__name__", "").startswith("fibrilfit") and "old_" not in mod.__name__:
+            for k, v in list(vars(mod).items()):
+                if any(v is new for new in pairs):
+                    undo.append((mod, k, v))
+                    setattr(mod, k, pairs[next(n for n in pairs if n is v)])
+    return undo
+
+
+def survey_rows(files, old) -> None:
+    """Each file's survey row, old code then new, timed once each."""
+    import pathlib as pl
+    pairs = {NEW: old["exit_path"], NEW.polygons: old["polygons"]}
+    for f in files:
+        F.measure.cache_clear()
+        undo = swapped(pairs)
+        termini.own_termini = S._OWN_TERMINI  # measured twice, as before
+        o, t_old = timed(S.survey_file, pl.Path(f))
+        for mod, k, v in undo:
+            setattr(mod, k, v)
+        termini.own_termini = S.own_termini_once
+        F.measure.cache_clear()
+        n, t_new = timed(S.survey_file, pl.Path(f))
+        same = {k: v for k, v in o.items() if k != "seconds"} == \
+            {k: v for k, v in n.items() if k != "seconds"}
+        print(f"survey row of {f.name}: old {t_old:.1f} s, new {t_new:.1f} s "
+              f"({t_old / t_new:.1f}x); the same row: {same}", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("files", nargs="*", type=pathlib.Path, default=FILES)
     ap.add_argument("--old", default="cbf562c", help="the commit whose code is the old")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--survey", action="store_true", help="time each file's survey row instead")
     a = ap.parse_args()
     old = old_modules(a.old)
+    if a.survey:
+        import functools
+        F.measure = functools.lru_cache(maxsize=4)(F.measure)  # as the survey does, both arms
+        survey_rows(a.files, old)
+        return
     calls, real = [], NEW.shortest_exit
 
     def record(*args, **kw):

@@ -165,8 +165,9 @@ def summary(rows: list[dict]) -> str:
 
     def bounds(side):
         b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
-        return (f"measured on {len(b)}: {sum(v <= 12 for v in b)} at most 12, {sum(12 < v <= B.LONGEST for v in b)} "
-                f"above 12, {sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
+        return (f"measured on {len(b)}: {sum(v <= 12 for v in b)} at most 12, "
+                f"{sum(12 < v <= B.LONGEST for v in b)} above 12, "
+                f"{sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
     told = sum(r["inspect_run"] == "refuses" for r in read)
     lines = [f"- files: {n}; `inspect` reads {len(read)}; `inspect` says `run` (the default "
              f"domain) refuses {told}; errors (neither a result nor a refusal): {len(errors)}"]
@@ -188,6 +189,31 @@ def summary(rows: list[dict]) -> str:
     lines += [f"- not read by `inspect` ({k}…): {v}" for k, v in unread.most_common()]
     lines += [f"- error: {r['file']}: {r['error']}" for r in errors]
     return "\n".join(lines)
+
+
+def shares(rows: list[dict]) -> str:
+    """The survey's Markdown table, one row per terminus: of the files `inspect` reads, how
+    many `run` builds, how many have an exit measured (built, or refused after their exit was
+    measured), how many of those have an exit (its share), on the surface or buried with a way
+    out, and sealed ('no exit': by the exit rule, sealed by the backbone and its Cβ atoms); the
+    refusals; the bounds measured and how they fall."""
+    read = [r for r in rows if is_true(r["read"])]
+    out = ["| terminus | read by `inspect` | `run` builds | exit measured | an exit | share | "
+           "on the surface | buried, a way out | no exit (sealed by N, CA, C, O, Cβ) | "
+           "refused by `run` | bound measured | bound ≤ 12 | bound 13–400 | bound 401 |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for side in ("C", "N"):
+        built = sum(is_true(r[f"built_{side}"]) for r in read)
+        known = [r[f"exit_{side}"] for r in read if r[f"exit_{side}"] != ""]
+        way = [e for e in known if "no exit" not in e]
+        surface = sum(set(e.split("/")) == {"0"} for e in way)
+        b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
+        out.append(f"| {side} | {len(read)} | {built} | {len(known)} | {len(way)} | "
+                   f"{100 * len(way) / max(1, len(known)):.1f} % | {surface} | "
+                   f"{len(way) - surface} | {len(known) - len(way)} | {len(read) - built} | "
+                   f"{len(b)} | {sum(v <= 12 for v in b)} | "
+                   f"{sum(12 < v <= B.LONGEST for v in b)} | {sum(v > B.LONGEST for v in b)} |")
+    return "\n".join(out)
 
 
 def table(rows: list[dict]) -> str:
@@ -266,6 +292,7 @@ def main(argv=None) -> int:
                                                        f"measured by an earlier run" if kept else "")
           + "):\n")
     print(summary(rows))
+    print("\n" + shares(rows))
     if a.table:
         print("\n" + table(rows))
     return 0

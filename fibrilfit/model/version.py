@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "490cd664f183fc3379bc83b825c887179bfdd3c135f0d63a84dfa67a1d2adecc"
+MODEL_SOURCES_SHA256 = "4e1e2ec0d5d50da7a0aac93e6a65e8b0fe5fb18a972f6fea6e0b08335be4acfc"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

@@ -28,13 +28,15 @@ import sys
 import time
 import types
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
+from fibrilfit.geom import exit_path as NEW
+from fibrilfit.model import bound as B
+from fibrilfit.structure import fibril as F, termini
 
-import deposited_survey as S  # noqa: E402
-from fibrilfit.geom import exit_path as NEW  # noqa: E402
-from fibrilfit.model import bound as B  # noqa: E402
-from fibrilfit.structure import fibril as F, termini  # noqa: E402
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+_SPEC = importlib.util.spec_from_file_location("deposited_survey",
+                                               ROOT / "tools" / "deposited_survey.py")
+S = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(S)
 
 FILES = [ROOT / "tests" / "data" / "5oqv_ae.pdb.gz", ROOT / "tests" / "data" / "5oqv_addedH.pdb.gz"]
 

@@ -33,6 +33,7 @@ import functools
 import pathlib
 import random
 import re
+import statistics
 import subprocess
 import sys
 import time
@@ -196,12 +197,13 @@ def shares(rows: list[dict]) -> str:
     many `run` builds, how many have an exit measured (built, or refused after their exit was
     measured), how many of those have an exit (its share), on the surface or buried with a way
     out, and sealed ('no exit': by the exit rule, sealed by the backbone and its Cβ atoms); the
-    refusals; the bounds measured and how they fall."""
+    refusals; the bounds measured, how they fall and their median."""
     read = [r for r in rows if is_true(r["read"])]
     out = ["| terminus | read by `inspect` | `run` builds | exit measured | an exit | share | "
            "on the surface | buried, a way out | no exit (sealed by N, CA, C, O, Cβ) | "
-           "refused by `run` | bound measured | bound ≤ 12 | bound 13–400 | bound 401 |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "refused by `run` | bound measured | bound ≤ 12 | bound 13–400 | bound 401 | "
+           "bound: median |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for side in ("C", "N"):
         built = sum(is_true(r[f"built_{side}"]) for r in read)
         known = [r[f"exit_{side}"] for r in read if r[f"exit_{side}"] != ""]
@@ -212,7 +214,8 @@ def shares(rows: list[dict]) -> str:
                    f"{100 * len(way) / max(1, len(known)):.1f} % | {surface} | "
                    f"{len(way) - surface} | {len(known) - len(way)} | {len(read) - built} | "
                    f"{len(b)} | {sum(v <= 12 for v in b)} | "
-                   f"{sum(12 < v <= B.LONGEST for v in b)} | {sum(v > B.LONGEST for v in b)} |")
+                   f"{sum(12 < v <= B.LONGEST for v in b)} | {sum(v > B.LONGEST for v in b)} | "
+                   f"{statistics.median(b) if b else '-'} |")
     return "\n".join(out)
 
 

@@ -215,7 +215,7 @@ def shares(rows: list[dict]) -> str:
                    f"{len(way) - surface} | {len(known) - len(way)} | {len(read) - built} | "
                    f"{len(b)} | {sum(v <= 12 for v in b)} | "
                    f"{sum(12 < v <= B.LONGEST for v in b)} | {sum(v > B.LONGEST for v in b)} | "
-                   f"{statistics.median(b) if b else '-'} |")
+                   f"{format(statistics.median(b), 'g') if b else '-'} |")
     return "\n".join(out)
 
 

@@ -12,7 +12,14 @@ the Markdown summary with its date, commit and MODEL_VERSION. A file that raises
 than a refusal is recorded as an error and the survey goes on.
 
     nice -n 10 .venv/bin/python tools/deposited_survey.py FOLDER --csv out.csv [--limit N]
-        [--seconds S] [--only NAME ...] [--resume]
+        [--seconds S] [--only NAME ...] [--resume] [--seed S] [--shard I/N] [--no-bound]
+
+--seed S surveys the files in a seeded random order (random.Random(S).shuffle of the sorted
+names), so that a run stopped early is a fair sample of the folder; --shard I/N takes every
+N-th file of that order from the I-th (0-based), for N processes each with its own --csv;
+--no-bound measures the exits only (the bound is most of a file's time where the exits lie on
+the surface): a run can measure the exits of every file and keep the bounds of the files
+surveyed before, a seeded random sample with --seed.
 
 (the venv's fibrilfit; a worktree's with PYTHONPATH=.)
 """
@@ -24,7 +31,9 @@ import csv
 import datetime
 import functools
 import pathlib
+import random
 import re
+import statistics
 import subprocess
 import sys
 import time
@@ -84,7 +93,22 @@ def run_check(path: str, terminus: str, **more) -> dict:
     return {"built": True, "refusal": "", "exit": way, "p": p, "interface": interface}
 
 
-def survey_file(path: pathlib.Path) -> dict:
+_OWN: dict = {}  # (file, geometry's id) -> (geometry, its own termini): one file's, then cleared
+
+
+def own_termini_once(path, geometry, *args):
+    """termini.own_termini, measured once per file and geometry: `inspect`'s run line and
+    `run`'s check ask for the same measurement (the same function, the same arguments)."""
+    key = (str(path), id(geometry), args)
+    if key not in _OWN:
+        _OWN[key] = (geometry, _OWN_TERMINI(path, geometry, *args))
+    return _OWN[key][1]
+
+
+_OWN_TERMINI = termini.own_termini
+
+
+def survey_file(path: pathlib.Path, bound: bool = True) -> dict:
     t = time.perf_counter()
     row = dict.fromkeys(COLUMNS, "")
     row["file"] = path.name
@@ -99,12 +123,14 @@ def survey_file(path: pathlib.Path) -> dict:
             row[f"built_{side}"], row[f"refusal_{side}"] = got["built"], got["refusal"]
             row[f"exit_{side}"], row[f"interface_{side}"] = got["exit"], got["interface"]
             if got["p"] is not None:
-                row[f"bound_{side}"] = B.linker_bound(got["p"])["impossible_below"]
+                if bound:
+                    row[f"bound_{side}"] = B.linker_bound(got["p"])["impossible_below"]
             elif side == "C" and row["read"]:  # what the refusal offers: pf 0's chains
                 row["built_C_pf1"] = run_check(str(path), "C", protofilaments=1)["built"]
     except Exception as exc:  # noqa: BLE001 - recorded, and the survey goes on
         row["error"] = f"{type(exc).__name__}: {one_line(exc)}"[:300]
     finally:
+        _OWN.clear()
         B._CACHE.clear()  # each file's voxel rooms: tens of MB each, never asked for again
     row["seconds"] = round(time.perf_counter() - t, 1)
     return row
@@ -140,8 +166,9 @@ def summary(rows: list[dict]) -> str:
 
     def bounds(side):
         b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
-        return (f"{sum(v <= 12 for v in b)} at most 12, {sum(12 < v <= B.LONGEST for v in b)} "
-                f"above 12, {sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
+        return (f"measured on {len(b)}: {sum(v <= 12 for v in b)} at most 12, "
+                f"{sum(12 < v <= B.LONGEST for v in b)} above 12, "
+                f"{sum(v > B.LONGEST for v in b)} no exit ({B.LONGEST + 1})")
     told = sum(r["inspect_run"] == "refuses" for r in read)
     lines = [f"- files: {n}; `inspect` reads {len(read)}; `inspect` says `run` (the default "
              f"domain) refuses {told}; errors (neither a result nor a refusal): {len(errors)}"]
@@ -165,6 +192,33 @@ def summary(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def shares(rows: list[dict]) -> str:
+    """The survey's Markdown table, one row per terminus: of the files `inspect` reads, how
+    many `run` builds, how many have an exit measured (built, or refused after their exit was
+    measured), how many of those have an exit (its share), on the surface or buried with a way
+    out, and sealed ('no exit': by the exit rule, sealed by the backbone and its Cβ atoms); the
+    refusals; the bounds measured, how they fall and their median."""
+    read = [r for r in rows if is_true(r["read"])]
+    out = ["| terminus | read by `inspect` | `run` builds | exit measured | an exit | share | "
+           "on the surface | buried, a way out | no exit (sealed by N, CA, C, O, Cβ) | "
+           "refused by `run` | bound measured | bound ≤ 12 | bound 13–400 | bound 401 | "
+           "bound: median |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for side in ("C", "N"):
+        built = sum(is_true(r[f"built_{side}"]) for r in read)
+        known = [r[f"exit_{side}"] for r in read if r[f"exit_{side}"] != ""]
+        way = [e for e in known if "no exit" not in e]
+        surface = sum(set(e.split("/")) == {"0"} for e in way)
+        b = [int(r[f"bound_{side}"]) for r in read if str(r[f"bound_{side}"]) != ""]
+        out.append(f"| {side} | {len(read)} | {built} | {len(known)} | {len(way)} | "
+                   f"{100 * len(way) / max(1, len(known)):.1f} % | {surface} | "
+                   f"{len(way) - surface} | {len(known) - len(way)} | {len(read) - built} | "
+                   f"{len(b)} | {sum(v <= 12 for v in b)} | "
+                   f"{sum(12 < v <= B.LONGEST for v in b)} | {sum(v > B.LONGEST for v in b)} | "
+                   f"{format(statistics.median(b), 'g') if b else '-'} |")
+    return "\n".join(out)
+
+
 def table(rows: list[dict]) -> str:
     """One Markdown row per file: read, built and exit at each terminus, the bounds."""
     out = ["| file | read | C: built | C: exit | C: bound | N: built | N: exit | N: bound |",
@@ -185,21 +239,32 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folder", type=pathlib.Path)
     ap.add_argument("--csv", type=pathlib.Path, required=True)
-    ap.add_argument("--limit", type=int, default=None, help="the first N files (sorted)")
+    ap.add_argument("--limit", type=int, default=None, help="the first N files of the order")
     ap.add_argument("--seconds", type=float, default=None,
                     help="stop starting new files after this long")
     ap.add_argument("--only", nargs="*", default=None, help="these file names only")
     ap.add_argument("--resume", action="store_true",
                     help="keep the rows already in --csv and survey only the files not in it")
     ap.add_argument("--table", action="store_true", help="also print one row per file")
+    ap.add_argument("--seed", type=int, default=None,
+                    help="survey in a seeded random order (a stopped run is a fair sample)")
+    ap.add_argument("--no-bound", action="store_true",
+                    help="the exits only, no linker bound (its columns left empty)")
+    ap.add_argument("--shard", default=None, help="I/N: every N-th file of the order from I")
     a = ap.parse_args(argv)
     # each file's fibril measured once per terminus: `inspect` and `run`'s check read the same
     # measurement (the same function, the same arguments) that two commands would each make
     F.measure = functools.lru_cache(maxsize=4)(F.measure)
+    termini.own_termini = own_termini_once
     files = sorted(f for f in a.folder.iterdir()
                    if re.search(r"\.(pdb|cif|ent)(\.gz)?$", f.name, re.I))
     if a.only:
         files = [f for f in files if f.name in set(a.only)]
+    if a.seed is not None:
+        random.Random(a.seed).shuffle(files)
+    if a.shard:
+        i, n = (int(v) for v in a.shard.split("/"))
+        files = files[i::n]
     files = files[:a.limit]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
@@ -216,7 +281,7 @@ def main(argv=None) -> int:
         for f in files:
             if a.seconds is not None and time.perf_counter() - started > a.seconds:
                 break
-            row = survey_file(f)
+            row = survey_file(f, bound=not a.no_bound)
             rows.append(row)
             out.writerow(row)
             fh.flush()
@@ -230,6 +295,7 @@ def main(argv=None) -> int:
                                                        f"measured by an earlier run" if kept else "")
           + "):\n")
     print(summary(rows))
+    print("\n" + shares(rows))
     if a.table:
         print("\n" + table(rows))
     return 0

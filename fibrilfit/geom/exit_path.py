@@ -87,17 +87,21 @@ def shortest_exit(atoms, radii, start, outline, *, bead_radius: float, z_half: f
     z_half Å about the start in z, walled there."""
     found = None
     for box in [b for b in BOXES if b < max_length] + [max_length]:
-        found = _in_box(atoms, radii, start, outline, bead_radius=bead_radius, z_half=z_half,
-                        step=step, box=box)
+        found, enclosed = _in_box(atoms, radii, start, outline, bead_radius=bead_radius,
+                                  z_half=z_half, step=step, box=box)
         if found.found and found.length <= box:
             return found
+        if enclosed:  # every voxel the start reaches is searched and none touches the box's
+            break     # sides: a larger box holds the same room, and no way out either
     return found if found.found and found.length <= max_length else \
         ExitPath(False, math.inf, np.zeros((0, 3)), found.depth)
 
 
 def _in_box(atoms, radii, start, outline, *, bead_radius: float, z_half: float,
-            step: float, box: float) -> ExitPath:
-    """shortest_exit's search in a box of half-width `box` about the start."""
+            step: float, box: float) -> tuple[ExitPath, bool]:
+    """shortest_exit's search in a box of half-width `box` about the start, and whether no way
+    out was found with every voxel the start reaches searched, none of them on the box's sides
+    (the room is enclosed: a larger box finds none either)."""
     atoms = np.asarray(atoms, float).reshape(-1, 3)
     reach = np.asarray(radii, float).reshape(-1) + bead_radius
     start = np.asarray(start, float)
@@ -105,7 +109,7 @@ def _in_box(atoms, radii, start, outline, *, bead_radius: float, z_half: float,
     depth = float(polygons.edge_distance(poly, start[None, :2])[0][0]) \
         if polygons.inside(poly, start[None, :2])[0] else 0.0
     if depth == 0.0:
-        return ExitPath(True, 0.0, start[None].copy(), 0.0)
+        return ExitPath(True, 0.0, start[None].copy(), 0.0), False
     margin = float(reach.max(initial=bead_radius)) + 2 * step
     lo_xy = np.maximum(np.minimum(poly.min(axis=0), start[:2]) - margin, start[:2] - box)
     hi_xy = np.minimum(np.maximum(poly.max(axis=0), start[:2]) + margin, start[:2] + box)
@@ -128,16 +132,17 @@ def _in_box(atoms, radii, start, outline, *, bead_radius: float, z_half: float,
     xy = np.stack(np.meshgrid(gx, gy, indexing="ij"), axis=-1).reshape(-1, 2)
     outside = ~polygons.inside(poly, xy).reshape(shape[:2])
     goal = free & outside[:, :, None]
-    dist = _dial(free, goal, s_idx, step, 4 * box)
-    if dist is None:
-        return ExitPath(False, math.inf, np.zeros((0, 3)), depth)
-    dist, end = dist
+    dist, end = _dial(free, goal, s_idx, step, 4 * box)
+    if end is None:  # dist: the distances searched when the search ran out, else None
+        enclosed = dist is not None and not any(
+            np.isfinite(f).any() for f in (dist[0], dist[-1], dist[:, 0], dist[:, -1]))
+        return ExitPath(False, math.inf, np.zeros((0, 3)), depth), enclosed
     cells = _descend(dist, end, s_idx, step)
     pts = lo + step * np.asarray(cells, float)
     pts[0] = start
     pts = _taut(pts, atoms[near], reach[near])
     length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
-    return ExitPath(True, length, pts, depth)
+    return ExitPath(True, length, pts, depth), False
 
 
 def _stamp_blocked(free: np.ndarray, atoms: np.ndarray, reach: np.ndarray, lo, step) -> None:
@@ -166,50 +171,73 @@ def _stamp_blocked(free: np.ndarray, atoms: np.ndarray, reach: np.ndarray, lo, s
         norm = np.linalg.norm(ball, axis=1) * step
         inner, shell = ball[norm < r - half - 1e-6], ball[(norm >= r - half - 1e-6)
                                                           & (norm < r + half)]
-        flat[(base[pick][:, None] + (inner @ strides)[None]).reshape(-1)] = False
-        for lo_a in range(0, int(pick.sum()), 128):
-            b = base[pick][lo_a:lo_a + 128]
-            f = frac[pick][lo_a:lo_a + 128]
-            d = np.linalg.norm(step * shell[None] - f[:, None], axis=-1)
+        inner_at, shell_at = inner @ strides, shell @ strides
+        b_all, f_all = base[pick], frac[pick]
+        for lo_a in range(0, len(b_all), 64):
+            flat[(b_all[lo_a:lo_a + 64, None] + inner_at[None]).reshape(-1)] = False
+        # |step * shell - frac| by axis: each axis's squared offsets (atoms, 2k + 1), gathered
+        # and summed in norm's order (x + y) + z: the same distances, a third of the work
+        at = step * g
+        for lo_a in range(0, len(b_all), 128):
+            b = b_all[lo_a:lo_a + 128]
+            f = f_all[lo_a:lo_a + 128]
+            sq = [(at[None] - f[:, c:c + 1]) ** 2 for c in range(3)]
+            d = np.sqrt(sq[0][:, shell[:, 0] + k] + sq[1][:, shell[:, 1] + k]
+                        + sq[2][:, shell[:, 2] + k])
             hit = d < r - 1e-9
-            idx = (b[:, None] + (shell @ strides)[None])[hit]
-            flat[idx] = False
+            flat[(b[:, None] + shell_at[None])[hit]] = False
     free &= big[pad:-pad, pad:-pad, pad:-pad]
 
 
 def _dial(free, goal, s_idx, step, max_length):
     """Distances from s_idx over free voxels (26 neighbours, Euclidean steps), bucket by bucket
     of one `step` (the least edge: a bucket's voxels are final when it is taken); stops at the
-    first bucket holding a goal voxel. Returns (distances, the nearest goal's index) or None."""
+    first bucket holding a goal voxel. Returns (distances, the nearest goal's index); (the
+    distances, None) when every voxel the start reaches is taken and none is a goal; (None,
+    None) when the search stops at max_length. Only the open voxels (reached, not yet final)
+    are looked at, by flat index on a grid padded by one closed voxel (no bounds to test)."""
     off, w = _offsets()
-    shape = np.array(free.shape)
-    dist = np.full(free.shape, np.inf)
-    dist[s_idx] = 0.0
-    done = np.zeros(free.shape, bool)
+    pshape = tuple(n + 2 for n in free.shape)
+    strides = np.array([pshape[1] * pshape[2], pshape[2], 1])
+    open_ok = np.zeros(pshape, bool)
+    open_ok[1:-1, 1:-1, 1:-1] = free
+    open_ok = open_ok.reshape(-1)  # free and not yet final
+    is_goal = np.zeros(pshape, bool)
+    is_goal[1:-1, 1:-1, 1:-1] = goal
+    is_goal = is_goal.reshape(-1)
+    dist = np.full(pshape, np.inf)
+    flat = dist.reshape(-1)
+    start = int((np.asarray(s_idx) + 1) @ strides)
+    flat[start] = 0.0
+    steps, hops = off @ strides, w * step
+    front = np.array([start])  # reached (finite distance), not final
     k = 0
     while k * step <= max_length:
-        band = ~done & (dist < (k + 1) * step - 1e-9)
-        if not band.any():
-            if not np.isfinite(dist[~done]).any():
-                return None  # nothing left to reach: sealed
+        if not len(front):
+            return dist[1:-1, 1:-1, 1:-1], None  # nothing left to reach: sealed
+        in_band = flat[front] < (k + 1) * step - 1e-9
+        if not in_band.any():
             k += 1
             continue
-        done |= band
-        at_goal = band & goal
-        if at_goal.any():
-            idx = np.argwhere(at_goal)
-            best = idx[np.argmin(dist[tuple(idx.T)])]
-            return dist, tuple(int(v) for v in best)
-        cells = np.argwhere(band)
-        base = dist[tuple(cells.T)]
-        for o, wo in zip(off, w):
-            nb = cells + o
-            ok = ((nb >= 0) & (nb < shape)).all(axis=1)
-            nb, d = nb[ok], base[ok] + wo * step
-            keep = free[tuple(nb.T)] & ~done[tuple(nb.T)]
-            np.minimum.at(dist, tuple(nb[keep].T), d[keep])
+        band = np.sort(front[in_band])  # the order of the grid's voxels
+        front = front[~in_band]
+        open_ok[band] = False
+        at_goal = band[is_goal[band]]
+        if len(at_goal):
+            best = at_goal[np.argmin(flat[at_goal])]
+            return dist[1:-1, 1:-1, 1:-1], tuple(int(v) - 1 for v in
+                                                  np.unravel_index(best, pshape))
+        base = flat[band]
+        touched = [front]
+        for o, h in zip(steps, hops):
+            nb = band + o
+            keep = open_ok[nb]
+            nb = nb[keep]
+            np.minimum.at(flat, nb, base[keep] + h)
+            touched.append(nb)
+        front = np.unique(np.concatenate(touched))
         k += 1
-    return None
+    return None, None
 
 
 def _descend(dist, end, s_idx, step) -> list:

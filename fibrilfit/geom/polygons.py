@@ -109,24 +109,88 @@ def clean_outline(points) -> np.ndarray:
     return p
 
 
+CHUNK = 4096  # points per block of the (points × edges) arrays: they stay in the cache
+
+
+def _crossings(a, b, qy):
+    """Where each edge (a → b) crosses the horizontal line(s) qy, and whether it does."""
+    straddles = (a[:, 1] > qy) != (b[:, 1] > qy)
+    dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
+    return straddles, a[:, 0] + (qy - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
+
+
 def even_odd(points, xy) -> np.ndarray:
     """Whether each point of `xy` (m, 2) is inside the polygon by the even-odd rule (a point on
-    the boundary may fall either way: `inside` excludes it)."""
+    the boundary may fall either way: `inside` excludes it). Points that share a y (a grid's
+    rows) share the edges' crossings: those are found once per row and counted by a sorted
+    search, the same crossings and the same count as the test of every point on every edge."""
     poly = np.asarray(points, dtype=float)
     q = np.atleast_2d(np.asarray(xy, dtype=float))
     a, b = poly, np.roll(poly, -1, axis=0)
-    qx, qy = q[:, 0:1], q[:, 1:2]
-    straddles = (a[:, 1] > qy) != (b[:, 1] > qy)
-    dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
-    x_cross = a[:, 0] + (qy - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy
-    return (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
+    rows, row_of = np.unique(q[:, 1], return_inverse=True)
+    row_of = row_of.reshape(-1)
+    if 4 * len(rows) <= len(q):
+        out = np.zeros(len(q), bool)
+        order = np.argsort(row_of, kind="stable")
+        bounds = np.searchsorted(row_of[order], np.arange(len(rows) + 1))
+        for r, y in enumerate(rows):
+            straddles, x_cross = _crossings(a, b, y)
+            x_cross = np.sort(x_cross[straddles])
+            idx = order[bounds[r]:bounds[r + 1]]
+            right = len(x_cross) - np.searchsorted(x_cross, q[idx, 0], side="right")
+            out[idx] = right % 2 == 1  # crossings with qx < x_cross
+        return out
+    out = np.empty(len(q), bool)
+    for lo in range(0, len(q), CHUNK):
+        qx, qy = q[lo:lo + CHUNK, 0:1], q[lo:lo + CHUNK, 1:2]
+        straddles, x_cross = _crossings(a, b, qy)
+        out[lo:lo + CHUNK] = (straddles & (qx < x_cross)).sum(axis=1) % 2 == 1
+    return out
+
+
+def near_edges(points, xy, dist: float) -> np.ndarray:
+    """Whether each point of `xy` (m, 2) lies within `dist` (+1e-6) of some edge's bounding
+    box: a point for which this is False is farther than `dist` from the boundary (an edge is
+    no nearer than its box), so the exact distance is needed only where it is True."""
+    poly = np.asarray(points, dtype=float)
+    q = np.atleast_2d(np.asarray(xy, dtype=float))
+    a, b = poly, np.roll(poly, -1, axis=0)
+    pad = dist + 1e-6
+    lo, hi = np.minimum(a, b) - pad, np.maximum(a, b) + pad
+    out = np.empty(len(q), bool)
+    for k in range(0, len(q), CHUNK):
+        qx, qy = q[k:k + CHUNK, 0:1], q[k:k + CHUNK, 1:2]
+        out[k:k + CHUNK] = ((qx > lo[:, 0]) & (qx < hi[:, 0])
+                            & (qy > lo[:, 1]) & (qy < hi[:, 1])).any(axis=1)
+    return out
 
 
 def inside(points, xy) -> np.ndarray:
-    """Whether each point of `xy` (m, 2) lies strictly inside the polygon (even-odd rule)."""
+    """Whether each point of `xy` (m, 2) lies strictly inside the polygon (even-odd rule). The
+    boundary's distance (> 1e-9) is measured only for the points inside by the even-odd rule
+    near an edge (near_edges): the others are farther from it than 1e-6."""
     poly = np.asarray(points, dtype=float)
     q = np.atleast_2d(np.asarray(xy, dtype=float))
-    return even_odd(poly, q) & (edge_distance(poly, q)[0] > 1e-9)
+    out = even_odd(poly, q)
+    idx = np.nonzero(out)[0]
+    idx = idx[near_edges(poly, q[idx], 1e-9)]
+    if len(idx):
+        out[idx] = edge_distance(poly, q[idx])[0] > 1e-9
+    return out
+
+
+def inside_by(points, xy, margin: float) -> np.ndarray:
+    """Whether each point of `xy` (m, 2) is inside the polygon by the even-odd rule and at
+    least `margin` from its boundary (as even_odd & (edge_distance >= margin); the distance
+    measured only where near_edges says it may be less)."""
+    poly = np.asarray(points, dtype=float)
+    q = np.atleast_2d(np.asarray(xy, dtype=float))
+    out = even_odd(poly, q)
+    idx = np.nonzero(out)[0]
+    idx = idx[near_edges(poly, q[idx], margin)]
+    if len(idx):
+        out[idx] = edge_distance(poly, q[idx])[0] >= margin
+    return out
 
 
 def _nearest_points(poly: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -140,12 +204,16 @@ def _nearest_points(poly: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.nda
 
 
 def edge_distance(points, xy) -> tuple[np.ndarray, np.ndarray]:
-    """Distance from each point of `xy` (m, 2) to the polygon's boundary, and the nearest edge."""
+    """Distance from each point of `xy` (m, 2) to the polygon's boundary, and the nearest edge
+    (in blocks of CHUNK points)."""
     poly = np.asarray(points, dtype=float)
     q = np.atleast_2d(np.asarray(xy, dtype=float))
-    _, dist = _nearest_points(poly, q)
-    edge = dist.argmin(axis=1)
-    return dist[np.arange(len(q)), edge], edge
+    out, edge = np.empty(len(q)), np.empty(len(q), dtype=np.intp)
+    for lo in range(0, len(q), CHUNK):
+        _, dist = _nearest_points(poly, q[lo:lo + CHUNK])
+        e = dist.argmin(axis=1)
+        out[lo:lo + CHUNK], edge[lo:lo + CHUNK] = dist[np.arange(len(e)), e], e
+    return out, edge
 
 
 def nearest_on_boundary(points, xy) -> tuple[np.ndarray, np.ndarray]:

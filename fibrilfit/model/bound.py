@@ -233,8 +233,7 @@ class Room:
         margin_xy = CORE_ENTRY + h / math.sqrt(2.0)
         for k in ks:
             back = helix.turn_xy(xy[ok, 0], xy[ok, 1], -k * p.twist)
-            inside = polygons.even_odd(outline, back) & (
-                polygons.edge_distance(outline, back)[0] >= margin_xy)
+            inside = polygons.inside_by(outline, back, margin_xy)
             idx = np.nonzero(ok)[0]
             ok[idx[~inside]] = False
         return ok

@@ -32,7 +32,7 @@ MODEL_VERSION = 8  # 2: inflate deterministic and near-miss cycles (#25), domain
 # 8: a buried anchor's exit by the rule: side chains cut to Cβ and OXT removed, to the Cβ
 # atoms' outline, the shortest of three layers (docs/model/buried-terminus.md#rule)
 # sources_hash() when MODEL_VERSION was last checked (see the module's docstring)
-MODEL_SOURCES_SHA256 = "1a07e5ebc183dc32862bd1d18d3a5516a9b35566fbf51933718b6bf91cda5ee3"
+MODEL_SOURCES_SHA256 = "ab7b7d559e12b07e6ccfa83c0227b0f22e8e3c0e2fe982af00037f354ede0892"
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1]
 # What decides a result: parameters and structures read, geometry, the bodies and their physics,

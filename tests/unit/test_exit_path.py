@@ -234,3 +234,60 @@ def test_the_free_linkers_beads_are_numbered_after_the_exit():
     assert c_side.linker_numbers(3, 5).tolist() == [48, 49, 50]
     assert c_side.linker_numbers(3).tolist() == [43, 44, 45]
     assert Sources(None, [], anchor_residue=1, side="N").linker_numbers(2, 1).tolist() == [-1, -2]
+
+
+def test_a_sealed_room_is_searched_in_one_box_and_a_way_out_past_it_is_still_found(monkeypatch):
+    """A cavity whose whole room lies inside the first box (6 Å): the search stops there (a
+    larger box holds the same room); a channel leading out past the first box is not cut off
+    there (its room touches the box's sides), and is found in the next."""
+    boxes = []
+    real = E._in_box
+
+    def counted(*a, **k):
+        boxes.append(k["box"])
+        return real(*a, **k)
+    monkeypatch.setattr(E, "_in_box", counted)
+    atoms, outline = block_core()
+    start = np.array([0.0, -8.0, 0.0])
+    cavity = atoms[np.linalg.norm(atoms - start, axis=1) >= 4.5]
+    assert not find(cavity, start, outline).found
+    assert boxes == [E.BOXES[0]]
+    boxes.clear()
+    axis = np.hypot(atoms[:, 0], atoms[:, 2])
+    channel = atoms[~((axis < 4.0) & (atoms[:, 1] > -12.0))]
+    way = find(channel, start, outline)
+    assert way.found and 8.0 <= way.length <= 8.0 + E.STEP and boxes == list(E.BOXES[:2])
+
+
+def _even_odd_each(poly, q):
+    """The even-odd rule tested point by point, every edge, as written before the rows."""
+    a, b = poly, np.roll(poly, -1, axis=0)
+    out = []
+    for x, y in q:
+        straddles = (a[:, 1] > y) != (b[:, 1] > y)
+        dy = np.where(b[:, 1] == a[:, 1], 1.0, b[:, 1] - a[:, 1])
+        out.append((straddles & (x < a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / dy)).sum()
+                   % 2 == 1)
+    return np.array(out)
+
+
+def test_the_polygon_tests_by_rows_and_near_edges_are_the_tests_point_by_point():
+    """even_odd by a grid's rows, inside and inside_by (the boundary's distance only near an
+    edge) give what testing every point on every edge gives, on a ragged outline, its
+    vertices and edge midpoints (on the boundary: not inside) included."""
+    from fibrilfit.geom import polygons as PG
+    rng = np.random.default_rng(7)
+    ang = np.sort(rng.uniform(0, 2 * np.pi, 60))
+    poly = np.round(np.c_[np.cos(ang), np.sin(ang)] * rng.uniform(5, 20, 60)[:, None], 2)
+    g = np.arange(-22.0, 22.0, 0.5)
+    grid = np.stack(np.meshgrid(g, g, indexing="ij"), axis=-1).reshape(-1, 2)
+    q = np.r_[grid, poly, (poly + np.roll(poly, -1, axis=0)) / 2]
+    each = _even_odd_each(poly, q)
+    assert (PG.even_odd(poly, q) == each).all()  # by rows: most points share a y
+    assert (PG.even_odd(poly, q[::-1][:1]) == each[::-1][:1]).all()  # a single point
+    dist = np.array([PG.edge_distance(poly, p[None])[0][0] for p in q])
+    assert (PG.edge_distance(poly, q)[0] == dist).all()  # in blocks: the same distances
+    assert (PG.inside(poly, q) == (each & (dist > 1e-9))).all()
+    assert not PG.inside(poly, poly).any()  # the vertices are on the boundary
+    for margin in (0.0, 0.7, 3.0):
+        assert (PG.inside_by(poly, q, margin) == (each & (dist >= margin))).all()

@@ -61,11 +61,12 @@ def test_the_installed_report_gives_the_bpy_modules_numbers(reports):
 def test_the_report_wrote_its_pictures_in_the_real_blender(reports):
     real, doc = reports["real"], reports["real_doc"]
     assert not [w for w in doc["warnings"] if "failed" in w], doc["warnings"]
-    assert {"render", "envelope_plot"} <= set(doc["files"])
+    assert {"render", "envelope_plot", "bracket_plot"} <= set(doc["files"])
     for name in doc["files"].values():
         assert (real / name).is_file(), name
     page = (real / "report.html").read_text(encoding="utf-8")
-    assert page.count('src="data:image/png;base64,') == 2
+    # the render, the envelope and the bracket's number line (matplotlib from the zip's wheel)
+    assert page.count('src="data:image/png;base64,') == 3
 
 
 def test_the_real_blenders_render_carries_legend_and_scale_bar(reports):
@@ -111,7 +112,7 @@ window.addEventListener("load", () => { const im = [...document.images];
                 f"chromium {flags} --window-size=1000,1900 --screenshot={inside(shot)} "
                 f"file://{inside(real / 'report.html')}", timeout=300)
     assert cp.returncode == 0, cp.stderr[-2000:]
-    assert "<title>images 2/2</title>" in cp.stdout, cp.stdout[:500]
+    assert "<title>images 3/3</title>" in cp.stdout, cp.stdout[:500]
     from matplotlib.image import imread
     img = imread(shot)[..., :3]
     assert img.shape[:2] == (1900, 1000)

@@ -107,7 +107,7 @@ def test_the_panels_report_is_the_commands_and_blender_stays_live(ui, tmp_path, 
     schema = json.loads((ROOT / "docs" / "reference" / "report.schema.json").read_text())
     jsonschema.Draft202012Validator(schema).validate(doc)  # the published schema
     assert doc["sources"]["linker"] == "sidebar" and doc["p_fit"]["seeds"] == [0, 1]
-    assert (out / "report.html").read_text().count('src="data:image/png;base64,') == 2
+    assert (out / "report.html").read_text().count('src="data:image/png;base64,') == 3  # the render, the envelope, the bracket
     assert doc["command"][1:4] == ["report", "--case", str(out / "case.toml")]
 
     # the command line, for the same case and seeds, gives the same numbers

@@ -5,7 +5,7 @@ verdict. Below it, collapsed: the step-by-step build (a sub-panel per step with 
 its button), the physics and the search. A setting shows only where it applies; labels are short
 enough for the default sidebar width (tests/blender/test_ui.py measures them).
 
-Over 400 lines (409, since the ensemble's button and lines joined the result box): one class per
+Over 400 lines (413, since the ensemble's button, its lines and the density volume's line joined the result box): one class per
 sidebar section, each thin; the result box (its runs, report, minimal-linker, fraction and
 ensemble lines) is the seam for the next split, into a module of its own."""
 import json

@@ -14,7 +14,17 @@ and `MACROS` without MkDocs. The sources:
   docs/minimal_linker.csv;
 - `defaults`: the code's own defaults (fibrilfit.model.params.DEFAULTS and each command's plan),
   so a page never restates a default by hand;
-- `model_version`: the code's MODEL_VERSION.
+- `model_version`: the code's MODEL_VERSION;
+- `gallery`: examples/measured.json (what `make validate` measured), a row per case file's stem;
+- `data("PATH")`: any other measured file under docs/data/ (CSV a list of rows, JSON as written,
+  JSONL a list of records), and `csv_table("PATH")` renders a CSV there as a Markdown table;
+- the macros of every docs/hooks/macros_*.py (its `macros(numbers)`, given this module's names,
+  returns a dict): a page family's own ways of writing its numbers, kept beside this file so no
+  two families edit one list.
+
+A page whose front matter also says `numbers: data` quotes no measured time or P(fit) by hand
+(tests/unit/test_docs_numbers.py): each comes from a file through the names above, so two pages
+that quote one measurement print the same number.
 
 Standard library and the package only (no bpy): the docs build and the unit tests import it.
 """
@@ -78,9 +88,61 @@ def defaults() -> dict:
                          if hasattr(plan(), "search")}}
 
 
+@functools.lru_cache(maxsize=None)
+def gallery() -> dict[str, dict]:
+    """examples/measured.json by case: `gallery.sup35_9xbo.fit.p_fit` (the stem of its case file)."""
+    rows = json.loads((ROOT / "examples" / "measured.json").read_text(encoding="utf-8"))
+    return {pathlib.Path(r["case"]).stem: r for r in rows}
+
+
+def _number(text: str):
+    """A CSV cell as the number it writes, else the text ("" stays "")."""
+    try:
+        return int(text)
+    except ValueError:
+        try:
+            return float(text)
+        except ValueError:
+            return text
+
+
+@functools.lru_cache(maxsize=None)
+def data(path: str):
+    """A measured file under docs/data/ by its path there: a CSV as a list of rows (numbers
+    parsed), a JSON as written, a JSONL as a list of records. A missing file fails the page."""
+    f = DATA / path
+    if not f.resolve().is_relative_to(DATA.resolve()):
+        raise ValueError(f"data({path!r}): only files under docs/data/")
+    if f.suffix == ".csv":
+        with open(f, encoding="utf-8") as fh:
+            return [{k: _number(v) for k, v in r.items()} for r in csv.DictReader(fh)]
+    if f.suffix == ".jsonl":
+        return [json.loads(ln) for ln in f.read_text(encoding="utf-8").splitlines() if ln.strip()]
+    if f.suffix == ".json":
+        return json.loads(f.read_text(encoding="utf-8"))
+    raise ValueError(f"data({path!r}): a .csv, .json or .jsonl file")
+
+
+def csv_table(path: str, columns: dict | list | None = None) -> str:
+    """A CSV under docs/data/ as a Markdown table: every column, or `columns` (a list of column
+    names, or a dict of column name to the header shown), in the file's row order."""
+    rows = data(path)
+    if isinstance(columns, dict):
+        keys, heads = list(columns), list(columns.values())
+    else:
+        keys = list(columns) if columns else list(rows[0]) if rows else []
+        heads = keys
+    missing = [k for k in keys if rows and k not in rows[0]]
+    if missing:
+        raise KeyError(f"csv_table({path!r}): no column {missing}")
+    lines = ["| " + " | ".join(heads) + " |", "|" + "---|" * len(keys)]
+    lines += ["| " + " | ".join(str(r[k]) for k in keys) + " |" for r in rows]
+    return "\n".join(lines)
+
+
 def variables() -> dict:
     return {"costs": costs(), "reports": reports(), "maps": maps(), "defaults": defaults(),
-            "model_version": model_version()}
+            "model_version": model_version(), "gallery": gallery()}
 
 
 # ---- macros: how a number is written -------------------------------------------------------
@@ -166,7 +228,29 @@ def cost_table() -> str:
 
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,
           "cost_table": cost_table, "pfit": pfit, "minimal": minimal, "tried": tried,
-          "wilson": wilson, "first_map_transition": first_map_transition}
+          "wilson": wilson, "first_map_transition": first_map_transition, "data": data,
+          "csv_table": csv_table}
+
+
+def _family_macros() -> dict:
+    """The macros of every docs/hooks/macros_*.py, loaded by path (the plugin imports this file
+    alone): each file's `macros(numbers)` is given this module's public names (`data`,
+    `gallery`, `costs`, ...) and returns its own; a name defined twice fails."""
+    import types
+    numbers = types.SimpleNamespace(**{k: v for k, v in globals().items() if not k.startswith("_")})
+    found: dict = {}
+    for f in sorted(pathlib.Path(__file__).resolve().parent.glob("macros_*.py")):
+        spec = importlib.util.spec_from_file_location(f.stem, f)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        for name, fn in module.macros(numbers).items():
+            if name in found or name in MACROS:
+                raise ValueError(f"{f.name}: the macro {name!r} is defined twice")
+            found[name] = fn
+    return found
+
+
+MACROS.update(_family_macros())
 
 
 # The Jinja delimiters mkdocs.yml gives the plugin: `{#anchor}` (attr_list) is not a comment

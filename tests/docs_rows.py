@@ -1,8 +1,9 @@
 """Physics tables of the docs read from their pages, so that a test recomputing a published number
 compares with the page, not with a copy (editing the number makes the test fail). Each reader
 finds its section by anchor and its table by the start of its header and raises ValueError when
-the section, the table or a row does not parse. Standard library only (tests/unit and
-tests/blender both read them). The infinite fibril's map (docs/notebook/search.md#map-v5) has its
+the section, the table or a row does not parse. A page that quotes its numbers from docs/data/
+(`render_macros: true`) is read as the site shows it, rendered. Standard library only, but for
+that rendering (tests/unit and tests/blender both read them). The infinite fibril's map (docs/notebook/search.md#map-v5) has its
 own reader, bench/docs_map.py, which the bench uses too."""
 import pathlib
 import re
@@ -61,13 +62,29 @@ def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
     return [line.strip().strip("|").strip() for line in body(lines, head, f"{name} {anchor}")]
 
 
+def page_text(path: pathlib.Path) -> str:
+    """A page as the site shows it: one whose front matter says `render_macros: true` rendered
+    from its data files (docs/hooks/page_numbers.py, loaded only then: it needs Jinja2 and
+    PyYAML), any other page as it is."""
+    text = path.read_text(encoding="utf-8")
+    front = re.match(r"---\n(.*?)\n---\n", text, re.S)
+    if not (front and re.search(r"^render_macros: true$", front[1], re.M)):
+        return text
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("page_numbers",
+                                                  ROOT / "docs" / "hooks" / "page_numbers.py")
+    page_numbers = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(page_numbers)
+    return page_numbers.page_text(path)
+
+
 def docs_table(page: str, header: str) -> list[dict[str, str]]:
     """The rows of the one table of docs page `page` (a path under docs/) whose header row starts
     with `header`, each a {column: cell}: a fast test reads the number it recomputes from the
     page, so that editing the published number makes it fail (tests/unit/test_docs_tables.py,
     the fast-test rule). ValueError if there is no such table, or more than one, or an empty one,
     or a row of another width."""
-    lines = (ROOT / "docs" / page).read_text(encoding="utf-8").splitlines()
+    lines = page_text(ROOT / "docs" / page).splitlines()
     starts = [i for i, line in enumerate(lines) if line.startswith(header)]
     if len(starts) != 1:
         raise ValueError(f"docs/{page}: {len(starts)} tables start {header!r}, not one")

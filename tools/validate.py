@@ -303,6 +303,19 @@ def glance_text(rows: list[dict]) -> str:
     return glance(rows) + "\n\n" + provenance(rows) + ("\n\n" + more if more else "")
 
 
+def gallery_paths() -> list[pathlib.Path]:
+    """The gallery's case files in the table's order: the tutorial first, then by name."""
+    return sorted((ROOT / "examples").glob("*.toml"), key=lambda q: (q.stem != "tutorial", q.stem))
+
+
+def written_blocks() -> dict[tuple[str, str], str]:
+    """What `make validate --table-only` writes between the page's markers, from the stored
+    rows: {(start marker, end marker): text}. tests/unit/test_docs_numbers.py reads a page's
+    generated blocks against it, so a block that is not what the data renders is prose."""
+    rows = gallery_rows(gallery_paths(), stored_rows())
+    return {(START, END): page_text(rows), GLANCE: glance_text(rows)}
+
+
 def markers(shape: str | None) -> tuple:
     """The page's markers around the table: the gallery's, or its re-run with a domain shape."""
     if shape is None:
@@ -376,8 +389,7 @@ def main(argv=None) -> int:
         hh, mm = (int(x) for x in args.until.split(":"))
         now = datetime.datetime.now(datetime.timezone.utc)
         args.until = now.replace(hour=hh, minute=mm, second=0, microsecond=0).timestamp()
-    gallery = sorted((ROOT / "examples").glob("*.toml"),
-                     key=lambda q: (q.stem != "tutorial", q.stem))
+    gallery = gallery_paths()
     try:
         paths = [] if args.table_only else ([case_file(c) for c in args.cases] or gallery)
     except ValueError as exc:  # before anything runs or is written

@@ -55,7 +55,42 @@ RENDERED = [p for p in PAGES if split(p)[0].get("render_macros")]
 # one written by hand in their prose fails.
 CONVERTED = [p.relative_to(DOCS).as_posix() for p in RENDERED if split(p)[0].get("numbers") == "data"]
 # These pages were converted first; each stays converted
-MUST_BE_CONVERTED = ["tutorial.md", "faq.md", "limitations.md", "guide/report.md", "guide/construct.md"]
+MUST_BE_CONVERTED = ["tutorial.md", "faq.md", "limitations.md", "guide/report.md", "guide/construct.md",
+                     "validation.md"]
+
+
+def _tool(name: str):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "tools" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def generated_blocks() -> dict[tuple[str, str], str]:
+    """The blocks a tool writes into a page between its markers, as that tool renders them from
+    the stored data today: {(start marker, end marker): text}. `make validate` writes the gallery's
+    tables from examples/measured.json; tools/widths.py the widths table from docs/data/widths.csv."""
+    widths = _tool("widths")
+    return {**_tool("validate").written_blocks(),
+            (widths.START, widths.END): widths.table(widths.read_rows())}
+
+
+def block_between(body: str, start: str, end: str) -> str | None:
+    """The text between a page's markers (without the newlines that frame it), or None."""
+    if start not in body:
+        return None
+    a = body.index(start) + len(start)
+    return body[a:body.index(end, a)].strip("\n")
+
+
+def without_generated(body: str, blocks: dict) -> str:
+    """The page without the generated blocks that are exactly what their data renders: those
+    numbers come from a file. A block edited by hand (or gone stale) stays, and is read as prose."""
+    for (start, end), text in blocks.items():
+        if block_between(body, start, end) == text:
+            a = body.index(start) + len(start)
+            body = body[:a] + "\n" + body[body.index(end, a):]
+    return body
 
 
 def test_the_plugin_is_strict_and_reads_only_pages_that_ask():
@@ -94,17 +129,42 @@ def test_a_page_with_braces_asks_for_them_to_be_read():
     assert not unread, f"{{{{ ... }}}} in a page without render_macros: true: {unread}"
 
 
+@pytest.fixture(scope="module")
+def blocks():
+    return generated_blocks()
+
+
 @pytest.mark.parametrize("name", CONVERTED)
-def test_a_converted_page_writes_no_time_by_hand(name):
-    body = prose(split(DOCS / name)[1])
+def test_a_generated_block_is_what_its_data_renders(name, blocks):
+    """Every tool-written block on a converted page (between its markers) is the tool's rendering
+    of the stored data today, so its numbers come from a file like a `{{ ... }}`."""
+    body = split(DOCS / name)[1]
+    for (start, end), text in blocks.items():
+        found = block_between(body, start, end)
+        if found is not None and "{{" not in found:
+            assert found == text, f"{name}: the block after {start} is not what its data renders"
+
+
+def test_a_stale_generated_block_is_read_as_prose(blocks):
+    """The check can fail: a block that differs from its data by one P(fit) is not skipped."""
+    (start, end), text = next((k, v) for k, v in blocks.items() if "at a glance" in k[0])
+    page = f"before\n{start}\n{text}\n{end}\nafter"
+    assert not BARE_PFIT.search(without_generated(page, blocks))
+    stale = page.replace("(5/5)", "(4/5)", 1)
+    assert stale != page and BARE_PFIT.search(without_generated(stale, blocks))
+
+
+@pytest.mark.parametrize("name", CONVERTED)
+def test_a_converted_page_writes_no_time_by_hand(name, blocks):
+    body = prose(without_generated(split(DOCS / name)[1], blocks))
     body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
     bare = [m.group(0) for m in BARE_TIME.finditer(body)]
     assert not bare, f"{name}: times written by hand (quote docs/data/costs.csv: {{{{ took(KEY) }}}}): {bare}"
 
 
 @pytest.mark.parametrize("name", CONVERTED)
-def test_a_converted_page_writes_no_p_fit_by_hand(name):
-    body = prose(split(DOCS / name)[1])
+def test_a_converted_page_writes_no_p_fit_by_hand(name, blocks):
+    body = prose(without_generated(split(DOCS / name)[1], blocks))
     body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
     bare = [m.group(0) for m in BARE_PFIT.finditer(body)]
     assert not bare, f"{name}: P(fit) written by hand (quote the file that holds it): {bare}"
@@ -116,7 +176,7 @@ def test_the_p_fit_check_finds_a_p_fit():
     assert BARE_PFIT.search("P(fit) = 0.33")
     assert BARE_PFIT.search("it fitted (2/3) at 12")
     assert not BARE_PFIT.search("a 30 Å ball, 250 frames, 8 restarts, 4.8 Å/layer, 2·√(5/3)·Rg")
-    assert not BARE_PFIT.search("see docs/2026/11 and 10.1073/pnas")
+    assert not BARE_PFIT.search("see out/2026/11 and 10.1073/pnas")
 
 
 def test_data_reads_measured_files_and_renders_a_table():

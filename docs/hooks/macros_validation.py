@@ -7,7 +7,7 @@ numbers as the page writes them, each from the file that holds it.
 - the runs behind the page's own tables, under docs/data/validation/ (each file names its date,
   commit, MODEL_VERSION, command and source): the negative control's seeds, its walks, the
   Aβ42-GFP prediction, the hull runs, Sup35's seeds; a table macro per table
-  (`val_negative_control_table()`, ...) and `val_stamp(FILE)` for its provenance;
+  (`val_negative_control_table()`, ...);
 - the widths' runs (docs/data/widths/*.json, docs/data/widths_sup35*.{csv,json}):
   `val_widths(case)` and `val_sup35_widths_table()`.
 
@@ -87,6 +87,11 @@ def macros(numbers) -> dict:
         d = row(case)["outer_diameter"]
         return f"{d['median'] / 10:.1f} nm ({d['min'] / 10:.1f}–{d['max'] / 10:.1f})"
 
+    def val_outer_parts(case: str) -> dict:
+        """The outer diameter's median, min and max over the seeds, in nm: {"median": "74.3", ...}."""
+        d = row(case)["outer_diameter"]
+        return {k: f"{d[k] / 10:.1f}" for k in ("median", "min", "max")}
+
     def val_all_fit(*cases: str) -> str:
         """"3 of 3 seeds" when every case fitted in all its seeds, the same number of them; else
         a KeyError (the sentence that says "all ... fit" would be wrong)."""
@@ -98,16 +103,8 @@ def macros(numbers) -> dict:
 
     # ---- the page's own runs (docs/data/validation/) ---------------------------------------
 
-    def val_stamp(name: str, part: str | None = None) -> str:
-        """A run file's provenance: "2026-11-27, commit ee1571c, MODEL_VERSION 8, bpy 5.0.1"."""
-        d = runs_of(name)
-        p = (d[part] if part else d)["provenance"]
-        return f"{p['date']}, commit {p['commit']}, MODEL_VERSION {p['model_version']}, bpy {p['bpy']}"
-
-    def seeds_table(head: str, groups: list[tuple[str, list[dict]]]) -> str:
-        lines = [head, "|" + "---|" * (head.count("|") - 1)]
-        lines += [g for _, g in groups]
-        return "\n".join(lines)
+    def seeds_table(head: str, lines: list[str]) -> str:
+        return "\n".join([head, "|" + "---|" * (head.count("|") - 1), *lines])
 
     def per_seed(runs: list[dict], key: str, unit: str = "") -> str:
         return ", ".join(f"{r[key]:.1f}{unit}" if isinstance(r[key], float) else f"{r[key]}{unit}"
@@ -132,7 +129,7 @@ def macros(numbers) -> dict:
                 f"{k}/{n} [{interval(k, n)}]", per_seed(rs, "stretch_pct", " %"),
                 per_seed(rs, "clashing_pairs"), per_seed(rs, "frames"),
                 per_seed(rs, "bake_s", " s")]) + " |")
-        return seeds_table(head, [("", ln) for ln in lines])
+        return seeds_table(head, lines)
 
     def walk_runs(case: str) -> list[dict]:
         """The walk's runs of a case: below the real linker from walks.json, at it the seeds of
@@ -155,21 +152,7 @@ def macros(numbers) -> dict:
                 per_seed(rs, "bake_s", " s")]) + " |")
         head = (f"| {head} | free after the exit | restarts (seeds) | fit | clashing pairs at the "
                 "end | worst stretch | frames | bake |")
-        return seeds_table(head, [("", ln) for ln in lines])
-
-    def val_walk_at(case: str, length: int) -> str:
-        """A walked length's fits: "0/3"."""
-        rs = [r for r in walk_runs(case) if r["linker"] == length]
-        if not rs:
-            raise KeyError(f"{case}: no run at linker {length}")
-        return f"{sum(r['fits'] for r in rs)}/{len(rs)}"
-
-    def val_walk_range(case: str, key: str, unit: str = "", below: int | None = None) -> str:
-        """The range of a per-run number over a case's walk (up to `below`, not included):
-        "34–47"."""
-        vs = [r[key] for r in walk_runs(case) if below is None or r["linker"] < below]
-        fmt = (lambda v: f"{v:.0f}") if key == "stretch_pct" else str
-        return f"{fmt(min(vs))}–{fmt(max(vs))}{unit}"
+        return seeds_table(head, lines)
 
     def val_range(name: str, key: str, cases: list[str] | None = None, unit: str = "",
                   digits: int = 0) -> str:
@@ -192,7 +175,7 @@ def macros(numbers) -> dict:
                 f"| {r['linker']}", str(n), f"{k / n:.3f} ({k}/{n})", f"{r['fits']}/{r['runs']}",
                 f"{r['above_count']}/{n}: {r['above_fits']}/{r['above_runs']}",
                 f"{r['fraction_bound']:.3f}", fraction_bracket(r["fraction_bound"], k / n)]) + " |")
-        return seeds_table(head, [("", ln) for ln in lines])
+        return seeds_table(head, lines)
 
     def val_largest(linker: int) -> dict:
         """The largest fraction found at a linker, as the prose quotes it."""
@@ -227,7 +210,7 @@ def macros(numbers) -> dict:
                 f"| {100 * r['fraction']:g} % ({r['count']})", str(r["bound"]), str(m),
                 f"{r['fits']}/{r['runs']}", f"{m - 1}: {r['below_fits']}/{r['below_runs']}",
                 said.split(" Å: ", 1)[1].split(" (docs/")[0]]) + " |")
-        return seeds_table(head, [("", ln) for ln in lines])
+        return seeds_table(head, lines)
 
     def val_fraction_minimal(fraction: float) -> dict:
         r = next(r for r in prediction()["minimal"]["rows"] if abs(r["fraction"] - fraction) < 1e-9)
@@ -255,7 +238,7 @@ def macros(numbers) -> dict:
                 str(r["real_linker"]), hull_walk(r), f"{r['real_linker'] / r['minimal_linker']:.1f}",
                 f"{r['outer_median_nm']:.1f} nm ({r['outer_min_nm']:.1f}-{r['outer_max_nm']:.1f})",
                 "-", "no verdict to compare"]) + " |")
-        return seeds_table(head, [("", ln) for ln in lines])
+        return seeds_table(head, lines)
 
     def observed(stored: dict) -> str:
         from fibrilfit.model import cases
@@ -276,7 +259,7 @@ def macros(numbers) -> dict:
                 f"| {names[c]} ({r['domain']})", sphere, hull_cell, val_outer(c),
                 f"{r['outer_median_nm']:.1f} nm ({r['outer_min_nm']:.1f}–{r['outer_max_nm']:.1f})"])
                 + " |")
-        return seeds_table(head, [("", ln) for ln in lines])
+        return seeds_table(head, lines)
 
     def val_hull(case: str) -> dict:
         r = next(r for r in hull()["rows"] if r["case"] == case)
@@ -367,6 +350,7 @@ def macros(numbers) -> dict:
         r = next(r for r in widths.read_rows(ROOT / "docs" / "data" / "widths_sup35.csv")
                  if r["system"].startswith(system_start))
         return {"width": r["predicted_width_nm"], "measured": r["measured_nm"],
+                "lo": r["interval_lo"], "hi": r["interval_hi"],
                 "off": widths.off_by(r).replace("-", "−")}
 
     return {name: fn for name, fn in locals().items() if name.startswith("val_")}

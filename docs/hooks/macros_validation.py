@@ -186,18 +186,22 @@ def macros(numbers) -> dict:
                 "runs": r["runs_total"]}
 
     def val_stopped() -> dict:
-        """The search at linker 15, stopped undecided: the largest count that fitted, and the
-        counts above it that missed, with their restarts."""
+        """The search at linker 15, stopped undecided: the largest count that fitted (answer
+        `fits`), the counts above it answered `borderline` (accommodated, at the criterion), and
+        those that missed, with their restarts."""
         st = prediction()["stopped"]
-        fits = [r for r in st["runs"] if r["fits"]]
+        fits = [r for r in st["runs"] if r["answer"] == "fits"]
         top = max(fits, key=lambda r: r["count"])
-        missed = sorted({r["count"] for r in st["runs"] if not r["fits"] and r["count"] > top["count"]})
+        edge = [r for r in st["runs"] if r["answer"] == "borderline" and r["count"] > top["count"]]
+        missed = sorted({r["count"] for r in st["runs"] if not r["fits"]
+                         and r["count"] > top["count"]})
         restarts = {c: sum(1 for r in st["runs"] if r["count"] == c) for c in missed}
         return {"linker": st["linker"], "n": st["subunits"], "count": top["count"],
                 "percent": f"{100 * top['count'] / st['subunits']:g} %",
                 "pairs": top["clashing_pairs"], "stretch": f"{top['stretch_pct']:g} %",
                 "missed": listed(missed), "missed_restarts": sorted(set(restarts.values())),
-                "next": missed[0], "next_restarts": restarts[missed[0]]}
+                "borderline": [{"count": r["count"], "pairs": r["clashing_pairs"],
+                                "stretch": f"{r['stretch_pct']:g} %"} for r in edge]}
 
     def val_fraction_minimal_table() -> str:
         head = ("| fraction (decorated of 40) | bound at the fraction: impossible below | "

@@ -7,7 +7,7 @@ import math
 from ..model.helix import handedness
 from ..model.searches import DEFAULT_RESTARTS
 from . import ensemble_words
-from .span_words import span_words
+from .span_words import end_to_end
 from ..model.answer import BORDERLINE, BORDERLINE_STRETCH, FITS, NO_EXIT, of_result
 
 
@@ -251,7 +251,7 @@ def _linker_lines(r: dict) -> list[str]:
                "never back within tolerance; ")
             + f"over tolerance in {r['frames_over_tolerance']} of {r['frames_simulated']} frames")
     if r.get("linker_stretch"):
-        lines.append(f"  end to end: {span_words(r['linker_stretch'])}")
+        lines.append(f"  {end_to_end(r['linker_stretch'])}")
     return lines
 
 

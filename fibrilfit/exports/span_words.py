@@ -1,5 +1,5 @@
-"""How far the linkers span of their length in a layout, in words: the printed result's and the
-report's one sentence on the result's `linker_stretch`
+"""How far the linkers span of their length in a layout, in words: the printed result's, the
+sidebar's result box's and the report's one sentence on the result's `linker_stretch`
 (docs/model/linker-integrity.md#linker-span)."""
 from __future__ import annotations
 
@@ -17,3 +17,9 @@ def span_words(s: dict) -> str:
             f"{100 * s['worst']:.0f} % at most ({where})"
             + ("; nearly straight: this layout uses that linker at nearly its full length"
                if s["worst"] >= NEARLY_STRAIGHT else ""))
+
+
+def end_to_end(s: dict) -> str:
+    """The printed result's line on the result's `linker_stretch` (the sidebar's result box
+    says the same, ui/result_words.py): "end to end: " and span_words."""
+    return f"end to end: {span_words(s)}"

@@ -5,9 +5,10 @@ verdict. Below it, collapsed: the step-by-step build (a sub-panel per step with 
 its button), the physics and the search. A setting shows only where it applies; labels are short
 enough for the default sidebar width (tests/blender/test_ui.py measures them).
 
-Over 400 lines (413, since the ensemble's button, its lines and the density volume's line joined the result box): one class per
-sidebar section, each thin; the result box (its runs, report, minimal-linker, fraction and
-ensemble lines) is the seam for the next split, into a module of its own."""
+Over 400 lines (415, since the ensemble's button, its lines, the density volume's line and the
+linkers' span joined the result box): one class per sidebar section, each thin; the result box
+(its runs, report, minimal-linker, fraction and ensemble lines) is the seam for the next split,
+into a module of its own."""
 import json
 import math
 
@@ -237,13 +238,14 @@ def _draw_changes(col, s, root, stage):
 
 
 def draw_result(box, s, p: P.Params | None = None):
-    """The last check of the model `p` (the scene's): the answer first, then its evidence, in
-    the glossary's words (ui/result_words.py; one failed run is "no layout found", never "does
-    not fit")."""
+    """The last check of the model `p` (the scene's): the answer first, then its evidence (the
+    linkers' span in the printed result's words), in the glossary's words
+    (ui/result_words.py; one failed run is "no layout found", never "does not fit")."""
     p = p or properties.read_params(s)
     for text, icon in result_words.run_lines(
             answer=s.answer, clashes=s.clash_count, stretch=s.max_bond_stretch,
-            tolerance=p.stretch_tolerance, linker=p.linker, bound=s.bound):
+            tolerance=p.stretch_tolerance, linker=p.linker, bound=s.bound,
+            span=json.loads(s.linker_stretch) if s.linker_stretch else None):
         box.label(text=text, icon=icon)
     if s.clash_count:
         box.label(text="Red: clash; orange: graze", icon="INFO")

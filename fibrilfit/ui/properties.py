@@ -159,6 +159,10 @@ _RESULT_PROPERTIES = {
         description="Worst linker bond at the last frame: (distance - rest length) / rest length"),
     "linker_intact": BoolProperty(
         name="Linker intact", description="Every bond within the stretch tolerance"),
+    "linker_stretch": StringProperty(
+        name="Linker span", options={"HIDDEN"},
+        description="The result's linker_stretch (JSON): how far the linkers span of their full "
+                    "length in the layout found; empty when no linker was scored"),
     "accommodated": BoolProperty(
         name="Accommodated",
         description="No intersection and every linker intact: the domains fit on the fibril"),
@@ -378,6 +382,8 @@ def store_result(settings, result: dict) -> None:
     settings.clash_count = len(result["clashing_pairs"])
     settings.max_bond_stretch = result["max_bond_stretch"]
     settings.linker_intact = result["linker_intact"]
+    span = result.get("linker_stretch")  # docs/model/linker-integrity.md#linker-span
+    settings.linker_stretch = json.dumps(span) if span else ""
     settings.accommodated = result["accommodated"]
     settings.answer = result.get("answer") or ""  # docs/model/verdict.md#answer
     settings.bound = (result.get("bound") or {}).get("impossible_below", 0)  # docs/model/bound.md#derivation

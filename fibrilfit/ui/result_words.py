@@ -8,11 +8,16 @@ longer one, and `draw_kept` draws a kept result's box (greyed once the panel's v
 longer its own)."""
 from __future__ import annotations
 
+import re
+import textwrap
+
 from ..exports.run_text import percent
+from ..exports.span_words import NEARLY_STRAIGHT, end_to_end
 from . import panel_words, provenance
 
 WRAP = 36  # characters per line of the panel (about 230 px of Blender's 11 pt UI font)
 BOX_WRAP = 32  # in a result's box, beside its icon column (Blender 4.3.2's window: 36 were cut)
+NBSP = "\u00a0"  # where a line is not broken (textwrap breaks at ASCII spaces only)
 # The answer's words as the panel shows them, with their icon (docs/model/verdict.md#answer)
 ANSWERS = {"fits": "CHECKMARK", "borderline": "INFO", "no layout found": "ERROR",
            "no exit": "ERROR"}
@@ -54,14 +59,30 @@ def bound_line(bound: int | None) -> str | None:
     return "Bound: every length allowed"
 
 
+def span_lines(span: dict | None) -> list[tuple[str, str]]:
+    """(text, icon) lines of the result's `linker_stretch` (None: no linker scored, no line), in
+    the printed result's words (exports/span_words.py) broken to the box's width; "INFO" when a
+    linker is nearly straight (docs/model/linker-integrity.md#linker-span)."""
+    if not span:
+        return []
+    text = end_to_end(span)
+    icon = "INFO" if span["worst"] >= NEARLY_STRAIGHT else "BLANK1"
+    kept = re.sub(r" (?=[%Å])", NBSP, text[:1].upper() + text[1:])  # a number with its unit
+    return [(line.replace(NBSP, " "), icon if i == 0 else "BLANK1") for i, line in enumerate(
+        textwrap.wrap(kept, BOX_WRAP, break_on_hyphens=False))]
+
+
 def run_lines(*, answer: str, clashes: int, stretch: float, tolerance: float,
-              linker: int | None, bound: int) -> list[tuple[str, str]]:
-    """(text, icon) lines of one run's result: the answer, then the globules, the linker and
-    the bound."""
+              linker: int | None, bound: int,
+              span: dict | None = None) -> list[tuple[str, str]]:
+    """(text, icon) lines of one run's result: the answer, then the globules, the linker (its
+    worst bond, and how far the linkers span of their length: `span`, the result's
+    `linker_stretch`) and the bound."""
     lines = [answer_line(answer, linker=linker, bound=bound, what="Run: ")]
     lines.append((f"Globules: {clashes} clashing pair{'' if clashes == 1 else 's'}"
                   if clashes else "Globules: clear of each other", "BLANK1"))
     lines.append((stretch_line(stretch, tolerance), "BLANK1"))
+    lines.extend(span_lines(span))
     said = bound_line(bound)
     if said and not (linker is not None and bound > 1 and linker < bound):
         lines.append((said, "BLANK1"))

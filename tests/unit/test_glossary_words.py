@@ -85,7 +85,8 @@ BRANCH = re.compile(r"\bbranch(?:es)?\s+`?[a-z0-9][\w./-]*`?\s+at\b|\bbranch\s+`
                     r"|\bbranch\s+[a-z]+\d[\w-]*")
 SHA = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f]{7,40}\b")
 STAMP = re.compile(r"MODEL_VERSION|\b20\d\d-\d\d-\d\d\b")
-# a table `make validate` writes from the case files (examples/*.toml): their words, not a page's
+# a table `make validate` writes from the case files (examples/*.toml): their words, read for
+# issue numbers only (a commit there is a row's stamp)
 GENERATED = re.compile(r"^<!-- .*: written by make [\w-]+ -->$")
 END_GENERATED = re.compile(r"^<!-- end of .* -->$")
 SINCE = re.compile(r"\bsince [0-9a-f]{7,40}\b")
@@ -117,7 +118,10 @@ def internal_references(text: str) -> list[tuple[int, str]]:
             fence = not fence
             close()
             continue
-        if fence or generated:
+        if generated:  # the case files' words: no issue number either (their commits are stamps)
+            found += [(i, m.group(0)) for m in ISSUE.finditer(re.sub(r"`[^`]*`", "``", line))]
+            continue
+        if fence:
             continue
         if not line.strip():
             close()
@@ -151,3 +155,7 @@ def test_the_reference_check_finds_them():
     # a commit in a dated paragraph is a stamp; "since" is never one
     assert internal_references("measured at 1a2b3c4d,\n2026-11-27, bpy 5.0.1") == []
     assert internal_references("since 1a2b3c4 (2026-11-27)") == [(1, "since 1a2b3c4")]
+    # a generated table: its commits are stamps, an issue number is not
+    table = ("<!-- validation table: written by make validate -->\n| a | per issue #15 | 9817027 |\n"
+             "<!-- end of validation table -->\n")
+    assert [t for _, t in internal_references(table)] == ["issue #15"]

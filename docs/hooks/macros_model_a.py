@@ -1,0 +1,158 @@
+"""The macros of the model pages on the bound, the buried terminus, domain shapes, end effects,
+the ensemble, the envelope and the largest fraction (docs/model/*.md): their dated results
+tables and the numbers their prose quotes, read from the files under docs/data/model/ (and
+docs/largest_fraction.csv, which tools/fraction_map.py writes), so the page prints what the
+file holds. page_numbers.py loads this file and calls `macros(numbers)`.
+
+- `rows_table(path, columns)`: a CSV under docs/data/ as a Markdown table, each column a header
+  and either a column name or a template (`"{fits}/{restarts} fit"`, str.format over the row);
+- `said(path, key, field="value")`: one cell of a CSV whose `key` column names its rows (a
+  page's measured numbers quoted in its prose, each row with its date, commit, MODEL_VERSION
+  and source);
+- `made(path)`: where a file's rows come from (date, commit, MODEL_VERSION, bpy), said once
+  for all its rows, or "see each row" when they differ;
+- `fraction_map_table()`: docs/largest_fraction.csv as the largest-fraction page's map.
+"""
+from __future__ import annotations
+
+import csv
+import pathlib
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def macros(numbers) -> dict:
+    data = numbers.data
+
+    def cell(row: dict, spec: str) -> str:
+        return spec.format(**row) if "{" in spec else str(row[spec])
+
+    def rows_table(path: str, columns: dict) -> str:
+        rows = data(path)
+        missing = {c for c in columns.values() if "{" not in c and rows and c not in rows[0]}
+        if missing:
+            raise KeyError(f"rows_table({path!r}): no column {sorted(missing)}")
+        lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+        lines += ["| " + " | ".join(cell(r, spec) for spec in columns.values()) + " |"
+                  for r in rows]
+        return "\n".join(lines)
+
+    def said(path: str, key: str, field: str = "value"):
+        found = [r for r in data(path) if r["key"] == key]
+        if len(found) != 1:
+            raise KeyError(f"said({path!r}, {key!r}): {len(found)} rows with that key")
+        return found[0][field]
+
+    def made(path: str) -> str:
+        rows = data(path)
+        parts = []
+        for name, label in (("date", ""), ("commit", "commit "),
+                            ("model_version", "MODEL_VERSION "), ("bpy", "bpy ")):
+            values = sorted({str(r[name]) for r in rows if str(r.get(name, "")) not in ("", "-")})
+            if values:
+                parts.append(label + (values[0] if len(values) == 1 else " / ".join(values)))
+        return ", ".join(parts)
+
+    def bound_bracket_table() -> str:
+        """docs/data/model/bound_bracket.csv as the bound page's bracket: the bound, the
+        search's minimum (and the new auto cell's, with its P(fit)), the open range."""
+        lines = ["| globule | fibril | impossible below (bound) | fits at (search) | open |",
+                 "|---|---|---|---|---|"]
+        for r in data("model/bound_bracket.csv"):
+            fits = str(r["fits_at"])
+            if r["fits_at_cell_v5"] != "":
+                fits += (f" ({r['fits_at_cell_v5']} in the new auto cell, "
+                         f"{r['fits_cell_v5']}/{r['restarts_cell_v5']})")
+            opened = str(r["open"]) + (f" ({r['open_cell_v5']})" if r["open_cell_v5"] else "")
+            lines.append(f"| {r['globule']} | {r['fibril']} | {r['impossible_below']} | {fits} "
+                         f"| {opened} |")
+        return "\n".join(lines)
+
+    def abeta_row(linker: int) -> dict:
+        return next(r for r in data("model/bound_fraction_abeta42.csv") if r["linker"] == linker)
+
+    def abeta_fraction_bound(linker: int) -> str:
+        """f_B of Aβ42–GFP on 5OQV at a linker, as the bound's table prints it ("100 %")."""
+        return abeta_row(linker)["fraction_bound"]
+
+    def abeta_bound_at(percent: int) -> int:
+        """The linker bound of Aβ42–GFP on 5OQV with `percent` % of the subunits decorated."""
+        at = [int(x) for x in str(said("model/bound_measured.csv",
+                                         "abeta42_bound_at_10_25_50_75_100")).split(" / ")]
+        return dict(zip((10, 25, 50, 75, 100), at))[percent]
+
+    def span_of(path: str, column: str) -> str:
+        """The least and the largest of a CSV column, "1.93–5.66" (one value alone if equal)."""
+        values = [r[column] for r in data(path)]
+        lo, hi = min(values), max(values)
+        return f"{lo:.2f}–{hi:.2f}" if lo != hi else f"{lo:.2f}"
+
+    def fraction_rows() -> list[dict]:
+        with open(ROOT / "docs" / "largest_fraction.csv", encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+
+    def fraction_row(diameter: int, linker: int) -> dict:
+        """One row of docs/largest_fraction.csv, with `fits` and `runs` at the largest count."""
+        r = next(dict(r) for r in fraction_rows()
+                 if int(r["globule_diameter"]) == diameter and int(r["linker"]) == linker)
+        for name in ("globule_diameter", "linker", "subunits", "largest_count"):
+            r[name] = int(r[name])
+        r["runs"] = int(r["restarts"])
+        r["fits"] = round(float(r["p_fit"]) * r["runs"])
+        r["runs_above"] = runs_of_a_miss(float(r["p_fit_above"]), float(r["p_fit_above_high"]))
+        return r
+
+    def fraction_bound_bites() -> str:
+        """Where the map's bound f_B is below 1, in words: "30 Å at linker 1 (99 %), ...", each
+        percentage as the row's bracket says it."""
+        import re
+        by: dict[str, list] = {}
+        for r in fraction_rows():
+            if float(r["fraction_bound"]) < 1:
+                pct = re.match(r"impossible above (\S+ %)", r["bracket"])[1]
+                by.setdefault(r["globule_diameter"], []).append((r["linker"], pct))
+        parts = []
+        for d, points in by.items():
+            ls = [lk for lk, _ in points]
+            which = (f"linker {ls[0]}" if len(ls) == 1 else
+                     f"linkers {', '.join(ls[:-1])} and {ls[-1]}")
+            parts.append(f"{d} Å at {which} ({', '.join(p for _, p in points)})")
+        return ", ".join(parts[:-1]) + " and " + parts[-1] if len(parts) > 1 else parts[0]
+
+    def fraction_map_table() -> str:
+        """docs/largest_fraction.csv (tools/fraction_map.py docs) as the page's map: the largest
+        count k of N with its P(fit), the one more decorated count missed in its restarts (the
+        walk's R, 3), f_B and the bracket."""
+        rows = fraction_rows()
+        head = ("| diameter (Å) | linker | subunits N | largest fraction found (k/N) | "
+                "P(fit) there (runs) | one more decorated | bound f_B | bracket |\n"
+                "|---|---|---|---|---|---|---|---|\n")
+        lines = []
+        for r in rows:
+            n, k, runs = int(r["subunits"]), int(r["largest_count"]), int(r["restarts"])
+            fits = round(float(r["p_fit"]) * runs)
+            # the walk ends with every one of its R restarts missing at k + 1: the file keeps
+            # P(fit) 0 there and its Wilson interval's top, which names R
+            above = runs_of_a_miss(float(r["p_fit_above"]), float(r["p_fit_above_high"]))
+            lines.append(f"| {r['globule_diameter']} | {r['linker']} | {n} | "
+                         f"{float(r['largest_fraction']):.3f} ({k}/{n}) | {fits}/{runs} | "
+                         f"{k + 1}/{n}: 0/{above} | {float(r['fraction_bound']):.3f} | "
+                         f"{r['bracket']} |")
+        return head + "\n".join(lines)
+
+    return {"rows_table": rows_table, "said": said, "made": made,
+            "fraction_map_table": fraction_map_table,
+            "fraction_row": fraction_row, "fraction_bound_bites": fraction_bound_bites,
+            "bound_bracket_table": bound_bracket_table, "abeta_row": abeta_row,
+            "abeta_fraction_bound": abeta_fraction_bound, "abeta_bound_at": abeta_bound_at,
+            "span_of": span_of}
+
+
+def runs_of_a_miss(p_fit: float, high: float) -> int:
+    """The number of runs n whose 0 of n has the 95 % Wilson interval's top `high` (as
+    docs/largest_fraction.csv rounds it, 4 places; FibrilFit's own interval)."""
+    from fibrilfit.sweep.stats import wilson
+    found = [n for n in range(1, 65) if round(wilson(0, n)[1], 4) == round(high, 4)]
+    if p_fit != 0 or len(found) != 1:
+        raise ValueError(f"not a miss in every run: P(fit) {p_fit}, interval top {high}")
+    return found[0]

@@ -24,11 +24,36 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 def macros(numbers) -> dict:
     data = numbers.data
 
+    def raw(path: str) -> list[dict]:
+        """A CSV under docs/data/ as its text: each cell printed as the file writes it ("0.10"
+        stays "0.10"; data() would give 0.1)."""
+        data(path)  # the same checks: under docs/data/, a file that exists
+        with open(numbers.DATA / path, encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+
+    def value(text: str):
+        """A cell as a number where the number prints as the file writes it, else its text."""
+        for kind in (int, float):
+            try:
+                number = kind(text)
+            except ValueError:
+                continue
+            return number if str(number) == text else text
+        return text
+
     def cell(row: dict, spec: str) -> str:
-        return spec.format(**row) if "{" in spec else str(row[spec])
+        """A column name's value, or a template's text; a template whose every field is empty
+        in this row (a number not measured there) leaves the cell empty."""
+        if "{" not in spec:
+            return str(row[spec])
+        import string
+        fields = [f for _, f, _, _ in string.Formatter().parse(spec) if f]
+        if fields and all(row[f] == "" for f in fields):
+            return ""
+        return spec.format(**row)
 
     def rows_table(path: str, columns: dict) -> str:
-        rows = data(path)
+        rows = raw(path)
         missing = {c for c in columns.values() if "{" not in c and rows and c not in rows[0]}
         if missing:
             raise KeyError(f"rows_table({path!r}): no column {sorted(missing)}")
@@ -38,10 +63,10 @@ def macros(numbers) -> dict:
         return "\n".join(lines)
 
     def said(path: str, key: str, field: str = "value"):
-        found = [r for r in data(path) if r["key"] == key]
+        found = [r for r in raw(path) if r["key"] == key]
         if len(found) != 1:
             raise KeyError(f"said({path!r}, {key!r}): {len(found)} rows with that key")
-        return found[0][field]
+        return value(found[0][field])
 
     def made(path: str) -> str:
         rows = data(path)
@@ -82,10 +107,9 @@ def macros(numbers) -> dict:
         return dict(zip((10, 25, 50, 75, 100), at))[percent]
 
     def span_of(path: str, column: str) -> str:
-        """The least and the largest of a CSV column, "1.93–5.66" (one value alone if equal)."""
-        values = [r[column] for r in data(path)]
-        lo, hi = min(values), max(values)
-        return f"{lo:.2f}–{hi:.2f}" if lo != hi else f"{lo:.2f}"
+        """The least and the largest of a CSV column as the file writes them, "1.93–5.66"."""
+        values = sorted((r[column] for r in raw(path)), key=float)
+        return values[0] if values[0] == values[-1] else f"{values[0]}–{values[-1]}"
 
     def fraction_rows() -> list[dict]:
         with open(ROOT / "docs" / "largest_fraction.csv", encoding="utf-8") as f:

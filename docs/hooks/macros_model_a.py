@@ -9,9 +9,14 @@ file holds. page_numbers.py loads this file and calls `macros(numbers)`.
 - `said(path, key, field="value")`: one cell of a CSV whose `key` column names its rows (a
   page's measured numbers quoted in its prose, each row with its date, commit, MODEL_VERSION
   and source);
-- `made(path)`: where a file's rows come from (date, commit, MODEL_VERSION, bpy), said once
-  for all its rows, or "see each row" when they differ;
-- `fraction_map_table()`: docs/largest_fraction.csv as the largest-fraction page's map.
+- `made(path)`: where a file's rows come from (date, commit, MODEL_VERSION, bpy), each value
+  once ("a / b" when the rows differ);
+- `span_of(path, column)`: a column's least and largest value, as the file writes them;
+- `bound_bracket_table()`, `abeta_row(linker)`, `abeta_fraction_bound(linker)`,
+  `abeta_bound_at(percent)`: the bound page's bracket and its negative control;
+- `fraction_map_table()`, `fraction_row(diameter, linker)`, `fraction_bound_bites()`:
+  docs/largest_fraction.csv as the largest-fraction page's map, one of its rows, and where its
+  bound is below 1, in words.
 """
 from __future__ import annotations
 
@@ -53,6 +58,8 @@ def macros(numbers) -> dict:
         return spec.format(**row)
 
     def rows_table(path: str, columns: dict) -> str:
+        """A CSV under docs/data/ as a Markdown table, in the file's row order: `columns` maps
+        each header shown to a column name or a template over the row."""
         rows = raw(path)
         missing = {c for c in columns.values() if "{" not in c and rows and c not in rows[0]}
         if missing:
@@ -63,12 +70,14 @@ def macros(numbers) -> dict:
         return "\n".join(lines)
 
     def said(path: str, key: str, field: str = "value"):
+        """The `field` of the one row whose `key` is `key` (a KeyError otherwise)."""
         found = [r for r in raw(path) if r["key"] == key]
         if len(found) != 1:
             raise KeyError(f"said({path!r}, {key!r}): {len(found)} rows with that key")
         return value(found[0][field])
 
     def made(path: str) -> str:
+        """"2026-11-27, commit 111c5a4, MODEL_VERSION 8": where a file's rows come from."""
         rows = data(path)
         parts = []
         for name, label in (("date", ""), ("commit", "commit "),
@@ -112,19 +121,26 @@ def macros(numbers) -> dict:
         return values[0] if values[0] == values[-1] else f"{values[0]}–{values[-1]}"
 
     def fraction_rows() -> list[dict]:
+        """docs/largest_fraction.csv's rows, each with the numbers its page writes: the counts as
+        integers, `fits` of `runs` at the largest count, and `runs_above`, the restarts that
+        all missed one decorated subunit more."""
         with open(ROOT / "docs" / "largest_fraction.csv", encoding="utf-8") as f:
-            return list(csv.DictReader(f))
+            rows = [dict(r) for r in csv.DictReader(f)]
+        for r in rows:
+            for name in ("globule_diameter", "linker", "subunits", "largest_count"):
+                r[name] = int(r[name])
+            r["runs"] = int(r["restarts"])
+            r["fits"] = round(float(r["p_fit"]) * r["runs"])
+            # the walk ends with every one of its R restarts missing at k + 1: the file keeps
+            # P(fit) 0 there and its Wilson interval's top, which names R
+            r["runs_above"] = runs_of_a_miss(float(r["p_fit_above"]),
+                                             float(r["p_fit_above_high"]))
+        return rows
 
     def fraction_row(diameter: int, linker: int) -> dict:
-        """One row of docs/largest_fraction.csv, with `fits` and `runs` at the largest count."""
-        r = next(dict(r) for r in fraction_rows()
-                 if int(r["globule_diameter"]) == diameter and int(r["linker"]) == linker)
-        for name in ("globule_diameter", "linker", "subunits", "largest_count"):
-            r[name] = int(r[name])
-        r["runs"] = int(r["restarts"])
-        r["fits"] = round(float(r["p_fit"]) * r["runs"])
-        r["runs_above"] = runs_of_a_miss(float(r["p_fit_above"]), float(r["p_fit_above_high"]))
-        return r
+        """One row of docs/largest_fraction.csv (as `fraction_rows` gives it)."""
+        return next(r for r in fraction_rows()
+                    if r["globule_diameter"] == diameter and r["linker"] == linker)
 
     def fraction_bound_bites() -> str:
         """Where the map's bound f_B is below 1, in words: "30 Å at linker 1 (99 %), ...", each
@@ -137,7 +153,7 @@ def macros(numbers) -> dict:
                 by.setdefault(r["globule_diameter"], []).append((r["linker"], pct))
         parts = []
         for d, points in by.items():
-            ls = [lk for lk, _ in points]
+            ls = [str(lk) for lk, _ in points]
             which = (f"linker {ls[0]}" if len(ls) == 1 else
                      f"linkers {', '.join(ls[:-1])} and {ls[-1]}")
             parts.append(f"{d} Å at {which} ({', '.join(p for _, p in points)})")
@@ -145,24 +161,17 @@ def macros(numbers) -> dict:
 
     def fraction_map_table() -> str:
         """docs/largest_fraction.csv (tools/fraction_map.py docs) as the page's map: the largest
-        count k of N with its P(fit), the one more decorated count missed in its restarts (the
-        walk's R, 3), f_B and the bracket."""
-        rows = fraction_rows()
+        count k of N with its P(fit), the one more decorated count missed in every restart, f_B
+        and the bracket."""
         head = ("| diameter (Å) | linker | subunits N | largest fraction found (k/N) | "
                 "P(fit) there (runs) | one more decorated | bound f_B | bracket |\n"
                 "|---|---|---|---|---|---|---|---|\n")
-        lines = []
-        for r in rows:
-            n, k, runs = int(r["subunits"]), int(r["largest_count"]), int(r["restarts"])
-            fits = round(float(r["p_fit"]) * runs)
-            # the walk ends with every one of its R restarts missing at k + 1: the file keeps
-            # P(fit) 0 there and its Wilson interval's top, which names R
-            above = runs_of_a_miss(float(r["p_fit_above"]), float(r["p_fit_above_high"]))
-            lines.append(f"| {r['globule_diameter']} | {r['linker']} | {n} | "
-                         f"{float(r['largest_fraction']):.3f} ({k}/{n}) | {fits}/{runs} | "
-                         f"{k + 1}/{n}: 0/{above} | {float(r['fraction_bound']):.3f} | "
-                         f"{r['bracket']} |")
-        return head + "\n".join(lines)
+        return head + "\n".join(
+            f"| {r['globule_diameter']} | {r['linker']} | {r['subunits']} | "
+            f"{float(r['largest_fraction']):.3f} ({r['largest_count']}/{r['subunits']}) | "
+            f"{r['fits']}/{r['runs']} | {r['largest_count'] + 1}/{r['subunits']}: "
+            f"0/{r['runs_above']} | {float(r['fraction_bound']):.3f} | {r['bracket']} |"
+            for r in fraction_rows())
 
     return {"rows_table": rows_table, "said": said, "made": made,
             "fraction_map_table": fraction_map_table,

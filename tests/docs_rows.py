@@ -1,16 +1,34 @@
 """Physics tables of the docs read from their pages, so that a test recomputing a published number
 compares with the page, not with a copy (editing the number makes the test fail). Each reader
 finds its section by anchor and its table by the start of its header and raises ValueError when
-the section, the table or a row does not parse. A page that quotes its numbers from docs/data/
-(`render_macros: true`) is read as the site shows it, rendered. Standard library only, but for
-that rendering (tests/unit and tests/blender both read them). The infinite fibril's map (docs/notebook/search.md#map-v5) has its
+the section, the table or a row does not parse. Each page is read as the site shows it
+(docs/hooks/page_numbers.py's `page_text`: a page with `render_macros: true` rendered from its data
+files), so a table a page renders from a file is read like a typed one. Standard library and the
+docs' own requirements (jinja2, yaml: every venv has them) only: tests/unit and tests/blender
+both read them. The infinite fibril's map (docs/notebook/search.md#map-v5) has its
 own reader, bench/docs_map.py, which the bench uses too."""
+import functools
+import importlib.util
 import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 LARGEST_FRACTION = ROOT / "docs" / "model" / "largest-fraction.md"
 BENCHMARKS = ROOT / "docs" / "benchmarks.md"
+
+
+@functools.lru_cache(maxsize=None)
+def _page_numbers():
+    spec = importlib.util.spec_from_file_location(
+        "page_numbers", ROOT / "docs" / "hooks" / "page_numbers.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def page_text(page: pathlib.Path) -> str:
+    """A docs page's Markdown as the site shows it (docs/hooks/page_numbers.py, loaded by path)."""
+    return _page_numbers().page_text(page)
 
 
 def body(lines: list[str], head: int, where: str) -> list[str]:
@@ -62,22 +80,6 @@ def table_rows(text: str, anchor: str, header: str, name: str) -> list[str]:
     return [line.strip().strip("|").strip() for line in body(lines, head, f"{name} {anchor}")]
 
 
-def page_text(path: pathlib.Path) -> str:
-    """A page as the site shows it: one whose front matter says `render_macros: true` rendered
-    from its data files (docs/hooks/page_numbers.py, loaded only then: it needs Jinja2 and
-    PyYAML), any other page as it is."""
-    text = path.read_text(encoding="utf-8")
-    front = re.match(r"---\n(.*?)\n---\n", text, re.S)
-    if not (front and re.search(r"^render_macros: true$", front[1], re.M)):
-        return text
-    import importlib.util
-    spec = importlib.util.spec_from_file_location("page_numbers",
-                                                  ROOT / "docs" / "hooks" / "page_numbers.py")
-    page_numbers = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(page_numbers)
-    return page_numbers.page_text(path)
-
-
 def docs_table(page: str, header: str) -> list[dict[str, str]]:
     """The rows of the one table of docs page `page` (a path under docs/) whose header row starts
     with `header`, each a {column: cell}: a fast test reads the number it recomputes from the
@@ -101,7 +103,7 @@ def largest_fraction_map(page: pathlib.Path = LARGEST_FRACTION) -> list[dict]:
     """The largest-fraction map's rows: diameter, linker, subunits N, largest_count k, fits
     (fits, runs) at k, above (k + 1, runs missed there), fraction_bound f_B, bracket."""
     rows = []
-    for row in table_rows(page.read_text(encoding="utf-8"), "{#map}",
+    for row in table_rows(page_text(page), "{#map}",
                           "| diameter (Å) | linker | subunits N | largest fraction found (k/N) |",
                           page.name):
         m = FRACTION_ROW.fullmatch(row)
@@ -124,7 +126,7 @@ def map_v6_runs(page: pathlib.Path = BENCHMARKS) -> dict[int, dict[str, int]]:
     fibril's minimal-linker map at MODEL_VERSION 6 (`minimal-linker --periodic auto --restarts
     5 --workers 2`), counted by diameter."""
     rows = {}
-    for row in table_rows(page.read_text(encoding="utf-8"), "{#map-v6-cost}",
+    for row in table_rows(page_text(page), "{#map-v6-cost}",
                           "| diameter (Å) | cell layers | misses (clear) |", page.name):
         m = MAP6_ROW.fullmatch(row)
         if not m:
@@ -139,7 +141,7 @@ def table(page: pathlib.Path, anchor: str, header: str) -> list[dict[str, str]]:
     of the header's cells to the row's (a ValueError when a row has another number of cells):
     docs_table where a header is not unique on its page (docs/model/*.md: end effects, linker
     integrity, the inflate schedule, the bound's bracket, ...)."""
-    lines, head = under(page.read_text(encoding="utf-8"), anchor, header, page.name)
+    lines, head = under(page_text(page), anchor, header, page.name)
     return as_dicts(lines, head, f"{page.name} {anchor}")
 
 

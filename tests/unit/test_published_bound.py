@@ -7,7 +7,7 @@ bounds were measured at MODEL_VERSION 4 (commit 49025eb); re-checked under MODEL
 recomputed here (the current map's minima: docs/benchmarks.md#map-v6-cost,
 tests/blender/test_published_searches.py)."""
 import pytest
-from docs_rows import ROOT, row, span, table
+from docs_rows import ROOT, page_text, row, span, table
 
 from fibrilfit.model import bound as B
 from fibrilfit.model import params as P
@@ -50,7 +50,7 @@ def test_a_cell_or_row_that_does_not_parse_is_an_error(tmp_path):
     assert span("29–36") == (29, 36) and span("0.3 %") == (0.3, 0.3)
     assert span("2–6 of 50") == (2, 6)
     page = tmp_path / "page.md"
-    page.write_text((ROOT / "docs" / "model" / "bound.md").read_text(encoding="utf-8").replace(
+    page.write_text(page_text(ROOT / "docs" / "model" / "bound.md").replace(
         "| 30 Å | infinite (auto cell) | 2 |", "| 30 Å | infinite (auto cell) | 2 | 3 |"))
     with pytest.raises(ValueError, match="does not parse"):
         table(page, "{#bracket}", "| globule | fibril |")

@@ -9,7 +9,8 @@ tests/docs_rows.py, so that editing a number there makes these fail):
 The searches themselves (the 20 Å rows of both) are recomputed by
 tests/blender/test_published_searches.py."""
 import pytest
-from docs_rows import BENCHMARKS, LARGEST_FRACTION, largest_fraction_map, map_v6_runs
+from docs_rows import (BENCHMARKS, LARGEST_FRACTION, largest_fraction_map, map_v6_runs,
+                       page_text)
 
 from fibrilfit.model import params as P
 from fibrilfit.model.fraction_bound import fraction_bracket, fraction_limit
@@ -49,7 +50,7 @@ def test_the_code_gives_the_published_cell_of_the_map_at_model_version_6(diamete
 
 def test_a_row_that_does_not_parse_is_an_error(tmp_path):
     page = tmp_path / "page.md"
-    page.write_text(LARGEST_FRACTION.read_text(encoding="utf-8").replace(
+    page.write_text(page_text(LARGEST_FRACTION).replace(
         "| 0.333 (4/12) |", "| 0.334 (4/12) |"))
     with pytest.raises(ValueError, match="does not parse"):
         largest_fraction_map(page)

@@ -24,13 +24,16 @@ fresh folder under out/pictures/ (only --report-dir photographs a report made be
 from __future__ import annotations
 
 import argparse
+import datetime
 import functools
 import importlib.util
+import json
 import os
 import pathlib
 import shutil
 import subprocess
 import sys
+import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -155,13 +158,23 @@ LARGEST = ["largest-fraction", "--globule-diameter", "20", "--linker", "1:4", "-
 
 def largest_fraction(report_dir) -> str:
     """docs/largest_fraction.png: the command's own plot (found and bound against the linker);
-    its largest_fraction.json kept as docs/data/pictures/largest_fraction_20A.json."""
+    its largest_fraction.json kept in docs/data/pictures/largest_fraction_20A.json with the
+    date, commit, MODEL_VERSION, command and wall time beside it."""
     out = OUT / "largest_fraction"
     shutil.rmtree(out, ignore_errors=True)
+    load, t = os.getloadavg(), time.perf_counter()
     fibrilfit(*LARGEST, "--out", str(out.relative_to(ROOT)))
+    wall = time.perf_counter() - t
     shutil.copyfile(out / "largest_fraction.png", ROOT / "docs" / "largest_fraction.png")
     PICTURE_DATA.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(out / "largest_fraction.json", PICTURE_DATA / "largest_fraction_20A.json")
+    record = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="minutes"),
+              "commit": picture_stamp.commit(), "model_version": picture_stamp.model_version(),
+              "command": "fibrilfit " + " ".join(LARGEST) + f" --out {out.relative_to(ROOT)}",
+              "made_by": "make pictures (tools/pictures.py)", "wall_s": round(wall, 1),
+              "load_average_before": [round(v, 2) for v in load],
+              "load_average_after": [round(v, 2) for v in os.getloadavg()],
+              "largest_fraction": json.loads((out / "largest_fraction.json").read_text())}
+    (PICTURE_DATA / "largest_fraction_20A.json").write_text(json.dumps(record, indent=1) + "\n")
     return ("fibrilfit " + " ".join(LARGEST) + f" --out {out.relative_to(ROOT)} (its plot; "
             "rows in docs/data/pictures/largest_fraction_20A.json)")
 

@@ -236,7 +236,7 @@ docs: $(VENV)/.docs-installed
 # Every picture the docs show that the model makes, made again from this checkout and stamped
 # with its MODEL_VERSION (tools/pictures.py; tests/unit/test_pictures.py fails an older stamp).
 # The report screenshot uses the trixie chroot's Chromium (root, as make test-blender); about
-# 15 min on two cores. PICTURES_ARGS="--only report_6cu7.png" makes one.
+# 20 min on two cores. PICTURES_ARGS="--only report_6cu7.png" makes one (--list: each stamp).
 PICTURES_ARGS ?=
 pictures: $(VENV)/.installed
 	$(VENV)/bin/python tools/pictures.py $(PICTURES_ARGS)

@@ -11,7 +11,7 @@ the caller.
     python tools/fraction_map.py abeta --linkers 13,15 [--restarts 3]     # Aβ42–GFP, largest
     python tools/fraction_map.py abeta-minimal --fraction 0.1 [--restarts 3]
     python tools/fraction_map.py show [--out DIR]
-    python tools/fraction_map.py docs [--out DIR]   # also docs/largest_fraction.csv and .png
+    python tools/fraction_map.py docs [--out DIR]   # also docs/largest_fraction.csv (.png: OUT)
 
 Every folder's largest_fraction.json / minimal_linker.json is the command's own output; this
 script adds only the timings and the table.

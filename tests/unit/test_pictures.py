@@ -6,6 +6,7 @@ notebook page shows is a record of its day and keeps the version it was made at,
 stamp names. Every picture is shown by some page, and every picture `make pictures` makes is one
 the docs show."""
 import importlib.util
+import json
 import pathlib
 import re
 
@@ -63,6 +64,20 @@ def test_a_picture_is_of_the_codes_model_version(png):
     assert int(stamp["model_version"]) == current, (
         f"docs/{name} was made at MODEL_VERSION {stamp['model_version']}, the code is at "
         f"{current}: `make pictures` (or `make test-blender ACCEPT_SCREENS=1` for the screens)")
+
+
+RUNS = sorted((DOCS / "data" / "pictures").glob("*.json"))
+
+
+@pytest.mark.parametrize("path", RUNS, ids=[p.name for p in RUNS])
+def test_a_pictures_run_is_of_the_codes_model_version(path):
+    """docs/data/pictures/: the runs behind the model's plots (written by `make pictures` beside
+    the pictures), which captions point at: of the code's MODEL_VERSION, as the pictures are."""
+    run = json.loads(path.read_text(encoding="utf-8"))
+    assert run.get("commit") and run.get("date"), path.name
+    assert int(run["model_version"]) == picture_stamp.model_version(), (
+        f"docs/data/pictures/{path.name} is of MODEL_VERSION {run['model_version']}: "
+        "`make pictures` makes it again with its picture")
 
 
 def test_make_pictures_makes_only_pictures_the_docs_show():

@@ -27,7 +27,7 @@ import time
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
-WIDTH, HEIGHT = 1600, 1000
+WIDTH, HEIGHT = 1600, 1300  # tall enough for the sidebar with a result box and its span lines
 MARK = (255, 0, 255)  # gui_probe.py's colours
 PANEL = (0, 255, 255)
 ADDON = "bl_ext.user_default.fibrilfit"

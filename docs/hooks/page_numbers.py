@@ -48,11 +48,19 @@ def model_version() -> int:
 
 @functools.lru_cache(maxsize=None)
 def costs() -> dict[str, dict]:
+    """docs/data/costs.csv by key: `wall_s` the median of the repeats' wall times `wall_s_all`,
+    `cpu_s` the median of their CPU times `cpu_s_all` (None where it was not recorded)."""
+    def seconds(text: str) -> list[float]:
+        return [float(x) for x in (text or "").split()]
     rows = {}
     with open(DATA / "costs.csv", encoding="utf-8") as f:
         for r in csv.DictReader(f):
             r = dict(r)
             r["wall_s"] = float(r["wall_s"])
+            r["wall_s_all"] = seconds(r.get("wall_s_all")) or [r["wall_s"]]
+            r["repeats"] = int(r.get("repeats") or len(r["wall_s_all"]))
+            r["cpu_s"] = float(r["cpu_s"]) if r.get("cpu_s") else None
+            r["cpu_s_all"] = seconds(r.get("cpu_s_all"))
             r["minutes"] = round(r["wall_s"] / 60, 1)
             r["model_version"] = int(r["model_version"])
             rows[r["key"]] = r
@@ -211,19 +219,36 @@ def pct(x: float) -> str:
 
 
 def cost_table() -> str:
-    """docs/data/costs.csv as one Markdown table: command × system × size × protofilaments."""
+    """docs/data/costs.csv as one Markdown table: command × system × size × protofilaments, the
+    median wall time and CPU time of the repeats, with what each means above it."""
     mv = model_version()
-    head = ("| command | system | layers | protofilaments | restarts | minutes on 2 cores "
-            "(wall s) | answer | load | measured |\n|---|---|---|---|---|---|---|---|---|\n")
+    legend = (
+        "*Wall*: the minutes the command took on this machine, start to finish (the median of "
+        "the repeats; seconds in brackets): what you wait, at the load named. *CPU*: the "
+        "seconds of processor time the command and every worker it started used (user + "
+        "system, median of the repeats): what the command asks of the machine, which other "
+        "users barely change. *CPU ÷ workers*: that, spread over the workers the command "
+        "runs on; on two idle cores a command takes about this long (a parallel one at "
+        "least this long: its workers rarely finish together). *Repeats*: how many times "
+        "the command was run, in rounds over the commands (every time in "
+        "`docs/data/costs.csv`).\n\n")
+    head = ("| command | system | layers | protofilaments | restarts | workers | wall: min (s) "
+            "| CPU s | CPU ÷ workers: min | repeats | answer | load | measured |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     lines = []
     for r in costs().values():
         when = f"{r['date']}, {r['commit']}, MODEL_VERSION {r['model_version']}, bpy {r['bpy']}"
         if r["model_version"] != mv:
             when += " (**older than the code's**)"
+        cpu, per = "not recorded", "-"
+        if r["cpu_s"] is not None:
+            cpu = f"{r['cpu_s']:.1f}"
+            per = f"{r['cpu_s'] / int(r['workers']) / 60:.1f}"
         lines.append(f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} "
-                     f"| {r['restarts']} | {r['minutes']} ({r['wall_s']:.1f}) | {r['answer']} "
+                     f"| {r['restarts']} | {r['workers']} | {r['minutes']} ({r['wall_s']:.1f}) "
+                     f"| {cpu} | {per} | {r['repeats']} | {r['answer']} "
                      f"| {r['load_before']} → {r['load_after']} | {when} |")
-    return head + "\n".join(lines)
+    return legend + head + "\n".join(lines)
 
 
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,

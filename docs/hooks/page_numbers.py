@@ -223,30 +223,31 @@ def cost_table() -> str:
     median wall time and CPU time of the repeats, with what each means above it."""
     mv = model_version()
     legend = (
-        "*Wall*: the minutes the command took on this machine, start to finish (the median of "
-        "the repeats; seconds in brackets): what you wait, at the load named. *CPU*: the "
-        "seconds of processor time the command and every worker it started used (user + "
-        "system, median of the repeats): what the command asks of the machine, which other "
-        "users barely change. *CPU ÷ workers*: that, spread over the workers the command "
-        "runs on; on two idle cores a command takes about this long (a parallel one at "
-        "least this long: its workers rarely finish together). *Repeats*: how many times "
-        "the command was run, in rounds over the commands (every time in "
-        "`docs/data/costs.csv`).\n\n")
+        "*Wall*: the minutes from start to finish on this machine (the median of the repeats; "
+        "seconds in brackets): what you wait, at the load named. *CPU s*: the processor seconds "
+        "the command and every worker it started used (user + system, the median of the "
+        "repeats): the work itself, which the machine's other users barely change. *Cores "
+        "busy*: CPU ÷ wall, how many cores the command kept busy on average: a `run` keeps "
+        "a little more than one (Blender's own threads), a command with two workers up to two; "
+        "well below that, the command waited for cores other work held. On two idle cores a "
+        "command takes between CPU ÷ 2 and about its CPU time. *Repeats*: how many times the "
+        "command was run, in rounds over the commands (each repeat's times are in "
+        "`docs/data/costs.csv`). *Load*: the 1-minute load average before → after (the medians "
+        "over the repeats), which counts work at every priority.\n\n")
     head = ("| command | system | layers | protofilaments | restarts | workers | wall: min (s) "
-            "| CPU s | CPU ÷ workers: min | repeats | answer | load | measured |\n"
+            "| CPU s | cores busy | repeats | answer | load | measured |\n"
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     lines = []
     for r in costs().values():
         when = f"{r['date']}, {r['commit']}, MODEL_VERSION {r['model_version']}, bpy {r['bpy']}"
         if r["model_version"] != mv:
             when += " (**older than the code's**)"
-        cpu, per = "not recorded", "-"
+        cpu, busy = "not recorded", "-"
         if r["cpu_s"] is not None:
-            cpu = f"{r['cpu_s']:.1f}"
-            per = f"{r['cpu_s'] / int(r['workers']) / 60:.1f}"
+            cpu, busy = f"{r['cpu_s']:.1f}", f"{r['cpu_s'] / r['wall_s']:.2f}"
         lines.append(f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} "
                      f"| {r['restarts']} | {r['workers']} | {r['minutes']} ({r['wall_s']:.1f}) "
-                     f"| {cpu} | {per} | {r['repeats']} | {r['answer']} "
+                     f"| {cpu} | {busy} | {r['repeats']} | {r['answer']} "
                      f"| {r['load_before']} → {r['load_after']} | {when} |")
     return legend + head + "\n".join(lines)
 

@@ -178,7 +178,8 @@ def test_the_cost_table_shows_cpu_time_and_repeats():
     table = page_numbers.cost_table()
     head = next(ln for ln in table.splitlines() if ln.startswith("| command"))
     assert "CPU s" in head and "repeats" in head and "workers" in head
-    assert "*CPU*:" in table and "*Wall*:" in table  # what each means, above the table
+    for word in ("*Wall*:", "*CPU s*:", "*Cores busy*:", "*Repeats*:", "*Load*:"):
+        assert word in table, f"the cost table does not say what {word} means"
     cells = [c.strip() for c in head.strip("|").split("|")]
     for key, r in page_numbers.costs().items():
         start = f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} |"
@@ -186,3 +187,5 @@ def test_the_cost_table_shows_cpu_time_and_repeats():
         row = dict(zip(cells, (c.strip() for c in line.strip("|").split("|"))))
         assert row["repeats"] == str(r["repeats"]), key
         assert row["CPU s"] == ("not recorded" if r["cpu_s"] is None else f"{r['cpu_s']:.1f}"), key
+        if r["cpu_s"] is not None:
+            assert float(row["cores busy"]) == pytest.approx(r["cpu_s"] / r["wall_s"], abs=0.006)

@@ -1,17 +1,25 @@
 """What each command costs: the commands the pages show, each the whole command in a fresh
-process, its wall time on this machine (2 cores, shared) with the load before and after, written
-as rows of docs/data/costs.csv (the docs' table of costs, docs/benchmarks.md#costs, reads it
-through the docs build; tests/unit/test_docs_numbers.py checks every row is at the current
-MODEL_VERSION).
+process, on this machine (2 cores, shared), written as rows of docs/data/costs.csv (the docs'
+table of costs, docs/benchmarks.md#costs, reads it through the docs build;
+tests/unit/test_docs_numbers.py checks every row is at the current MODEL_VERSION and that its
+wall_s is the median of its wall_s_all).
 
-    .venv/bin/python bench/costs.py [--only KEY,KEY] [--csv docs/data/costs.csv] [--out out/costs]
+    .venv/bin/python bench/costs.py [--only KEY,KEY] [--repeats 3] [--csv docs/data/costs.csv]
     .venv/bin/python bench/costs.py --adopt KEY=DIR   # a run already made by KEY's command
                                                      # under `/usr/bin/time -v` (DIR/time.log)
 
-A row replaces the row of the same key; the others stay. One round each (the machine is shared
-by several sessions: a time is a measurement at the load it names, not a median). Every case is
-a command a page shows or tells the reader to run; `--only` picks some (the cheap ones by
-default: the long ones, marked `long`, only when named).
+Each command runs `--repeats` times (3 by default), in rounds: every chosen command once, then
+every one again, so the machine's other users (the load, 7 to 25 on some days) fall on all the
+commands alike. A row holds every repeat's wall time (`wall_s_all`) and CPU time (`cpu_s_all`:
+user + system seconds of the command and every process it started and waited for, its workers
+included, from getrusage(RUSAGE_CHILDREN) around the command), their medians (`wall_s`,
+`cpu_s`), and the median of the 1-minute load before and after the repeats. The wall time is
+what the reader waited at that load; the CPU time is what the command asked of the machine,
+which the other users barely change. A row replaces the row of the same key; the others stay
+(a row from before repeats were kept reads as one repeat, its CPU time unrecorded unless its
+`/usr/bin/time -v` log says it). Every case is a command a page shows or tells the reader to
+run; `--only` picks some (the cheap ones by default: the long ones, marked `long`, only when
+named). Every repeat is also appended to out/costs/repeats.jsonl.
 """
 from __future__ import annotations
 
@@ -22,6 +30,9 @@ import json
 import os
 import pathlib
 import re
+import resource
+import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -33,8 +44,8 @@ PAIR = ["--fibril", F, "--domain", D]
 # `reports`), with a `stamp`: date, commit, MODEL_VERSION, the command and its wall time.
 REPORTS = {"report_6cu7_20": "tutorial_20", "report_6cu7_periodic": "tutorial_cell"}
 FIELDS = ["key", "command", "system", "layers", "protofilaments", "restarts", "workers",
-          "wall_s", "answer", "date", "commit", "model_version", "bpy", "load_before",
-          "load_after", "argv"]
+          "wall_s", "repeats", "wall_s_all", "cpu_s", "cpu_s_all", "answer", "date", "commit",
+          "model_version", "bpy", "load_before", "load_after", "argv"]
 
 
 # key: (command, system, layers, protofilaments, restarts, long, arguments after the program)
@@ -99,17 +110,38 @@ def answer_of(key: str, argv: list[str], stdout: str) -> str:
     return re.split(r"[.:](?:\s|$)", lines[-1][len("answer: "):])[0] if lines else ""
 
 
-def row(key: str, wall: float, load0, load1, answer: str, bpy: str) -> dict:
+def median(values: list[float]) -> float:
+    return statistics.median(values)
+
+
+def row(key: str, walls: list[float], cpus: list[float], load0: float, load1: float,
+        answer: str, bpy: str) -> dict:
+    """KEY's row from its repeats: every wall and CPU time (s) and their medians; `cpus` may be
+    empty (not recorded). load0, load1: the 1-minute load before and after (medians)."""
     command, system, layers, pfs, restarts, _, argv = CASES[key]
     workers = argv[argv.index("--workers") + 1] if "--workers" in argv else str(os.cpu_count())
+    walls = [round(w, 1) for w in walls]
+    cpus = [round(c, 1) for c in cpus]
     return {"key": key, "command": command, "system": system, "layers": layers,
             "protofilaments": pfs, "restarts": restarts,
             "workers": workers if argv[0] in ("report", "minimal-linker") else "1",
-            "wall_s": f"{wall:.1f}", "answer": answer,
+            "wall_s": f"{median(walls):.1f}", "repeats": str(len(walls)),
+            "wall_s_all": " ".join(f"{w:.1f}" for w in walls),
+            "cpu_s": f"{median(cpus):.1f}" if cpus else "",
+            "cpu_s_all": " ".join(f"{c:.1f}" for c in cpus), "answer": answer,
             "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d"),
             "commit": commit(), "model_version": model_version(), "bpy": bpy,
             "load_before": f"{load0:.1f}", "load_after": f"{load1:.1f}",
             "argv": "fibrilfit " + " ".join(argv)}
+
+
+def one_repeat(row_: dict) -> dict:
+    """A row written before repeats were kept: its one wall time is its only repeat."""
+    r = dict(row_)
+    if not r.get("repeats"):
+        r.update(repeats="1", wall_s_all=r["wall_s"], cpu_s=r.get("cpu_s") or "",
+                 cpu_s_all=r.get("cpu_s") or "")
+    return r
 
 
 def keep_report(key: str, folder: pathlib.Path, r: dict, made_by: str | None = None,
@@ -133,19 +165,41 @@ def bpy_version() -> str:
         return "?"
 
 
-def measure(key: str) -> dict:
+def measure_once(key: str) -> dict:
+    """KEY's command run once in a fresh process: its wall time, its CPU time (user + system of
+    the command and every process it waited for), the load before and after, its answer."""
     argv = CASES[key][-1]
+    if "--out" in argv:  # a command refuses an --out that holds a finished batch
+        shutil.rmtree(ROOT / argv[argv.index("--out") + 1], ignore_errors=True)
     load0 = os.getloadavg()[0]
+    ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     cp = subprocess.run([sys.executable, "-m", "fibrilfit", *argv], cwd=ROOT, capture_output=True,
                         text=True)
     wall = time.perf_counter() - t
+    ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    load1 = os.getloadavg()[0]
     if cp.returncode != 0:
         sys.exit(f"{key}: exit {cp.returncode}: {cp.stderr[-600:]}")
     log = ROOT / "out" / "costs" / f"{key}.log"
     log.parent.mkdir(parents=True, exist_ok=True)
     log.write_text(cp.stdout + "\n--- stderr\n" + cp.stderr, encoding="utf-8")
-    r = row(key, wall, load0, os.getloadavg()[0], answer_of(key, argv, cp.stdout), bpy_version())
+    cpu = (ru1.ru_utime - ru0.ru_utime) + (ru1.ru_stime - ru0.ru_stime)
+    rep = {"key": key, "wall_s": round(wall, 2), "cpu_s": round(cpu, 2), "load_before": load0,
+           "load_after": load1, "answer": answer_of(key, argv, cp.stdout),
+           "end": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}
+    with open(log.parent / "repeats.jsonl", "a", encoding="utf-8") as f:
+        f.write(json.dumps(rep, ensure_ascii=False) + "\n")
+    return rep
+
+
+def measured_row(key: str, reps: list[dict]) -> dict:
+    """KEY's row from its repeats so far; answers that differ between repeats are all named."""
+    answers = list(dict.fromkeys(r["answer"] for r in reps))
+    r = row(key, [x["wall_s"] for x in reps], [x["cpu_s"] for x in reps],
+            median([x["load_before"] for x in reps]), median([x["load_after"] for x in reps]),
+            " / ".join(answers), bpy_version())
+    argv = CASES[key][-1]
     if "--out" in argv:
         keep_report(key, ROOT / argv[argv.index("--out") + 1], r)
     return r
@@ -158,6 +212,8 @@ def adopt(key: str, folder: pathlib.Path) -> dict:
     h, m, s = (["0"] + re.search(r"Elapsed \(wall clock\) time.*: ([\d:.]+)", text)
                .group(1).split(":"))[-3:]
     wall = int(h) * 3600 + int(m) * 60 + float(s)
+    cpu = sum(float(re.search(rf"{kind} time \(seconds\): ([\d.]+)", text).group(1))
+              for kind in ("User", "System"))  # the command and the workers it waited for
     argv = CASES[key][-1]
     argv = argv[:argv.index("--out") + 1] + [str(folder)]
     doc = json.loads((folder / "report.json").read_text())
@@ -165,8 +221,8 @@ def adopt(key: str, folder: pathlib.Path) -> dict:
     answer = (f"{doc['answer']}; P(fit) {pf['fits']}/{pf['runs']} at {pf['linker']}; "
               f"minimal linker {m_['linker']}")
     load0 = float((folder / "load_before").read_text().split()[0])
-    r = row(key, wall, load0, float((folder / "load_after").read_text().split()[0]), answer,
-            doc["versions"]["blender"])
+    r = row(key, [wall], [cpu], load0, float((folder / "load_after").read_text().split()[0]),
+            answer, doc["versions"]["blender"])
     r["date"] = (folder / "date").read_text().strip()
     r["commit"] = (folder / "commit").read_text().strip()
     r["argv"] = "fibrilfit " + " ".join(argv)
@@ -179,13 +235,15 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--only", help="keys, comma-separated (default: every case not long)")
     ap.add_argument("--adopt", action="append", default=[], metavar="KEY=DIR")
+    ap.add_argument("--repeats", type=int, default=3,
+                    help="times each command runs, in rounds over the commands [default 3]")
     ap.add_argument("--csv", type=pathlib.Path, default=ROOT / "docs" / "data" / "costs.csv")
     ap.add_argument("--refresh-answers", action="store_true",
                     help="re-read each `run` row's answer from its log in out/costs/")
     args = ap.parse_args()
     rows = {}
     if args.csv.exists():
-        rows = {r["key"]: r for r in csv.DictReader(open(args.csv, encoding="utf-8"))}
+        rows = {r["key"]: one_repeat(r) for r in csv.DictReader(open(args.csv, encoding="utf-8"))}
     if args.refresh_answers:
         for key, r in rows.items():
             log = ROOT / "out" / "costs" / f"{key}.log"
@@ -198,11 +256,18 @@ def main() -> None:
     for item in args.adopt:
         key, folder = item.split("=", 1)
         rows[key] = adopt(key, pathlib.Path(folder))
-    for key in keys:
-        rows[key] = measure(key)
-        print(f"{key}: {rows[key]['wall_s']} s at load {rows[key]['load_before']} -> "
-              f"{rows[key]['load_after']}: {rows[key]['answer']}", flush=True)
-        write(args.csv, rows)
+    if args.repeats < 1:
+        sys.exit("--repeats: must be 1 or more")
+    reps: dict[str, list[dict]] = {key: [] for key in keys}
+    for round_ in range(args.repeats):
+        for key in keys:  # a round runs every command once: the load falls on all alike
+            reps[key].append(measure_once(key))
+            rows[key] = measured_row(key, reps[key])
+            last = reps[key][-1]
+            print(f"round {round_ + 1}: {key}: {last['wall_s']:.1f} s wall, {last['cpu_s']:.1f} s "
+                  f"CPU at load {last['load_before']:.1f} -> {last['load_after']:.1f}: "
+                  f"{last['answer']}", flush=True)
+            write(args.csv, rows)
     write(args.csv, rows)
 
 

@@ -48,11 +48,19 @@ def model_version() -> int:
 
 @functools.lru_cache(maxsize=None)
 def costs() -> dict[str, dict]:
+    """docs/data/costs.csv by key: `wall_s` the median of the repeats' wall times `wall_s_all`,
+    `cpu_s` the median of their CPU times `cpu_s_all` (None where it was not recorded)."""
+    def seconds(text: str) -> list[float]:
+        return [float(x) for x in (text or "").split()]
     rows = {}
     with open(DATA / "costs.csv", encoding="utf-8") as f:
         for r in csv.DictReader(f):
             r = dict(r)
             r["wall_s"] = float(r["wall_s"])
+            r["wall_s_all"] = seconds(r.get("wall_s_all")) or [r["wall_s"]]
+            r["repeats"] = int(r.get("repeats") or len(r["wall_s_all"]))
+            r["cpu_s"] = float(r["cpu_s"]) if r.get("cpu_s") else None
+            r["cpu_s_all"] = seconds(r.get("cpu_s_all"))
             r["minutes"] = round(r["wall_s"] / 60, 1)
             r["model_version"] = int(r["model_version"])
             rows[r["key"]] = r
@@ -211,19 +219,37 @@ def pct(x: float) -> str:
 
 
 def cost_table() -> str:
-    """docs/data/costs.csv as one Markdown table: command × system × size × protofilaments."""
+    """docs/data/costs.csv as one Markdown table: command × system × size × protofilaments, the
+    median wall time and CPU time of the repeats, with what each means above it."""
     mv = model_version()
-    head = ("| command | system | layers | protofilaments | restarts | minutes on 2 cores "
-            "(wall s) | answer | load | measured |\n|---|---|---|---|---|---|---|---|---|\n")
+    legend = (
+        "*Wall*: the minutes from start to finish on this machine (the median of the repeats; "
+        "seconds in brackets): what you wait, at the load named. *CPU s*: the processor seconds "
+        "the command and every worker it started used (user + system, the median of the "
+        "repeats): the work itself, which the machine's other users barely change. *Cores "
+        "busy*: CPU ÷ wall, how many cores the command kept busy on average: a `run` keeps "
+        "a little more than one (Blender's own threads), a command with two workers up to two; "
+        "well below that, the command waited for cores other work held. On two idle cores a "
+        "command takes between CPU ÷ 2 and about its CPU time. *Repeats*: how many times the "
+        "command was run, in rounds over the commands (each repeat's times are in "
+        "`docs/data/costs.csv`). *Load*: the 1-minute load average before → after (the medians "
+        "over the repeats), which counts work at every priority.\n\n")
+    head = ("| command | system | layers | protofilaments | restarts | workers | wall: min (s) "
+            "| CPU s | cores busy | repeats | answer | load | measured |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     lines = []
     for r in costs().values():
         when = f"{r['date']}, {r['commit']}, MODEL_VERSION {r['model_version']}, bpy {r['bpy']}"
         if r["model_version"] != mv:
             when += " (**older than the code's**)"
+        cpu, busy = "not recorded", "-"
+        if r["cpu_s"] is not None:
+            cpu, busy = f"{r['cpu_s']:.1f}", f"{r['cpu_s'] / r['wall_s']:.2f}"
         lines.append(f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} "
-                     f"| {r['restarts']} | {r['minutes']} ({r['wall_s']:.1f}) | {r['answer']} "
+                     f"| {r['restarts']} | {r['workers']} | {r['minutes']} ({r['wall_s']:.1f}) "
+                     f"| {cpu} | {busy} | {r['repeats']} | {r['answer']} "
                      f"| {r['load_before']} → {r['load_after']} | {when} |")
-    return head + "\n".join(lines)
+    return legend + head + "\n".join(lines)
 
 
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,

@@ -216,3 +216,36 @@ def test_the_cost_table_has_every_row():
     rows = [ln for ln in table.splitlines() if ln.startswith("| `")]
     assert len(rows) == len(page_numbers.costs())
     assert "{{ cost_table() }}" in (DOCS / "benchmarks.md").read_text(encoding="utf-8")
+
+
+def test_every_cost_is_the_median_of_its_repeats():
+    """bench/costs.py runs each command `repeats` times and writes every wall (and CPU) time:
+    the row's wall_s, which the pages quote, is their median, and cpu_s theirs."""
+    import statistics
+    for key, r in page_numbers.costs().items():
+        walls = r["wall_s_all"]
+        assert len(walls) == r["repeats"] >= 1, f"{key}: {r['repeats']} repeats, {walls}"
+        assert abs(r["wall_s"] - statistics.median(walls)) <= 0.051, \
+            f"{key}: wall_s {r['wall_s']} is not the median of {walls}"
+        if r["cpu_s"] is not None:
+            cpus = r["cpu_s_all"]
+            assert len(cpus) == r["repeats"], f"{key}: {len(cpus)} CPU times, {r['repeats']} repeats"
+            assert abs(r["cpu_s"] - statistics.median(cpus)) <= 0.051, \
+                f"{key}: cpu_s {r['cpu_s']} is not the median of {cpus}"
+
+
+def test_the_cost_table_shows_cpu_time_and_repeats():
+    table = page_numbers.cost_table()
+    head = next(ln for ln in table.splitlines() if ln.startswith("| command"))
+    assert "CPU s" in head and "repeats" in head and "workers" in head
+    for word in ("*Wall*:", "*CPU s*:", "*Cores busy*:", "*Repeats*:", "*Load*:"):
+        assert word in table, f"the cost table does not say what {word} means"
+    cells = [c.strip() for c in head.strip("|").split("|")]
+    for key, r in page_numbers.costs().items():
+        start = f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} |"
+        line = next(ln for ln in table.splitlines() if ln.startswith(start))
+        row = dict(zip(cells, (c.strip() for c in line.strip("|").split("|"))))
+        assert row["repeats"] == str(r["repeats"]), key
+        assert row["CPU s"] == ("not recorded" if r["cpu_s"] is None else f"{r['cpu_s']:.1f}"), key
+        if r["cpu_s"] is not None:
+            assert float(row["cores busy"]) == pytest.approx(r["cpu_s"] / r["wall_s"], abs=0.006)

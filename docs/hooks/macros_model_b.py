@@ -4,8 +4,10 @@ docs/data/model/ whose rows name where they come from (the columns `date`, `comm
 `model_version`, `bpy`, `command`; a cell left empty was not recorded). A page renders a table
 with `{{ measured_table("model/NAME.csv") }}` and quotes one cell of it with
 `{{ measured("model/NAME.csv", "COLUMN", {"COLUMN": "VALUE", ...}) }}` (or "k of n" with
-`{{ fits("model/NAME.csv", {...}) }}`), so the prose and the table cannot differ. Every cell is kept as the file writes it ("0.000" stays "0.000"). Standard library only (loaded by
-docs/hooks/page_numbers.py)."""
+`{{ fits("model/NAME.csv", {...}) }}`), so the prose and the table cannot differ. Every cell is
+kept as the file writes it ("0.000" stays "0.000"). The infinite fibril's maps are read from
+the notebook's tables (`infinite_map`, `cell_walk`), as bench/docs_map.py reads them for
+page_numbers' `maps`. Standard library only (loaded by docs/hooks/page_numbers.py)."""
 from __future__ import annotations
 
 import csv
@@ -15,6 +17,10 @@ import re
 # under each anchor whose header starts so), the same tables bench/docs_map.py reads for `maps`
 NOTEBOOK = "docs/notebook/search.md"
 MAP_HEADER = "| globule diameter (Å) | cell layers |"
+# The first map's periodic column (docs/notebook/search.md#minimal-linker-vs-size): the 3-restart
+# walk in the cell, "**3** (3/3; 0/3 at 2)" (a minimum) or "> 10 (0/3 at 8, 9 and 10; ...)"
+WALK_HEADER = "| globule diameter (Å) | minimal linker (residues"
+WALK = re.compile(r"\*\*(\d+)\*\* \(.*|(> \d+) \(.*|not run")
 PFIT = re.compile(r"(\d+)/(\d+) = \d\.\d\d \[[^]]*\](?: at (\d+))?")
 
 # The columns that say where a row comes from: every row carries them, the table shows the rest;
@@ -96,6 +102,23 @@ def macros(numbers) -> dict:
             rows[int(cells[col["globule diameter"]])] = row
         return rows
 
+    def cell_walk(diameter: int) -> str:
+        """The 3-restart walk's answer in the cell at `diameter` (the notebook's first map, its
+        periodic column): "3" (the minimal linker) or "> 10" (no fit up to 10; not finished)."""
+        text = (numbers.ROOT / NOTEBOOK).read_text(encoding="utf-8")
+        lines = text[text.index("{#minimal-linker-vs-size}"):].splitlines()
+        head = next(i for i, ln in enumerate(lines) if ln.startswith(WALK_HEADER))
+        for ln in lines[head + 2:]:
+            if not ln.startswith("|"):
+                break
+            cells = [c.strip() for c in ln.strip("|").split("|")]
+            if cells[0] == str(diameter):
+                m = WALK.fullmatch(cells[-1])
+                if not m or not (m[1] or m[2]):
+                    raise ValueError(f"{NOTEBOOK}: no cell walk at {diameter} Å: {cells[-1]}")
+                return m[1] or m[2]
+        raise ValueError(f"{NOTEBOOK}: no row for {diameter} Å")
+
     def wilson_high(k: int, n: int) -> str:
         """The upper end of the 95 % Wilson interval of k of n, as FibrilFit computes it."""
         from fibrilfit.sweep.stats import wilson
@@ -112,4 +135,4 @@ def macros(numbers) -> dict:
         return in_words([mapping[k] if field is None else mapping[k][field] for k in keys])
 
     return {"measured_table": measured_table, "measured": measured, "fits": fits,
-            "infinite_map": infinite_map, "wilson_high": wilson_high, "listed": listed}
+            "infinite_map": infinite_map, "cell_walk": cell_walk, "wilson_high": wilson_high, "listed": listed}

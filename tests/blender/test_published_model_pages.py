@@ -41,8 +41,8 @@ DATA = ROOT / "docs" / "data" / "model"
 
 
 def data_table(name: str) -> list[dict[str, str]]:
-    """The rows of docs/data/model/NAME.csv, the file a model page renders its table from, each a
-    {column: cell} as the page shows it."""
+    """The rows of the CSV `name` under docs/data/model/ (the file a model page renders its
+    table from), each a {column: cell} as the page shows it."""
     with open(DATA / f"{name}.csv", encoding="utf-8") as f:
         return list(csv.DictReader(f))
 

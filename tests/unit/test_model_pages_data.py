@@ -162,3 +162,19 @@ def test_the_hetero_thresholds_are_their_runs():
             shortest = min(x["linker"] for x in these if x["fits"])
             assert int(r[column]) == shortest, (r["seed"], column)
             assert not any(x["fits"] for x in these if x["linker"] < shortest)
+
+
+PAGES = ["linker-integrity", "occupancy", "periodic-cell", "protofilaments", "search", "settling",
+         "verdict", "default-model"]
+
+
+@pytest.mark.parametrize("name", PAGES)
+def test_the_method_pages_stay_converted(name):
+    """These pages quote their measured times, P(fit)s and thresholds from files
+    (tests/unit/test_docs_numbers.py checks every page marked so): each stays marked."""
+    import yaml
+    text = (ROOT / "docs" / "model" / f"{name}.md").read_text(encoding="utf-8")
+    m = re.match(r"\A---\n(.*?)\n---\n", text, re.S)
+    assert m, f"{name}.md: no front matter"
+    front = yaml.safe_load(m.group(1))
+    assert front.get("render_macros") is True and front.get("numbers") == "data", name

@@ -42,7 +42,7 @@ def test_every_row_says_where_it_comes_from(path):
         assert re.fullmatch(r"[0-9a-f]{7,40}|not recorded", r["commit"]), r
         assert re.fullmatch(r"\d+|before 1|not recorded", r["model_version"]), r
         assert r["command"].strip(), r
-        assert all(v is not None for v in r.values()), f"{path.name}: a row of another width: {r}"
+        assert None not in r and None not in r.values(), f"{path.name}: a row of another width: {r}"
 
 
 def test_the_commits_named_exist():

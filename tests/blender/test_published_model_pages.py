@@ -1,5 +1,6 @@
 """The cheapest rows of the model pages' physics tables, re-run under today's model and compared
-with the page (tests/docs_rows.py reads the row, so editing a number there makes these fail).
+with the page (tests/docs_rows.py reads the row, or, for a page that renders the table from a
+measured file, docs/data/model/*.csv, that file: so editing a number there makes these fail).
 Those tables were measured under older model versions; each page says under the table that the
 row was re-checked under MODEL_VERSION 6 and names the test here.
 
@@ -25,6 +26,7 @@ same on the three (the counts, stretches to 1e-6, frames), so the answer does no
 bpy: one_bpy. CPU a test 10-26 s (about 120 s for all), wall 15-150 s at a load of 10-15 on this
 2-core machine; the rows with 100-200 layers, 20 × 20 quality or linker 4's five cycles a seed
 cost minutes and are left out."""
+import csv
 import statistics
 
 import bpy
@@ -35,6 +37,14 @@ from fibrilfit import pipeline
 from fibrilfit.model import params as P
 
 MODEL = ROOT / "docs" / "model"
+DATA = ROOT / "docs" / "data" / "model"
+
+
+def data_table(name: str) -> list[dict[str, str]]:
+    """The rows of the CSV `name` under docs/data/model/ (the file a model page renders its
+    table from), each a {column: cell} as the page shows it."""
+    with open(DATA / f"{name}.csv", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
 
 
 def _run(p):
@@ -68,7 +78,7 @@ def _as_printed(fraction: float, cell: str) -> float:
 @pytest.mark.one_bpy
 @pytest.mark.parametrize("linker, quality", [("6", "5 × 5"), ("6", "10 × 10"), ("4", "10 × 10")])
 def test_linker_integrity_30A(scene, linker, quality):
-    want = row(table(MODEL / "linker-integrity.md", "{#linker-integrity}", "| globule | linker |"),
+    want = row(data_table("linker-integrity_quality"),
                {"globule": "30 Å", "linker": linker, "substeps × iterations": quality})
     steps, iterations = map(int, quality.split(" × "))
     runs = [_run(P.make_params(layers=20, globule_diameter=30, linker=int(linker), frames=250,
@@ -92,14 +102,13 @@ def test_linker_integrity_30A(scene, linker, quality):
 
 @pytest.mark.one_bpy
 def test_the_default_inflate_schedule_at_linker_5(scene):
-    schedule = table(MODEL / "search.md", "{#inflate-schedule}", "| schedule |")
-    want = next(r for r in schedule if r["schedule"].startswith("**default**"))
+    want = row(data_table("search_inflate_schedule"), {"key": "default"})
     runs = [_run(P.make_params(layers=20, globule_diameter=30, linker=5, protocol="inflate",
                                seed=seed)) for seed in range(5)]
     fits = sum(r["accommodated"] for r in runs)
     first = sum(r["inflate"]["cycles"][0]["accommodated"] for r in runs)
     frames = statistics.median(r["frames_simulated"] for r in runs)
-    assert f"**{fits}/5**" == want["linker 5: accommodated"]
+    assert f"{fits}/5" == want["linker 5: accommodated"]
     assert f"{first}/5" == want["of which in the first cycle"]
     assert frames == span(want["median frames"])[0]
 
@@ -119,8 +128,7 @@ def _six_cu7_ubiquitin():
 def test_stretched_linkers_today(scene, change, extra):
     from fibrilfit.analysis.leaks import members_inside_core
     from fibrilfit.analysis.verdict import chain_positions
-    want = row(table(MODEL / "protofilaments.md", "{#stretched-linkers}",
-                     "| change (MODEL_VERSION 6) |"), {"change (MODEL_VERSION 6)": change})
+    want = row(data_table("protofilaments_stretched_today"), {"change (MODEL_VERSION 6)": change})
     p = P.make_params(**{**_six_cu7_ubiquitin(), "linker": 20, **extra})
     r = _run(p)
     inside = members_inside_core(p, chain_positions(pipeline.current_model()))
@@ -132,7 +140,7 @@ def test_stretched_linkers_today(scene, change, extra):
 
 @pytest.mark.one_bpy
 def test_the_default_model_settles_with_the_full_bakes_verdict(scene):
-    want = row(table(MODEL / "settling.md", "{#settling}", "| model (MODEL_VERSION 6) |"),
+    want = row(data_table("settling_default_model"),
                {"model (MODEL_VERSION 6)": "default model, seeds 0–4"})
     full, short = [], []
     for seed in range(5):
@@ -154,8 +162,7 @@ def test_the_default_model_settles_with_the_full_bakes_verdict(scene):
 @pytest.mark.one_bpy
 @pytest.mark.parametrize("linker", ["5", "7"])
 def test_the_13_layer_cell_today(scene, linker):
-    want = row(table(MODEL / "periodic-cell.md", "{#cell-search}", "| cell (layers) |"),
-               {"linker": linker})
+    want = row(data_table("periodic-cell_cell_search_today"), {"linker": linker})
     low, high = span(want["seeds"])
     runs = [_run(P.make_params(globule_diameter=30, linker=int(linker), seed=seed,
                                periodic=int(want["cell (layers)"]), protocol="inflate"))

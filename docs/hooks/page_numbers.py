@@ -218,13 +218,14 @@ def pct(x: float) -> str:
     return f"{100 * x:g} %"
 
 
-def cost_table() -> str:
+def cost_table(note: str = "") -> str:
     """docs/data/costs.csv as one Markdown table: command × system × size × protofilaments, the
-    median wall time and CPU time of the repeats, with what each means above it."""
+    median wall time and CPU time of the repeats, with what each means above it; `note` (the
+    page's fast-test marker) goes on the line right above the table."""
     mv = model_version()
     legend = (
-        "*Wall*: the minutes from start to finish on this machine (the median of the repeats; "
-        "seconds in brackets): what you wait, at the load named. *CPU s*: the processor seconds "
+        "*Wall*: the time from start to finish on this machine (the median of the repeats; "
+        "seconds in brackets above two minutes): what you wait, at the load named. *CPU s*: the processor seconds "
         "the command and every worker it started used (user + system, the median of the "
         "repeats): the work itself, which the machine's other users barely change. *Cores "
         "busy*: CPU ÷ wall, how many cores the command kept busy on average: a `run` keeps "
@@ -234,7 +235,7 @@ def cost_table() -> str:
         "command was run, in rounds over the commands (each repeat's times are in "
         "`docs/data/costs.csv`). *Load*: the 1-minute load average before → after (the medians "
         "over the repeats), which counts work at every priority.\n\n")
-    head = ("| command | system | layers | protofilaments | restarts | workers | wall: min (s) "
+    head = ("| command | system | layers | protofilaments | restarts | workers | wall "
             "| CPU s | cores busy | repeats | answer | load | measured |\n"
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     lines = []
@@ -245,11 +246,12 @@ def cost_table() -> str:
         cpu, busy = "not recorded", "-"
         if r["cpu_s"] is not None:
             cpu, busy = f"{r['cpu_s']:.1f}", f"{r['cpu_s'] / r['wall_s']:.2f}"
+        wall = took(r["key"]) + (f" ({r['wall_s']:.1f} s)" if r["wall_s"] >= 120 else "")
         lines.append(f"| `{r['command']}` | {r['system']} | {r['layers']} | {r['protofilaments']} "
-                     f"| {r['restarts']} | {r['workers']} | {r['minutes']} ({r['wall_s']:.1f}) "
+                     f"| {r['restarts']} | {r['workers']} | {wall} "
                      f"| {cpu} | {busy} | {r['repeats']} | {r['answer']} "
                      f"| {r['load_before']} → {r['load_after']} | {when} |")
-    return legend + head + "\n".join(lines)
+    return legend + (note + "\n" if note else "") + head + "\n".join(lines)
 
 
 MACROS = {"took": took, "stamp": stamp, "report_stamp": report_stamp, "pct": pct,

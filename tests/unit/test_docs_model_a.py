@@ -25,7 +25,11 @@ def _load(name: str, path: pathlib.Path):
 page_numbers = _load("page_numbers", DOCS / "hooks" / "page_numbers.py")
 macros_model_a = _load("macros_model_a", DOCS / "hooks" / "macros_model_a.py")
 M = page_numbers.MACROS
-FILES = sorted(MODEL_DATA.glob("*.csv"))
+# This family's pages' files (the other method pages' files follow the column order of
+# tests/unit/test_model_pages_data.py: date, commit, model_version, bpy, command)
+PAGES_A = ("bound", "buried-terminus", "domain-shapes", "end-effects", "ensemble", "envelope",
+           "largest-fraction")
+FILES = sorted(p for p in MODEL_DATA.glob("*.csv") if p.name.startswith(tuple(f"{n}_" for n in PAGES_A)))
 # what a dated record must say: when, at which code, which model, and where it came from
 PROVENANCE = ("date", "commit", "model_version", "source")
 

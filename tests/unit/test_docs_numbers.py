@@ -170,6 +170,30 @@ def test_a_converted_page_writes_no_p_fit_by_hand(name, blocks):
     assert not bare, f"{name}: P(fit) written by hand (quote the file that holds it): {bare}"
 
 
+# The records: pages that are themselves the dated measurements (benchmarks.md, whose numbers
+# other pages quote through docs/data/) or the project's history and its developers' pages.
+RECORDS = ("benchmarks.md", "changelog.md", "contributing.md", "contributing/", "notebook/")
+
+
+def typed_numbers(text: str) -> list[str]:
+    """The measured times and P(fit)s a page's prose types by hand (not through {{ ... }})."""
+    body = re.sub(r"\{\{.*?\}\}", "", prose(text), flags=re.S)
+    return [m.group(0) for m in BARE_TIME.finditer(body)] + [m.group(0) for m in BARE_PFIT.finditer(body)]
+
+
+@pytest.mark.parametrize("page", [p for p in PAGES if not p.relative_to(DOCS).as_posix().startswith(RECORDS)],
+                         ids=lambda p: p.relative_to(DOCS).as_posix())
+def test_a_page_that_quotes_a_measurement_takes_it_from_a_file(page):
+    """Outside the records, a page quotes no measured time or P(fit) by hand: either it types
+    none, or it is marked `numbers: data` (and then the tests above hold its prose)."""
+    front, body = split(page)
+    if front.get("numbers") == "data":
+        return
+    assert not typed_numbers(body), (f"{page.relative_to(DOCS)}: numbers typed by hand; quote them "
+                                     f"from docs/data/ and mark the page `numbers: data`: "
+                                     f"{typed_numbers(body)[:8]}")
+
+
 def test_the_p_fit_check_finds_a_p_fit():
     assert BARE_PFIT.search("fits; P(fit) 8/8 at linker 8")
     assert BARE_PFIT.search("it fitted in 3 of 3 seeds")

@@ -7,6 +7,8 @@ import pathlib
 import random
 import re
 
+from docs_rows import page_text
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PAGE = ROOT / "docs" / "guide" / "structures.md"
 CSV = ROOT / "docs" / "deposited_survey_v8.csv"
@@ -22,7 +24,9 @@ def _tool():
 
 
 def _section() -> str:
-    text = PAGE.read_text(encoding="utf-8")
+    """The section as the site shows it (the page renders its table and counts from the CSV
+    through docs/hooks/macros_structures.py)."""
+    text = page_text(PAGE)
     start = text.index("{#deposited-survey-v8}")
     return text[start:re.search(r"\n#{2,5} ", text[start:]).start() + start]
 

@@ -8,6 +8,7 @@ import pathlib
 
 import numpy as np
 import pytest
+from docs_rows import page_text
 
 from fibrilfit.api import inspect
 from fibrilfit.api import model as M
@@ -257,7 +258,7 @@ def test_the_survey_tool_tabulates_what_inspect_and_run_say(tmp_path):
     assert "a C-terminal exit: 1 of 1 (100 %; on the surface 0, buried with a way out 1)" in text
     assert "| 6zrr.pdb.gz | yes | yes (own termini) | 0/2/0 | 10 |" in survey.table([row])
     # the page's row for 6ZRR (the Amyloid Explorer's copy, tests/data/README.md) is today's
-    page = (DATA.parents[1] / "docs" / "guide" / "structures.md").read_text(encoding="utf-8")
+    page = page_text(DATA.parents[1] / "docs" / "guide" / "structures.md")  # as the site shows it
     shown = [line for line in page.splitlines() if line.startswith("| 6zrr.pdb |")]
     assert shown == [survey.table([{**row, "file": "6zrr.pdb"}]).splitlines()[-1]]
     out = tmp_path / "s.csv"

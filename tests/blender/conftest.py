@@ -75,3 +75,25 @@ def user_objects(scene):
         (coll if name == "globula" else scene.collection).objects.link(ob)
         made[name] = ob
     return made
+
+
+# bpy 4.2 can crash (SIGSEGV) in its own teardown at interpreter exit, after pytest has run,
+# reported and written its JUnit file: one test of tests/blender/test_ui.py run alone
+# (`-k test_one_property_per_parameter_with_its_metadata`) exits 139 after "1 passed", and so did
+# tests/blender/test_ui_span.py under `make test-lts` (each file alone). Which file crashes
+# depends only on which test ran last. On bpy 4.2 the process therefore leaves with pytest's
+# own exit status once pytest is done, skipping that teardown; bpy 5.x exits normally.
+_SESSION = {}
+
+
+def pytest_sessionfinish(session, exitstatus):
+    _SESSION["exitstatus"] = int(exitstatus)
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config):
+    if bpy.app.version[:2] == (4, 2) and "exitstatus" in _SESSION:
+        import sys
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(_SESSION["exitstatus"])

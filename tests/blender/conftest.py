@@ -92,7 +92,7 @@ def pytest_sessionfinish(session, exitstatus):
 
 @pytest.hookimpl(trylast=True)
 def pytest_unconfigure(config):
-    if bpy.app.version[:2] == (4, 2) and "exitstatus" in _SESSION:
+    if bpy.app.version < (4, 3, 0) and "exitstatus" in _SESSION:  # 4.2 LTS
         import sys
         sys.stdout.flush()
         sys.stderr.flush()

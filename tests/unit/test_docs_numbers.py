@@ -19,11 +19,17 @@ page_numbers = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(page_numbers)
 
 # A time as prose writes it: "231.8 s", "20 minutes", "about 10 s", "4.2 min"
-BARE_TIME = re.compile(r"(?<![\w.{])\d+(?:[.,]\d+)?\s?(?:s|sec|seconds?|min|minutes?|h|hours?)\b")
+BARE_TIME = re.compile(r"(?<![\w.{])\d+(?:[.,]\d+)?\s?(?:s|sec|seconds?|min|minutes?|h|hours?|ms|µs)\b")
 # A P(fit) as prose writes it: "8/8", "3 of 3 seeds", "0 of 8 restarts", "P(fit) 0.33"
 BARE_PFIT = re.compile(r"(?<![\w.{/])(?<!√\()\d+\s?/\s?\d+(?![\w./])"
                        r"|(?<![\w.{])\d+ of \d+ (?:seeds?|restarts?|runs?|starts?)\b"
                        r"|P\(fit\)\s?=?\s?\d")
+# A table column of times or P(fit)s: its header names the unit ("wall (s)", "bake, s", "seconds",
+# "worker-s", "min", "µs") or says P(fit); its cells are then numbers without a unit.
+TIMED_HEAD = re.compile(r"\((?:s|min|h|ms|µs)\)|,\s*(?:s|min|h|ms|µs)\b|(?<![\w'’-])(?:s|ms|µs)\s*$|(?<![\w'’])s\s*\("
+                        r"|\bseconds?\b|\bsec\b|worker-s\b|\bmin(?:utes?)?\b(?!\))|\bhours?\b|\b(?:ms|µs)\b"
+                        r"|P\(fit\)|\bruns/min\b")
+NUMBER_CELL = re.compile(r"(?<![\w.#])\d+(?:[.,]\d+)*(?![\w])")
 FRONT = re.compile(r"\A---\n(.*?)\n---\n", re.S)
 
 
@@ -170,15 +176,50 @@ def test_a_converted_page_writes_no_p_fit_by_hand(name, blocks):
     assert not bare, f"{name}: P(fit) written by hand (quote the file that holds it): {bare}"
 
 
+@pytest.mark.parametrize("name", CONVERTED)
+def test_a_converted_page_types_no_table_of_times_by_hand(name, blocks):
+    body = prose(without_generated(split(DOCS / name)[1], blocks))
+    body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
+    bare = table_numbers(body)
+    assert not bare, f"{name}: a table of times or P(fit)s typed by hand (render it: csv_table): {bare[:8]}"
+
+
+def test_the_table_check_finds_a_typed_column():
+    table = "| run | wall (s) | bake, s | P(fit) | load (1 min) | today's code (b265662) |\n|---|---|---|---|---|---|\n"
+    assert table_numbers(table + "| a | 231.8 | 12 | 0.5 | 1.9 | 3 |\n") == ["wall (s): 231.8", "bake, s: 12",
+                                                                           "P(fit): 0.5"]
+    assert table_numbers(table + "| a | not recorded | — |  | 1.9 | 3 |\n") == []
+    assert BARE_TIME.search("a step of 12 µs") and BARE_TIME.search("3.5 ms a frame")
+
+
 # The records: pages that are themselves the dated measurements (benchmarks.md, whose numbers
 # other pages quote through docs/data/) or the project's history and its developers' pages.
 RECORDS = ("benchmarks.md", "changelog.md", "contributing.md", "contributing/", "notebook/")
 
 
+def table_numbers(body: str) -> list[str]:
+    """The numbers typed into a table's columns of times or P(fit)s (TIMED_HEAD): a cell of such a
+    column holds a measurement without its unit, which BARE_TIME cannot see."""
+    found, lines = [], body.splitlines()
+    for i, line in enumerate(lines[:-1]):
+        if not (line.lstrip().startswith("|") and re.fullmatch(r"\s*\|?[\s:|-]*-[\s:|-]*\|?\s*", lines[i + 1])):
+            continue
+        heads = [c.strip() for c in line.strip().strip("|").split("|")]
+        timed = [j for j, h in enumerate(heads) if TIMED_HEAD.search(h) and "load" not in h.lower()]
+        for row in lines[i + 2:]:
+            if not row.lstrip().startswith("|"):
+                break
+            cells = [c.strip() for c in row.strip().strip("|").split("|")]
+            found += [f"{heads[j]}: {cells[j]}" for j in timed if j < len(cells) and NUMBER_CELL.search(cells[j])]
+    return found
+
+
 def typed_numbers(text: str) -> list[str]:
-    """The measured times and P(fit)s a page's prose types by hand (not through {{ ... }})."""
+    """The measured times and P(fit)s a page's prose types by hand (not through {{ ... }}): in its
+    sentences, and in its tables' columns of times or P(fit)s."""
     body = re.sub(r"\{\{.*?\}\}", "", prose(text), flags=re.S)
-    return [m.group(0) for m in BARE_TIME.finditer(body)] + [m.group(0) for m in BARE_PFIT.finditer(body)]
+    return ([m.group(0) for m in BARE_TIME.finditer(body)] + [m.group(0) for m in BARE_PFIT.finditer(body)]
+            + table_numbers(body))
 
 
 @pytest.mark.parametrize("page", [p for p in PAGES if not p.relative_to(DOCS).as_posix().startswith(RECORDS)],

@@ -4,9 +4,12 @@ quoted from docs/data/bench/periodic_*.csv, concave_*.csv and atoms_*.csv, each 
 stem (`periodic_auto13`): a path under docs/data/bench/ written out in a page reads as one under
 the repository's bench/ folder, which has no such file (tests/unit/test_docs_citations.py).
 
-- `periodic_table(stem)`, `periodic_rows(stem, columns)`, `periodic_said(stem, key)`,
-  `periodic_fits(stem, where)`: the model pages' `measured_table`, `rows_table`, `said` and
-  `fits` (docs/hooks/macros_model_a.py, macros_model_b.py) on docs/data/bench/STEM.csv;
+- `periodic_table(stem)`, `periodic_rows(stem, columns)`, `periodic_said(stem, key, field)`,
+  `periodic_fits(stem, where)`, `periodic_cell(stem, column, where)`,
+  `periodic_span(stem, column)`: the model pages' `measured_table`, `rows_table`, `said`,
+  `fits`, `measured` and `span_of` (docs/hooks/macros_model_a.py, macros_model_b.py) on
+  docs/data/bench/STEM.csv;
+- `periodic_column(stem, column)`: a column's cells in the file's order, "0.41, 0.33, 0.54";
 
 - `periodic_atoms_table()`: the writer's cost, whole and by part: the whole from
   docs/data/guide/atoms-and-domains_costs.csv (the guide quotes that measurement too), with the
@@ -39,8 +42,20 @@ def macros(numbers) -> dict:
     def periodic_rows(stem: str, columns: dict) -> str:
         return macro("rows_table")(bench(stem), columns)
 
-    def periodic_said(stem: str, key: str):
-        return macro("said")(bench(stem), key)
+    def periodic_said(stem: str, key: str, field: str = "value"):
+        return macro("said")(bench(stem), key, field)
+
+    def periodic_cell(stem: str, column: str, where: dict) -> str:
+        return macro("measured")(bench(stem), column, where)
+
+    def periodic_span(stem: str, column: str) -> str:
+        return macro("span_of")(bench(stem), column)
+
+    def periodic_column(stem: str, column: str) -> str:
+        found = rows(bench(stem))
+        if not found or column not in found[0]:
+            raise KeyError(f"{bench(stem)}: no column {column!r}")
+        return ", ".join(r[column] for r in found)
 
     def periodic_fits(stem: str, where: dict) -> str:
         return macro("fits")(bench(stem), where)
@@ -72,4 +87,6 @@ def macros(numbers) -> dict:
 
     return {"periodic_table": periodic_table, "periodic_rows": periodic_rows,
             "periodic_said": periodic_said, "periodic_fits": periodic_fits,
+            "periodic_cell": periodic_cell, "periodic_span": periodic_span,
+            "periodic_column": periodic_column,
             "periodic_atoms_table": periodic_atoms_table}

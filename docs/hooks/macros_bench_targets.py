@@ -2,8 +2,8 @@
 record's own measurements, each from the file that holds it (loaded by docs/hooks/page_numbers.py).
 
 The files, under docs/data/ (each row with its date, commit, MODEL_VERSION, bpy and command):
-- bench/targets_said.csv: the numbers the section's prose quotes, one row a number by `key`
-  (the page reads them with model_a's `said("bench/targets_said.csv", KEY)`);
+- bench/targets_said.csv: the numbers the section's prose quotes, one row a number by `key`,
+  each with what it is (`targets_said(KEY)`);
 - bench/targets_report_rounds.csv: the report side by side, three rounds a side;
 - bench/targets_validate_v6_rounds.csv and bench/targets_validate_v6_cases.csv: `make validate`
   at MODEL_VERSION 6 end to end, its rounds and where round 1's time went;
@@ -12,6 +12,7 @@ The files, under docs/data/ (each row with its date, commit, MODEL_VERSION, bpy 
   MODEL_VERSION 8, a row an attempt.
 
 The macros:
+- `targets_said(key)`: a number of bench/targets_said.csv as the file writes it ("1,199");
 - `targets_min_s(seconds)`: "38 min 18 s", as the page writes a wall time in minutes;
 - `targets_rounds_table(prefix, columns)`: the report's rounds (rows whose key starts so), the
   median checked against the rounds;
@@ -42,6 +43,10 @@ def macros(numbers) -> dict:
 
     def seconds(text: str) -> float:
         return float(text.replace(",", ""))
+
+    def targets_said(key: str) -> str:
+        """The `value` of bench/targets_said.csv's row `key`, as the file writes it."""
+        return one("bench/targets_said.csv", "key", key)["value"]
 
     def targets_min_s(value) -> str:
         """A wall time in seconds as minutes and seconds, "38 min 18 s" (2297.8 s)."""

@@ -1,0 +1,151 @@
+"""The macros of docs/benchmarks.md from "The report side by side" to the page's end (the report,
+the stopping rule's traces, the infinite fibril's map at MODEL_VERSION 2, 5 and 6, domain shapes,
+the ensemble's two targets): their tables and the numbers their prose quotes, read from
+docs/data/bench/{report,traces,mapcost,shapes,ensemble}_*.csv, each row with the date, commit,
+MODEL_VERSION, bpy and command that made it. A single number is quoted with macros_model_a's
+`said(path, key, field)`; this file adds what `said` cannot: a value every row must share, the
+median and the span of a column, minutes and seconds, and the section's tables whose last row is
+a median or a total. page_numbers.py loads this file and calls `macros(numbers)`."""
+from __future__ import annotations
+
+import csv
+
+
+def macros(numbers) -> dict:
+    def raw(path: str) -> list[dict]:
+        """A CSV under docs/data/ as its text ("0.40" stays "0.40"); a missing file fails."""
+        numbers.data(path)  # the same checks: under docs/data/, a file that exists
+        with open(numbers.DATA / path, encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+
+    def column(path: str, name: str, where: dict | None = None) -> list[str]:
+        rows = raw(path)
+        if rows and name not in rows[0]:
+            raise KeyError(f"{path}: no column {name!r}")
+        rows = [r for r in rows if all(str(r[k]) == str(v) for k, v in (where or {}).items())]
+        if not rows:
+            raise ValueError(f"{path}: no row with {where}")
+        return [r[name] for r in rows]
+
+    def report_same(path: str, name: str, where: dict | None = None) -> str:
+        """The value of `name` that every row (matching `where`) holds; rows that differ fail
+        ("both sides give the same answer" is then checked, not typed)."""
+        values = set(column(path, name, where))
+        if len(values) != 1:
+            raise ValueError(f"{path}: {name!r} differs between rows: {sorted(values)}")
+        return values.pop()
+
+    def report_median(path: str, name: str, where: dict | None = None) -> str:
+        """The median of a column of an odd number of rows, as the file writes it."""
+        values = sorted(column(path, name, where), key=lambda v: float(v.replace(",", "")))
+        if len(values) % 2 == 0:
+            raise ValueError(f"{path}: the median of {len(values)} values is not one of them")
+        return values[len(values) // 2]
+
+    def report_span(path: str, name: str, where: dict | None = None, sep: str = "–") -> str:
+        """The least and the largest of a column, as the file writes them: "1,790–2,189"."""
+        values = sorted(column(path, name, where), key=lambda v: float(v.replace(",", "")))
+        return values[0] if values[0] == values[-1] else f"{values[0]}{sep}{values[-1]}"
+
+    def report_minutes_span(path: str, name: str, sep: str = "–") -> str:
+        """A column of seconds as whole minutes, least and largest: "8–11"."""
+        values = sorted(float(v) for v in column(path, name))
+        return f"{values[0] / 60:.0f}{sep}{values[-1] / 60:.0f}"
+
+    def report_min_s(seconds) -> str:
+        """Seconds as minutes and whole seconds: 1322.1 -> "22 min 2 s"."""
+        whole = round(float(seconds))
+        return f"{whole // 60} min {whole % 60} s"
+
+    def report_map_below(anchor: str) -> str:
+        """P(fit) one residue below the minimum, "0/5", that every diameter of the notebook's map
+        under `anchor` shows (macros_model_b's `infinite_map`, which reads the notebook's table);
+        diameters that differ fail."""
+        rows = numbers.MACROS["infinite_map"](anchor)
+        found = {f"{r['fits_below']}/{r['runs_below']}" for r in rows.values()}
+        if len(found) != 1:
+            raise ValueError(f"the map under {anchor}: P(fit) one below differs by diameter: {found}")
+        return found.pop()
+
+    def report_stage_table(run: str) -> str:
+        """The report's stage times (docs/data/bench/report_stages.csv, run "quiet" or "load"),
+        the whole command's row in bold; "what ran" where the run recorded it."""
+        rows = [r for r in raw("bench/report_stages.csv") if r["run"] == run]
+        if not rows:
+            raise ValueError(f"report_stages.csv: no run {run!r}")
+        what = any(r["what_ran"] for r in rows)
+        lines = ["| stage | seconds |" + (" what ran |" if what else ""),
+                 "|---|---|" + ("---|" if what else "")]
+        for r in rows:
+            stage, seconds = r["stage"], r["seconds"]
+            if r["key"].endswith("_wall"):
+                stage, seconds = f"**{stage}**", f"**{seconds}**"
+            cells = [stage, seconds] + ([r["what_ran"]] if what else [])
+            lines.append(("| " + " | ".join(cells) + " |").replace("|  |", "| |"))
+        return "\n".join(lines)
+
+    def report_rounds_table() -> str:
+        """The map at MODEL_VERSION 6, its three rounds (docs/data/bench/mapcost_walls.csv) and
+        their median wall time and peak memory."""
+        path = "bench/mapcost_walls.csv"
+        rows = [r for r in raw(path) if r["model_version"] == "6"]
+        v6 = {"model_version": "6"}
+        lines = ["| round | when (UTC) | commit | wall | peak memory (tree) | load (1 min) before → "
+                 "after | runs | frames | worker-seconds |",
+                 "|---|---|---|---|---|---|---|---|---|"]
+        for r in rows:
+            load = f"{r['load_before']} → {r['load_after']}" + (f" ({r['load_note']})" if r["load_note"] else "")
+            lines.append(f"| {r['round']} | {r['when']} | {r['commit']} | {r['wall_s']} s | "
+                         f"{r['peak_mib']} MiB | {load} | {r['runs']} | {r['frames']} | {r['worker_s']} |")
+        wall = report_median(path, "wall_s", v6)
+        loads = sorted(float(r[k]) for r in rows for k in ("load_before", "load_after"))
+        lines.append(f"| **median** | | | **{wall} s ({report_min_s(wall)})** | "
+                     f"{report_median(path, 'peak_mib', v6)} MiB | {loads[0]:.1f}–{loads[-1]:.1f} | | | |")
+        return "\n".join(lines)
+
+    def report_shapes_table() -> str:
+        """Domain shapes, `sphere` against `hull` (docs/data/bench/shapes_rounds.csv), with the
+        medians of the rounds."""
+        path = "bench/shapes_rounds.csv"
+        lines = ["| round | `sphere`, s | `hull`, s | hull / sphere |", "|---|---|---|---|"]
+        lines += [f"| {r['round']} | {r['sphere_s']} | {r['hull_s']} | {r['ratio']}x |" for r in raw(path)]
+        lines.append(f"| **median** | {report_median(path, 'sphere_s')} | {report_median(path, 'hull_s')} | "
+                     f"**{report_median(path, 'ratio')}x** (target <= 3x: **met**, whole run) |")
+        return "\n".join(lines)
+
+    def report_ensemble_table() -> str:
+        """The default model's ensemble, three runs and their medians
+        (docs/data/bench/ensemble_default_runs.csv), a run a column."""
+        path = "bench/ensemble_default_runs.csv"
+        rows = raw(path)
+
+        def pair(a: str, b: str, sep: str = ", "):
+            return [f"{r[a]}{sep}{r[b]}" for r in rows], f"{report_median(path, a)}{sep}{report_median(path, b)}"
+
+        def same_as_first(cells: list[str]) -> list[str]:
+            return [c if i == 0 or c != cells[0] else "same" for i, c in enumerate(cells)]
+
+        outer = [f"{r['outer_half_0']}, {r['outer_half_1']} ({r['outer_rel_diff_pct']} %)" for r in rows]
+        table = [
+            ("wall time, both halves (bpy import, 4 Bullet runs, sampling, map each), s",
+             [r["wall_s"] for r in rows], f"**{report_median(path, 'wall_s')}**"),
+            ("CPU time per half (Bullet, sampling, the half's map), s",
+             pair("cpu_half_0", "cpu_half_1")[0], f"**{pair('cpu_half_0', 'cpu_half_1')[1]}**"),
+            ("of it sampling, CPU s", *pair("sampling_half_0", "sampling_half_1")),
+            ("halves' mean outer diameters, Å (relative difference)", same_as_first(outer),
+             f"{report_same(path, 'outer_rel_diff_pct')} %"),
+            ("width from the pooled map, Å (halves' widths 0.25 % apart)", [r["width"] for r in rows],
+             report_same(path, "width")),
+            ("ESS of the outer diameter (both halves)", [r["ess"] for r in rows], report_same(path, "ess")),
+            ("peak memory: a half's process, MB; the whole command (`time -v`), MB",
+             *pair("peak_half_mb", "peak_command_mb", "; ")),
+        ]
+        lines = ["| | " + " | ".join(f"run {r['run']}" for r in rows) + " | median |",
+                 "|---|" + "---|" * (len(rows) + 1)]
+        lines += [f"| {label} | " + " | ".join(cells) + f" | {median} |" for label, cells, median in table]
+        return "\n".join(lines)
+
+    return {"report_same": report_same, "report_map_below": report_map_below, "report_median": report_median, "report_span": report_span,
+            "report_minutes_span": report_minutes_span, "report_min_s": report_min_s,
+            "report_stage_table": report_stage_table, "report_rounds_table": report_rounds_table,
+            "report_shapes_table": report_shapes_table, "report_ensemble_table": report_ensemble_table}

@@ -18,6 +18,10 @@ def macros(numbers) -> dict:
         with open(numbers.DATA / path, encoding="utf-8") as f:
             return list(csv.DictReader(f))
 
+    def bench(name: str) -> str:
+        """A file of this section by its stem: "report_measured" is docs/data/bench/report_measured.csv."""
+        return f"bench/{name}.csv"
+
     def column(path: str, name: str, where: dict | None = None) -> list[str]:
         rows = raw(path)
         if rows and name not in rows[0]:
@@ -27,29 +31,40 @@ def macros(numbers) -> dict:
             raise ValueError(f"{path}: no row with {where}")
         return [r[name] for r in rows]
 
-    def report_same(path: str, name: str, where: dict | None = None) -> str:
+    def report_said(stem: str, key: str, field: str = "value"):
+        """One cell of a file of this section, by its `key` column (macros_model_a's `said`)."""
+        return numbers.MACROS["said"](bench(stem), key, field)
+
+    def report_same(stem: str, name: str, where: dict | None = None) -> str:
         """The value of `name` that every row (matching `where`) holds; rows that differ fail
         ("both sides give the same answer" is then checked, not typed)."""
+        return same(bench(stem), name, where)
+
+    def same(path: str, name: str, where: dict | None = None) -> str:
         values = set(column(path, name, where))
         if len(values) != 1:
             raise ValueError(f"{path}: {name!r} differs between rows: {sorted(values)}")
         return values.pop()
 
-    def report_median(path: str, name: str, where: dict | None = None) -> str:
+    def report_median(stem: str, name: str, where: dict | None = None) -> str:
         """The median of a column of an odd number of rows, as the file writes it."""
+        return median(bench(stem), name, where)
+
+    def median(path: str, name: str, where: dict | None = None) -> str:
         values = sorted(column(path, name, where), key=lambda v: float(v.replace(",", "")))
         if len(values) % 2 == 0:
             raise ValueError(f"{path}: the median of {len(values)} values is not one of them")
         return values[len(values) // 2]
 
-    def report_span(path: str, name: str, where: dict | None = None, sep: str = "–") -> str:
+    def report_span(stem: str, name: str, where: dict | None = None, sep: str = "–") -> str:
         """The least and the largest of a column, as the file writes them: "1,790–2,189"."""
+        path = bench(stem)
         values = sorted(column(path, name, where), key=lambda v: float(v.replace(",", "")))
         return values[0] if values[0] == values[-1] else f"{values[0]}{sep}{values[-1]}"
 
-    def report_minutes_span(path: str, name: str, sep: str = "–") -> str:
+    def report_minutes_span(stem: str, name: str, sep: str = "–") -> str:
         """A column of seconds as whole minutes, least and largest: "8–11"."""
-        values = sorted(float(v) for v in column(path, name))
+        values = sorted(float(v) for v in column(bench(stem), name))
         return f"{values[0] / 60:.0f}{sep}{values[-1] / 60:.0f}"
 
     def report_min_s(seconds) -> str:
@@ -67,10 +82,18 @@ def macros(numbers) -> dict:
             raise ValueError(f"the map under {anchor}: P(fit) one below differs by diameter: {found}")
         return found.pop()
 
+    def report_side_table() -> str:
+        """The report side by side (docs/data/bench/report_side_by_side.csv), a side a row."""
+        return numbers.MACROS["rows_table"](bench("report_side_by_side"), {
+            "side": "side", "wall": "{wall_s} s", "restarts": "{restarts_s} s", "walk": "{walk_s} s",
+            "best layout": "{best_layout_s} s", "pictures": "{pictures_s} s", "runs": "runs",
+            "frames": "frames", "peak memory (tree)": "{peak_mib} MiB",
+            "load before → after": "{load_before} → {load_after}"})
+
     def report_stage_table(run: str) -> str:
         """The report's stage times (docs/data/bench/report_stages.csv, run "quiet" or "load"),
         the whole command's row in bold; "what ran" where the run recorded it."""
-        rows = [r for r in raw("bench/report_stages.csv") if r["run"] == run]
+        rows = [r for r in raw(bench("report_stages")) if r["run"] == run]
         if not rows:
             raise ValueError(f"report_stages.csv: no run {run!r}")
         what = any(r["what_ran"] for r in rows)
@@ -87,40 +110,41 @@ def macros(numbers) -> dict:
     def report_rounds_table() -> str:
         """The map at MODEL_VERSION 6, its three rounds (docs/data/bench/mapcost_walls.csv) and
         their median wall time and peak memory."""
-        path = "bench/mapcost_walls.csv"
+        path = bench("mapcost_walls")
         rows = [r for r in raw(path) if r["model_version"] == "6"]
         v6 = {"model_version": "6"}
         lines = ["| round | when (UTC) | commit | wall | peak memory (tree) | load (1 min) before → "
                  "after | runs | frames | worker-seconds |",
                  "|---|---|---|---|---|---|---|---|---|"]
         for r in rows:
-            load = f"{r['load_before']} → {r['load_after']}" + (f" ({r['load_note']})" if r["load_note"] else "")
+            load = f"{r['load_before']} → {r['load_after']}"
+            load += f" ({r['load_note']})" if r["load_note"] else ""
             lines.append(f"| {r['round']} | {r['when']} | {r['commit']} | {r['wall_s']} s | "
                          f"{r['peak_mib']} MiB | {load} | {r['runs']} | {r['frames']} | {r['worker_s']} |")
-        wall = report_median(path, "wall_s", v6)
+        wall = median(path, "wall_s", v6)
         loads = sorted(float(r[k]) for r in rows for k in ("load_before", "load_after"))
         lines.append(f"| **median** | | | **{wall} s ({report_min_s(wall)})** | "
-                     f"{report_median(path, 'peak_mib', v6)} MiB | {loads[0]:.1f}–{loads[-1]:.1f} | | | |")
+                     f"{median(path, 'peak_mib', v6)} MiB | {loads[0]:.1f}–{loads[-1]:.1f} | | | |")
         return "\n".join(lines)
 
     def report_shapes_table() -> str:
         """Domain shapes, `sphere` against `hull` (docs/data/bench/shapes_rounds.csv), with the
         medians of the rounds."""
-        path = "bench/shapes_rounds.csv"
+        path = bench("shapes_rounds")
         lines = ["| round | `sphere`, s | `hull`, s | hull / sphere |", "|---|---|---|---|"]
         lines += [f"| {r['round']} | {r['sphere_s']} | {r['hull_s']} | {r['ratio']}x |" for r in raw(path)]
-        lines.append(f"| **median** | {report_median(path, 'sphere_s')} | {report_median(path, 'hull_s')} | "
-                     f"**{report_median(path, 'ratio')}x** (target <= 3x: **met**, whole run) |")
+        lines.append(f"| **median** | {median(path, 'sphere_s')} | {median(path, 'hull_s')} | "
+                     f"**{median(path, 'ratio')}x** (target <= 3x: **met**, whole run) |")
         return "\n".join(lines)
 
     def report_ensemble_table() -> str:
         """The default model's ensemble, three runs and their medians
         (docs/data/bench/ensemble_default_runs.csv), a run a column."""
-        path = "bench/ensemble_default_runs.csv"
+        path = bench("ensemble_default_runs")
         rows = raw(path)
 
         def pair(a: str, b: str, sep: str = ", "):
-            return [f"{r[a]}{sep}{r[b]}" for r in rows], f"{report_median(path, a)}{sep}{report_median(path, b)}"
+            return [f"{r[a]}{sep}{r[b]}" for r in rows], f"{median(path, a)}{sep}{median(path, b)}"
 
         def same_as_first(cells: list[str]) -> list[str]:
             return [c if i == 0 or c != cells[0] else "same" for i, c in enumerate(cells)]
@@ -128,24 +152,21 @@ def macros(numbers) -> dict:
         outer = [f"{r['outer_half_0']}, {r['outer_half_1']} ({r['outer_rel_diff_pct']} %)" for r in rows]
         table = [
             ("wall time, both halves (bpy import, 4 Bullet runs, sampling, map each), s",
-             [r["wall_s"] for r in rows], f"**{report_median(path, 'wall_s')}**"),
+             [r["wall_s"] for r in rows], f"**{median(path, 'wall_s')}**"),
             ("CPU time per half (Bullet, sampling, the half's map), s",
              pair("cpu_half_0", "cpu_half_1")[0], f"**{pair('cpu_half_0', 'cpu_half_1')[1]}**"),
             ("of it sampling, CPU s", *pair("sampling_half_0", "sampling_half_1")),
             ("halves' mean outer diameters, Å (relative difference)", same_as_first(outer),
-             f"{report_same(path, 'outer_rel_diff_pct')} %"),
+             f"{same(path, 'outer_rel_diff_pct')} %"),
             ("width from the pooled map, Å (halves' widths 0.25 % apart)", [r["width"] for r in rows],
-             report_same(path, "width")),
-            ("ESS of the outer diameter (both halves)", [r["ess"] for r in rows], report_same(path, "ess")),
+             same(path, "width")),
+            ("ESS of the outer diameter (both halves)", [r["ess"] for r in rows], same(path, "ess")),
             ("peak memory: a half's process, MB; the whole command (`time -v`), MB",
              *pair("peak_half_mb", "peak_command_mb", "; ")),
         ]
         lines = ["| | " + " | ".join(f"run {r['run']}" for r in rows) + " | median |",
                  "|---|" + "---|" * (len(rows) + 1)]
-        lines += [f"| {label} | " + " | ".join(cells) + f" | {median} |" for label, cells, median in table]
+        lines += [f"| {label} | " + " | ".join(cells) + f" | {mid} |" for label, cells, mid in table]
         return "\n".join(lines)
 
-    return {"report_same": report_same, "report_map_below": report_map_below, "report_median": report_median, "report_span": report_span,
-            "report_minutes_span": report_minutes_span, "report_min_s": report_min_s,
-            "report_stage_table": report_stage_table, "report_rounds_table": report_rounds_table,
-            "report_shapes_table": report_shapes_table, "report_ensemble_table": report_ensemble_table}
+    return {name: fn for name, fn in locals().items() if name.startswith("report_")}

@@ -82,6 +82,49 @@ def macros(numbers) -> dict:
             raise ValueError(f"the map under {anchor}: P(fit) one below differs by diameter: {found}")
         return found.pop()
 
+    def markdown(columns: dict, rows: list[dict]) -> str:
+        """Rows as a Markdown table: `columns` maps each header to a template over the row."""
+        lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+        lines += ["| " + " | ".join(spec.format(**r) for spec in columns.values()) + " |" for r in rows]
+        return "\n".join(lines)
+
+    def batch_rows(stem: str, batch: str) -> list[dict]:
+        rows = [r for r in raw(bench(stem)) if r["batch"] == batch]
+        if not rows:
+            raise ValueError(f"{stem}: no batch {batch!r}")
+        return rows
+
+    def report_rules_table(batch: str) -> str:
+        """The stopping rules replayed on a batch of traces (docs/data/bench/traces_rules.csv,
+        `bench/stop_traces.py table`'s first table): the runs each rule stops early, how many
+        of those fit in the end, and the frames it saves."""
+        return markdown({"rule: stop after a judgement that is ...": "{rule}",
+                         "runs stopped early": "{stopped}", "of them fit in the end": "**{stopped_fit}**",
+                         "frames saved": "{frames_saved}"}, batch_rows("traces_rules", batch))
+
+    def report_systems_table(batch: str) -> str:
+        """The same batch by system and linker (docs/data/bench/traces_systems.csv)."""
+        return markdown({"system": "{system}", "linker": "{linker}", "runs": "{runs}", "fit": "{fit}",
+                         "fit at cycle (count)": "{fit_at_cycle}", "misses' frames": "{misses_frames}",
+                         "first judgement of the runs that fit late: pairs, stretch/tol, overlap Å":
+                         "{late_first_judgement}"}, batch_rows("traces_systems", batch))
+
+    def report_traces_summary(batch: str) -> str:
+        """A batch's first line as `table` prints it, counted from its rows by system:
+        "50 runs (40 fit, 3 of them after a regrow; 10 misses) in 4 systems: base_report_1 24, ..."
+        (a fit after a regrow: at a cycle after 0)."""
+        rows = batch_rows("traces_systems", batch)
+        runs = sum(int(r["runs"]) for r in rows)
+        fits = sum(int(r["fit"]) for r in rows)
+        late = sum(int(n) for r in rows if r["fit_at_cycle"] != "-"
+                   for cycle, n in (part.split(": ") for part in r["fit_at_cycle"].split(", "))
+                   if int(cycle) > 0)
+        by: dict[str, int] = {}
+        for r in rows:
+            by[r["system"]] = by.get(r["system"], 0) + int(r["runs"])
+        return (f"{runs} runs ({fits} fit, {late} of them after a regrow; {runs - fits} misses) in "
+                f"{len(by)} systems: " + ", ".join(f"{s} {n}" for s, n in sorted(by.items())))
+
     def report_side_table() -> str:
         """The report side by side (docs/data/bench/report_side_by_side.csv), a side a row."""
         return numbers.MACROS["rows_table"](bench("report_side_by_side"), {

@@ -125,6 +125,25 @@ def macros(numbers) -> dict:
         return (f"{runs} runs ({fits} fit, {late} of them after a regrow; {runs - fits} misses) in "
                 f"{len(by)} systems: " + ", ".join(f"{s} {n}" for s, n in sorted(by.items())))
 
+    def report_cells(stem: str, name: str, where: dict | None = None, sep: str = ", ") -> str:
+        """A column's cells (of the rows matching `where`) in the file's order, joined by `sep`."""
+        return sep.join(column(bench(stem), name, where))
+
+    def report_diameter_table(which: str) -> str:
+        """What a run of the infinite fibril's map cost, a diameter a row (median, range; s), for
+        the map `which` ("v2", "v5", "v6": docs/data/bench/mapcost_diameters.csv)."""
+        rows = [r for r in raw(bench("mapcost_diameters")) if r["map"] == which]
+        if not rows:
+            raise ValueError(f"mapcost_diameters.csv: no map {which!r}")
+        columns = {"diameter (Å)": "{diameter}"}
+        if rows[0]["cell_layers"]:
+            columns["cell layers"] = "{cell_layers}"
+        columns["misses (clear)" if rows[0]["clear_misses"] else "misses"] = (
+            "{misses} ({clear_misses})" if rows[0]["clear_misses"] else "{misses}")
+        columns.update({"a miss": "{miss_median_s} ({miss_range_s})", "fits": "{fits}",
+                        "a fit": "{fit_median_s} ({fit_range_s})"})
+        return markdown(columns, rows)
+
     def report_side_table() -> str:
         """The report side by side (docs/data/bench/report_side_by_side.csv), a side a row."""
         return numbers.MACROS["rows_table"](bench("report_side_by_side"), {

@@ -2,10 +2,13 @@
 the stopping rule's traces, the infinite fibril's map at MODEL_VERSION 2, 5 and 6, domain shapes,
 the ensemble's two targets): their tables and the numbers their prose quotes, read from
 docs/data/bench/{report,traces,mapcost,shapes,ensemble}_*.csv, each row with the date, commit,
-MODEL_VERSION, bpy and command that made it. A single number is quoted with macros_model_a's
-`said(path, key, field)`; this file adds what `said` cannot: a value every row must share, the
-median and the span of a column, minutes and seconds, and the section's tables whose last row is
-a median or a total. page_numbers.py loads this file and calls `macros(numbers)`."""
+MODEL_VERSION, bpy and command that made it. Files are named by their stem
+(`report_said("report_measured", KEY)`: macros_model_a's `said` on docs/data/bench/STEM.csv; a
+path "bench/..." in the page would read as the repository's bench/ folder). Beside it: a value
+every row must share, the span of a column, minutes and seconds, the map's P(fit) one below the
+minimum (the notebook's, through macros_model_b's `infinite_map`), and the section's tables, some
+with a median or a total as their last row. page_numbers.py loads this file and calls
+`macros(numbers)`; every name here starts with `report_`."""
 from __future__ import annotations
 
 import csv
@@ -19,7 +22,8 @@ def macros(numbers) -> dict:
             return list(csv.DictReader(f))
 
     def bench(name: str) -> str:
-        """A file of this section by its stem: "report_measured" is docs/data/bench/report_measured.csv."""
+        """A file of this section by its stem: "report_measured" is
+        docs/data/bench/report_measured.csv."""
         return f"bench/{name}.csv"
 
     def column(path: str, name: str, where: dict | None = None) -> list[str]:
@@ -46,11 +50,8 @@ def macros(numbers) -> dict:
             raise ValueError(f"{path}: {name!r} differs between rows: {sorted(values)}")
         return values.pop()
 
-    def report_median(stem: str, name: str, where: dict | None = None) -> str:
-        """The median of a column of an odd number of rows, as the file writes it."""
-        return median(bench(stem), name, where)
-
     def median(path: str, name: str, where: dict | None = None) -> str:
+        """The median of a column of an odd number of rows, as the file writes it."""
         values = sorted(column(path, name, where), key=lambda v: float(v.replace(",", "")))
         if len(values) % 2 == 0:
             raise ValueError(f"{path}: the median of {len(values)} values is not one of them")

@@ -54,7 +54,7 @@ def test_a_row_that_does_not_parse_is_an_error(tmp_path):
         "| 0.333 (4/12) |", "| 0.334 (4/12) |"))
     with pytest.raises(ValueError, match="does not parse"):
         largest_fraction_map(page)
-    page.write_text(BENCHMARKS.read_text(encoding="utf-8").replace("| 5 (5) |", "| 5 |"))
+    page.write_text(page_text(BENCHMARKS).replace("| 5 (5) |", "| 5 |"))
     with pytest.raises(ValueError, match="does not parse"):
         map_v6_runs(page)
     page.write_text("# nothing here\n")

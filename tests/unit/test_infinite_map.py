@@ -1,7 +1,8 @@
 """The infinite fibril's map as published (docs/notebook/search.md#map-v5, rendered from
-docs/data/notebook/search_map_v5.csv, which bench/docs_map.py reads): each diameter's cell and proven bound are what the code gives today, with no
-bake (the minima themselves: tests/blender/test_auto_cell.py at 20 and 30 Å; make bench
-QUICK=1 compares its walk's minimum at 20 Å)."""
+docs/data/notebook/search_map_v5.csv, which bench/docs_map.py reads): each diameter's cell and
+proven bound are what the code gives today, with no bake (the minima themselves:
+tests/blender/test_auto_cell.py at 20 and 30 Å; make bench QUICK=1 compares its walk's minimum
+at 20 Å)."""
 import importlib.util
 
 import pytest

@@ -6,22 +6,28 @@ with `{{ measured_table("model/NAME.csv") }}` and quotes one cell of it with
 `{{ measured("model/NAME.csv", "COLUMN", {"COLUMN": "VALUE", ...}) }}` (or "k of n" with
 `{{ fits("model/NAME.csv", {...}) }}`), so the prose and the table cannot differ. Every cell is
 kept as the file writes it ("0.000" stays "0.000"). The infinite fibril's maps are read from
-the notebook's tables (`infinite_map`, `cell_walk`), as bench/docs_map.py reads them for
-page_numbers' `maps`. Standard library only (loaded by docs/hooks/page_numbers.py)."""
+the files the notebook renders them from (`infinite_map`, `cell_walk`), as bench/docs_map.py
+reads them for page_numbers' `maps`. Standard library only (loaded by docs/hooks/page_numbers.py)."""
 from __future__ import annotations
 
 import csv
+import importlib.util
 import re
 
-# The infinite fibril's maps as the notebook publishes them (docs/notebook/search.md: the table
-# under each anchor whose header starts so), the same tables bench/docs_map.py reads for `maps`
-NOTEBOOK = "docs/notebook/search.md"
-MAP_HEADER = "| globule diameter (Å) | cell layers |"
-# The first map's periodic column (docs/notebook/search.md#minimal-linker-vs-size): the 3-restart
-# walk in the cell, "**3** (3/3; 0/3 at 2)" (a minimum) or "> 10 (0/3 at 8, 9 and 10; ...)"
-WALK_HEADER = "| globule diameter (Å) | minimal linker (residues"
+# The infinite fibril's maps as the notebook publishes them (docs/notebook/search.md), from the
+# files it renders them from: the maps through bench/docs_map.py (as page_numbers' `maps`), the
+# first map's periodic column (#minimal-linker-vs-size: the 3-restart walk in the cell,
+# "**3** (3/3; 0/3 at 2)" (a minimum) or "> 10 (0/3 at 8, 9 and 10; ...)") from WALKS
+WALKS = "notebook/search_cell_walk.csv"
 WALK = re.compile(r"\*\*(\d+)\*\* \(.*|(> \d+) \(.*|not run")
-PFIT = re.compile(r"(\d+)/(\d+) = \d\.\d\d \[[^]]*\](?: at (\d+))?")
+
+
+def _docs_map(root):
+    spec = importlib.util.spec_from_file_location("docs_map", root / "bench" / "docs_map.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
 
 # The columns that say where a row comes from: every row carries them, the table shows the rest;
 # and `key`, a short name a page quotes a row by where its cells are long
@@ -72,52 +78,35 @@ def macros(numbers) -> dict:
 
     def infinite_map(anchor: str) -> dict[int, dict]:
         """The notebook's map under `{#anchor}` ("infinite-fibril-map": MODEL_VERSION 2,
-        "map-v5"): {diameter: {"minimal", "fits", "runs", "below", "fits_below", "runs_below",
-        and "bound", "open" where the table has them}}; a row that does not parse fails."""
-        text = (numbers.ROOT / NOTEBOOK).read_text(encoding="utf-8")
-        start = text.find("{#" + anchor + "}")
-        if start < 0:
-            raise ValueError(f"{NOTEBOOK}: no section {anchor}")
-        lines = text[start:].splitlines()
-        head = next(i for i, ln in enumerate(lines) if ln.startswith(MAP_HEADER))
-        names = [c.strip() for c in lines[head].strip("|").split("|")]
-        col = {n: next(i for i, h in enumerate(names) if h.startswith(n))
-               for n in ("globule diameter", "minimal linker", "P(fit) at it", "P(fit) one shorter")}
+        "map-v5"), from the file the notebook renders it from (bench/docs_map.py reads it):
+        {diameter: {"minimal", "fits", "runs", "below", "fits_below", "runs_below", and "bound",
+        "open" where the map has the bound}}; a row that does not parse fails."""
+        docs_map = _docs_map(numbers.ROOT)
+        if anchor not in docs_map.MAPS:
+            raise ValueError(f"docs/notebook/search.md: no map {anchor!r}")
         rows = {}
-        for ln in lines[head + 2:]:
-            if not ln.startswith("|"):
-                break
-            cells = [c.strip() for c in ln.strip("|").split("|")]
-            at = PFIT.fullmatch(cells[col["P(fit) at it"]])
-            below = PFIT.fullmatch(cells[col["P(fit) one shorter"]])
-            minimal = re.fullmatch(r"\*\*(\d+)\*\*", cells[col["minimal linker"]])
-            if not (at and below and minimal and below[3]):
-                raise ValueError(f"{NOTEBOOK} {{#{anchor}}}: a row that does not parse: {ln}")
-            row = {"minimal": int(minimal[1]), "fits": int(at[1]), "runs": int(at[2]),
-                   "fits_below": int(below[1]), "runs_below": int(below[2]), "below": int(below[3])}
-            for key, name in (("bound", "proven bound"), ("open", "open")):
-                i = next((i for i, h in enumerate(names) if h.startswith(name)), None)
-                if i is not None:
-                    row[key] = cells[i]
-            rows[int(cells[col["globule diameter"]])] = row
+        for d, r in docs_map.read_map(docs_map.MAPS[anchor]).items():
+            low = r["minimal_linker"]
+            row = {"minimal": low, "fits": r["tried"][low][0], "runs": r["tried"][low][1],
+                   "below": low - 1, "fits_below": r["tried"][low - 1][0],
+                   "runs_below": r["tried"][low - 1][1]}
+            if "impossible_below" in r:
+                row["bound"] = str(r["impossible_below"])
+                row["open"] = f"{r['impossible_below']}–{low - 1}"
+            rows[d] = row
         return rows
 
     def cell_walk(diameter: int) -> str:
         """The 3-restart walk's answer in the cell at `diameter` (the notebook's first map, its
-        periodic column): "3" (the minimal linker) or "> 10" (no fit up to 10; not finished)."""
-        text = (numbers.ROOT / NOTEBOOK).read_text(encoding="utf-8")
-        lines = text[text.index("{#minimal-linker-vs-size}"):].splitlines()
-        head = next(i for i, ln in enumerate(lines) if ln.startswith(WALK_HEADER))
-        for ln in lines[head + 2:]:
-            if not ln.startswith("|"):
-                break
-            cells = [c.strip() for c in ln.strip("|").split("|")]
-            if cells[0] == str(diameter):
-                m = WALK.fullmatch(cells[-1])
-                if not m or not (m[1] or m[2]):
-                    raise ValueError(f"{NOTEBOOK}: no cell walk at {diameter} Å: {cells[-1]}")
-                return m[1] or m[2]
-        raise ValueError(f"{NOTEBOOK}: no row for {diameter} Å")
+        periodic column, docs/data/notebook/search_cell_walk.csv): "3" (the minimal linker) or
+        "> 10" (no fit up to 10; not finished)."""
+        found = rows(WALKS, {"globule_diameter": diameter})
+        if len(found) != 1:
+            raise ValueError(f"{WALKS}: {len(found)} rows for {diameter} Å, not one")
+        m = WALK.fullmatch(found[0]["cell_walk"])
+        if not m or not (m[1] or m[2]):
+            raise ValueError(f"{WALKS}: no cell walk at {diameter} Å: {found[0]['cell_walk']}")
+        return m[1] or m[2]
 
     def wilson_high(k: int, n: int) -> str:
         """The upper end of the 95 % Wilson interval of k of n, as FibrilFit computes it."""

@@ -10,8 +10,8 @@ and `MACROS` without MkDocs. The sources:
 - `reports`: docs/data/reports/NAME.json, the report.json of a report the pages quote, copied
   as written (bench/costs.py's long cases; its `stamp` names the date, commit and MODEL_VERSION);
 - `maps`: the minimal linker against the ball's size: `cell` from the infinite fibril's map as
-  docs/notebook/search.md#map-v5 publishes it (bench/docs_map.py reads it), `layers20` from
-  docs/minimal_linker.csv;
+  docs/notebook/search.md#map-v5 publishes it (docs/data/notebook/search_map_v5.csv, which
+  bench/docs_map.py reads), `layers20` from docs/minimal_linker.csv;
 - `defaults`: the code's own defaults (fibrilfit.model.params.DEFAULTS and each command's plan),
   so a page never restates a default by hand;
 - `model_version`: the code's MODEL_VERSION;

@@ -64,7 +64,7 @@ def test_twice_the_auto_cell_fits_20A_globules_at_linker_4_as_often(scene, ff):
 
 
 # ---- the fast cases of the map's rows (make test) ------------------------------------------------
-# The infinite fibril's minimal linker, docs/notebook/search.md#map-v5 (read from the page by
+# The infinite fibril's minimal linker, docs/notebook/search.md#map-v5 (read from its file by
 # bench/docs_map.py): in the auto cell under inflate, seed 0 fits at the published minimum and is
 # a clear miss one residue shorter, at 20 and 30 Å.
 #

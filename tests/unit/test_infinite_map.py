@@ -1,7 +1,8 @@
-"""The infinite fibril's map as published (docs/notebook/search.md#map-v5, read by
-bench/docs_map.py): each diameter's cell and proven bound are what the code gives today, with no
-bake (the minima themselves: tests/blender/test_auto_cell.py at 20 and 30 Å; make bench
-QUICK=1 compares its walk's minimum at 20 Å)."""
+"""The infinite fibril's map as published (docs/notebook/search.md#map-v5, rendered from
+docs/data/notebook/search_map_v5.csv, which bench/docs_map.py reads): each diameter's cell and
+proven bound are what the code gives today, with no bake (the minima themselves:
+tests/blender/test_auto_cell.py at 20 and 30 Å; make bench QUICK=1 compares its walk's minimum
+at 20 Å)."""
 import importlib.util
 
 import pytest
@@ -33,10 +34,16 @@ def test_the_code_gives_the_published_cell_and_bound(diameter):
 
 
 def test_a_table_that_does_not_parse_is_an_error(tmp_path):
-    page = tmp_path / "search.md"
-    page.write_text(docs_map.PAGE.read_text(encoding="utf-8").replace("| **4** |", "| 4? |"))
-    with pytest.raises(ValueError, match="does not parse"):
-        docs_map.published_map(page)
-    page.write_text("# nothing here\n")
-    with pytest.raises(ValueError, match="no section"):
-        docs_map.published_map(page)
+    text = docs_map.MAP.read_text(encoding="utf-8")
+    bad = tmp_path / "search_map_v5.csv"
+    for broken in (text.replace(',4,"3: 0/5, 4: 4/5"', ',4?,"3: 0/5, 4: 4/5"'),
+                   text.replace('"3: 0/5, 4: 4/5"', '"3: 0/5, 4: 0/5"'),  # no fit at the minimum
+                   text.replace('"3: 0/5, 4: 4/5"', '"3: 1/5, 4: 4/5"'),  # a fit one shorter
+                   text.replace('"3: 0/5, 4: 4/5"', '"4: 4/5"')):  # one shorter not tried
+        assert broken != text
+        bad.write_text(broken, encoding="utf-8")
+        with pytest.raises(ValueError, match="does not parse"):
+            docs_map.published_map(bad)
+    bad.write_text(text.splitlines()[0] + "\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="empty"):
+        docs_map.published_map(bad)

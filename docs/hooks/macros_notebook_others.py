@@ -1,0 +1,223 @@
+"""The macros of the notebook's negative control, periodic cell and protofilaments pages
+(docs/notebook/negative-control.md, periodic-cell.md, protofilaments.md), of the changelog and of
+the contributing page: their dated tables and the times, P(fit)s and thresholds their prose
+quotes, read from docs/data/notebook/*.csv (each row names its date, commit, MODEL_VERSION, bpy
+and command), so the prose and the tables print what one file holds. page_numbers.py loads this
+file and calls `macros(numbers)`; every name starts with `nb_`.
+
+The negative control before the exit rule (`nb_nc_*`, negative-control_*.csv):
+- `nb_nc_seeds_table()`, `nb_nc_v4(case)`: the MODEL_VERSION 4 runs at the published linkers, one
+  row a seed (negative-control_v4_seeds.csv), and one case's P(fit), bound and seeds;
+- `nb_nc_probes_table()`, `nb_nc_probe_miss()`: MODEL_VERSION 5's single-seed probes;
+- `nb_nc_walk_table()`, `nb_nc_walk()`: MODEL_VERSION 5's walk with restarts, one row a restart,
+  and what it found (the minimum, P(fit) there, the length below, the bound, the open range);
+- `nb_nc_largest_table()`, `nb_nc_minimal_table()`, `nb_nc_largest(linker)`,
+  `nb_nc_minimal(fraction)`, `nb_nc_cost(key)`: MODEL_VERSION 6's prediction and its costs.
+
+The periodic cell (`nb_pc_*`), protofilaments (`nb_pf_*`), the changelog (`nb_cl_*`): one keyed
+number of a page's own file with `nb_said(page, key)`, and the tables below.
+"""
+from __future__ import annotations
+
+import csv
+
+NB = "notebook/"
+
+
+def macros(numbers) -> dict:
+    from fibrilfit.model.fraction_bound import fraction_bracket
+    from fibrilfit.search.table import bracket_line
+
+    def rows(name: str) -> list[dict]:
+        return numbers.data(NB + name)
+
+    def raw(name: str) -> list[dict]:
+        """A CSV's cells as the file writes them ("3.0" stays "3.0")."""
+        numbers.data(NB + name)  # the same checks: under docs/data/, a file that exists
+        with open(numbers.DATA / NB / name, encoding="utf-8") as f:
+            return list(csv.DictReader(f))
+
+    def one(found: list[dict], what: str) -> dict:
+        if len(found) != 1:
+            raise KeyError(f"{what}: {len(found)} rows, not one")
+        return found[0]
+
+    def seconds(s, comma: bool = True) -> str:
+        return (f"{s:,}" if comma else str(s)) + " s"
+
+    def ratio(k: int, n: int) -> str:
+        return f"{k}/{n}"
+
+    def table(head: list[str], lines: list[list]) -> str:
+        out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+        out += ["| " + " | ".join(str(c) for c in line) + " |" for line in lines]
+        return "\n".join(out)
+
+    def nb_said(page: str, key: str, field: str = "value"):
+        """The `field` of the one row of docs/data/notebook/PAGE_said.csv whose key is `key`,
+        as the file writes it."""
+        return one([r for r in raw(f"{page}_said.csv") if r["key"] == key],
+                   f"{page}_said.csv key {key!r}")[field]
+
+    # ---- the negative control, MODEL_VERSION 4 ---------------------------------------------
+
+    def v4(case: str) -> list[dict]:
+        found = [r for r in rows("negative-control_v4_seeds.csv") if r["case"] == case]
+        if not found:
+            raise KeyError(f"negative-control_v4_seeds.csv: no case {case!r}")
+        return found
+
+    def nb_nc_v4(case: str) -> dict:
+        """One case's runs: P(fit) "0/3", its 95 % interval, the bound, the seeds."""
+        rs = v4(case)
+        k, n = sum(r["fits"] for r in rs), len(rs)
+        return {"p_fit": ratio(k, n), "ci": numbers.wilson(k, n), "bound": rs[0]["bound"],
+                "seeds": n, "linker": rs[0]["linker"]}
+
+    def nb_nc_seeds_table() -> str:
+        head = ["case", "fibril", "linker", "exit: residues spent, free linker",
+                "bound: impossible below", "seeds", "answer", "P(fit) [95 % CI]",
+                "worst stretch per seed", "clashing pairs per seed", "frames per seed",
+                "bake per seed (wall)"]
+        order = list(dict.fromkeys(r["case"] for r in rows("negative-control_v4_seeds.csv")))
+        lines = []
+        for case in order:
+            rs = v4(case)
+            k, n, r0 = sum(r["fits"] for r in rs), len(rs), rs[0]
+            lines.append([f"`{case}`", r0["fibril"], r0["linker_said"], r0["exit"], r0["bound"],
+                          ", ".join(str(r["seed"]) for r in rs),
+                          "fits" if k else "no layout found",
+                          f"{ratio(k, n)} [{numbers.wilson(k, n)}]",
+                          ", ".join(f"{r['stretch_pct']} %" for r in rs),
+                          ", ".join(str(r["clashing_pairs"]) for r in rs),
+                          ", ".join(str(r["frames"]) for r in rs),
+                          ", ".join(seconds(r["bake_s"], comma=False) for r in rs)])
+        return table(head, lines)
+
+    # ---- the negative control, MODEL_VERSION 5: probes and the walk -------------------------
+
+    def nb_nc_probes_table() -> str:
+        head = ["linker (anchor counted)", "free after the exit", "seed", "answer",
+                "clashing pairs", "worst stretch", "frames; cycles (pairs, worst stretch)",
+                "bake", "wall", "load at start"]
+        return table(head, [[r["linker"], r["free_linker"], r["seed"], r["answer"],
+                             r["clashing_pairs"], r["worst_stretch"], r["frames_cycles"],
+                             seconds(int(r["bake_s"])), seconds(int(r["wall_s"])), r["load"]]
+                            for r in raw("negative-control_v5_probes.csv")])
+
+    def nb_nc_probe_miss() -> str:
+        """What a miss cost in the probes, in whole minutes of wall time (the shorter miss)."""
+        missed = [r["wall_s"] for r in rows("negative-control_v5_probes.csv")
+                  if "fits" not in r["answer"]]
+        return f"{round(min(missed) / 60)} minutes"
+
+    def walk_lengths() -> dict[int, list[dict]]:
+        by: dict[int, list[dict]] = {}
+        for r in raw("negative-control_v5_walk.csv"):
+            by.setdefault(int(r["linker"]), []).append(r)
+        return dict(sorted(by.items()))
+
+    def nb_nc_walk() -> dict:
+        """The walk's answer: `minimal` (the shortest length with a fit), `fits`/`runs` there
+        ("1/2" as `p_fit`), `ci`, the length below (`below`, `below_p_fit`, `below_ci`), the
+        `bound` it started at, the `open` range and the seed that fitted (`fit_seed`)."""
+        by = walk_lengths()
+        minimal = min(lk for lk, rs in by.items() if any(r["fits"] == "1" for r in rs))
+        at, below = by[minimal], by[minimal - 1]
+        k, n = sum(int(r["fits"]) for r in at), len(at)
+        kb, nb = sum(int(r["fits"]) for r in below), len(below)
+        bound = int(one(list({r["bound"]: r for rs in by.values() for r in rs}.values()),
+                        "the walk's bound")["bound"])
+        return {"minimal": minimal, "fits": k, "runs": n, "p_fit": ratio(k, n),
+                "ci": numbers.wilson(k, n), "below": minimal - 1, "below_p_fit": ratio(kb, nb),
+                "below_runs": nb, "below_ci": numbers.wilson(kb, nb), "bound": bound,
+                "open": f"{bound}–{minimal - 1}",
+                "fit_seed": ", ".join(r["seed"] for r in at if r["fits"] == "1"),
+                "at_runs": {lk: len(rs) for lk, rs in by.items()}}
+
+    def nb_nc_walk_table() -> str:
+        head = ["linker (anchor counted)", "free after the exit", "restarts (seeds)", "fit",
+                "clashing pairs at the end", "worst stretch", "frames", "bake"]
+        minimal = nb_nc_walk()["minimal"]
+        lines = []
+        for lk, rs in walk_lengths().items():
+            bold = (lambda r, text: f"**{text}**" if lk == minimal and r["fits"] == "1" else text)
+            k = sum(int(r["fits"]) for r in rs)
+            fitted = ", ".join(f"seed {r['seed']}" for r in rs if r["fits"] == "1")
+            fit = f"**{k}** ({fitted})" if lk == minimal else str(k)
+            frames = {r["frames"] for r in rs}
+            frames = (f"{int(frames.pop()):,} each" if len(frames) == 1
+                      else ", ".join(f"{int(r['frames']):,}" for r in rs))
+            plain = [r for r in rs if not r["bake_note"]]
+            noted = [r for r in rs if r["bake_note"]]
+            bake = ", ".join(seconds(int(r["bake_s"])) for r in plain)
+            if noted:
+                bake += (f" (seed {', '.join(r['seed'] for r in plain)}; "
+                         + "; ".join(f"seed {r['seed']} {r['bake_note']}: "
+                                     f"{seconds(int(r['bake_s']))}" for r in noted) + ")")
+            lines.append([f"**{lk}**" if lk == minimal else lk, rs[0]["free_linker"],
+                          f"{len(rs)} ({', '.join(r['seed'] for r in rs)})", fit,
+                          ", ".join(bold(r, r["clashing_pairs"]) for r in rs),
+                          ", ".join(bold(r, f"{r['stretch_pct']} %") for r in rs),
+                          frames, bake])
+        return table(head, lines)
+
+    # ---- the negative control, MODEL_VERSION 6: the prediction and its costs ----------------
+
+    def nb_nc_largest(linker: int) -> dict:
+        r = one([r for r in rows("negative-control_v6_largest.csv") if r["linker"] == linker],
+                f"negative-control_v6_largest.csv linker {linker}")
+        k, n = r["largest_count"], r["subunits"]
+        fitted = str(r["counts_that_fitted"]).split()
+        return {"k": k, "n": n, "percent": f"{100 * k / n:g} %", "fits": ratio(r["fits"], r["runs"]),
+                "above": r["above_count"], "above_fits": ratio(r["above_fits"], r["above_runs"]),
+                "fitted": ", ".join(fitted[:-1]) + " and " + fitted[-1] if len(fitted) > 1
+                else " ".join(fitted)}
+
+    def nb_nc_largest_table() -> str:
+        head = ["linker (anchor counted)", "subunits N", "largest fraction found (k/N)",
+                "P(fit) there (runs)", "one more decorated", "bound f_B", "bracket"]
+        lines = []
+        for r in rows("negative-control_v6_largest.csv"):
+            k, n = r["largest_count"], r["subunits"]
+            lines.append([r["linker"], n, f"{k / n:.3f} ({k}/{n})", ratio(r["fits"], r["runs"]),
+                          f"{r['above_count']}/{n}: {ratio(r['above_fits'], r['above_runs'])}",
+                          f"{r['fraction_bound']:.3f}", fraction_bracket(r["fraction_bound"], k / n)])
+        return table(head, lines)
+
+    def nb_nc_minimal(fraction: float) -> dict:
+        r = one([r for r in rows("negative-control_v6_minimal.csv")
+                 if abs(r["fraction"] - fraction) < 1e-9],
+                f"negative-control_v6_minimal.csv fraction {fraction}")
+        m = r["minimal_linker"]
+        return {"linker": m, "below": m - 1, "below_fits": ratio(r["below_fits"], r["below_runs"]),
+                "bound": r["bound"]}
+
+    def nb_nc_minimal_table() -> str:
+        """The MODEL_VERSION 6 walks at a fraction, and the MODEL_VERSION 5 walk with every
+        subunit decorated (negative-control_v5_walk.csv) as the last row."""
+        head = ["fraction (decorated of 40)", "bound at the fraction: impossible below",
+                "minimal linker found", "P(fit) there (runs)", "one below", "bracket"]
+
+        def said(bound: int, minimal: int) -> str:
+            line = bracket_line({"globule_diameter": 0, "floor": bound, "minimal_linker": minimal})
+            return line.split(" Å: ", 1)[1].split(" (docs/")[0]
+
+        lines = []
+        for r in rows("negative-control_v6_minimal.csv"):
+            m = r["minimal_linker"]
+            lines.append([f"{100 * r['fraction']:g} % ({r['count']})", r["bound"], m,
+                          ratio(r["fits"], r["runs"]),
+                          f"{m - 1}: {ratio(r['below_fits'], r['below_runs'])}", said(r["bound"], m)])
+        w = nb_nc_walk()
+        lines.append(["100 % (40): the negative control, MODEL_VERSION 5 ([the walk](#infinite-walk))",
+                      w["bound"], w["minimal"], w["p_fit"], f"{w['below']}: {w['below_p_fit']}",
+                      said(w["bound"], w["minimal"])])
+        return table(head, lines)
+
+    def nb_nc_cost(key: str) -> dict:
+        r = one([r for r in rows("negative-control_v6_costs.csv") if r["key"] == key],
+                f"negative-control_v6_costs.csv key {key!r}")
+        return {"wall": seconds(r["wall_s"]), "runs": r["runs"], "misses": r["misses"]}
+
+    return {name: fn for name, fn in locals().items() if name.startswith("nb_")}

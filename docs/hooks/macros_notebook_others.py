@@ -14,8 +14,9 @@ The negative control before the exit rule (`nb_nc_*`, negative-control_*.csv):
 - `nb_nc_largest_table()`, `nb_nc_minimal_table()`, `nb_nc_largest(linker)`,
   `nb_nc_minimal(fraction)`, `nb_nc_cost(key)`: MODEL_VERSION 6's prediction and its costs.
 
-The periodic cell (`nb_pc_*`), protofilaments (`nb_pf_*`), the changelog (`nb_cl_*`): one keyed
-number of a page's own file with `nb_said(page, key)`, and the tables below.
+The periodic cell (`nb_pc_*`): inflate in a cell (periodic-cell_inflate_cell.csv, its 52-layer
+re-run periodic-cell_inflate_52.csv). A page's single numbers in prose are rows of its
+docs/data/notebook/PAGE_said.csv (key, value), quoted with macros_model_a.py's `said(path, key)`.
 """
 from __future__ import annotations
 
@@ -52,12 +53,6 @@ def macros(numbers) -> dict:
         out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
         out += ["| " + " | ".join(str(c) for c in line) + " |" for line in lines]
         return "\n".join(out)
-
-    def nb_said(page: str, key: str, field: str = "value"):
-        """The `field` of the one row of docs/data/notebook/PAGE_said.csv whose key is `key`,
-        as the file writes it."""
-        return one([r for r in raw(f"{page}_said.csv") if r["key"] == key],
-                   f"{page}_said.csv key {key!r}")[field]
 
     # ---- the negative control, MODEL_VERSION 4 ---------------------------------------------
 
@@ -219,5 +214,58 @@ def macros(numbers) -> dict:
         r = one([r for r in rows("negative-control_v6_costs.csv") if r["key"] == key],
                 f"negative-control_v6_costs.csv key {key!r}")
         return {"wall": seconds(r["wall_s"]), "runs": r["runs"], "misses": r["misses"]}
+
+    # ---- the periodic cell: inflate in a cell ----------------------------------------------
+
+    def nb_pc_inflate_table() -> str:
+        """periodic-cell_inflate_cell.csv as the page's table: the cell's runs, the 20-layer
+        fibril's and the tutorial protocol's in the cell beside them."""
+        head = ["linker", "accommodated", "regrow cycles used (of 4)", "clashing pairs at the end",
+                "worst stretch at the end (%)", "20 layers, inflate",
+                "cell, tutorial protocol (M = 13, whole gravity, before \"Gravity in a cell\")"]
+        lines = []
+        for r in raw("periodic-cell_inflate_cell.csv"):
+            fit = ratio(r["accommodated"], r["runs"])
+            lines.append([r["linker"], f"**{fit}**" if r["linker"] == str(nb_pc_inflate()["cell"])
+                          else fit, r["regrow_cycles"], r["clashing_pairs"], r["worst_stretch_pct"],
+                          ratio(r["layers20_accommodated"], r["layers20_runs"]) + r["layers20_note"]
+                          if r["layers20_accommodated"] else r["layers20_note"],
+                          ratio(r["tutorial_accommodated"], r["tutorial_runs"])
+                          if r["tutorial_accommodated"] else r["tutorial_note"]])
+        return table(head, lines)
+
+    def nb_pc_inflate() -> dict:
+        """The shortest linker that fitted in the cell (`cell`) and on 20 layers (`layers20`),
+        the tutorial protocol's share in the cell at the cell's minimum (`tutorial`, "2 of 5")
+        and the runs a linker had (`runs`)."""
+        rs = rows("periodic-cell_inflate_cell.csv")
+        cell = min(r["linker"] for r in rs if r["accommodated"])
+        at = next(r for r in rs if r["linker"] == cell)
+        return {"cell": cell,
+                "layers20": min(r["linker"] for r in rs if r["layers20_accommodated"] not in ("", 0)),
+                "tutorial": f"{at['tutorial_accommodated']} of {at['tutorial_runs']}",
+                "runs": {r["linker"]: r["runs"] for r in rs}}
+
+    def nb_pc_52(linker: int) -> dict:
+        """The 52-layer cell's re-run at a linker: "0 of 5", its seeds, clashes and stretch."""
+        r = one([r for r in raw("periodic-cell_inflate_52.csv") if r["linker"] == str(linker)],
+                f"periodic-cell_inflate_52.csv linker {linker}")
+        return {"fits": f"{r['accommodated']} of {r['runs']}", "seeds": r["seeds"],
+                "clashes": r["clashes"], "stretch": r["stretch"]}
+
+    def nb_pc_52_minimal() -> int:
+        """The shortest linker that fitted in the 52-layer cell's re-run."""
+        return min(r["linker"] for r in rows("periodic-cell_inflate_52.csv") if r["accommodated"])
+
+    def nb_pc_issue25() -> dict:
+        """The 13-layer cell at linker 7 before the polish (issue 25; the model page's table,
+        docs/data/model/periodic-cell_cell_search_v2.csv): "2 of 5" and the seeds that fitted."""
+        found = [r for r in numbers.data("model/periodic-cell_cell_search_v2.csv")
+                 if r["key"] == "13 7 before polish"]
+        cell = one(found, "periodic-cell_cell_search_v2.csv key '13 7 before polish'")
+        fits, seeds = str(cell["accommodated (seeds)"]).split(" (")
+        seeds = seeds.rstrip(")").split(", ")
+        return {"fits": fits, "seeds": ", ".join(seeds[:-1]) + " and " + seeds[-1]
+                if len(seeds) > 1 else seeds[0]}
 
     return {name: fn for name, fn in locals().items() if name.startswith("nb_")}

@@ -15,7 +15,8 @@ The negative control before the exit rule (`nb_nc_*`, negative-control_*.csv):
   `nb_nc_minimal(fraction)`, `nb_nc_cost(key)`: MODEL_VERSION 6's prediction and its costs.
 
 The periodic cell (`nb_pc_*`): inflate in a cell (periodic-cell_inflate_cell.csv, its 52-layer
-re-run periodic-cell_inflate_52.csv). A page's single numbers in prose are rows of its
+re-run periodic-cell_inflate_52.csv). Protofilaments (`nb_pf_*`): two protofilaments against one
+(protofilaments_two.csv). A page's single numbers in prose are rows of its
 docs/data/notebook/PAGE_said.csv (key, value), quoted with macros_model_a.py's `said(path, key)`.
 """
 from __future__ import annotations
@@ -50,7 +51,7 @@ def macros(numbers) -> dict:
         return f"{k}/{n}"
 
     def table(head: list[str], lines: list[list]) -> str:
-        out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+        out = ["| " + " | ".join(str(h) for h in head) + " |", "|" + "---|" * len(head)]
         out += ["| " + " | ".join(str(c) for c in line) + " |" for line in lines]
         return "\n".join(out)
 
@@ -267,5 +268,29 @@ def macros(numbers) -> dict:
         seeds = seeds.rstrip(")").split(", ")
         return {"fits": fits, "seeds": ", ".join(seeds[:-1]) + " and " + seeds[-1]
                 if len(seeds) > 1 else seeds[0]}
+
+    # ---- protofilaments: what two change ---------------------------------------------------
+
+    def pf_kinds() -> dict[str, dict[int, dict]]:
+        by: dict[str, dict[int, dict]] = {}
+        for r in rows("protofilaments_two.csv"):
+            by.setdefault(r["kind"], {})[r["linker"]] = r
+        return by
+
+    def nb_pf_table() -> str:
+        """protofilaments_two.csv as the page's table: accommodated seeds a linker, a row a kind
+        of fibril (a linker not run there left empty)."""
+        by = pf_kinds()
+        linkers = sorted({lk for kind in by.values() for lk in kind})
+        return table(["linker", *linkers],
+                     [[kind, *(at[lk]["accommodated"] if lk in at else "" for lk in linkers)]
+                      for kind, at in by.items()])
+
+    def nb_pf(kind: str) -> dict:
+        """One kind's runs: the shortest linker every seed fitted (`minimal`) and "0/5" a linker
+        (`at`)."""
+        at = pf_kinds()[kind]
+        return {"minimal": min(lk for lk, r in at.items() if r["accommodated"] == r["runs"]),
+                "at": {lk: ratio(r["accommodated"], r["runs"]) for lk, r in at.items()}}
 
     return {name: fn for name, fn in locals().items() if name.startswith("nb_")}

@@ -14,7 +14,8 @@ The negative control before the exit rule (`nb_nc_*`, negative-control_*.csv):
 - `nb_nc_largest_table()`, `nb_nc_minimal_table()`, `nb_nc_largest(linker)`,
   `nb_nc_minimal(fraction)`, `nb_nc_cost(key)`: MODEL_VERSION 6's prediction and its costs.
 
-The periodic cell (`nb_pc_*`): inflate in a cell (periodic-cell_inflate_cell.csv, its 52-layer
+The periodic cell (`nb_pc_*`): the cells against long fibrils (periodic-cell_agreement_axial.csv,
+periodic-cell_agreement_whole.csv: `nb_pc_share`), inflate in a cell (periodic-cell_inflate_cell.csv, its 52-layer
 re-run periodic-cell_inflate_52.csv). Protofilaments (`nb_pf_*`): two protofilaments against one
 (protofilaments_two.csv). A page's single numbers in prose are rows of its
 docs/data/notebook/PAGE_said.csv (key, value), quoted with macros_model_a.py's `said(path, key)`.
@@ -217,6 +218,52 @@ def macros(numbers) -> dict:
         return {"wall": seconds(r["wall_s"]), "runs": r["runs"], "misses": r["misses"]}
 
     # ---- the periodic cell: inflate in a cell ----------------------------------------------
+
+    def nb_pc_share(gravity: str, run: str, linker: int) -> dict:
+        """One row of the agreement tables (periodic-cell_agreement_GRAVITY.csv, "axial" or
+        "whole"), by its run and linker: `k` of `n` accommodated, `pct` ("91 %"), `of`
+        ("91 % of 100"), `settled` and its share `settled_pct`."""
+        import re
+        r = one([r for r in raw(f"periodic-cell_agreement_{gravity}.csv")
+                 if r["run"] == run and r["linker"] == str(linker)],
+                f"periodic-cell_agreement_{gravity}.csv {run!r} at linker {linker}")
+        m = re.fullmatch(r"(\d+)(?: \((\d+ %), [^)]*\))?", r["accommodated"])
+        if not m:
+            raise ValueError(f"{run} at linker {linker}: no share in {r['accommodated']!r}")
+        n = int(r["n"])
+        pct = m[2] or f"{round(100 * int(m[1]) / n)} %"
+        return {"k": int(m[1]), "n": n, "pct": pct, "of": f"{pct} of {n}",
+                "settled": int(r["settled"]), "settled_pct": f"{round(100 * int(r['settled']) / n)} %",
+                "depth": r["deepest clash (Å)"]}
+
+    def pc_cells(gravity: str, linker: int | None = None, least: int = 0) -> list[dict]:
+        """The cells' rows ("cell, M = 26", ...) of an agreement table, at a linker (or all), of
+        `least` layers or more."""
+        import re
+        found = []
+        for r in raw(f"periodic-cell_agreement_{gravity}.csv"):
+            m = re.match(r"cell, M = (\d+)", r["run"])
+            if m and int(m[1]) >= least and (linker is None or r["linker"] == str(linker)):
+                found.append(r)
+        return found
+
+    def nb_pc_pooled(gravity: str, linker: int, least: int) -> dict:
+        """Every cell of `least` layers or more at a linker, pooled: `of` ("218 of 290 runs"),
+        `pct`, and `range`, the least and largest share of those cells ("65–89 %")."""
+        shares = [nb_pc_share(gravity, r["run"], linker) for r in pc_cells(gravity, linker, least)]
+        k, n = sum(s["k"] for s in shares), sum(s["n"] for s in shares)
+        return {"k": k, "n": n, "of": f"{k} of {n} runs", "pct": f"{round(100 * k / n)} %",
+                "range": nb_pc_span(gravity, [r["run"] for r in pc_cells(gravity, linker, least)],
+                                    linker)}
+
+    def nb_pc_span(gravity: str, runs: list[str], linker: int) -> str:
+        """The least and largest share of some rows at a linker: "65–73 %"."""
+        pcts = sorted(int(nb_pc_share(gravity, run, linker)["pct"].split()[0]) for run in runs)
+        return f"{pcts[0]} %" if pcts[0] == pcts[-1] else f"{pcts[0]}–{pcts[-1]} %"
+
+    def nb_pc_cell_runs(gravity: str) -> int:
+        """How many cell runs an agreement table holds, every linker."""
+        return sum(int(r["n"]) for r in pc_cells(gravity))
 
     def nb_pc_inflate_table() -> str:
         """periodic-cell_inflate_cell.csv as the page's table: the cell's runs, the 20-layer

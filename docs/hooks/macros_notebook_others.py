@@ -14,10 +14,12 @@ The negative control before the exit rule (`nb_nc_*`, negative-control_*.csv):
 - `nb_nc_largest_table()`, `nb_nc_minimal_table()`, `nb_nc_largest(linker)`,
   `nb_nc_minimal(fraction)`, `nb_nc_cost(key)`: MODEL_VERSION 6's prediction and its costs.
 
-The periodic cell (`nb_pc_*`): the cells against long fibrils (periodic-cell_agreement_axial.csv,
-periodic-cell_agreement_whole.csv: `nb_pc_share`), inflate in a cell (periodic-cell_inflate_cell.csv, its 52-layer
-re-run periodic-cell_inflate_52.csv). Protofilaments (`nb_pf_*`): two protofilaments against one
-(protofilaments_two.csv). A page's single numbers in prose are rows of its
+The periodic cell (`nb_pc_*`): the cells against long fibrils, the tables rendered with
+macros_model_b.py's `measured_table` (periodic-cell_agreement_axial.csv, _whole.csv) and their
+shares quoted with `nb_pc_share`, `nb_pc_pooled`, `nb_pc_span`, `nb_pc_cell_runs`; inflate in a
+cell (`nb_pc_inflate_table`, `nb_pc_inflate`: periodic-cell_inflate_cell.csv; `nb_pc_52`: its
+52-layer re-run; `nb_pc_issue25`: the model page's row of the same runs). Protofilaments
+(`nb_pf_table`, `nb_pf`: protofilaments_two.csv). A page's single numbers in prose are rows of
 docs/data/notebook/PAGE_said.csv (key, value), quoted with macros_model_a.py's `said(path, key)`.
 """
 from __future__ import annotations

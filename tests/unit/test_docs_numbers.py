@@ -2,8 +2,8 @@
 mkdocs-macros module): every `{{ ... }}` a page writes must name something the data holds (a page
 rendered here as the plugin renders it, with an undefined name an error), a page that quotes
 numbers this way must say so in its front matter (else its braces would be printed as they are),
-the pages converted to it quote no time by hand, and every measured time is of the code's own
-MODEL_VERSION."""
+the pages converted to it quote no time, P(fit) or measured threshold (minimal linker, bound,
+bracket) by hand, and every measured time is of the code's own MODEL_VERSION."""
 import importlib.util
 import pathlib
 import re
@@ -29,6 +29,31 @@ BARE_PFIT = re.compile(r"(?<![\w.{/])(?<!√\()\d+\s?/\s?\d+(?![\w./])"
 TIMED_HEAD = re.compile(r"\((?:s|min|h|ms|µs)\)|,\s*(?:s|min|h|ms|µs)\b|(?<![\w'’-])(?:s|ms|µs)\s*$|(?<![\w'’])s\s*\("
                         r"|\bseconds?\b|\bsec\b|worker-s\b|\bmin(?:utes?)?\b(?!\))|\bhours?\b|\b(?:ms|µs)\b"
                         r"|P\(fit\)|\bruns/min\b")
+# A measured threshold as prose writes it: a minimal linker ("minimal linker 6", "the minimal
+# linker at 23", "minimal linkers of 10", "the shortest linker found is 5", "5 is the shortest that
+# fits"), the bracket ("impossible below 13", "fits at 8", "fits from 16", "nothing fits below 2",
+# "no layout exists below 9", "open 1-7", "no layout found at 9–13") and the geometric bound ("bound
+# 13", "the bound is 1", "bound (9)", "bounds: 4-10"), and "the threshold ... is 6 residues".
+# Every pattern needs a verdict word (minimal, shortest, impossible, fits, no layout, open, bound,
+# threshold) right before its number. That is what tells a measurement from an input: a length
+# asked for is written with "linker" right before its number ("at linker 8", "fits at linker 8",
+# "--linker 12", "linker 1 to 5") or as "a 12-residue linker", and no verdict word stands right
+# before it, so those are not read as thresholds (write an asked length so, "fits at linker 8",
+# not "fits at 8", which is the bracket's form). A number after such a word that is a percentage,
+# a decimal or a size in Å ("the minimal linker at 10 %, 25 %", "an upper bound of 4.2 %", "the
+# bounds of 40 and 50 Å") is not a linker length, so it is not read as one.
+_LENGTH = r"\**\d+(?!\d|[.,]\d|(?:\s?(?:,|and|or|to|–|-)\s?\d+)*\s?(?:%|Å|°))"
+_RANGE = _LENGTH + r"\**\s?(?:-|–|to|and)\s?\d+"
+THRESHOLD = re.compile(r"\bminimal linkers? (?:is |was |of |at |= |: |, )?(?:only |still |now )?" + _LENGTH
+                       + r"|\bshortest (?:linker )?(?:that fits |found )?(?:is |was )(?:then |now )?" + _LENGTH
+                       + r"|(?<![\w.])\d+ (?:is|was) the (?:shortest|minimal) (?:linker )?that fits\b"
+                       + r"|\b(?:fits|fitted) (?:at|from|below) " + _LENGTH
+                       + r"|\bimpossible below " + _LENGTH
+                       + r"|\bno layout (?:exists |is possible )?below " + _LENGTH
+                       + r"|\b(?:open|no layout found) (?:at |from |between )?" + _RANGE
+                       + r"|\bbracket (?:is |was |of |: )?" + _RANGE
+                       + r"|\bbounds?(?: is| was| of| =|:)? \(?" + _LENGTH
+                       + r"|\bthreshold(?: [\w-]+){0,5} is " + _LENGTH + r" residues?\b", re.I)
 NUMBER_CELL = re.compile(r"(?<![\w.#])\d+(?:[.,]\d+)*(?![\w])")
 FRONT = re.compile(r"\A---\n(.*?)\n---\n", re.S)
 
@@ -57,7 +82,7 @@ def prose(text: str) -> str:
 
 PAGES = sorted(p for p in DOCS.rglob("*.md"))
 RENDERED = [p for p in PAGES if split(p)[0].get("render_macros")]
-# The pages whose measured times and P(fit)s come from files only (front matter `numbers: data`):
+# The pages whose measured times, P(fit)s and thresholds come from files only (front matter `numbers: data`):
 # one written by hand in their prose fails.
 CONVERTED = [p.relative_to(DOCS).as_posix() for p in RENDERED if split(p)[0].get("numbers") == "data"]
 # These pages were converted first; each stays converted
@@ -177,6 +202,15 @@ def test_a_converted_page_writes_no_p_fit_by_hand(name, blocks):
 
 
 @pytest.mark.parametrize("name", CONVERTED)
+def test_a_converted_page_types_no_threshold_by_hand(name, blocks):
+    body = prose(without_generated(split(DOCS / name)[1], blocks))
+    body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
+    bare = [m.group(0) for m in THRESHOLD.finditer(body)]
+    assert not bare, (f"{name}: a measured threshold (minimal linker, bound, bracket) written by hand "
+                      f"(quote the file that holds it): {bare}")
+
+
+@pytest.mark.parametrize("name", CONVERTED)
 def test_a_converted_page_types_no_table_of_times_by_hand(name, blocks):
     body = prose(without_generated(split(DOCS / name)[1], blocks))
     body = re.sub(r"\{\{.*?\}\}", "", body, flags=re.S)
@@ -215,17 +249,17 @@ def table_numbers(body: str) -> list[str]:
 
 
 def typed_numbers(text: str) -> list[str]:
-    """The measured times and P(fit)s a page's prose types by hand (not through {{ ... }}): in its
-    sentences, and in its tables' columns of times or P(fit)s."""
+    """The measured times, P(fit)s and thresholds a page's prose types by hand (not through
+    {{ ... }}): in its sentences, and in its tables' columns of times or P(fit)s."""
     body = re.sub(r"\{\{.*?\}\}", "", prose(text), flags=re.S)
     return ([m.group(0) for m in BARE_TIME.finditer(body)] + [m.group(0) for m in BARE_PFIT.finditer(body)]
-            + table_numbers(body))
+            + [m.group(0) for m in THRESHOLD.finditer(body)] + table_numbers(body))
 
 
 @pytest.mark.parametrize("page", [p for p in PAGES if not p.relative_to(DOCS).as_posix().startswith(RECORDS)],
                          ids=lambda p: p.relative_to(DOCS).as_posix())
 def test_a_page_that_quotes_a_measurement_takes_it_from_a_file(page):
-    """Outside the records, a page quotes no measured time or P(fit) by hand: either it types
+    """Outside the records, a page quotes no measured time, P(fit) or threshold by hand: either it types
     none, or it is marked `numbers: data` (and then the tests above hold its prose)."""
     front, body = split(page)
     if front.get("numbers") == "data":
@@ -242,6 +276,33 @@ def test_the_p_fit_check_finds_a_p_fit():
     assert BARE_PFIT.search("it fitted (2/3) at 12")
     assert not BARE_PFIT.search("a 30 Å ball, 250 frames, 8 restarts, 4.8 Å/layer, 2·√(5/3)·Rg")
     assert not BARE_PFIT.search("see out/2026/11 and 10.1073/pnas")
+
+
+def test_the_threshold_check_finds_a_threshold_and_not_an_input():
+    for measured in ("the walk's minimal linker 6 at 30 Å", "it fits at 8", "impossible below 13 (proof)",
+                     "bound 13", "fits from 16", "On 20 layers the bound is 1", "the minimal linker is 4",
+                     "a walk that found the minimal linker at 23", "The bound (9) settles nothing",
+                     "Their bounds: 4-10", "no layout exists below **9**", "nothing fits below 2 residues",
+                     "the shortest linker found is then 5", "of the linkers run, 5 is the shortest that fits",
+                     "impossible below 1 / fits at 8 / open 1-7", "no layout found at 9–13",
+                     "the threshold on a 16-layer fibril is 6 residues", "Impossible below 2"):
+        assert THRESHOLD.search(measured), measured
+    assert [m.group(0) for m in THRESHOLD.finditer("impossible below 2, fits from 16")] == [
+        "impossible below 2", "fits from 16"]
+    for asked in ("a 12-residue linker", "P(fit) 8/8 at linker 8", "it fits at linker 8",
+                  "at linker 8 the search found layouts", "chains of linker 1 to 5 residues",
+                  "linkers 1 to 5 `no exit`", "fibrilfit run --linker 12", "--linker 12",
+                  "a linker of 14 residues", "the minimal linker at 10 %, 25 % and 50 %",
+                  "a 95 % upper bound of 4.2 % on a wrong stop", "the cells and bounds of 40 and 50 Å",
+                  "the bound for the 44 Å ball", "the upper bound (0.43 for R = 5)",
+                  "`bound_C`: the linker bound, 401 = no exit", "whose bound is above 1",
+                  "fits at f = 1", "the linker bound at 10, 25, 50, 75 and 100 % decorated",
+                  "impossible below B, fits at L, open between", "minimal linker to domain 1"):
+        assert not THRESHOLD.search(asked), (asked, THRESHOLD.search(asked).group(0))
+    # the records' check counts them too
+    assert typed_numbers("the walk: impossible below 13, fits at 23 (seed 1)") == [
+        "impossible below 13", "fits at 23"]
+    assert typed_numbers("`impossible below 13` and {{ took('x') }} bound {{ b }}") == []
 
 
 def test_data_reads_measured_files_and_renders_a_table():

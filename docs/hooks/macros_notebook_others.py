@@ -53,6 +53,11 @@ def macros(numbers) -> dict:
     def ratio(k: int, n: int) -> str:
         return f"{k}/{n}"
 
+    def in_words(values) -> str:
+        """"23, 24 and 28": a list as prose writes it."""
+        values = [str(v) for v in values]
+        return ", ".join(values[:-1]) + " and " + values[-1] if len(values) > 1 else "".join(values)
+
     def table(head: list[str], lines: list[list]) -> str:
         out = ["| " + " | ".join(str(h) for h in head) + " |", "|" + "---|" * len(head)]
         out += ["| " + " | ".join(str(c) for c in line) + " |" for line in lines]
@@ -119,7 +124,8 @@ def macros(numbers) -> dict:
     def nb_nc_walk() -> dict:
         """The walk's answer: `minimal` (the shortest length with a fit), `fits`/`runs` there
         ("1/2" as `p_fit`), `ci`, the length below (`below`, `below_p_fit`, `below_ci`), the
-        `bound` it started at, the `open` range and the seed that fitted (`fit_seed`)."""
+        `bound` it started at, the `open` range, the seed that fitted (`fit_seed`) and every length
+        where a seed fitted (`fitted_at`, "23, 24 and 28")."""
         by = walk_lengths()
         minimal = min(lk for lk, rs in by.items() if any(r["fits"] == "1" for r in rs))
         at, below = by[minimal], by[minimal - 1]
@@ -132,7 +138,8 @@ def macros(numbers) -> dict:
                 "below_runs": nb, "below_ci": numbers.wilson(kb, nb), "bound": bound,
                 "open": f"{bound}–{minimal - 1}",
                 "fit_seed": ", ".join(r["seed"] for r in at if r["fits"] == "1"),
-                "at_runs": {lk: len(rs) for lk, rs in by.items()}}
+                "at_runs": {lk: len(rs) for lk, rs in by.items()},
+                "fitted_at": in_words([lk for lk, rs in by.items() if any(r["fits"] == "1" for r in rs)])}
 
     def nb_nc_walk_table() -> str:
         head = ["linker (anchor counted)", "free after the exit", "restarts (seeds)", "fit",
@@ -170,8 +177,7 @@ def macros(numbers) -> dict:
         fitted = str(r["counts_that_fitted"]).split()
         return {"k": k, "n": n, "percent": f"{100 * k / n:g} %", "fits": ratio(r["fits"], r["runs"]),
                 "above": r["above_count"], "above_fits": ratio(r["above_fits"], r["above_runs"]),
-                "fitted": ", ".join(fitted[:-1]) + " and " + fitted[-1] if len(fitted) > 1
-                else " ".join(fitted)}
+                "fitted": in_words(fitted)}
 
     def nb_nc_largest_table() -> str:
         head = ["linker (anchor counted)", "subunits N", "largest fraction found (k/N)",
@@ -315,8 +321,7 @@ def macros(numbers) -> dict:
         cell = one(found, "periodic-cell_cell_search_v2.csv key '13 7 before polish'")
         fits, seeds = str(cell["accommodated (seeds)"]).split(" (")
         seeds = seeds.rstrip(")").split(", ")
-        return {"fits": fits, "seeds": ", ".join(seeds[:-1]) + " and " + seeds[-1]
-                if len(seeds) > 1 else seeds[0]}
+        return {"fits": fits, "seeds": in_words(seeds)}
 
     # ---- protofilaments: what two change ---------------------------------------------------
 

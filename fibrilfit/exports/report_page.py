@@ -14,6 +14,7 @@ import shlex
 
 from ..model.searches import search_words
 from . import ensemble_words
+from .run_text import count
 from .span_words import span_words
 
 STYLE = """
@@ -138,15 +139,15 @@ def linker_rows(doc: dict) -> str:
         f"<tr><td>{esc(L)}</td><td>{t['accommodated']}/{t['restarts']}</td>"
         f"<td>{'fits' if t['accommodated'] else 'no layout found'}</td></tr>"
         for L, t in sorted(tried.items(), key=lambda kv: int(kv[0])))
-    found = (f"<b>{m['linker']}</b> residues: P(fit) {m['p_fit']:.2f} "
+    found = (f"<b>{count(m['linker'], 'residue')}</b>: P(fit) {m['p_fit']:.2f} "
              f"(95 % Wilson {interval(m['interval'])})" if m.get("linker") else
-             f"none up to {m['max_linker']} residues")
+             f"none up to {count(m['max_linker'], 'residue')}")
     if m.get("stopped_at_fit"):
-        found += (f" from {m['runs']} restarts, stopped at the first fit (the others could not "
+        found += (f" from {count(m['runs'], 'restart')}, stopped at the first fit (the others could not "
                   f"change that it fits)")
     if m.get("below_settled_by_bound"):
         below = (f"; one below, at {m['linker_below']}: no layout possible, by the proven bound "
-                 f"({m['floor']} residues at least), not simulated")
+                 f"({count(m['floor'], 'residue')} at least), not simulated")
     else:
         below = (f"; one below, at {m['linker_below']}: P(fit) {m['p_fit_below']:.2f} "
                  f"(95 % Wilson {interval(m['interval_below'])})"
@@ -154,7 +155,7 @@ def linker_rows(doc: dict) -> str:
     br = doc.get("bracket")
     if br:
         hi = br["open"][1] if br.get("open") else None
-        bracket = (f"<p><b>The bracket</b>: impossible below {br['impossible_below']} residues "
+        bracket = (f"<p><b>The bracket</b>: impossible below {count(br['impossible_below'], 'residue')} "
                    f"(proof: the geometry, the proven bound)"
                    + (f"; fits at {br['fits_at']} (proof: a layout)" if br.get("fits_at") else "")
                    + (f"; open from {br['impossible_below']} to {hi}: neither proof reaches "
@@ -173,7 +174,7 @@ def margin_text(doc: dict) -> str:
     parts = []
     if g.get("linker_residues") is not None:
         n = g["linker_residues"]
-        parts.append(f"the linker asked for is {abs(n)} residue(s) "
+        parts.append(f"the linker asked for is {count(abs(n), 'residue')} "
                      f"{'longer' if n >= 0 else 'shorter'} than the minimal linker")
     if g.get("stretch_margin") is not None:
         parts.append(f"the best layout's worst linker bond is stretched "

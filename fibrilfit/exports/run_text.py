@@ -18,6 +18,12 @@ def percent(fraction: float) -> str:
     return "0.0 %" if text == "-0.0 %" else text  # a bond compressed by 0.001 % is not "-0.0"
 
 
+def count(n: int, noun: str) -> str:
+    """"1 residue", "8 residues", "1 restart": a number with its noun, singular for one (every
+    printed word that counts something: the report page, the sidebar, the gallery's table)."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
 def text(r: dict, quiet: bool = False, files: dict | None = None) -> str:
     """The lines a run prints: the model and its sources, the bake, the verdict, the answer
     and every file written (`files`: option -> path, as the command line checked them)."""

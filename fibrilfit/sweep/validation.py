@@ -8,6 +8,8 @@ The caveats that go above the table: docs/validation.md#caveats.
 """
 from __future__ import annotations
 
+from ..exports.run_text import count
+
 
 def _fit_text(row) -> str:
     f = row["fit"]
@@ -42,7 +44,7 @@ def _lengths(tried: dict) -> str:
             groups[-1][0].append(str(length))
         else:
             groups.append(([str(length)], n))
-    return ", ".join(f"{', '.join(ls)} ({n} restart{'' if n == 1 else 's'}"
+    return ", ".join(f"{', '.join(ls)} ({count(n, 'restart')}"
                      f"{' each' if len(ls) > 1 else ''})" for ls, n in groups)
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import textwrap
 
+from ..exports.run_text import count
 from .result_words import WRAP  # characters per line: the sidebar's width
 NOT_ASKED = ("linker", "seed")  # what the map searches, and its seeds' start (shown)
 KEPT = ("globule_diameter", "minimal_linker", "fits", "restarts", "linker_below",
@@ -30,7 +31,7 @@ def cancelled(runs: int) -> dict:
 
 
 def runs(n: int) -> str:
-    return f"{n} run{'' if n == 1 else 's'}"
+    return count(n, "run")
 
 
 # The table's columns (issue #45): each cell at most CELL characters, four to the default

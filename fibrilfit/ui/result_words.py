@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 import textwrap
 
-from ..exports.run_text import percent
+from ..exports.run_text import count, percent
 from ..exports.span_words import NEARLY_STRAIGHT, end_to_end
 from . import panel_words, provenance
 
@@ -24,7 +24,7 @@ ANSWERS = {"fits": "CHECKMARK", "borderline": "INFO", "no layout found": "ERROR"
 
 
 def residues(n: int) -> str:
-    return f"{n} residue{'' if n == 1 else 's'}"
+    return count(n, "residue")
 
 
 def answer_line(answer: str, *, linker: int | None = None, bound: int = 0,
@@ -79,7 +79,7 @@ def run_lines(*, answer: str, clashes: int, stretch: float, tolerance: float,
     worst bond, and how far the linkers span of their length: `span`, the result's
     `linker_stretch`) and the bound."""
     lines = [answer_line(answer, linker=linker, bound=bound, what="Run: ")]
-    lines.append((f"Globules: {clashes} clashing pair{'' if clashes == 1 else 's'}"
+    lines.append((f"Globules: {count(clashes, 'clashing pair')}"
                   if clashes else "Globules: clear of each other", "BLANK1"))
     lines.append((stretch_line(stretch, tolerance), "BLANK1"))
     lines.extend(span_lines(span))

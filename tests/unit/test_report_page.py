@@ -58,7 +58,7 @@ def test_page_is_self_contained_and_says_no_layout_found_never_does_not_fit(tmp_
     assert "anchor buried 22.7 Å deep" in page and "-0.961°" in page  # twist in degrees too
     assert "150 Å" in page and "EM, Fig. 2" in page  # the measured width beside the envelope
     assert "headless.py report --linker 2" in page
-    assert "3 residue(s) shorter than the minimal linker" in page
+    assert "3 residues shorter than the minimal linker" in page
 
 
 def test_sources_name_option_file_and_defaults():

@@ -6,7 +6,9 @@
 - the infinite fibril's maps (#infinite-fibril-map, #map-v5): docs/data/notebook/search_map_v2.csv
   and search_map_v5.csv, read by bench/docs_map.py (which bench/targets.py and the tests use too);
   each row's walk (`tried`: "4: 0/5, 5: 5/5") gives its P(fit) at the minimum and one shorter;
-- the runs the prose quotes (wall, CPU and bake seconds): search_runs.csv, a row by `key`.
+- the runs the prose quotes (wall, CPU and bake seconds): search_runs.csv, a row by `key`; the
+  maps' whole-command costs are the benchmarks' (docs/data/bench/searchcost_map.csv,
+  mapcost_measured.csv, mapcost_walls.csv), quoted from there, not copied.
 
 Every P(fit) is written "k/n = p [95 % CI]" with the interval FibrilFit computes
 (page_numbers.wilson). Standard library only (loaded by docs/hooks/page_numbers.py)."""

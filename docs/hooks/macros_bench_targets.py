@@ -54,11 +54,13 @@ def macros(numbers) -> dict:
         """The `value` of bench/targets_said.csv's row `key`, as the file writes it."""
         return one("bench/targets_said.csv", "key", key)["value"]
 
-    def targets_from(path: str, key: str, field: str = "value", by: str = "key") -> str:
+    def targets_from(name: str, key: str, field: str = "value", by: str = "key") -> str:
         """The `field` of the one row whose `by` column is `key` in another file under
         docs/data/, as the file writes it: a measurement another section holds is quoted from
-        there, not copied."""
-        return one(path, by, key)[field]
+        there, not copied. `name` is a path under docs/data/ ("notebook/x.csv") or the stem of
+        a file of docs/data/bench/ ("mapcost_walls": a path "bench/..." in a page would read
+        as the repository's bench/ folder)."""
+        return one(name if name.endswith(".csv") else f"bench/{name}.csv", by, key)[field]
 
     def targets_whole(value, thousands: bool = False) -> str:
         """A number rounded to a whole one, as the page writes it ("174" for 174.1; "1,199")."""

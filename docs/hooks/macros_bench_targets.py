@@ -2,8 +2,9 @@
 record's own measurements, each from the file that holds it (loaded by docs/hooks/page_numbers.py).
 
 The files, under docs/data/ (each row with its date, commit, MODEL_VERSION, bpy and command):
-- bench/targets_said.csv: the numbers the section's prose quotes, one row a number by `key`,
-  each with what it is (`targets_said(KEY)`);
+- bench/targets_said.csv: the numbers the section's prose quotes that no other file holds, one
+  row a number by `key`, each with what it is (`targets_said(KEY)`); a number another section
+  measured is quoted from that section's file (`targets_from`);
 - bench/targets_report_rounds.csv: the report side by side, three rounds a side;
 - bench/targets_validate_v6_rounds.csv and bench/targets_validate_v6_cases.csv: `make validate`
   at MODEL_VERSION 6 end to end, its rounds and where round 1's time went;
@@ -13,6 +14,11 @@ The files, under docs/data/ (each row with its date, commit, MODEL_VERSION, bpy 
 
 The macros:
 - `targets_said(key)`: a number of bench/targets_said.csv as the file writes it ("1,199");
+- `targets_from(path, key, field)`: a number another section's file holds (the report's stages
+  and side by side, the map's walls and floors, `make validate`'s first fresh run), quoted from
+  there; `targets_whole(value)` rounds it as the page does, `targets_extremes(path, column,
+  where)` gives the least and largest of some rows, `targets_seconds(text)` reads "24 min 6 s"
+  as seconds;
 - `targets_min_s(seconds)`: "38 min 18 s", as the page writes a wall time in minutes;
 - `targets_rounds_table(prefix, columns)`: the report's rounds (rows whose key starts so), the
   median checked against the rounds;
@@ -47,6 +53,38 @@ def macros(numbers) -> dict:
     def targets_said(key: str) -> str:
         """The `value` of bench/targets_said.csv's row `key`, as the file writes it."""
         return one("bench/targets_said.csv", "key", key)["value"]
+
+    def targets_from(name: str, key: str, field: str = "value", by: str = "key") -> str:
+        """The `field` of the one row whose `by` column is `key` in another file under
+        docs/data/, as the file writes it: a measurement another section holds is quoted from
+        there, not copied. `name` is a path under docs/data/ ("notebook/x.csv") or the stem of
+        a file of docs/data/bench/ ("mapcost_walls": a path "bench/..." in a page would read
+        as the repository's bench/ folder)."""
+        return one(name if name.endswith(".csv") else f"bench/{name}.csv", by, key)[field]
+
+    def targets_whole(value, thousands: bool = False) -> str:
+        """A number rounded to a whole one, as the page writes it ("174" for 174.1; "1,199")."""
+        return f"{seconds(str(value)):,.0f}" if thousands else f"{seconds(str(value)):.0f}"
+
+    def targets_extremes(path: str, column: str, where: dict, unnoted: str = "") -> list[str]:
+        """The least and the largest of `column` over the rows of a file whose cells match
+        `where` ({column: [values]}), rows with a note in column `unnoted` left out."""
+        found = [r for r in rows(path)
+                 if all(r[k] in [str(v) for v in vs] for k, vs in where.items())
+                 and not (unnoted and r[unnoted])]
+        if not found:
+            raise KeyError(f"{path}: no row with {where}")
+        values = sorted((r[column] for r in found), key=seconds)
+        return [values[0], values[-1]]
+
+    def targets_seconds(text: str) -> float:
+        """A time as seconds, from "1,446", "1446.0" or "24 min 6 s"."""
+        text = str(text).strip()
+        if " min" in text:
+            minutes, _, rest = text.partition(" min")
+            rest = rest.strip().removesuffix("s").strip()
+            return int(minutes) * 60 + (float(rest) if rest else 0)
+        return seconds(text)
 
     def targets_min_s(value) -> str:
         """A wall time in seconds as minutes and seconds, "38 min 18 s" (2297.8 s)."""

@@ -6,7 +6,11 @@
 - the infinite fibril's maps (#infinite-fibril-map, #map-v5): docs/data/notebook/search_map_v2.csv
   and search_map_v5.csv, read by bench/docs_map.py (which bench/targets.py and the tests use too);
   each row's walk (`tried`: "4: 0/5, 5: 5/5") gives its P(fit) at the minimum and one shorter;
-- the runs the prose quotes (wall, CPU and bake seconds): search_runs.csv, a row by `key`.
+- the 12-layer cell's two starts, a seed a column: search_lattice_start.csv, their fits counted
+  by `search_lattice_table` (checked against model/auto-cell_20A_linker4.csv);
+- the runs the prose quotes (wall, CPU and bake seconds): search_runs.csv, a row by `key`; the
+  maps' whole-command costs are the benchmarks' (docs/data/bench/searchcost_map.csv,
+  mapcost_measured.csv, mapcost_walls.csv), quoted from there, not copied.
 
 Every P(fit) is written "k/n = p [95 % CI]" with the interval FibrilFit computes
 (page_numbers.wilson). Standard library only (loaded by docs/hooks/page_numbers.py)."""
@@ -18,6 +22,8 @@ import importlib.util
 RUNS = "notebook/search_runs.csv"
 WALKS = "notebook/search_cell_walk.csv"
 PARTIAL = "notebook/search_auto_partial.csv"
+LATTICE = "notebook/search_lattice_start.csv"
+AUTO_CELL = "model/auto-cell_20A_linker4.csv"
 PROVENANCE = ("date", "commit", "model_version", "bpy", "command")
 
 
@@ -130,6 +136,32 @@ def macros(numbers) -> dict:
             rows.append([r[k] for k in keys] + [v5[d]["impossible_below"], _before(d), layers20[d]])
         return _table(heads, rows)
 
+    def search_lattice_table() -> str:
+        """The 12-layer cell's starts at 20 Å, linker 4, a seed a column
+        (notebook/search_lattice_start.csv), with their fits counted from the seeds' cells and
+        checked against the counts the model pages quote (model/auto-cell_20A_linker4.csv, rows
+        "12 random" and "12 lattice"; the random start's issue #36 count, "12 random earlier",
+        beside it): the seeds are written once, their count not copied."""
+        found = numbers.data(LATTICE)
+        counts = {r["key"]: r for r in numbers.data(AUTO_CELL)}
+        keys = [k for k in found[0] if k not in PROVENANCE]
+        rows = []
+        for r in found:
+            label = str(r[keys[0]])
+            start = "lattice" if "lattice" in label else "random"
+            made = [str(r[k]) for k in keys if k.startswith("seed ") and str(r[k]) != "–"]
+            fits = sum(s.startswith("fit") for s in made)
+            held = counts[f"12 {start}"]
+            if (held["accommodated"], held["runs"]) != (fits, len(made)):
+                raise ValueError(f"{LATTICE}: {fits}/{len(made)} {start} fits, but {AUTO_CELL} "
+                                 f"has {held['accommodated']}/{held['runs']}")
+            text = f"{fits}/{len(made)}"
+            if start == "random":
+                earlier = counts["12 random earlier"]
+                text += f" ({earlier['accommodated']}/{earlier['runs']} in issue #36)"
+            rows.append([r[k] for k in keys] + [f"**{text}**" if label.startswith("**") else text])
+        return _table(keys + ["fits"], rows)
+
     def search_run(key: str, column: str = "wall_s", style: str = "s", over: int = 1) -> str:
         """A cell of search_runs.csv's row `key`, written in `style`: "s" ("807 s", a range
         "76–379 s"), "min" ("23 min"), "minutes" ("36 minutes"), "min s" ("42 min 10 s"),
@@ -161,4 +193,4 @@ def macros(numbers) -> dict:
     return {"search_map": search_map, "search_kn": search_kn, "search_pfit": search_pfit,
             "search_first_table": search_first_table, "search_map_table": search_map_table,
             "search_open": search_open, "search_partial_table": search_partial_table,
-            "search_run": search_run}
+            "search_run": search_run, "search_lattice_table": search_lattice_table}

@@ -18,8 +18,9 @@ rows that should agree and differ, a key with no row, a walk with a fit where th
 - `thresh_finite_bounds()`: the gallery's bounds on finite fibrils, in words;
 - `thresh_walk_missed(case)`: the lengths a gallery case's walk (docs/data/validation) tried
   without a fit, "9–13";
-- `thresh_deposited_exit(fraction)`: a row of the Aβ42–GFP walks with the deposited exit (5
-  residues spent, MODEL_VERSION 5-6): docs/data/validation/deposited_exit_walks.csv.
+- `thresh_deposited_exit(fraction)`: the Aβ42–GFP walk with the deposited exit (5 residues
+  spent, MODEL_VERSION 5-6) at a fraction decorated, derived from the notebook's files of its
+  runs (docs/data/notebook/negative-control_v5_walk.csv, negative-control_v6_minimal.csv).
 
 Every name starts `thresh_` (no clash with the other families). Standard library only."""
 from __future__ import annotations
@@ -134,11 +135,34 @@ def macros(numbers) -> dict:
         return f"{lengths[0]}–{lengths[-1]}"
 
     def thresh_deposited_exit(fraction: float) -> dict:
-        """The walk at a fraction (1.0: the negative control) with the deposited exit."""
-        rows = [r for r in numbers.data("validation/deposited_exit_walks.csv")
-                if abs(r["fraction"] - fraction) < 1e-9]
+        """The Aβ42–GFP walk at a fraction of subunits decorated with the deposited exit (5
+        residues spent), from the notebook's files of its runs, not a copy of them: 1.0, the
+        negative control, is the walk to 30 at 896a625 (MODEL_VERSION 5), its runs a seed a row
+        in notebook/negative-control_v5_walk.csv: the minimal linker is the shortest length a run
+        fitted at (every run one below it a miss, checked), the bound the one its rows share; a
+        fraction below 1 is a row of notebook/negative-control_v6_minimal.csv (MODEL_VERSION 6).
+        Both give `impossible_below`, `minimal_linker`, `fits` and `runs` there, and `below`,
+        `below_fits` and `below_runs` one residue below it."""
+        if abs(fraction - 1.0) < 1e-9:
+            path = "notebook/negative-control_v5_walk.csv"
+            runs = numbers.data(path)
+            minimal = min(r["linker"] for r in runs if r["fits"])
+            at = [r for r in runs if r["linker"] == minimal]
+            below = [r for r in runs if r["linker"] == minimal - 1]
+            if not below or any(r["fits"] for r in below):
+                raise ValueError(f"{path}: the walk's minimum {minimal} has no misses below it")
+            return {"fraction": 1.0, "impossible_below": thresh_same(path, "bound"),
+                    "minimal_linker": minimal, "fits": sum(r["fits"] for r in at),
+                    "runs": len(at), "below": minimal - 1, "below_fits": 0,
+                    "below_runs": len(below)}
+        path = "notebook/negative-control_v6_minimal.csv"
+        rows = [r for r in numbers.data(path) if abs(r["fraction"] - fraction) < 1e-9]
         if len(rows) != 1:
-            raise KeyError(f"validation/deposited_exit_walks.csv: {len(rows)} rows at {fraction}")
-        return rows[0]
+            raise KeyError(f"{path}: {len(rows)} rows at {fraction}")
+        r = rows[0]
+        return {"fraction": r["fraction"], "decorated": r["count"], "subunits": r["subunits"],
+                "impossible_below": r["bound"], "minimal_linker": r["minimal_linker"],
+                "fits": r["fits"], "runs": r["runs"], "below": r["minimal_linker"] - 1,
+                "below_fits": r["below_fits"], "below_runs": r["below_runs"]}
 
     return {name: fn for name, fn in locals().items() if name.startswith("thresh_")}

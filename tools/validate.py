@@ -332,13 +332,19 @@ def has_domain_file(case_path) -> bool:
 
 
 def write_page(text: str, page: pathlib.Path = PAGE, shape: str | None = None,
-               between: tuple | None = None) -> None:
+               between: tuple | None = None) -> bool:
+    """Write `text` between the page's markers; False (the page untouched) where the block is a
+    `{{ ... }}` the docs build renders from a data file (the hull table: docs/data/validation/
+    hull.json), which a typed table must not replace."""
     start, end = between or markers(shape)
     body = page.read_text(encoding="utf-8")
     if start not in body or end not in body:
         raise SystemExit(f"{page.relative_to(ROOT)} has no {start} ... {end} markers")
     a, b = body.index(start) + len(start), body.index(end)
+    if "{{" in body[a:b]:
+        return False
     page.write_text(body[:a] + "\n" + text + "\n" + body[b:], encoding="utf-8")
+    return True
 
 
 def case_file(name: pathlib.Path) -> pathlib.Path:
@@ -476,7 +482,10 @@ def main(argv=None) -> int:
     print(text)
     if not args.no_docs:
         save_stored(stored, args.domain_shape)
-        write_page(text, shape=args.domain_shape)
+        if not write_page(text, shape=args.domain_shape):
+            print(f"{PAGE.relative_to(ROOT)}: its table for this run is rendered from a data file "
+                  f"(docs/data/validation/hull.json), so the page is left as it is; this run's rows "
+                  f"are in {stored_path(args.domain_shape).relative_to(ROOT)}")
         if args.domain_shape is None:
             write_page(glance_text(shown), between=GLANCE)
     return 0

@@ -208,6 +208,18 @@ def test_the_table_goes_between_the_docs_pages_markers(tmp_path):
         f"# V\n\nbefore\n{validate.START}\n| new | rows |\n{validate.END}\nafter\n")
 
 
+def test_a_block_the_docs_build_renders_is_not_overwritten(tmp_path):
+    """validation.md's hull table is a macro over docs/data/validation/hull.json: make
+    validate-shapes leaves it, where it once replaced it with a typed table."""
+    start, end = validate.markers("hull")
+    assert "{{ val_hull_table() }}" in validate.PAGE.read_text(encoding="utf-8").split(start)[1].split(end)[0]
+    text = f"before\n{start}\n{{{{ val_hull_table() }}}}\n{end}\nafter\n"
+    page = tmp_path / "validation.md"
+    page.write_text(text, encoding="utf-8")
+    assert validate.write_page("| typed | rows |", page, shape="hull") is False
+    assert page.read_text(encoding="utf-8") == text
+
+
 def test_a_case_is_named_by_path_or_by_its_gallery_name():
     tutorial = ROOT / "examples" / "tutorial.toml"
     assert validate.case_file(tutorial) == tutorial

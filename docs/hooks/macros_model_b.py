@@ -11,7 +11,6 @@ reads them for page_numbers' `maps`. Standard library only (loaded by docs/hooks
 from __future__ import annotations
 
 import csv
-import importlib.util
 import re
 
 # The infinite fibril's maps as the notebook publishes them (docs/notebook/search.md), from the
@@ -20,13 +19,6 @@ import re
 # "**3** (3/3; 0/3 at 2)" (a minimum) or "> 10 (0/3 at 8, 9 and 10; ...)") from WALKS
 WALKS = "notebook/search_cell_walk.csv"
 WALK = re.compile(r"\*\*(\d+)\*\* \(.*|(> \d+) \(.*|not run")
-
-
-def _docs_map(root):
-    spec = importlib.util.spec_from_file_location("docs_map", root / "bench" / "docs_map.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 # The columns that say where a row comes from: every row carries them, the table shows the rest;
@@ -81,7 +73,7 @@ def macros(numbers) -> dict:
         "map-v5"), from the file the notebook renders it from (bench/docs_map.py reads it):
         {diameter: {"minimal", "fits", "runs", "below", "fits_below", "runs_below", and "bound",
         "open" where the map has the bound}}; a row that does not parse fails."""
-        docs_map = _docs_map(numbers.ROOT)
+        docs_map = numbers.script("bench/docs_map.py")
         if anchor not in docs_map.MAPS:
             raise ValueError(f"docs/notebook/search.md: no map {anchor!r}")
         rows = {}

@@ -17,7 +17,6 @@ Every P(fit) is written "k/n = p [95 % CI]" with the interval FibrilFit computes
 from __future__ import annotations
 
 import csv
-import importlib.util
 
 RUNS = "notebook/search_runs.csv"
 WALKS = "notebook/search_cell_walk.csv"
@@ -33,9 +32,7 @@ def _table(heads: list[str], rows: list[list]) -> str:
 
 
 def macros(numbers) -> dict:
-    spec = importlib.util.spec_from_file_location("docs_map", numbers.ROOT / "bench" / "docs_map.py")
-    docs_map = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(docs_map)
+    docs_map = numbers.script("bench/docs_map.py")
 
     def search_map(anchor: str) -> dict[int, dict]:
         """The map under `{#anchor}` ("infinite-fibril-map", "map-v5"): {diameter:

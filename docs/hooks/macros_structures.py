@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import csv
 import functools
-import importlib.util
 import pathlib
 import statistics
 
@@ -51,21 +50,15 @@ def _seconds(s) -> str:
 
 
 @functools.lru_cache(maxsize=None)
-def _tool():
-    spec = importlib.util.spec_from_file_location("deposited_survey",
-                                                  ROOT / "tools" / "deposited_survey.py")
-    tool = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(tool)
-    return tool
-
-
-@functools.lru_cache(maxsize=None)
 def _survey_rows() -> tuple:
     with open(SURVEY_V8, newline="", encoding="utf-8") as fh:
         return tuple(csv.DictReader(fh))
 
 
 def macros(numbers) -> dict:
+    def _tool():  # tools/deposited_survey.py, loaded when a macro first asks
+        return numbers.script("tools/deposited_survey.py")
+
     def st_seconds(key: str) -> str:
         """A timing of the page's own, docs/data/guide/structures_timings.csv by key."""
         row = next((r for r in numbers.data("guide/structures_timings.csv") if r["key"] == key),

@@ -15,7 +15,6 @@ A table macro writes the same header its fast test reads (tests/unit/test_valida
 reads the page as the site shows it: tests/docs_rows.py)."""
 from __future__ import annotations
 
-import importlib.util
 import pathlib
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -285,9 +284,7 @@ def macros(numbers) -> dict:
 
     # ---- widths (docs/data/widths*.json, docs/data/widths_sup35.csv) ------------------------
 
-    spec = importlib.util.spec_from_file_location("widths", ROOT / "tools" / "widths.py")
-    widths = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(widths)
+    widths = numbers.script("tools/widths.py")
 
     def val_widths(case: str) -> dict:
         """A widths run (docs/data/widths/CASE.json) as the prose quotes it, in nm."""

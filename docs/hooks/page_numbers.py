@@ -74,10 +74,18 @@ def reports() -> dict[str, dict]:
 
 
 @functools.lru_cache(maxsize=None)
+def script(path: str):
+    """A script of the repository ("bench/docs_map.py", "tools/widths.py") loaded as a module,
+    once: the pages' macros read what the tools write the way the tools read it."""
+    spec = importlib.util.spec_from_file_location(pathlib.PurePosixPath(path).stem, ROOT / path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@functools.lru_cache(maxsize=None)
 def maps() -> dict[str, dict[int, int]]:
-    spec = importlib.util.spec_from_file_location("docs_map", ROOT / "bench" / "docs_map.py")
-    docs_map = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(docs_map)
+    docs_map = script("bench/docs_map.py")
     cell = {d: row["minimal_linker"] for d, row in docs_map.published_map().items()}
     with open(ROOT / "docs" / "minimal_linker.csv", encoding="utf-8") as f:
         layers20 = {int(r["globule_diameter"]): int(r["minimal_linker"])
